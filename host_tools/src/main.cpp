@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: MIT
+// curvestep: evaluate, sample, simulate and stream motion paths.
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"curvestep: allocation-free Bezier/B-spline motion paths for CNC and plotter controllers"};
+  app.require_subcommand(1);
+  curvestep::host::add_demo_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "curvestep: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: MIT
+// Umbrella header for curvestep::core: fixed point, vectors and curves. Allocation-free.
+#pragma once
+
+#include <curvestep/core/contract.hpp>
+#include <curvestep/core/curve/arc_length.hpp>
+#include <curvestep/core/curve/bernstein.hpp>
+#include <curvestep/core/curve/bezier.hpp>
+#include <curvestep/core/curve/circular_arc.hpp>
+#include <curvestep/core/curve/composite_bezier.hpp>
+#include <curvestep/core/curve/continuity.hpp>
+#include <curvestep/core/curve/curvature.hpp>
+#include <curvestep/core/curve/power_basis.hpp>
+#include <curvestep/core/curve/rational_bezier.hpp>
+#include <curvestep/core/error.hpp>
+#include <curvestep/core/fixed/fixed.hpp>
+#include <curvestep/core/geometry/bounding_box.hpp>
+#include <curvestep/core/geometry/vec.hpp>
+#include <curvestep/core/result.hpp>
+#include <curvestep/core/scalar.hpp>

@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: MIT
+// RationalBezier: r(t) = Σ w_i b_i B^n_i(t) / Σ w_i B^n_i(t), with positive weights.
+//
+// Evaluated by de Casteljau in homogeneous coordinates (w b, w) and one division, which keeps
+// every step a convex combination. Derivatives come from the homogeneous curve A(t) = (w r)(t)
+// and its weight w(t) by the Leibniz rule: w r^(k) = A^(k) - Σ_{i=1..k} C(k,i) w^(i) r^(k-i).
+// Positive weights keep the curve inside the convex hull of its control points.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <initializer_list>
+#include <span>
+
+#include <curvestep/core/curve/bezier.hpp>
+#include <curvestep/core/detail/binomial.hpp>
+#include <curvestep/core/detail/checked.hpp>
+
+namespace curvestep {
+
+/// A rational Bézier curve of runtime degree up to MaxDegree with positive weights, on [0,1].
+template <Scalar S, std::size_t Dim, std::size_t MaxDegree = 7>
+class RationalBezier {
+ public:
+  using scalar_type = S;
+  using Point = Vec<S, Dim>;
+  using Homogeneous = Bezier<S, Dim + 1, MaxDegree>;  ///< the curve (w b, w) in one more dimension
+  static constexpr std::size_t dimension = Dim;
+  static constexpr std::size_t max_degree = MaxDegree;
+  static constexpr std::size_t capacity = MaxDegree + 1;
+
+  constexpr RationalBezier() = default;
+
+  /// From control points and their weights (same count). NonPositiveWeight (index = weight),
+  /// EmptyControlPolygon, DegreeAboveCapacity, InvalidArgument (counts differ), FixedOverflow if
+  /// w_i b_i does not fit.
+  [[nodiscard]] static constexpr Result<RationalBezier> create(std::span<const Point> control,
+                                                               std::span<const S> weights) noexcept {
+    if (control.empty()) return fail(Error::EmptyControlPolygon);
+    if (control.size() > capacity) return fail(Error::DegreeAboveCapacity, control.size() - 1);
+    if (weights.size() != control.size()) return fail(Error::InvalidArgument, weights.size());
+    std::array<Vec<S, Dim + 1>, capacity> homogeneous{};
+    for (std::size_t i = 0; i < control.size(); ++i) {
+      if (!is_finite(weights[i])) return fail(Error::NotFinite, i);
+      if (!(S{} < weights[i])) return fail(Error::NonPositiveWeight, i);
+      for (std::size_t axis = 0; axis < Dim; ++axis) {
+        if (!is_finite(control[i][axis])) return fail(Error::NotFinite, i);
+        const auto c = checked_mul(control[i][axis], weights[i]);
+        if (!c) return fail(c.error(), i);
+        homogeneous[i][axis] = c.value();
+      }
+      homogeneous[i][Dim] = weights[i];
+    }
+    RationalBezier curve;
+    CURVESTEP_TRY(curve.homogeneous_, Homogeneous::create(std::span<const Vec<S, Dim + 1>>(homogeneous.data(), control.size())));
+    for (std::size_t i = 0; i < control.size(); ++i) curve.points_[i] = control[i];
+    return curve;
+  }
+
+  [[nodiscard]] static constexpr Result<RationalBezier> create(std::initializer_list<Point> control,
+                                                               std::initializer_list<S> weights) noexcept {
+    return create(std::span<const Point>(control.begin(), control.size()), std::span<const S>(weights.begin(), weights.size()));
+  }
+
+  /// A polynomial Bézier as a rational one (all weights 1).
+  [[nodiscard]] static constexpr Result<RationalBezier> from_polynomial(const Bezier<S, Dim, MaxDegree>& curve) noexcept {
+    std::array<S, capacity> ones{};
+    for (auto& w : ones) w = from_int<S>(1);
+    return create(curve.control_points(), std::span<const S>(ones.data(), curve.degree() + 1));
+  }
+
+  [[nodiscard]] constexpr std::size_t degree() const noexcept { return homogeneous_.degree(); }
+  [[nodiscard]] constexpr std::span<const Point> control_points() const noexcept {
+    return std::span<const Point>(points_.data(), degree() + 1);
+  }
+  /// Weight i; contract: i <= degree().
+  [[nodiscard]] constexpr S weight(std::size_t i) const { return homogeneous_[i][Dim]; }
+  /// The homogeneous polynomial curve (w b, w).
+  [[nodiscard]] constexpr const Homogeneous& homogeneous() const noexcept { return homogeneous_; }
+  [[nodiscard]] constexpr const Point& front() const noexcept { return points_[0]; }
+  [[nodiscard]] constexpr const Point& back() const noexcept { return points_[degree()]; }
+
+  /// r(t) for t in [0,1]; ParameterOutOfRange otherwise.
+  [[nodiscard]] constexpr Result<Point> evaluate(S t) const {
+    if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
+    return point_at(t);
+  }
+
+  /// r(t), contract t in [0,1]. The end points are returned exactly.
+  [[nodiscard]] constexpr Point point_at(S t) const {
+    if (t == S{}) return points_[0];
+    if (t == from_int<S>(1)) return points_[degree()];
+    return project(homogeneous_.point_at(t));
+  }
+
+  /// r^(order)(t) for t in [0,1] (order 0: the point).
+  [[nodiscard]] constexpr Result<Point> derivative_at(S t, std::size_t order = 1) const {
+    if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
+    if (order > MaxDegree + 4) return fail(Error::InvalidArgument);
+    std::array<Vec<S, Dim + 1>, MaxDegree + 5> homogeneous_derivatives{};
+    for (std::size_t k = 0; k <= order; ++k) {
+      CURVESTEP_TRY(homogeneous_derivatives[k], homogeneous_.derivative_at(t, k));
+    }
+    std::array<Point, MaxDegree + 5> r{};
+    const S w = homogeneous_derivatives[0][Dim];
+    for (std::size_t k = 0; k <= order; ++k) {
+      for (std::size_t axis = 0; axis < Dim; ++axis) {
+        detail::Checked<S> numerator(homogeneous_derivatives[k][axis]);
+        for (std::size_t i = 1; i <= k; ++i) {
+          const auto c = static_cast<int>(detail::binomial(k, i));
+          numerator = numerator - detail::Checked<S>(from_int<S>(c)) * detail::Checked<S>(homogeneous_derivatives[i][Dim]) *
+                                      detail::Checked<S>(r[k - i][axis]);
+        }
+        CURVESTEP_TRY(r[k][axis], (numerator / detail::Checked<S>(w)).result());
+      }
+    }
+    return r[order];
+  }
+
+  /// Splits at t in [0,1]; both halves are rational curves of the same degree.
+  [[nodiscard]] constexpr Result<SplitCurves<RationalBezier>> split(S t) const {
+    CURVESTEP_TRY(const auto halves, homogeneous_.split(t));
+    SplitCurves<RationalBezier> out;
+    out.left = from_homogeneous(halves.left);
+    out.right = from_homogeneous(halves.right);
+    return out;
+  }
+
+  /// The box of the control points; with positive weights it contains the curve.
+  [[nodiscard]] constexpr BoundingBox<S, Dim> bounding_box() const {
+    return curvestep::bounding_box<S, Dim>(control_points());
+  }
+
+  /// Builds the curve from a homogeneous one whose weights are known to be positive.
+  [[nodiscard]] static constexpr RationalBezier from_homogeneous(const Homogeneous& h) {
+    RationalBezier curve;
+    curve.homogeneous_ = h;
+    for (std::size_t i = 0; i <= h.degree(); ++i) {
+      CURVESTEP_EXPECTS(S{} < h[i][Dim]);
+      curve.points_[i] = project(h[i]);
+    }
+    return curve;
+  }
+
+ private:
+  static constexpr Point project(const Vec<S, Dim + 1>& h) {
+    Point p;
+    for (std::size_t axis = 0; axis < Dim; ++axis) p[axis] = h[axis] / h[Dim];
+    return p;
+  }
+
+  Homogeneous homogeneous_{};
+  std::array<Point, capacity> points_{};
+};
+
+}  // namespace curvestep
