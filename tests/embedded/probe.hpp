@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: MIT
+// Each probe_<area>.cpp instantiates one area's templates for Q16.16 and float and writes the
+// results to `sink`, so the linker keeps the code. Add a declaration and a call for a new area.
+#pragma once
+
+#include <cstdint>
+
+namespace curvestep::probe {
+
+/// Where probes store results so that nothing is optimised away.
+inline volatile std::int32_t sink = 0;
+
+void probe_core_curves();
+
+/// Runs every probe (called from Reset_Handler).
+inline void run_all() {
+  probe_core_curves();
+}
+
+}  // namespace curvestep::probe
