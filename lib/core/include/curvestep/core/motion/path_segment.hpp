@@ -1,0 +1,201 @@
+// SPDX-License-Identifier: MIT
+// PathSegment: one piece of a job (line, circular/helical arc, Bézier, rational Bézier) in 3 axes.
+//
+// Geometry is held in double so that planning and evaluation are bit-identical on every target
+// (IEEE +, -, *, /, sqrt and the deterministic sin/cos of deterministic_math.hpp only). A firmware
+// receives coordinates as Q16.16 and converts them exactly; the simulator quantises job files to
+// Q16.16 first, so both see the same numbers. Every kind is parametrised on u in [0,1]:
+//   line    p(u) = (1-u) a + u b
+//   arc     p(u) = c + cos(uθ) a + sin(uθ) J a (+ u Δz on the third axis), θ the signed sweep
+//   Bézier  de Casteljau; rational Bézier in homogeneous coordinates.
+// B-spline/NURBS jobs are extracted into (rational) Bézier segments before they get here.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <curvestep/core/curve/bezier.hpp>
+#include <curvestep/core/curve/circular_arc.hpp>
+#include <curvestep/core/curve/rational_bezier.hpp>
+#include <curvestep/core/motion/deterministic_math.hpp>
+#include <curvestep/core/motion/machine_limits.hpp>
+
+namespace curvestep {
+
+/// What kind of curve a segment is.
+enum class SegmentKind : std::uint8_t {
+  Line = 0,            ///< straight line
+  Arc = 1,             ///< circular arc in the XY plane, optionally helical in Z
+  Bezier = 2,          ///< polynomial Bézier, degree 1..7
+  RationalBezier = 3,  ///< rational Bézier with positive weights, degree 1..7
+};
+
+/// A point in machine space (mm).
+using MachinePoint = Vec<double, motion_axes>;
+
+/// One segment of a path; construct with the make_* functions, which validate.
+class PathSegment {
+ public:
+  static constexpr std::size_t max_degree = 7;
+  using Polynomial = curvestep::Bezier<double, motion_axes, max_degree>;
+  using Rational = curvestep::RationalBezier<double, motion_axes, max_degree>;
+
+  constexpr PathSegment() = default;
+
+  /// A straight line from a to b. DegenerateCurve if a == b (zero-length moves are dropped by callers).
+  [[nodiscard]] static Result<PathSegment> make_line(const MachinePoint& a, const MachinePoint& b) noexcept {
+    if (a == b) return fail(Error::DegenerateCurve);
+    PathSegment s;
+    s.kind_ = SegmentKind::Line;
+    CURVESTEP_TRY(s.polynomial_, Polynomial::create({a, b}));
+    return s;
+  }
+
+  /// An arc in the XY plane about `center` (its z ignored) from `start` to `end` in `direction`,
+  /// plus `full_turns` extra whole turns; z moves linearly from start.z to end.z (a helix).
+  /// start == end (in XY) with full_turns == 0 is a full circle. InvalidArgument if the radii of
+  /// start and end differ by more than `radius_tolerance_mm`; DegenerateCurve for zero radius.
+  [[nodiscard]] static Result<PathSegment> make_arc(const MachinePoint& start, const MachinePoint& end, const MachinePoint& center,
+                                                    ArcDirection direction, std::uint32_t full_turns,
+                                                    double radius_tolerance_mm) noexcept {
+    const double ax = start[0] - center[0];
+    const double ay = start[1] - center[1];
+    const double bx = end[0] - center[0];
+    const double by = end[1] - center[1];
+    const double r = std::sqrt(ax * ax + ay * ay);
+    const double rb = std::sqrt(bx * bx + by * by);
+    if (!std::isfinite(r) || !std::isfinite(rb)) return fail(Error::NotFinite);
+    if (r == 0) return fail(Error::DegenerateCurve);
+    if (std::fabs(r - rb) > radius_tolerance_mm) return fail(Error::InvalidArgument, 1);
+    double sweep = detail::atan2(ax * by - ay * bx, ax * bx + ay * by);  // (-π, π]
+    const bool ccw = direction == ArcDirection::CounterClockwise;
+    if (ccw && sweep <= 0) sweep += 2 * detail::pi;
+    if (!ccw && sweep >= 0) sweep -= 2 * detail::pi;
+    sweep += (ccw ? 2 : -2) * detail::pi * static_cast<double>(full_turns);
+    PathSegment s;
+    s.kind_ = SegmentKind::Arc;
+    s.start_ = start;
+    s.end_ = end;
+    s.center_ = MachinePoint{{center[0], center[1], start[2]}};
+    s.radius_ = r;
+    s.sweep_ = sweep;
+    s.dz_ = end[2] - start[2];
+    return s;
+  }
+
+  /// A polynomial Bézier from 2..8 control points.
+  [[nodiscard]] static Result<PathSegment> make_bezier(std::span<const MachinePoint> control) noexcept {
+    if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
+    PathSegment s;
+    s.kind_ = SegmentKind::Bezier;
+    CURVESTEP_TRY(s.polynomial_, Polynomial::create(control));
+    if (s.is_point()) return fail(Error::DegenerateCurve);
+    return s;
+  }
+
+  /// A rational Bézier from 2..8 control points and positive weights.
+  [[nodiscard]] static Result<PathSegment> make_rational_bezier(std::span<const MachinePoint> control,
+                                                                std::span<const double> weights) noexcept {
+    if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
+    PathSegment s;
+    s.kind_ = SegmentKind::RationalBezier;
+    CURVESTEP_TRY(s.rational_, Rational::create(control, weights));
+    if (s.is_point()) return fail(Error::DegenerateCurve);
+    return s;
+  }
+
+  [[nodiscard]] constexpr SegmentKind kind() const noexcept { return kind_; }
+  /// Rapid (travel, pen-up) move rather than a feed move.
+  [[nodiscard]] constexpr bool rapid() const noexcept { return rapid_; }
+  constexpr void set_rapid(bool rapid) noexcept { rapid_ = rapid; }
+  /// Programmed feed in mm/s (0: the machine's default).
+  [[nodiscard]] constexpr double feed_mm_per_s() const noexcept { return feed_; }
+  constexpr void set_feed_mm_per_s(double feed) noexcept { feed_ = feed; }
+
+  /// Arc data (meaningful for SegmentKind::Arc).
+  [[nodiscard]] constexpr const MachinePoint& arc_center() const noexcept { return center_; }
+  [[nodiscard]] constexpr double arc_radius() const noexcept { return radius_; }
+  [[nodiscard]] constexpr double arc_sweep_rad() const noexcept { return sweep_; }
+  /// Bézier data (meaningful for Line and Bezier).
+  [[nodiscard]] constexpr const Polynomial& polynomial() const noexcept { return polynomial_; }
+  /// Rational data (meaningful for RationalBezier).
+  [[nodiscard]] constexpr const Rational& rational() const noexcept { return rational_; }
+
+  /// Start and end points (exact: the values the segment was built from).
+  [[nodiscard]] constexpr MachinePoint start() const noexcept {
+    switch (kind_) {
+      case SegmentKind::Arc: return start_;
+      case SegmentKind::RationalBezier: return rational_.front();
+      default: return polynomial_.front();
+    }
+  }
+  [[nodiscard]] constexpr MachinePoint end() const noexcept {
+    switch (kind_) {
+      case SegmentKind::Arc: return end_;
+      case SegmentKind::RationalBezier: return rational_.back();
+      default: return polynomial_.back();
+    }
+  }
+
+  /// p(u), u in [0,1] (contract). The ends return start() and end() exactly.
+  [[nodiscard]] MachinePoint point(double u) const {
+    CURVESTEP_EXPECTS(u >= 0 && u <= 1);
+    if (u == 0) return start();
+    if (u == 1) return end();
+    switch (kind_) {
+      case SegmentKind::Arc: return rotated_radius(u * sweep_, 1.0) + MachinePoint{{center_[0], center_[1], start_[2] + u * dz_}};
+      case SegmentKind::RationalBezier: return rational_.point_at(u);
+      default: return polynomial_.point_at(u);
+    }
+  }
+
+  /// d^order p / du^order at u in [0,1], order 1..3.
+  [[nodiscard]] MachinePoint derivative(double u, std::size_t order) const {
+    CURVESTEP_EXPECTS(u >= 0 && u <= 1 && order >= 1);
+    switch (kind_) {
+      case SegmentKind::Arc: {
+        // d^k/du^k of R(uθ) a = |θ|^k R(uθ + k sign(θ) π/2) a; z is linear in u.
+        const double sign = sweep_ >= 0 ? 1.0 : -1.0;
+        double factor = 1;
+        for (std::size_t k = 0; k < order; ++k) factor *= std::fabs(sweep_);
+        auto d = rotated_radius(u * sweep_ + static_cast<double>(order) * sign * detail::pi / 2, factor);
+        d[2] = order == 1 ? dz_ : 0.0;
+        return d;
+      }
+      case SegmentKind::RationalBezier: return rational_.derivative_at(u, order).value();
+      default: return polynomial_.derivative_at(u, order).value();
+    }
+  }
+
+ private:
+  /// factor * R(angle) (start - center) in XY, z = 0.
+  [[nodiscard]] MachinePoint rotated_radius(double angle, double factor) const noexcept {
+    const auto sc = detail::sin_cos(angle);
+    const double ax = start_[0] - center_[0];
+    const double ay = start_[1] - center_[1];
+    return MachinePoint{{factor * (sc.cos * ax - sc.sin * ay), factor * (sc.cos * ay + sc.sin * ax), 0.0}};
+  }
+
+  [[nodiscard]] constexpr bool is_point() const noexcept {
+    const auto pts = kind_ == SegmentKind::RationalBezier ? rational_.control_points() : polynomial_.control_points();
+    for (const auto& p : pts) {
+      if (!(p == pts[0])) return false;
+    }
+    return true;
+  }
+
+  SegmentKind kind_ = SegmentKind::Line;
+  bool rapid_ = false;
+  double feed_ = 0;
+  Polynomial polynomial_{};
+  Rational rational_{};
+  MachinePoint start_{}, end_{}, center_{};
+  double radius_ = 0;
+  double sweep_ = 0;
+  double dz_ = 0;
+};
+
+}  // namespace curvestep
