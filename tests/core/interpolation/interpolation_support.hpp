@@ -19,15 +19,15 @@
 namespace curvestep::testing {
 
 /// Tolerance for values computed through a linear solve: Q16.16 rounds every product and quotient
-/// to half a raw unit, and the spline systems are diagonally dominant (error growth <= 3), so a few
-/// dozen raw units per unit of magnitude; float/double: the same count of epsilons.
+/// to half a raw unit and the spline systems are strictly diagonally dominant (bounded error
+/// growth), so 8 raw units per unit of magnitude `scale`; float/double: 8 epsilons times scale.
 template <Scalar S>
 double solve_tolerance(double scale = 1.0) {
   const double magnitude = scale < 1 ? 1 : scale;
   if constexpr (FixedPoint<S>) {
-    return 48 * to_double(resolution<S>()) * magnitude;
+    return 8 * to_double(resolution<S>()) * magnitude;
   } else {
-    return 48 * static_cast<double>(std::numeric_limits<S>::epsilon()) * magnitude;
+    return 8 * static_cast<double>(std::numeric_limits<S>::epsilon()) * magnitude;
   }
 }
 

@@ -1,0 +1,355 @@
+// SPDX-License-Identifier: MIT
+// C2 cubic interpolating splines against seed digests 000/002/003 TV-23..TV-28 (open, natural and
+// clamped, uniform / non-uniform / chord-length) and seed 001 TV-12, TV-13 (closed), property P-6.
+#include <array>
+#include <cmath>
+#include <span>
+
+#include <catch2/catch.hpp>
+
+#include <curvestep/core.hpp>
+#include <support/numeric.hpp>
+
+#include "interpolation_support.hpp"
+
+using namespace curvestep;
+using curvestep::testing::check_passes_through;
+using curvestep::testing::joint_jump;
+using curvestep::testing::max_error;
+using curvestep::testing::point;
+using curvestep::testing::points2;
+using curvestep::testing::scalar;
+using curvestep::testing::scalars;
+using curvestep::testing::solve_tolerance;
+
+namespace {
+template <class S>
+using Spline = CompositeBezier<S, 2, 3, 16>;
+
+template <class S, std::size_t N>
+std::span<const Vec2<S>> view(const std::array<Vec2<S>, N>& a) {
+  return std::span<const Vec2<S>>(a);
+}
+template <class S, std::size_t N>
+std::span<const S> view(const std::array<S, N>& a) {
+  return std::span<const S>(a);
+}
+
+/// s'(u_j) read from the Bézier segments: 3 (q1 − p_j)/h_j, or at the last knot 3 (p_n − q2)/h.
+template <class S>
+Vec2<S> tangent_at_knot(const Spline<S>& curve, std::size_t j) {
+  if (j < curve.size()) return curve.segment_derivative(j, S{}, 1).value();
+  return curve.segment_derivative(j - 1, from_int<S>(1), 1).value();
+}
+}  // namespace
+
+TEMPLATE_TEST_CASE("interpolation: TV-23 natural Ferguson spline through 4 points", "[core][interpolation][seed]", double, float,
+                   Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 4>({{{0, 0}, {1, 1}, {2, 0}, {3, 1}}});
+  const auto u = scalars<S, 4>({0, 1, 2, 3});
+  Spline<S> curve;
+  REQUIRE(interpolate_natural_cubic(view(p), view(u), curve).has_value());
+  check_passes_through(curve, p, false);
+  const double tol = solve_tolerance<S>();
+  const std::array<std::array<double, 2>, 4> d{{{1, 5 / 3.}, {1, -1 / 3.}, {1, -1 / 3.}, {1, 5 / 3.}}};
+  for (std::size_t j = 0; j < 4; ++j) CHECK(max_error(tangent_at_knot(curve, j), d[j]) <= tol);
+  const std::array<std::array<double, 2>, 3> middle{{{0.5, 0.75}, {1.5, 0.5}, {2.5, 0.25}}};
+  for (std::size_t j = 0; j < 3; ++j) CHECK(max_error(curve.segment(j).point_at(scalar<S>(0.5)), middle[j]) <= tol);
+  // r'' at the knots: 0, (0,-4), (0,4), 0, the same from both sides.
+  CHECK(max_error(curve.segment_derivative(0, S{}, 2).value(), {0, 0}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(0, from_int<S>(1), 2).value(), {0, -4}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(1, S{}, 2).value(), {0, -4}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(1, from_int<S>(1), 2).value(), {0, 4}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(2, S{}, 2).value(), {0, 4}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(2, from_int<S>(1), 2).value(), {0, 0}) <= 8 * tol);
+  CHECK(joint_jump(curve, 1, false) <= tol);
+  CHECK(joint_jump(curve, 2, false) <= 8 * tol);
+  for (std::size_t j = 1; j < 3; ++j) CHECK(continuity(curve, j, 8 * tol).value().parametric == 2);
+}
+
+TEMPLATE_TEST_CASE("interpolation: TV-24 natural spline through 5 points", "[core][interpolation][seed]", double, float, Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 5>({{{0, 0}, {1, 2}, {3, 3}, {4, 0}, {6, 1}}});
+  const auto u = scalars<S, 5>({0, 1, 2, 3, 4});
+  Spline<S> curve;
+  REQUIRE(interpolate_natural_cubic(view(p), view(u), curve).has_value());
+  check_passes_through(curve, p, false);
+  const double tol = solve_tolerance<S>(4);
+  const std::array<std::array<double, 2>, 5> d{
+      {{9 / 14., 107 / 56.}, {12 / 7., 61 / 28.}, {1.5, -13 / 8.}, {9 / 7., -47 / 28.}, {33 / 14., 131 / 56.}}};
+  for (std::size_t j = 0; j < 5; ++j) CHECK(max_error(tangent_at_knot(curve, j), d[j]) <= tol);
+  const std::array<std::array<double, 2>, 4> middle{
+      {{41 / 112., 433 / 448.}, {227 / 112., 1333 / 448.}, {395 / 112., 675 / 448.}, {545 / 112., -1 / 448.}}};
+  for (std::size_t j = 0; j < 4; ++j) CHECK(max_error(curve.segment(j).point_at(scalar<S>(0.5)), middle[j]) <= tol);
+  const std::array<std::array<double, 2>, 3> second{{{15 / 7., 15 / 28.}, {-18 / 7., -57 / 7.}, {15 / 7., 225 / 28.}}};
+  for (std::size_t j = 1; j < 4; ++j) {
+    CHECK(max_error(curve.segment_derivative(j, S{}, 2).value(), second[j - 1]) <= 8 * tol);
+    CHECK(max_error(curve.segment_derivative(j - 1, from_int<S>(1), 2).value(), second[j - 1]) <= 8 * tol);
+  }
+  CHECK(max_error(curve.segment_derivative(0, S{}, 2).value(), {0, 0}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(3, from_int<S>(1), 2).value(), {0, 0}) <= 8 * tol);
+}
+
+TEMPLATE_TEST_CASE("interpolation: TV-25 clamped uniform spline", "[core][interpolation][seed]", double, float, Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 5>({{{0, 0}, {1, 2}, {3, 3}, {4, 0}, {6, 1}}});
+  Spline<S> curve;
+  REQUIRE(interpolate_clamped_cubic(view(p), Parametrization::Uniform, point<S>(1, 1), point<S>(1, -1), curve).has_value());
+  check_passes_through(curve, p, false);
+  const double tol = solve_tolerance<S>(4);
+  const std::array<std::array<double, 2>, 5> v{{{1, 1}, {23 / 14., 139 / 56.}, {10 / 7., -27 / 14.}, {23 / 14., -43 / 56.}, {1, -1}}};
+  for (std::size_t j = 0; j < 5; ++j) CHECK(max_error(tangent_at_knot(curve, j), v[j]) <= tol);
+  const std::array<std::array<double, 3>, 4> values{
+      {{0.5, 47 / 112., 365 / 448.}, {1.5, 227 / 112., 1367 / 448.}, {2.5, 389 / 112., 607 / 448.}, {3.5, 569 / 112., 237 / 448.}}};
+  for (const auto& e : values) CHECK(max_error(curve.evaluate(scalar<S>(e[0])).value(), {e[1], e[2]}) <= tol);
+  CHECK(max_error(curve.segment(0)[0], {0, 0}) == 0);
+  CHECK(max_error(curve.segment(0)[1], {1 / 3., 1 / 3.}) <= tol);
+  CHECK(max_error(curve.segment(0)[2], {19 / 42., 197 / 168.}) <= tol);
+  CHECK(max_error(curve.segment(0)[3], {1, 2}) == 0);
+  CHECK(joint_jump(curve, 2, false) <= 8 * tol);
+}
+
+TEMPLATE_TEST_CASE("interpolation: TV-27 clamped non-uniform spline matches second derivatives from both sides",
+                   "[core][interpolation][seed]", double, float, Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 4>({{{0, 0}, {1, 1}, {2, 0}, {3, 1}}});
+  const auto u = scalars<S, 4>({0, 1, 3, 4});
+  Spline<S> curve;
+  REQUIRE(interpolate_clamped_cubic(view(p), view(u), point<S>(1, 0), point<S>(1, 0), curve).has_value());
+  check_passes_through(curve, p, false);
+  const double tol = solve_tolerance<S>(4);
+  const std::array<std::array<double, 2>, 4> v{{{1, 0}, {11 / 14., 9 / 14.}, {11 / 14., 9 / 14.}, {1, 0}}};
+  for (std::size_t j = 0; j < 4; ++j) CHECK(max_error(tangent_at_knot(curve, j), v[j]) <= tol);
+  CHECK(max_error(curve.segment_derivative(0, from_int<S>(1), 2).value(), {-6 / 7., -24 / 7.}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(1, S{}, 2).value(), {-6 / 7., -24 / 7.}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(1, from_int<S>(1), 2).value(), {6 / 7., 24 / 7.}) <= 8 * tol);
+  CHECK(max_error(curve.segment_derivative(2, S{}, 2).value(), {6 / 7., 24 / 7.}) <= 8 * tol);
+  CHECK(max_error(curve.evaluate(scalar<S>(0.5)).value(), {59 / 112., 47 / 112.}) <= tol);
+  CHECK(max_error(curve.evaluate(scalar<S>(2)).value(), {1.5, 0.5}) <= tol);
+  CHECK(max_error(curve.evaluate(scalar<S>(3.5)).value(), {277 / 112., 65 / 112.}) <= tol);
+  for (std::size_t j = 1; j < 3; ++j) CHECK(continuity(curve, j, 8 * tol).value().parametric == 2);
+}
+
+TEMPLATE_TEST_CASE("interpolation: TV-28 chord-length knots and natural and clamped splines", "[core][interpolation][seed]",
+                   double, float, Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 4>({{{0, 0}, {3, 4}, {3, 10}, {11, 16}}});
+  std::array<S, 4> u{};
+  REQUIRE(parametrize(view(p), Parametrization::ChordLength, std::span<S>(u)).value() == 4);
+  CHECK(to_double(u[0]) == 0);
+  CHECK(to_double(u[1]) == 5);
+  CHECK(to_double(u[2]) == 11);
+  CHECK(to_double(u[3]) == 21);
+  const double tol = solve_tolerance<S>(16);
+  SECTION("natural ends") {
+    Spline<S> curve;
+    REQUIRE(interpolate_natural_cubic(view(p), Parametrization::ChordLength, curve).has_value());
+    check_passes_through(curve, p, false);
+    CHECK(to_double(curve.breakpoint(3)) == 21);
+    const std::array<std::array<double, 2>, 4> v{
+        {{651 / 835., 613 / 835.}, {201 / 835., 778 / 835.}, {138 / 835., 751 / 835.}, {933 / 835., 376 / 835.}}};
+    for (std::size_t j = 0; j < 4; ++j) CHECK(max_error(tangent_at_knot(curve, j), v[j]) <= tol);
+    CHECK(max_error(curve.evaluate(scalar<S>(2.5)).value(), {1227 / 668., 2507 / 1336.}) <= tol);
+    CHECK(max_error(curve.evaluate(scalar<S>(8)).value(), {10209 / 3340., 23461 / 3340.}) <= tol);
+    CHECK(max_error(curve.evaluate(scalar<S>(16)).value(), {3881 / 668., 9059 / 668.}) <= tol);
+    CHECK(joint_jump(curve, 2, false) <= tol);
+  }
+  SECTION("clamped with near-unit tangents") {
+    Spline<S> curve;
+    REQUIRE(interpolate_clamped_cubic(view(p), view(u), point<S>(0.6, 0.8), point<S>(0.8, 0.6), curve).has_value());
+    const std::array<std::array<double, 2>, 4> v{{{0.6, 0.8}, {152 / 545., 501 / 545.}, {116 / 545., 477 / 545.}, {0.8, 0.6}}};
+    for (std::size_t j = 0; j < 4; ++j) CHECK(max_error(tangent_at_knot(curve, j), v[j]) <= tol);
+    CHECK(max_error(curve.evaluate(scalar<S>(2.5)).value(), {1483 / 872., 1679 / 872.}) <= tol);
+    CHECK(max_error(curve.evaluate(scalar<S>(8)).value(), {1662 / 545., 3833 / 545.}) <= tol);
+    CHECK(max_error(curve.evaluate(scalar<S>(16)).value(), {683 / 109., 2909 / 218.}) <= tol);
+    // Interior speeds ~0.961 and ~0.901: the parameter follows arc length closely.
+    CHECK(std::hypot(v[1][0], v[1][1]) == Approx(0.961).margin(0.001));
+    CHECK(std::hypot(v[2][0], v[2][1]) == Approx(0.901).margin(0.001));
+    CHECK(joint_jump(curve, 2, false) <= tol);
+  }
+}
+
+TEMPLATE_TEST_CASE("interpolation: TV-12 closed C2 cubic through a square and a triangle", "[core][interpolation][seed]", double,
+                   float, Q16_16) {
+  using S = TestType;
+  const double tol = solve_tolerance<S>(4);
+  {
+    const auto p = points2<S, 4>({{{0, 0}, {4, 0}, {4, 4}, {0, 4}}});
+    Spline<S> curve;
+    REQUIRE(interpolate_closed_cubic(view(p), Parametrization::Uniform, curve).has_value());
+    check_passes_through(curve, p, true);
+    const std::array<std::array<std::array<double, 2>, 2>, 4> inner{
+        {{{{1, -1}, {3, -1}}}, {{{5, 1}, {5, 3}}}, {{{3, 5}, {1, 5}}}, {{{-1, 3}, {-1, 1}}}}};
+    for (std::size_t j = 0; j < 4; ++j) {
+      CHECK(max_error(curve.segment(j)[1], inner[j][0]) <= tol);
+      CHECK(max_error(curve.segment(j)[2], inner[j][1]) <= tol);
+    }
+    CHECK(max_error(curve.segment(0).point_at(scalar<S>(0.5)), {2, -0.75}) <= tol);
+    CHECK(joint_jump(curve, 1, true) <= tol);
+    CHECK(joint_jump(curve, 2, true) <= 8 * tol);
+  }
+  {
+    const auto p = points2<S, 3>({{{0, 0}, {1, 0}, {0, 1}}});
+    const auto u = scalars<S, 4>({0, 1, 2, 3});
+    Spline<S> curve;
+    REQUIRE(interpolate_closed_cubic(view(p), view(u), curve).has_value());
+    check_passes_through(curve, p, true);
+    const std::array<std::array<std::array<double, 2>, 2>, 3> inner{
+        {{{{1 / 3., -1 / 3.}, {1, -1 / 3.}}}, {{{1, 1 / 3.}, {1 / 3., 1}}}, {{{-1 / 3., 1}, {-1 / 3., 1 / 3.}}}}};
+    for (std::size_t j = 0; j < 3; ++j) {
+      CHECK(max_error(curve.segment(j)[1], inner[j][0]) <= tol);
+      CHECK(max_error(curve.segment(j)[2], inner[j][1]) <= tol);
+    }
+  }
+}
+
+TEMPLATE_TEST_CASE("interpolation: TV-13 closed C2 cubic through a pentagon, uniform and non-uniform",
+                   "[core][interpolation][seed]", double, float, Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 5>({{{0, 0}, {2, 0}, {3, 2}, {1, 3}, {-1, 1}}});
+  const double tol = solve_tolerance<S>(4);
+  SECTION("uniform") {
+    const auto u = scalars<S, 6>({0, 1, 2, 3, 4, 5});
+    Spline<S> curve;
+    REQUIRE(interpolate_closed_cubic(view(p), view(u), curve).has_value());
+    check_passes_through(curve, p, true);
+    const std::array<std::array<double, 4>, 5> inner{{{7, -2, 15, -4}, {29, 4, 35, 14}, {31, 30, 21, 36}, {1, 30, -9, 18}, {-13, 4, -7, 2}}};
+    for (std::size_t j = 0; j < 5; ++j) {
+      CHECK(max_error(curve.segment(j)[1], {inner[j][0] / 11, inner[j][1] / 11}) <= tol);
+      CHECK(max_error(curve.segment(j)[2], {inner[j][2] / 11, inner[j][3] / 11}) <= tol);
+    }
+    CHECK(joint_jump(curve, 2, true) <= 8 * tol);
+  }
+  SECTION("non-uniform") {
+    const auto u = scalars<S, 6>({0, 2, 4, 5, 7, 9});
+    Spline<S> curve;
+    REQUIRE(interpolate_closed_cubic(view(p), view(u), curve).has_value());
+    check_passes_through(curve, p, true);
+    const std::array<std::array<double, 4>, 5> inner{{{5 / 9., -5 / 36., 53 / 45., -14 / 45.},
+                                                      {127 / 45., 14 / 45., 173 / 45., 199 / 180.},
+                                                      {116 / 45., 881 / 360., 76 / 45., 1051 / 360.},
+                                                      {-17 / 45., 569 / 180., -43 / 45., 79 / 45.},
+                                                      {-47 / 45., 11 / 45., -5 / 9., 5 / 36.}}};
+    for (std::size_t j = 0; j < 5; ++j) {
+      CHECK(max_error(curve.segment(j)[1], {inner[j][0], inner[j][1]}) <= tol);
+      CHECK(max_error(curve.segment(j)[2], {inner[j][2], inner[j][3]}) <= tol);
+    }
+    CHECK(joint_jump(curve, 1, true) <= tol);
+    CHECK(joint_jump(curve, 2, true) <= 8 * tol);
+    for (std::size_t j = 1; j < 5; ++j) CHECK(continuity(curve, j, 8 * tol).value().parametric == 2);
+  }
+}
+
+namespace {
+/// ∫|s''|² du over a composite cubic, exactly: s'' is linear on each segment.
+double bending_energy(const CompositeBezier<double, 2, 3, 16>& curve) {
+  double energy = 0;
+  for (std::size_t j = 0; j < curve.size(); ++j) {
+    const auto a = curve.segment_derivative(j, 0.0, 2).value();
+    const auto b = curve.segment_derivative(j, 1.0, 2).value();
+    const double h = curve.breakpoint(j + 1) - curve.breakpoint(j);
+    energy += h * (dot(a, a) + dot(a, b) + dot(b, b)) / 3;
+  }
+  return energy;
+}
+}  // namespace
+
+TEST_CASE("interpolation: P-6 the clamped C2 spline has the least bending energy", "[core][interpolation][seed]") {
+  const std::array<Vec2<double>, 5> p{{{{0, 0}}, {{1, 2}}, {{3, 3}}, {{4, 0}}, {{6, 1}}}};
+  const std::array<double, 5> u{0, 1, 2, 3, 4};
+  CompositeBezier<double, 2, 3, 16> spline;
+  REQUIRE(interpolate_clamped_cubic(std::span<const Vec2<double>>(p), std::span<const double>(u), Vec2<double>{{1, 1}},
+                                    Vec2<double>{{1, -1}}, spline)
+              .has_value());
+  const double minimum = bending_energy(spline);
+  std::array<Vec2<double>, 5> v{};
+  for (std::size_t j = 0; j < 5; ++j) {
+    v[j] = j < 4 ? spline.segment_derivative(j, 0.0, 1).value() : spline.segment_derivative(3, 1.0, 1).value();
+  }
+  for (std::size_t j = 1; j < 4; ++j) {
+    for (const double delta : {-0.5, -0.01, 0.01, 0.5}) {
+      for (std::size_t axis = 0; axis < 2; ++axis) {
+        auto w = v;
+        w[j][axis] += delta;
+        CompositeBezier<double, 2, 3, 16> other;
+        for (std::size_t i = 0; i < 4; ++i) {
+          REQUIRE(other.try_append(hermite_to_bezier(p[i], p[i + 1], w[i], w[i + 1], u[i], u[i + 1]).value(), u[i + 1]).has_value());
+        }
+        CHECK(bending_energy(other) > minimum);
+      }
+    }
+  }
+}
+
+TEMPLATE_TEST_CASE("interpolation: centripetal knots are square roots of the chords", "[core][interpolation]", double, float,
+                   Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 4>({{{0, 0}, {3, 4}, {3, 13}, {3, 14}}});
+  std::array<S, 5> u{};
+  REQUIRE(parametrize(view(p), Parametrization::Centripetal, std::span<S>(u), true).value() == 5);
+  const std::array<double, 5> expected{0, std::sqrt(5.0), std::sqrt(5.0) + 3, std::sqrt(5.0) + 4, std::sqrt(5.0) + 4 + std::sqrt(std::sqrt(205.0))};
+  for (std::size_t i = 0; i < 5; ++i) CHECK(std::fabs(to_double(u[i]) - expected[i]) <= solve_tolerance<S>(16));
+  Spline<S> closed;
+  REQUIRE(interpolate_closed_cubic(view(p), Parametrization::Centripetal, closed).has_value());
+  check_passes_through(closed, p, true);
+  CHECK(joint_jump(closed, 1, true) <= solve_tolerance<S>(16));
+}
+
+TEMPLATE_TEST_CASE("interpolation: cubic spline input errors are reported with the input at fault", "[core][interpolation]",
+                   double, float, Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 4>({{{0, 0}, {1, 1}, {1, 1}, {3, 1}}});
+  Spline<S> curve;
+  SECTION("coincident points under chord-length knots") {
+    const auto r = interpolate_natural_cubic(view(p), Parametrization::ChordLength, curve);
+    CHECK(r.error() == Error::DegenerateCurve);
+    CHECK(r.where() == 2);
+  }
+  SECTION("knots not increasing") {
+    const auto u = scalars<S, 4>({0, 1, 1, 2});
+    const auto r = interpolate_natural_cubic(view(p), view(u), curve);
+    CHECK(r.error() == Error::InvalidInterval);
+    CHECK(r.where() == 2);
+  }
+  SECTION("wrong knot count") {
+    const auto u = scalars<S, 3>({0, 1, 2});
+    CHECK(interpolate_natural_cubic(view(p), view(u), curve).error() == Error::InvalidArgument);
+  }
+  SECTION("too few points") {
+    const auto one = points2<S, 1>({{{0, 0}}});
+    CHECK(interpolate_natural_cubic(view(one), Parametrization::Uniform, curve).error() == Error::TooFewPoints);
+    const auto two = points2<S, 2>({{{0, 0}, {1, 0}}});
+    CHECK(interpolate_closed_cubic(view(two), Parametrization::Uniform, curve).error() == Error::TooFewPoints);
+  }
+  SECTION("more segments than the output holds") {
+    CompositeBezier<S, 2, 3, 2> small;
+    const auto r = interpolate_natural_cubic(view(p), Parametrization::Uniform, small);
+    CHECK(r.error() == Error::CapacityExceeded);
+    const auto u = scalars<S, 4>({0, 1, 2, 3});
+    CHECK(interpolate_clamped_cubic(view(p), view(u), point<S>(1, 0), point<S>(1, 0), small).error() == Error::CapacityExceeded);
+  }
+  SECTION("a two-point spline is the chord") {
+    const auto two = points2<S, 2>({{{0, 0}, {3, 6}}});
+    REQUIRE(interpolate_natural_cubic(view(two), Parametrization::Uniform, curve).has_value());
+    CHECK(max_error(curve.segment(0)[1], {1, 2}) == 0);
+    CHECK(max_error(curve.segment(0)[2], {2, 4}) == 0);
+  }
+}
+
+TEST_CASE("interpolation: NaN points are rejected", "[core][interpolation]") {
+  const std::array<Vec2<double>, 3> p{{{{0, 0}}, {{std::nan(""), 1}}, {{2, 0}}}};
+  CompositeBezier<double, 2, 3, 4> curve;
+  const auto r = interpolate_natural_cubic(std::span<const Vec2<double>>(p), Parametrization::Uniform, curve);
+  CHECK(r.error() == Error::NotFinite);
+  CHECK(r.where() == 1);
+}
+
+TEST_CASE("interpolation: spline coordinates beyond the Q16.16 range report FixedOverflow", "[core][interpolation]") {
+  using S = Q16_16;
+  const std::array<Vec2<S>, 3> p{point<S>(-30000, 0), point<S>(30000, 0), point<S>(-30000, 0)};
+  CompositeBezier<S, 2, 3, 4> curve;
+  const auto r = interpolate_natural_cubic(std::span<const Vec2<S>>(p), Parametrization::Uniform, curve);
+  REQUIRE(!r.has_value());
+  CHECK(r.error() == Error::FixedOverflow);
+}
