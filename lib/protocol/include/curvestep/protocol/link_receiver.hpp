@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: MIT
+// LinkReceiver: the controller's end of the reliable link (handshake, acks, naks, credit).
+//
+// Why it looks like this. The controller is the side with the least memory and the hard
+// real-time job, so its half of the link is the simple one: go-back-N. It keeps no reorder
+// buffer, only the next sequence number it expects:
+//   * sequence == expected: the frame is delivered to the application, expected advances,
+//     and an Ack(next_expected, credit_end) goes back;
+//   * sequence behind expected (a duplicate, (seq - expected) mod 256 >= 128): ignored and
+//     acknowledged again, because the host evidently missed the first Ack;
+//   * sequence ahead of expected (a gap): discarded, and one Nak(expected) asks the host
+//     to go back; further frames of the same gap are discarded silently so one loss does
+//     not trigger a storm of retransmissions.
+// Credit: the host may send a QueueSegment only while it has credit. The controller
+// advertises credit_end = (segments accepted so far) + (free queue slots), modulo 2^16. That
+// edge only ever moves forward (like TCP's right window edge), so a stale or reordered Ack can
+// never shrink what the host was promised, and the host, which counts the segments it sent,
+// can never overrun the queue. Control messages (Start, FeedHold, Abort, StatusRequest, ...)
+// take no credit, so Abort gets through even when the queue is full.
+// Handshake: Hello carries a version and a host-chosen session number. A version mismatch is
+// refused with Nak(VersionMismatch); a new session resets sequence and credit; a repeated
+// Hello of the current session (a retransmission) only repeats the Capabilities answer.
+// Sequenced frames before any handshake get Nak(NotConnected), which tells a host that was
+// connected that the controller restarted.
+// The controller also sends an Ack when credit grows and, if configured, every ack_interval_ms
+// as a heartbeat, so a lost credit update cannot deadlock the link.
+// Cost: no buffers; a handful of bytes of state; every call is O(1).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <curvestep/core/result.hpp>
+#include <curvestep/protocol/frame.hpp>
+#include <curvestep/protocol/messages.hpp>
+
+namespace curvestep::protocol {
+
+/// What the application should do with a received frame.
+enum class Disposition : std::uint8_t {
+  Ignore,   ///< nothing to deliver (duplicate, gap, link-control frame, refused)
+  Deliver,  ///< new in-order frame: decode it with decode_message(frame) and act on it
+  Connect,  ///< a new session started: the application should reset its job state
+};
+
+/// Which reply the controller should send.
+enum class ReplyKind : std::uint8_t {
+  None,          ///< nothing to send
+  Ack,           ///< send reply_ack
+  Nak,           ///< send reply_nak
+  Capabilities,  ///< send the receiver's capabilities
+};
+
+/// Result of one receiver step: what to deliver and what to answer.
+struct Reception {
+  Disposition disposition = Disposition::Ignore;  ///< what to do with the frame
+  ReplyKind reply = ReplyKind::None;              ///< what to answer
+  Ack ack{};                                      ///< the Ack to send, if reply == Ack
+  Nak nak{};                                      ///< the Nak to send, if reply == Nak
+};
+
+/// Settings of the controller's link end.
+struct ReceiverSettings {
+  std::uint32_t ack_interval_ms = 0;    ///< heartbeat Ack period while connected (0: none)
+  std::uint32_t link_timeout_ms = 0;    ///< silence after which check_link fails (0: never)
+};
+
+/// The controller's end of the link; allocation-free, time passed in as now_ms.
+class LinkReceiver {
+ public:
+  /// A receiver that answers Hello with `capabilities` (its version, queue capacity, ...).
+  constexpr explicit LinkReceiver(const Capabilities& capabilities, ReceiverSettings settings = {}) noexcept
+      : capabilities_(capabilities), settings_(settings) {}
+
+  /// Handles one checked frame from the host. `free_queue_slots` is the number of empty queue
+  /// slots before this frame is processed.
+  [[nodiscard]] constexpr Reception on_frame(const Frame& frame, std::uint16_t free_queue_slots,
+                                             std::uint32_t now_ms) noexcept {
+    last_frame_ms_ = now_ms;
+    if (frame.type == static_cast<std::uint8_t>(MessageType::Hello)) return on_hello(frame, free_queue_slots, now_ms);
+    const auto type = static_cast<MessageType>(frame.type);
+    // Controller-to-host types coming from the host are ignored. Unknown types take a sequence
+    // number like any command and are delivered, so the application reports UnknownMessage.
+    if (is_known(frame.type) && !is_sequenced(type)) return {};
+    if (!connected_) return nak(Error::NotConnected, true);
+    const auto distance = static_cast<std::uint8_t>(frame.sequence - expected_);
+    if (distance >= 128) {  // behind: a duplicate of something already delivered
+      return acknowledge(free_queue_slots, now_ms);
+    }
+    if (distance != 0) return nak(Error::SequenceError, false);  // ahead: a gap
+    Reception r;
+    grow_credit(free_queue_slots);
+    if (consumes_credit(type) && segments_accepted_ == credit_end_) return nak(Error::QueueFull, true);
+    ++expected_;
+    nak_sent_ = false;
+    if (consumes_credit(type)) ++segments_accepted_;
+    r = acknowledge_current(now_ms);
+    r.disposition = Disposition::Deliver;
+    return r;
+  }
+
+  /// Handles a frame the decoder dropped (BadCrc, BadFraming, ...): one Nak per gap, so the host
+  /// retransmits at once instead of waiting for its timeout.
+  [[nodiscard]] constexpr Reception on_bad_frame(Error reason) noexcept {
+    if (!connected_) return {};
+    return nak(reason, false);
+  }
+
+  /// Periodic step: an Ack if credit grew since the last one or the heartbeat is due.
+  [[nodiscard]] constexpr Reception poll(std::uint16_t free_queue_slots, std::uint32_t now_ms) noexcept {
+    if (!connected_) return {};
+    grow_credit(free_queue_slots);
+    const bool grew = credit_end_ != advertised_credit_end_;
+    const bool due = settings_.ack_interval_ms != 0 && now_ms - last_ack_ms_ >= settings_.ack_interval_ms;
+    if (!grew && !due) return {};
+    return acknowledge_current(now_ms);
+  }
+
+  /// LinkTimeout (index = ms of silence, capped) if connected and nothing arrived for link_timeout_ms.
+  [[nodiscard]] constexpr Result<void> check_link(std::uint32_t now_ms) const noexcept {
+    if (!connected_ || settings_.link_timeout_ms == 0) return ok();
+    const std::uint32_t silence = now_ms - last_frame_ms_;
+    if (silence >= settings_.link_timeout_ms) return fail(Error::LinkTimeout, silence);
+    return ok();
+  }
+
+  /// Encodes the reply of `r` as a frame into `out` (0 bytes if there is none).
+  [[nodiscard]] constexpr Result<std::size_t> encode_reply(const Reception& r, std::span<std::byte> out) noexcept {
+    switch (r.reply) {
+      case ReplyKind::None: return std::size_t{0};
+      case ReplyKind::Ack: return encode_frame(Message(r.ack), next_outgoing_sequence(), out);
+      case ReplyKind::Nak: return encode_frame(Message(r.nak), next_outgoing_sequence(), out);
+      case ReplyKind::Capabilities: break;
+    }
+    return encode_frame(Message(capabilities_), next_outgoing_sequence(), out);
+  }
+
+  /// Sequence number for the next controller-to-host frame (a free-running diagnostic counter).
+  [[nodiscard]] constexpr std::uint8_t next_outgoing_sequence() noexcept { return outgoing_sequence_++; }
+
+  /// True after a successful handshake.
+  [[nodiscard]] constexpr bool connected() const noexcept { return connected_; }
+  /// The next sequence number expected from the host.
+  [[nodiscard]] constexpr std::uint8_t expected_sequence() const noexcept { return expected_; }
+  /// The credit edge granted so far (segments accepted + free slots, mod 2^16).
+  [[nodiscard]] constexpr std::uint16_t credit_end() const noexcept { return credit_end_; }
+  /// Segments accepted in this session (mod 2^16).
+  [[nodiscard]] constexpr std::uint16_t segments_accepted() const noexcept { return segments_accepted_; }
+  /// The capabilities sent in answer to Hello (credit_end and session filled in).
+  [[nodiscard]] constexpr const Capabilities& capabilities() const noexcept { return capabilities_; }
+
+ private:
+  [[nodiscard]] constexpr Reception on_hello(const Frame& frame, std::uint16_t free_queue_slots,
+                                             std::uint32_t now_ms) noexcept {
+    Reception r;
+    const auto hello = decode<Hello>(frame.payload);
+    if (!hello) return r;
+    if (hello.value().version != capabilities_.version) {
+      connected_ = false;
+      r.reply = ReplyKind::Nak;
+      r.nak = Nak{expected_, Error::VersionMismatch};
+      return r;
+    }
+    r.reply = ReplyKind::Capabilities;
+    if (connected_ && hello.value().session == capabilities_.session) return r;  // a retransmitted Hello
+    connected_ = true;
+    expected_ = 0;
+    segments_accepted_ = 0;
+    nak_sent_ = false;
+    credit_end_ = free_queue_slots;
+    advertised_credit_end_ = credit_end_;
+    last_ack_ms_ = now_ms;
+    capabilities_.session = hello.value().session;
+    capabilities_.credit_end = credit_end_;
+    r.disposition = Disposition::Connect;
+    return r;
+  }
+
+  constexpr void grow_credit(std::uint16_t free_queue_slots) noexcept {
+    const auto edge = static_cast<std::uint16_t>(segments_accepted_ + free_queue_slots);
+    if (static_cast<std::int16_t>(static_cast<std::uint16_t>(edge - credit_end_)) > 0) credit_end_ = edge;
+  }
+
+  [[nodiscard]] constexpr Reception acknowledge(std::uint16_t free_queue_slots, std::uint32_t now_ms) noexcept {
+    grow_credit(free_queue_slots);
+    return acknowledge_current(now_ms);
+  }
+
+  [[nodiscard]] constexpr Reception acknowledge_current(std::uint32_t now_ms) noexcept {
+    Reception r;
+    r.reply = ReplyKind::Ack;
+    r.ack = Ack{expected_, credit_end_};
+    advertised_credit_end_ = credit_end_;
+    last_ack_ms_ = now_ms;
+    return r;
+  }
+
+  [[nodiscard]] constexpr Reception nak(Error reason, bool always) noexcept {
+    Reception r;
+    if (!always && nak_sent_) return r;
+    if (!always) nak_sent_ = true;
+    r.reply = ReplyKind::Nak;
+    r.nak = Nak{expected_, reason};
+    return r;
+  }
+
+  Capabilities capabilities_;
+  ReceiverSettings settings_;
+  std::uint32_t last_frame_ms_ = 0;
+  std::uint32_t last_ack_ms_ = 0;
+  std::uint16_t credit_end_ = 0;
+  std::uint16_t advertised_credit_end_ = 0;
+  std::uint16_t segments_accepted_ = 0;
+  std::uint8_t expected_ = 0;
+  std::uint8_t outgoing_sequence_ = 0;
+  bool connected_ = false;
+  bool nak_sent_ = false;
+};
+
+}  // namespace curvestep::protocol

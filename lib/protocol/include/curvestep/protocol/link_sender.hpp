@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: MIT
+// LinkSender: the host's end of the reliable link (handshake, window, credit, retransmission).
+//
+// Why it looks like this. The controller's receiver is go-back-N with no reorder buffer
+// (link_receiver.hpp), so the host keeps every unacknowledged frame, already encoded, in a
+// ring of `Window` slots and resends them in order when:
+//   * the retransmission timer expires (one timer for the oldest unacknowledged frame,
+//     restarted whenever an Ack makes progress, as in TCP), or
+//   * a Nak names the oldest unacknowledged sequence number.
+// Each go-back counts against the oldest frame; after max_retransmits the link fails with
+// RetransmitLimit (index = that frame's sequence number) instead of retrying forever.
+// Sequence numbers are 8 bits; Window is at most 127, so "behind" and "ahead" can never be
+// confused by the receiver.
+// Flow control has two limits, both enforced by can_submit()/submit():
+//   * the window: at most Window frames unacknowledged;
+//   * the credit: a QueueSegment may be submitted only while segments_sent is before the
+//     controller's credit_end (mod 2^16, taken from Capabilities and every Ack), so the host
+//     never overruns the controller's queue whatever its size. Credit only moves forward.
+// Handshake: connect() sends Hello(version, session) every retransmit_timeout_ms until a
+// Capabilities with the same session arrives (LinkTimeout after max_retransmits tries). A
+// Capabilities with another version, or Nak(VersionMismatch), refuses the connection with
+// VersionMismatch. Once connected, Nak(NotConnected) means the controller restarted:
+// DeviceRestarted.
+// Time is passed in (now_ms, wrapping uint32 arithmetic); nothing allocates. Memory is
+// Window * (max_encoded_frame_size + 2) bytes plus counters: 8 slots take about 1.3 KiB.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <curvestep/core/result.hpp>
+#include <curvestep/protocol/frame.hpp>
+#include <curvestep/protocol/messages.hpp>
+
+namespace curvestep::protocol {
+
+/// Where the host's link end is.
+enum class LinkState : std::uint8_t {
+  Disconnected,  ///< connect() not called yet
+  Connecting,    ///< Hello sent, waiting for Capabilities
+  Connected,     ///< handshake done: submit() accepted
+  Failed,        ///< gave up (see last_error()); connect() starts again
+};
+
+/// Timing of the host's link end.
+struct SenderSettings {
+  std::uint32_t retransmit_timeout_ms = 100;  ///< resend unacknowledged frames after this silence
+  std::uint8_t max_retransmits = 10;          ///< go-backs of one frame (or Hellos) before failing
+};
+
+/// The host's end of the link; `Window` frames may be unacknowledged at once.
+template <std::size_t Window = 8>
+class LinkSender {
+  static_assert(Window > 0 && Window <= 127, "Window must be 1..127 so 8-bit sequence numbers stay unambiguous");
+
+ public:
+  /// A disconnected sender.
+  constexpr explicit LinkSender(SenderSettings settings = {}) noexcept : settings_(settings) {}
+
+  /// Starts (or restarts) the handshake with a fresh, preferably random, `session` number.
+  constexpr void connect(std::uint16_t session, std::uint32_t now_ms) noexcept {
+    state_ = LinkState::Connecting;
+    session_ = session;
+    hello_attempts_ = 0;
+    hello_due_ = true;
+    timer_ms_ = now_ms;
+    count_ = 0;
+    sent_ = 0;
+    oldest_ = 0;
+    first_sequence_ = 0;
+    segments_sent_ = 0;
+    credit_end_ = 0;
+    error_ = Error::NotConnected;
+  }
+
+  /// True if `type` could be submitted now (connected, window not full, credit for a segment).
+  [[nodiscard]] constexpr bool can_submit(MessageType type) const noexcept {
+    if (state_ != LinkState::Connected || count_ >= Window) return false;
+    return !consumes_credit(type) || credit() > 0;
+  }
+
+  /// Queues a sequenced host-to-controller message for sending; returns its sequence number.
+  /// NotConnected, QueueFull (window full or no credit), InvalidArgument for a message that is
+  /// not a host command, or the encoder's error.
+  [[nodiscard]] constexpr Result<std::uint8_t> submit(const Message& m) noexcept {
+    if (state_ != LinkState::Connected) return fail(Error::NotConnected);
+    if (!is_sequenced(m.type())) return fail(Error::InvalidArgument, static_cast<std::uint8_t>(m.type()));
+    if (!can_submit(m.type())) return fail(Error::QueueFull, count_);
+    const auto sequence = static_cast<std::uint8_t>(first_sequence_ + count_);
+    Slot& slot = slots_[(oldest_ + count_) % Window];
+    CURVESTEP_TRY(const std::size_t size, encode_frame(m, sequence, slot.bytes));
+    slot.size = static_cast<std::uint16_t>(size);
+    slot.retransmits = 0;
+    ++count_;
+    if (consumes_credit(m.type())) ++segments_sent_;
+    return sequence;
+  }
+
+  /// Next bytes to transmit into `out` (one whole frame), or 0 if nothing is due. Fails with
+  /// LinkTimeout or RetransmitLimit when the link gives up (state becomes Failed).
+  [[nodiscard]] constexpr Result<std::size_t> poll(std::uint32_t now_ms, std::span<std::byte> out) noexcept {
+    if (state_ == LinkState::Connecting) {
+      if (!hello_due_ && now_ms - timer_ms_ < settings_.retransmit_timeout_ms) return std::size_t{0};
+      if (hello_attempts_ > settings_.max_retransmits) return give_up(Error::LinkTimeout, session_);
+      CURVESTEP_TRY(const std::size_t size, encode_frame(Message(Hello{protocol_version, session_}), 0, out));
+      ++hello_attempts_;
+      hello_due_ = false;
+      timer_ms_ = now_ms;
+      return size;
+    }
+    if (state_ != LinkState::Connected) return std::size_t{0};
+    if (sent_ > 0 && now_ms - timer_ms_ >= settings_.retransmit_timeout_ms) {
+      CURVESTEP_CHECK(go_back());
+    }
+    if (sent_ >= count_) return std::size_t{0};
+    const Slot& slot = slots_[(oldest_ + sent_) % Window];
+    if (out.size() < slot.size) return fail(Error::BufferTooSmall, slot.size);
+    for (std::size_t i = 0; i < slot.size; ++i) out[i] = slot.bytes[i];
+    if (sent_ == 0) timer_ms_ = now_ms;
+    ++sent_;
+    return std::size_t{slot.size};
+  }
+
+  /// Handles a message from the controller: Capabilities, Ack and Nak drive the link; other
+  /// messages are the application's and ignored here. Fails with VersionMismatch,
+  /// DeviceRestarted or RetransmitLimit (state becomes Failed).
+  [[nodiscard]] constexpr Result<void> on_message(const Message& m, std::uint32_t now_ms) noexcept {
+    switch (m.type()) {
+      case MessageType::Capabilities: return on_capabilities(m.get<Capabilities>());
+      case MessageType::Ack: on_ack(m.get<Ack>().next_expected, m.get<Ack>().credit_end, true, now_ms); return ok();
+      case MessageType::Nak: return on_nak(m.get<Nak>(), now_ms);
+      default: return ok();
+    }
+  }
+
+  /// Where the link is.
+  [[nodiscard]] constexpr LinkState state() const noexcept { return state_; }
+  /// Why the link failed (NotConnected before any failure).
+  [[nodiscard]] constexpr Error last_error() const noexcept { return error_; }
+  /// The controller's capabilities (meaningful once Connected).
+  [[nodiscard]] constexpr const Capabilities& capabilities() const noexcept { return capabilities_; }
+  /// Frames submitted and not yet acknowledged.
+  [[nodiscard]] constexpr std::size_t in_flight() const noexcept { return count_; }
+  /// True if every submitted frame was acknowledged.
+  [[nodiscard]] constexpr bool idle() const noexcept { return count_ == 0; }
+  /// Segments the host may still submit under the controller's credit.
+  [[nodiscard]] constexpr std::uint16_t credit() const noexcept {
+    const auto remaining = static_cast<std::int16_t>(static_cast<std::uint16_t>(credit_end_ - segments_sent_));
+    return remaining > 0 ? static_cast<std::uint16_t>(remaining) : std::uint16_t{0};
+  }
+  /// Segments submitted in this session (mod 2^16).
+  [[nodiscard]] constexpr std::uint16_t segments_sent() const noexcept { return segments_sent_; }
+  /// The credit edge last granted by the controller.
+  [[nodiscard]] constexpr std::uint16_t credit_end() const noexcept { return credit_end_; }
+  /// Window capacity in frames.
+  [[nodiscard]] static constexpr std::size_t window() noexcept { return Window; }
+
+ private:
+  struct Slot {
+    std::array<std::byte, max_encoded_frame_size> bytes{};
+    std::uint16_t size = 0;
+    std::uint8_t retransmits = 0;
+  };
+
+  [[nodiscard]] constexpr Failure give_up(Error code, std::size_t index) noexcept {
+    state_ = LinkState::Failed;
+    error_ = code;
+    return fail(code, index);
+  }
+
+  /// Resend everything unacknowledged, charging the oldest frame one retransmission.
+  [[nodiscard]] constexpr Result<void> go_back() noexcept {
+    Slot& oldest = slots_[oldest_];
+    if (oldest.retransmits >= settings_.max_retransmits) return give_up(Error::RetransmitLimit, first_sequence_);
+    ++oldest.retransmits;
+    sent_ = 0;
+    return ok();
+  }
+
+  [[nodiscard]] constexpr Result<void> on_capabilities(const Capabilities& c) noexcept {
+    if (state_ != LinkState::Connecting || c.session != session_) return ok();  // stale or repeated answer
+    if (c.version != protocol_version) return give_up(Error::VersionMismatch, c.version);
+    capabilities_ = c;
+    credit_end_ = c.credit_end;
+    state_ = LinkState::Connected;
+    return ok();
+  }
+
+  constexpr void on_ack(std::uint8_t next_expected, std::uint16_t credit_end, bool has_credit,
+                        std::uint32_t now_ms) noexcept {
+    if (state_ != LinkState::Connected) return;
+    if (has_credit && static_cast<std::int16_t>(static_cast<std::uint16_t>(credit_end - credit_end_)) > 0) {
+      credit_end_ = credit_end;
+    }
+    const auto acknowledged = static_cast<std::uint8_t>(next_expected - first_sequence_);
+    if (acknowledged == 0 || acknowledged > sent_) return;  // no progress, or stale
+    oldest_ = (oldest_ + acknowledged) % Window;
+    count_ -= acknowledged;
+    sent_ -= acknowledged;
+    first_sequence_ = next_expected;
+    timer_ms_ = now_ms;
+  }
+
+  [[nodiscard]] constexpr Result<void> on_nak(const Nak& nak, std::uint32_t now_ms) noexcept {
+    if (state_ == LinkState::Connecting) {
+      if (nak.reason == Error::VersionMismatch) return give_up(Error::VersionMismatch, nak.expected);
+      return ok();
+    }
+    if (state_ != LinkState::Connected) return ok();
+    if (nak.reason == Error::NotConnected) return give_up(Error::DeviceRestarted, nak.expected);
+    on_ack(nak.expected, 0, false, now_ms);
+    if (nak.expected == first_sequence_ && sent_ > 0) {
+      CURVESTEP_CHECK(go_back());
+      timer_ms_ = now_ms;
+    }
+    return ok();
+  }
+
+  std::array<Slot, Window> slots_{};
+  Capabilities capabilities_{};
+  SenderSettings settings_;
+  std::uint32_t timer_ms_ = 0;
+  std::size_t oldest_ = 0;  // slot index of the oldest unacknowledged frame
+  std::size_t count_ = 0;   // unacknowledged frames
+  std::size_t sent_ = 0;    // of those, how many have been (re)transmitted since the last go-back
+  std::uint16_t segments_sent_ = 0;
+  std::uint16_t credit_end_ = 0;
+  std::uint16_t session_ = 0;
+  std::uint8_t first_sequence_ = 0;  // sequence number of the oldest unacknowledged frame
+  std::uint8_t hello_attempts_ = 0;
+  bool hello_due_ = false;
+  LinkState state_ = LinkState::Disconnected;
+  Error error_ = Error::NotConnected;
+};
+
+}  // namespace curvestep::protocol

@@ -1,0 +1,764 @@
+// SPDX-License-Identifier: MIT
+// Message structs, their payload encoders and decoders, and the tagged Message that holds any one.
+//
+// Every payload is a fixed sequence of little-endian fields (docs/protocol.md has the byte
+// tables). Coordinates, feeds and lengths travel as Q16.16 raw int32 (value * 65536): exact,
+// and what the firmware computes with, so no conversion happens on the controller. Decoders
+// check structure (lengths, counts, enum values, reserved bits, positive weights) and return
+// BadPayload with the byte offset of the offending field; the firmware validates meaning
+// (limits, rates, continuity) with the planner's own error codes.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <type_traits>
+
+#include <curvestep/core/contract.hpp>
+#include <curvestep/core/curve/circular_arc.hpp>
+#include <curvestep/core/error.hpp>
+#include <curvestep/core/result.hpp>
+#include <curvestep/protocol/byte_io.hpp>
+#include <curvestep/protocol/limits.hpp>
+
+namespace curvestep::protocol {
+
+/// Message type: the first byte of every frame.
+enum class MessageType : std::uint8_t {
+  Hello = 0x01,                 ///< host -> controller: open a session (version, session number)
+  Capabilities = 0x02,          ///< controller -> host: the controller's limits, answer to Hello
+  Ack = 0x03,                   ///< controller -> host: cumulative acknowledgement and credit
+  Nak = 0x04,                   ///< controller -> host: negative acknowledgement (expected sequence, reason)
+  MachineConfiguration = 0x10,  ///< host -> controller: limits, feed, tolerance, rate, axes
+  QueueSegment = 0x11,          ///< host -> controller: one path segment for the queue
+  Start = 0x12,                 ///< host -> controller: start executing the queue
+  FeedHold = 0x13,              ///< host -> controller: decelerate to a stop on the path
+  Resume = 0x14,                ///< host -> controller: continue after a feed hold
+  Abort = 0x15,                 ///< host -> controller: stop at once and flush the queue
+  StatusRequest = 0x16,         ///< host -> controller: ask for a status report
+  StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
+  SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints
+  ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
+};
+
+/// True for the types this protocol version defines.
+[[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x16) || (type >= 0x20 && type <= 0x22);
+}
+
+/// True for host-to-controller messages that travel in the reliable, sequenced stream.
+[[nodiscard]] constexpr bool is_sequenced(MessageType type) noexcept {
+  const auto value = static_cast<std::uint8_t>(type);
+  return value >= 0x10 && value <= 0x16;
+}
+
+/// True for messages that take one slot of the controller's queue (and so one credit).
+[[nodiscard]] constexpr bool consumes_credit(MessageType type) noexcept { return type == MessageType::QueueSegment; }
+
+/// One point on the wire: X, Y, Z as Q16.16 raw values (Z unused with two axes).
+using WirePoint = std::array<std::int32_t, max_axes>;
+
+/// Opens a session; resent unchanged until Capabilities arrives.
+struct Hello {
+  static constexpr MessageType type = MessageType::Hello;  ///< message type
+  std::uint16_t version = protocol_version;                ///< the host's protocol version
+  std::uint16_t session = 0;                               ///< host-chosen session number (random per connect)
+};
+
+/// The controller's limits; the host reads them at connect and never hard-codes them.
+struct Capabilities {
+  static constexpr MessageType type = MessageType::Capabilities;  ///< message type
+  std::uint16_t version = protocol_version;                       ///< the controller's protocol version
+  std::uint16_t session = 0;                                      ///< echo of Hello::session
+  std::uint16_t max_payload = max_payload_size;                   ///< largest payload the controller accepts
+  std::uint16_t queue_capacity = 0;                               ///< segment queue slots
+  std::uint16_t credit_end = 0;                                   ///< initial credit limit (see Ack)
+  std::uint8_t fixed_total_bits = 32;                             ///< fixed-point word size in bits
+  std::uint8_t fixed_fraction_bits = 16;                          ///< fixed-point fraction bits
+  std::uint8_t axis_count = 3;                                    ///< axes the controller drives (2 or 3)
+  std::uint8_t max_degree = max_segment_degree;                   ///< highest Bézier degree accepted
+  std::uint32_t tick_rate_hz = 0;                                 ///< step timer tick rate
+};
+
+/// Cumulative acknowledgement: every sequence before `next_expected` arrived.
+struct Ack {
+  static constexpr MessageType type = MessageType::Ack;  ///< message type
+  std::uint8_t next_expected = 0;                        ///< next sequence number the controller expects
+  std::uint16_t credit_end = 0;  ///< the host may send segments while (segments sent) mod 2^16 is before this
+};
+
+/// Negative acknowledgement: resend from `expected`, or (for some reasons) give up.
+struct Nak {
+  static constexpr MessageType type = MessageType::Nak;  ///< message type
+  std::uint8_t expected = 0;                             ///< next sequence number the controller expects
+  Error reason = Error::SequenceError;                   ///< why: SequenceError, BadCrc, BadFraming, QueueFull, NotConnected, VersionMismatch
+};
+
+/// Limits of one axis.
+struct AxisConfiguration {
+  std::int32_t steps_per_mm = 0;                  ///< Q16.16 steps per millimetre
+  std::int32_t min_position_mm = 0;               ///< Q16.16 travel limit, low end
+  std::int32_t max_position_mm = 0;               ///< Q16.16 travel limit, high end
+  std::int32_t max_velocity_mm_per_s = 0;         ///< Q16.16 axis speed limit
+  std::uint32_t max_acceleration_mm_per_s2 = 0;   ///< axis acceleration limit, whole mm/s^2
+};
+
+/// Machine configuration; the firmware validates the values (InvalidLimit, InvalidRate).
+struct MachineConfiguration {
+  static constexpr MessageType type = MessageType::MachineConfiguration;  ///< message type
+  std::uint8_t axis_count = 3;                            ///< 2 or 3
+  std::int32_t max_velocity_mm_per_s = 0;                 ///< Q16.16 path speed limit
+  std::uint32_t max_acceleration_mm_per_s2 = 0;           ///< path acceleration limit, whole mm/s^2
+  std::uint32_t max_jerk_mm_per_s3 = 0;                   ///< path jerk limit, whole mm/s^3
+  std::int32_t default_feed_mm_per_s = 0;                 ///< Q16.16 feed for segments without one
+  std::int32_t tolerance_mm = 0;                          ///< Q16.16 path (chord) tolerance
+  std::int32_t junction_deviation_mm = 0;                 ///< Q16.16 junction deviation for corners
+  std::uint32_t control_rate_hz = 0;                      ///< setpoint rate
+  std::array<AxisConfiguration, max_axes> axes{};         ///< per axis, first axis_count used
+};
+
+/// Geometry of a queue segment.
+enum class SegmentKind : std::uint8_t {
+  Line = 0,            ///< points: start, end
+  Arc = 1,             ///< points: start, end, centre (XY); Z of start/end makes it helical
+  Bezier = 2,          ///< degree + 1 control points
+  RationalBezier = 3,  ///< degree + 1 control points and degree + 1 weights
+};
+
+/// One path segment. B-splines and NURBS are split into (rational) Bézier spans on the host.
+struct QueueSegment {
+  static constexpr MessageType type = MessageType::QueueSegment;  ///< message type
+  SegmentKind kind = SegmentKind::Line;                           ///< geometry kind
+  std::uint8_t axis_count = 2;                                    ///< 2 or 3 coordinates per point
+  std::uint8_t degree = 1;  ///< Bézier degree 1..7 (Line: 1, Arc: 2, fixed by kind)
+  bool rapid = false;       ///< rapid move (G0): feed is the machine maximum
+  bool has_feed = false;    ///< feed_mm_per_s is given (else the configured default)
+  ArcDirection direction = ArcDirection::CounterClockwise;  ///< Arc only
+  std::int32_t feed_mm_per_s = 0;                           ///< Q16.16 feed, if has_feed
+  std::array<WirePoint, max_segment_degree + 1> points{};  ///< Q16.16 points, point_count() used
+  std::array<std::int32_t, max_segment_degree + 1> weights{};  ///< Q16.16 weights > 0, RationalBezier only
+
+  /// Number of points used by this kind (Line 2, Arc 3, Bézier degree + 1).
+  [[nodiscard]] constexpr std::size_t point_count() const noexcept {
+    switch (kind) {
+      case SegmentKind::Line: return 2;
+      case SegmentKind::Arc: return 3;
+      default: return static_cast<std::size_t>(degree) + 1;
+    }
+  }
+};
+
+/// Start executing the queue.
+struct Start {
+  static constexpr MessageType type = MessageType::Start;  ///< message type
+};
+/// Decelerate to a stop on the path and hold.
+struct FeedHold {
+  static constexpr MessageType type = MessageType::FeedHold;  ///< message type
+};
+/// Continue after a feed hold.
+struct Resume {
+  static constexpr MessageType type = MessageType::Resume;  ///< message type
+};
+/// Stop at once and flush the queue.
+struct Abort {
+  static constexpr MessageType type = MessageType::Abort;  ///< message type
+};
+/// Ask for a StatusReport.
+struct StatusRequest {
+  static constexpr MessageType type = MessageType::StatusRequest;  ///< message type
+};
+
+/// What the controller is doing (a progress state, kept apart from Error).
+enum class MachineState : std::uint8_t {
+  Idle = 0,     ///< not moving, accepts configuration and segments
+  Running = 1,  ///< executing the queue
+  Holding = 2,  ///< stopped by feed hold, resumable
+  Fault = 3,    ///< stopped by an error (see StatusReport::error), needs Abort
+};
+
+/// The controller's state.
+struct StatusReport {
+  static constexpr MessageType type = MessageType::StatusReport;  ///< message type
+  MachineState state = MachineState::Idle;                        ///< progress state
+  std::uint8_t error = 0;               ///< last Error code, 0 if none
+  std::uint8_t axis_count = 3;          ///< coordinates in `position`
+  std::uint16_t queue_depth = 0;        ///< segments waiting in the queue
+  std::uint32_t setpoint_index = 0;     ///< index of the current setpoint since start
+  WirePoint position{};                 ///< Q16.16 commanded position
+};
+
+/// Setpoints on the controller's control-rate grid, delta-encoded on the wire.
+struct SetpointBatch {
+  static constexpr MessageType type = MessageType::SetpointBatch;  ///< message type
+  std::uint32_t first_index = 0;                                   ///< setpoint index of setpoints[0]
+  std::uint8_t axis_count = 3;                                     ///< 2 or 3
+  std::uint8_t count = 0;                                          ///< setpoints used, 1..max_setpoints_per_batch
+  std::array<WirePoint, max_setpoints_per_batch> setpoints{};      ///< Q16.16 positions
+};
+
+/// An error the controller met, tied to the frame that caused it.
+struct ErrorReport {
+  static constexpr MessageType type = MessageType::ErrorReport;  ///< message type
+  Error code = Error::InvalidArgument;                           ///< what went wrong
+  std::uint16_t index = no_index;                                ///< input at fault (point, byte offset), or no_index
+  std::uint8_t sequence = 0;                                     ///< sequence number of the offending frame
+};
+
+namespace detail {
+
+[[nodiscard]] constexpr bool valid_axis_count(std::uint8_t count) noexcept { return count == 2 || count == 3; }
+
+constexpr void write_point(ByteWriter& writer, const WirePoint& point, std::size_t axes) noexcept {
+  for (std::size_t a = 0; a < axes; ++a) writer.i32(point[a]);
+}
+
+constexpr void read_point(ByteReader& reader, WirePoint& point, std::size_t axes) noexcept {
+  point = WirePoint{};
+  for (std::size_t a = 0; a < axes; ++a) point[a] = reader.i32();
+}
+
+/// Reads a byte that must be a known Error code.
+constexpr Error read_error(ByteReader& reader) noexcept {
+  const std::size_t at = reader.offset();
+  const std::uint8_t value = reader.u8();
+  if (value == 0) reader.reject_at(Error::BadPayload, at);
+  return static_cast<Error>(value);
+}
+
+}  // namespace detail
+
+// --- encoders: each writes the payload only and returns its length (BufferTooSmall if it does not fit) ---
+
+/// Encodes a Hello payload (4 bytes).
+[[nodiscard]] constexpr Result<std::size_t> encode(const Hello& m, std::span<std::byte> out) noexcept {
+  ByteWriter w(out);
+  w.u16(m.version);
+  w.u16(m.session);
+  return w.finish();
+}
+
+/// Encodes a Capabilities payload (18 bytes).
+[[nodiscard]] constexpr Result<std::size_t> encode(const Capabilities& m, std::span<std::byte> out) noexcept {
+  ByteWriter w(out);
+  w.u16(m.version);
+  w.u16(m.session);
+  w.u16(m.max_payload);
+  w.u16(m.queue_capacity);
+  w.u16(m.credit_end);
+  w.u8(m.fixed_total_bits);
+  w.u8(m.fixed_fraction_bits);
+  w.u8(m.axis_count);
+  w.u8(m.max_degree);
+  w.u32(m.tick_rate_hz);
+  return w.finish();
+}
+
+/// Encodes an Ack payload (3 bytes).
+[[nodiscard]] constexpr Result<std::size_t> encode(const Ack& m, std::span<std::byte> out) noexcept {
+  ByteWriter w(out);
+  w.u8(m.next_expected);
+  w.u16(m.credit_end);
+  return w.finish();
+}
+
+/// Encodes a Nak payload (2 bytes).
+[[nodiscard]] constexpr Result<std::size_t> encode(const Nak& m, std::span<std::byte> out) noexcept {
+  ByteWriter w(out);
+  w.u8(m.expected);
+  w.u8(static_cast<std::uint8_t>(m.reason));
+  return w.finish();
+}
+
+/// Encodes a MachineConfiguration payload (29 + 20 per axis bytes); InvalidArgument for 0/1/4+ axes.
+[[nodiscard]] constexpr Result<std::size_t> encode(const MachineConfiguration& m, std::span<std::byte> out) noexcept {
+  if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 0);
+  ByteWriter w(out);
+  w.u8(m.axis_count);
+  w.i32(m.max_velocity_mm_per_s);
+  w.u32(m.max_acceleration_mm_per_s2);
+  w.u32(m.max_jerk_mm_per_s3);
+  w.i32(m.default_feed_mm_per_s);
+  w.i32(m.tolerance_mm);
+  w.i32(m.junction_deviation_mm);
+  w.u32(m.control_rate_hz);
+  for (std::size_t a = 0; a < m.axis_count; ++a) {
+    const AxisConfiguration& axis = m.axes[a];
+    w.i32(axis.steps_per_mm);
+    w.i32(axis.min_position_mm);
+    w.i32(axis.max_position_mm);
+    w.i32(axis.max_velocity_mm_per_s);
+    w.u32(axis.max_acceleration_mm_per_s2);
+  }
+  return w.finish();
+}
+
+/// Segment flag bits (byte 1 of a QueueSegment payload).
+inline constexpr std::uint8_t segment_flag_rapid = 0x01;      ///< rapid move
+inline constexpr std::uint8_t segment_flag_feed = 0x02;       ///< a feed field follows
+inline constexpr std::uint8_t segment_flag_three_axes = 0x04; ///< points have X, Y, Z (else X, Y)
+inline constexpr std::uint8_t segment_flag_clockwise = 0x08;  ///< Arc only: clockwise (G2)
+
+/// Encodes a QueueSegment payload; InvalidArgument (index = field number) for an impossible segment.
+[[nodiscard]] constexpr Result<std::size_t> encode(const QueueSegment& m, std::span<std::byte> out) noexcept {
+  if (static_cast<std::uint8_t>(m.kind) > 3) return fail(Error::InvalidArgument, 0);
+  if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
+  const bool bezier = m.kind == SegmentKind::Bezier || m.kind == SegmentKind::RationalBezier;
+  if (bezier && (m.degree < 1 || m.degree > max_segment_degree)) return fail(Error::InvalidArgument, 2);
+  std::uint8_t flags = 0;
+  if (m.rapid) flags |= segment_flag_rapid;
+  if (m.has_feed) flags |= segment_flag_feed;
+  if (m.axis_count == 3) flags |= segment_flag_three_axes;
+  if (m.kind == SegmentKind::Arc && m.direction == ArcDirection::Clockwise) flags |= segment_flag_clockwise;
+  ByteWriter w(out);
+  w.u8(static_cast<std::uint8_t>(m.kind));
+  w.u8(flags);
+  if (bezier) w.u8(m.degree);
+  if (m.has_feed) w.i32(m.feed_mm_per_s);
+  if (m.kind == SegmentKind::Arc) {
+    detail::write_point(w, m.points[0], m.axis_count);
+    detail::write_point(w, m.points[1], m.axis_count);
+    detail::write_point(w, m.points[2], 2);
+  } else {
+    for (std::size_t i = 0; i < m.point_count(); ++i) detail::write_point(w, m.points[i], m.axis_count);
+  }
+  if (m.kind == SegmentKind::RationalBezier) {
+    for (std::size_t i = 0; i < m.point_count(); ++i) {
+      if (m.weights[i] <= 0) return fail(Error::NonPositiveWeight, i);
+      w.i32(m.weights[i]);
+    }
+  }
+  return w.finish();
+}
+
+/// Encodes an empty payload (Start, FeedHold, Resume, Abort, StatusRequest).
+template <class Empty>
+  requires(std::is_same_v<Empty, Start> || std::is_same_v<Empty, FeedHold> || std::is_same_v<Empty, Resume> ||
+           std::is_same_v<Empty, Abort> || std::is_same_v<Empty, StatusRequest>)
+[[nodiscard]] constexpr Result<std::size_t> encode(const Empty&, std::span<std::byte>) noexcept {
+  return std::size_t{0};
+}
+
+/// Encodes a StatusReport payload (9 + 4 per axis bytes).
+[[nodiscard]] constexpr Result<std::size_t> encode(const StatusReport& m, std::span<std::byte> out) noexcept {
+  if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 2);
+  ByteWriter w(out);
+  w.u8(static_cast<std::uint8_t>(m.state));
+  w.u8(m.error);
+  w.u8(m.axis_count);
+  w.u16(m.queue_depth);
+  w.u32(m.setpoint_index);
+  detail::write_point(w, m.position, m.axis_count);
+  return w.finish();
+}
+
+/// Encodes a SetpointBatch payload: header, the first setpoint absolute, then per later setpoint
+/// and axis the zig-zag LEB128 varint of the difference to the previous setpoint.
+[[nodiscard]] constexpr Result<std::size_t> encode(const SetpointBatch& m, std::span<std::byte> out) noexcept {
+  if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
+  if (m.count < 1 || m.count > max_setpoints_per_batch) return fail(Error::InvalidArgument, 2);
+  ByteWriter w(out);
+  w.u32(m.first_index);
+  w.u8(m.axis_count);
+  w.u8(m.count);
+  detail::write_point(w, m.setpoints[0], m.axis_count);
+  for (std::size_t k = 1; k < m.count; ++k) {
+    for (std::size_t a = 0; a < m.axis_count; ++a) {
+      const std::int64_t delta = std::int64_t{m.setpoints[k][a]} - std::int64_t{m.setpoints[k - 1][a]};
+      w.varint(zigzag_encode(delta));
+    }
+  }
+  return w.finish();
+}
+
+/// Payload bytes of the first `count` setpoints of `m` (to size batches before encoding).
+[[nodiscard]] constexpr std::size_t encoded_size(const SetpointBatch& m, std::size_t count) noexcept {
+  std::size_t size = 6 + 4 * std::size_t{m.axis_count};
+  for (std::size_t k = 1; k < count; ++k) {
+    for (std::size_t a = 0; a < m.axis_count; ++a) {
+      size += varint_size(zigzag_encode(std::int64_t{m.setpoints[k][a]} - std::int64_t{m.setpoints[k - 1][a]}));
+    }
+  }
+  return size;
+}
+
+/// Encodes an ErrorReport payload (4 bytes).
+[[nodiscard]] constexpr Result<std::size_t> encode(const ErrorReport& m, std::span<std::byte> out) noexcept {
+  ByteWriter w(out);
+  w.u8(static_cast<std::uint8_t>(m.code));
+  w.u16(m.index);
+  w.u8(m.sequence);
+  return w.finish();
+}
+
+// --- decoders: each reads a whole payload; BadPayload (index = byte offset) if malformed ---
+
+/// Decodes the payload of message type T.
+template <class T>
+[[nodiscard]] constexpr Result<T> decode(std::span<const std::byte> payload) noexcept;
+
+/// Decodes a Hello payload.
+template <>
+[[nodiscard]] constexpr Result<Hello> decode<Hello>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  Hello m;
+  m.version = r.u16();
+  m.session = r.u16();
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+/// Decodes a Capabilities payload.
+template <>
+[[nodiscard]] constexpr Result<Capabilities> decode<Capabilities>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  Capabilities m;
+  m.version = r.u16();
+  m.session = r.u16();
+  m.max_payload = r.u16();
+  m.queue_capacity = r.u16();
+  m.credit_end = r.u16();
+  m.fixed_total_bits = r.u8();
+  m.fixed_fraction_bits = r.u8();
+  const std::size_t axes_at = r.offset();
+  m.axis_count = r.u8();
+  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, axes_at);
+  const std::size_t degree_at = r.offset();
+  m.max_degree = r.u8();
+  if (m.max_degree < 1 || m.max_degree > max_segment_degree) r.reject_at(Error::BadPayload, degree_at);
+  m.tick_rate_hz = r.u32();
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+/// Decodes an Ack payload.
+template <>
+[[nodiscard]] constexpr Result<Ack> decode<Ack>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  Ack m;
+  m.next_expected = r.u8();
+  m.credit_end = r.u16();
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+/// Decodes a Nak payload.
+template <>
+[[nodiscard]] constexpr Result<Nak> decode<Nak>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  Nak m;
+  m.expected = r.u8();
+  m.reason = detail::read_error(r);
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+/// Decodes a MachineConfiguration payload.
+template <>
+[[nodiscard]] constexpr Result<MachineConfiguration> decode<MachineConfiguration>(
+    std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  MachineConfiguration m;
+  m.axis_count = r.u8();
+  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 0);
+  m.max_velocity_mm_per_s = r.i32();
+  m.max_acceleration_mm_per_s2 = r.u32();
+  m.max_jerk_mm_per_s3 = r.u32();
+  m.default_feed_mm_per_s = r.i32();
+  m.tolerance_mm = r.i32();
+  m.junction_deviation_mm = r.i32();
+  m.control_rate_hz = r.u32();
+  for (std::size_t a = 0; a < m.axis_count && !r.failed(); ++a) {
+    AxisConfiguration& axis = m.axes[a];
+    axis.steps_per_mm = r.i32();
+    axis.min_position_mm = r.i32();
+    axis.max_position_mm = r.i32();
+    axis.max_velocity_mm_per_s = r.i32();
+    axis.max_acceleration_mm_per_s2 = r.u32();
+  }
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+/// Decodes a QueueSegment payload.
+template <>
+[[nodiscard]] constexpr Result<QueueSegment> decode<QueueSegment>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  QueueSegment m;
+  const std::uint8_t kind = r.u8();
+  if (kind > 3) r.reject_at(Error::BadPayload, 0);
+  m.kind = static_cast<SegmentKind>(kind);
+  const std::uint8_t flags = r.u8();
+  const std::uint8_t allowed = static_cast<std::uint8_t>(
+      segment_flag_rapid | segment_flag_feed | segment_flag_three_axes |
+      (m.kind == SegmentKind::Arc ? segment_flag_clockwise : 0));
+  if ((flags & ~allowed) != 0) r.reject_at(Error::BadPayload, 1);
+  m.rapid = (flags & segment_flag_rapid) != 0;
+  m.has_feed = (flags & segment_flag_feed) != 0;
+  m.axis_count = (flags & segment_flag_three_axes) != 0 ? 3 : 2;
+  m.direction = (flags & segment_flag_clockwise) != 0 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
+  if (m.kind == SegmentKind::Line) m.degree = 1;
+  if (m.kind == SegmentKind::Arc) m.degree = 2;
+  if (m.kind == SegmentKind::Bezier || m.kind == SegmentKind::RationalBezier) {
+    const std::size_t at = r.offset();
+    m.degree = r.u8();
+    if (m.degree < 1 || m.degree > max_segment_degree) r.reject_at(Error::BadPayload, at);
+  }
+  if (r.failed()) return r.finish().failure();
+  if (m.has_feed) m.feed_mm_per_s = r.i32();
+  if (m.kind == SegmentKind::Arc) {
+    detail::read_point(r, m.points[0], m.axis_count);
+    detail::read_point(r, m.points[1], m.axis_count);
+    detail::read_point(r, m.points[2], 2);
+  } else {
+    for (std::size_t i = 0; i < m.point_count(); ++i) detail::read_point(r, m.points[i], m.axis_count);
+  }
+  if (m.kind == SegmentKind::RationalBezier) {
+    for (std::size_t i = 0; i < m.point_count(); ++i) {
+      const std::size_t at = r.offset();
+      m.weights[i] = r.i32();
+      if (!r.failed() && m.weights[i] <= 0) r.reject_at(Error::BadPayload, at);
+    }
+  }
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+namespace detail {
+template <class Empty>
+[[nodiscard]] constexpr Result<Empty> decode_empty(std::span<const std::byte> payload) noexcept {
+  if (!payload.empty()) return fail(Error::BadPayload, 0);
+  return Empty{};
+}
+}  // namespace detail
+
+/// Decodes a Start payload (empty).
+template <>
+[[nodiscard]] constexpr Result<Start> decode<Start>(std::span<const std::byte> payload) noexcept {
+  return detail::decode_empty<Start>(payload);
+}
+/// Decodes a FeedHold payload (empty).
+template <>
+[[nodiscard]] constexpr Result<FeedHold> decode<FeedHold>(std::span<const std::byte> payload) noexcept {
+  return detail::decode_empty<FeedHold>(payload);
+}
+/// Decodes a Resume payload (empty).
+template <>
+[[nodiscard]] constexpr Result<Resume> decode<Resume>(std::span<const std::byte> payload) noexcept {
+  return detail::decode_empty<Resume>(payload);
+}
+/// Decodes an Abort payload (empty).
+template <>
+[[nodiscard]] constexpr Result<Abort> decode<Abort>(std::span<const std::byte> payload) noexcept {
+  return detail::decode_empty<Abort>(payload);
+}
+/// Decodes a StatusRequest payload (empty).
+template <>
+[[nodiscard]] constexpr Result<StatusRequest> decode<StatusRequest>(std::span<const std::byte> payload) noexcept {
+  return detail::decode_empty<StatusRequest>(payload);
+}
+
+/// Decodes a StatusReport payload.
+template <>
+[[nodiscard]] constexpr Result<StatusReport> decode<StatusReport>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  StatusReport m;
+  const std::uint8_t state = r.u8();
+  if (state > 3) r.reject_at(Error::BadPayload, 0);
+  m.state = static_cast<MachineState>(state);
+  m.error = r.u8();
+  m.axis_count = r.u8();
+  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 2);
+  m.queue_depth = r.u16();
+  m.setpoint_index = r.u32();
+  if (!r.failed()) detail::read_point(r, m.position, m.axis_count);
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+/// Decodes a SetpointBatch payload; a delta that leaves the int32 range is BadPayload.
+template <>
+[[nodiscard]] constexpr Result<SetpointBatch> decode<SetpointBatch>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  SetpointBatch m;
+  m.first_index = r.u32();
+  m.axis_count = r.u8();
+  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 4);
+  m.count = r.u8();
+  if (m.count < 1 || m.count > max_setpoints_per_batch) r.reject_at(Error::BadPayload, 5);
+  if (r.failed()) return r.finish().failure();
+  detail::read_point(r, m.setpoints[0], m.axis_count);
+  for (std::size_t k = 1; k < m.count && !r.failed(); ++k) {
+    m.setpoints[k] = WirePoint{};
+    for (std::size_t a = 0; a < m.axis_count; ++a) {
+      const std::size_t at = r.offset();
+      const std::int64_t value = std::int64_t{m.setpoints[k - 1][a]} + zigzag_decode(r.varint(5));
+      if (value < std::numeric_limits<std::int32_t>::min() || value > std::numeric_limits<std::int32_t>::max()) r.reject_at(Error::BadPayload, at);
+      m.setpoints[k][a] = static_cast<std::int32_t>(value);
+    }
+  }
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+/// Decodes an ErrorReport payload.
+template <>
+[[nodiscard]] constexpr Result<ErrorReport> decode<ErrorReport>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  ErrorReport m;
+  m.code = detail::read_error(r);
+  m.index = r.u16();
+  m.sequence = r.u8();
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
+/// Any one message: a type tag and a union of the message structs (no RTTI, no heap).
+class Message {
+ public:
+  /// A Hello with default fields.
+  constexpr Message() noexcept = default;
+  /// Holds a Hello.
+  constexpr Message(const Hello& m) noexcept : type_(MessageType::Hello), body_(m) {}  // NOLINT
+  /// Holds a Capabilities.
+  constexpr Message(const Capabilities& m) noexcept : type_(MessageType::Capabilities), body_(m) {}  // NOLINT
+  /// Holds an Ack.
+  constexpr Message(const Ack& m) noexcept : type_(MessageType::Ack), body_(m) {}  // NOLINT
+  /// Holds a Nak.
+  constexpr Message(const Nak& m) noexcept : type_(MessageType::Nak), body_(m) {}  // NOLINT
+  /// Holds a MachineConfiguration.
+  constexpr Message(const MachineConfiguration& m) noexcept  // NOLINT
+      : type_(MessageType::MachineConfiguration), body_(m) {}
+  /// Holds a QueueSegment.
+  constexpr Message(const QueueSegment& m) noexcept : type_(MessageType::QueueSegment), body_(m) {}  // NOLINT
+  /// Holds a Start.
+  constexpr Message(const Start&) noexcept : type_(MessageType::Start) {}  // NOLINT
+  /// Holds a FeedHold.
+  constexpr Message(const FeedHold&) noexcept : type_(MessageType::FeedHold) {}  // NOLINT
+  /// Holds a Resume.
+  constexpr Message(const Resume&) noexcept : type_(MessageType::Resume) {}  // NOLINT
+  /// Holds an Abort.
+  constexpr Message(const Abort&) noexcept : type_(MessageType::Abort) {}  // NOLINT
+  /// Holds a StatusRequest.
+  constexpr Message(const StatusRequest&) noexcept : type_(MessageType::StatusRequest) {}  // NOLINT
+  /// Holds a StatusReport.
+  constexpr Message(const StatusReport& m) noexcept : type_(MessageType::StatusReport), body_(m) {}  // NOLINT
+  /// Holds a SetpointBatch.
+  constexpr Message(const SetpointBatch& m) noexcept : type_(MessageType::SetpointBatch), body_(m) {}  // NOLINT
+  /// Holds an ErrorReport.
+  constexpr Message(const ErrorReport& m) noexcept : type_(MessageType::ErrorReport), body_(m) {}  // NOLINT
+
+  /// Which message this is.
+  [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
+  /// True if this holds a T.
+  template <class T>
+  [[nodiscard]] constexpr bool holds() const noexcept {
+    return type_ == T::type;
+  }
+  /// The held T; asking for another type is a contract violation.
+  template <class T>
+  [[nodiscard]] constexpr const T& get() const noexcept {
+    CURVESTEP_EXPECTS(type_ == T::type);
+    if constexpr (std::is_same_v<T, Hello>) return body_.hello;
+    else if constexpr (std::is_same_v<T, Capabilities>) return body_.capabilities;
+    else if constexpr (std::is_same_v<T, Ack>) return body_.ack;
+    else if constexpr (std::is_same_v<T, Nak>) return body_.nak;
+    else if constexpr (std::is_same_v<T, MachineConfiguration>) return body_.machine_configuration;
+    else if constexpr (std::is_same_v<T, QueueSegment>) return body_.queue_segment;
+    else if constexpr (std::is_same_v<T, StatusReport>) return body_.status_report;
+    else if constexpr (std::is_same_v<T, SetpointBatch>) return body_.setpoint_batch;
+    else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
+    else return empty<T>();
+  }
+
+ private:
+  template <class T>
+  [[nodiscard]] static constexpr const T& empty() noexcept {
+    static_assert(std::is_empty_v<T>, "not a message type");
+    return instance<T>;
+  }
+  template <class T>
+  static constexpr T instance{};
+
+  // Each constructor starts the lifetime of exactly one member, so no inactive member is ever
+  // assigned (that would be undefined for members with default member initializers).
+  union Body {
+    constexpr Body() noexcept : hello{} {}
+    constexpr explicit Body(const Hello& m) noexcept : hello(m) {}
+    constexpr explicit Body(const Capabilities& m) noexcept : capabilities(m) {}
+    constexpr explicit Body(const Ack& m) noexcept : ack(m) {}
+    constexpr explicit Body(const Nak& m) noexcept : nak(m) {}
+    constexpr explicit Body(const MachineConfiguration& m) noexcept : machine_configuration(m) {}
+    constexpr explicit Body(const QueueSegment& m) noexcept : queue_segment(m) {}
+    constexpr explicit Body(const StatusReport& m) noexcept : status_report(m) {}
+    constexpr explicit Body(const SetpointBatch& m) noexcept : setpoint_batch(m) {}
+    constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
+    Hello hello;
+    Capabilities capabilities;
+    Ack ack;
+    Nak nak;
+    MachineConfiguration machine_configuration;
+    QueueSegment queue_segment;
+    StatusReport status_report;
+    SetpointBatch setpoint_batch;
+    ErrorReport error_report;
+  };
+  MessageType type_ = MessageType::Hello;
+  Body body_;
+};
+
+/// Calls `visitor(const T&)` with the message held by `m`; returns what the visitor returns.
+template <class Visitor>
+constexpr decltype(auto) visit(Visitor&& visitor, const Message& m) {
+  switch (m.type()) {
+    case MessageType::Hello: return visitor(m.get<Hello>());
+    case MessageType::Capabilities: return visitor(m.get<Capabilities>());
+    case MessageType::Ack: return visitor(m.get<Ack>());
+    case MessageType::Nak: return visitor(m.get<Nak>());
+    case MessageType::MachineConfiguration: return visitor(m.get<MachineConfiguration>());
+    case MessageType::QueueSegment: return visitor(m.get<QueueSegment>());
+    case MessageType::Start: return visitor(m.get<Start>());
+    case MessageType::FeedHold: return visitor(m.get<FeedHold>());
+    case MessageType::Resume: return visitor(m.get<Resume>());
+    case MessageType::Abort: return visitor(m.get<Abort>());
+    case MessageType::StatusRequest: return visitor(m.get<StatusRequest>());
+    case MessageType::StatusReport: return visitor(m.get<StatusReport>());
+    case MessageType::SetpointBatch: return visitor(m.get<SetpointBatch>());
+    case MessageType::ErrorReport: break;
+  }
+  return visitor(m.get<ErrorReport>());
+}
+
+/// Encodes the payload of whatever `m` holds.
+[[nodiscard]] constexpr Result<std::size_t> encode(const Message& m, std::span<std::byte> out) noexcept {
+  return visit([out](const auto& held) { return encode(held, out); }, m);
+}
+
+/// Decodes a payload of the given raw message type; UnknownMessage (index = type) if not defined.
+[[nodiscard]] constexpr Result<Message> decode_message(std::uint8_t type, std::span<const std::byte> payload) noexcept {
+  const auto convert = [](auto result) -> Result<Message> {
+    if (!result) return result.failure();
+    return Message(result.value());
+  };
+  switch (static_cast<MessageType>(type)) {
+    case MessageType::Hello: return convert(decode<Hello>(payload));
+    case MessageType::Capabilities: return convert(decode<Capabilities>(payload));
+    case MessageType::Ack: return convert(decode<Ack>(payload));
+    case MessageType::Nak: return convert(decode<Nak>(payload));
+    case MessageType::MachineConfiguration: return convert(decode<MachineConfiguration>(payload));
+    case MessageType::QueueSegment: return convert(decode<QueueSegment>(payload));
+    case MessageType::Start: return convert(decode<Start>(payload));
+    case MessageType::FeedHold: return convert(decode<FeedHold>(payload));
+    case MessageType::Resume: return convert(decode<Resume>(payload));
+    case MessageType::Abort: return convert(decode<Abort>(payload));
+    case MessageType::StatusRequest: return convert(decode<StatusRequest>(payload));
+    case MessageType::StatusReport: return convert(decode<StatusReport>(payload));
+    case MessageType::SetpointBatch: return convert(decode<SetpointBatch>(payload));
+    case MessageType::ErrorReport: return convert(decode<ErrorReport>(payload));
+  }
+  return fail(Error::UnknownMessage, type);
+}
+
+}  // namespace curvestep::protocol
