@@ -34,6 +34,16 @@ template <Scalar S>
   return ok();
 }
 
+/// The uniform knot u_j = j (FixedOverflow past the Q range).
+template <Scalar S>
+[[nodiscard]] constexpr Result<S> knot_from_index(std::size_t j) noexcept {
+  if constexpr (FixedPoint<S>) {
+    return S::from_integer(static_cast<long long>(j));
+  } else {
+    return static_cast<S>(j);
+  }
+}
+
 /// Interval width u_{i+1} − u_i, checked.
 template <Scalar S>
 [[nodiscard]] constexpr Result<S> interval_width(std::span<const S> knots, std::size_t i) noexcept {
