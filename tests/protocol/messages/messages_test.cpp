@@ -1,0 +1,344 @@
+// SPDX-License-Identifier: MIT
+// Messages: every type round-trips, hand-computed payloads, malformed payloads are rejected.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <random>
+#include <vector>
+
+#include <curvestep/protocol/frame.hpp>
+#include <curvestep/protocol/messages.hpp>
+#include <support/numeric.hpp>
+
+#include "../support/bytes.hpp"
+
+using namespace curvestep;
+using namespace curvestep::protocol;
+using curvestep::protocol::testing::hex;
+using curvestep::protocol::testing::to_hex;
+
+namespace {
+
+std::vector<std::byte> payload_of(const Message& m) {
+  std::vector<std::byte> out(max_payload_size);
+  const auto r = encode(m, out);
+  REQUIRE(r.has_value());
+  out.resize(r.value());
+  return out;
+}
+
+Message round_trip(const Message& m) {
+  const auto payload = payload_of(m);
+  const auto r = decode_message(static_cast<std::uint8_t>(m.type()), payload);
+  REQUIRE(r.has_value());
+  REQUIRE(r.value().type() == m.type());
+  // Encoding the decoded message again gives the same bytes.
+  CHECK(payload_of(r.value()) == payload);
+  return r.value();
+}
+
+std::int32_t random_raw(std::mt19937& rng) {
+  return static_cast<std::int32_t>(rng());
+}
+
+WirePoint random_point(std::mt19937& rng, std::size_t axes) {
+  WirePoint p{};
+  for (std::size_t a = 0; a < axes; ++a) p[a] = random_raw(rng);
+  return p;
+}
+
+QueueSegment random_segment(std::mt19937& rng) {
+  QueueSegment s;
+  s.kind = static_cast<SegmentKind>(rng() % 4);
+  s.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
+  s.rapid = rng() % 2 == 0;
+  s.has_feed = rng() % 2 == 0;
+  s.feed_mm_per_s = s.has_feed ? random_raw(rng) : 0;
+  s.degree = static_cast<std::uint8_t>(s.kind == SegmentKind::Line ? 1 : s.kind == SegmentKind::Arc ? 2 : 1 + rng() % 7);
+  if (s.kind == SegmentKind::Arc) {
+    s.direction = rng() % 2 == 0 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
+    s.points[0] = random_point(rng, s.axis_count);
+    s.points[1] = random_point(rng, s.axis_count);
+    s.points[2] = random_point(rng, 2);
+  } else {
+    for (std::size_t i = 0; i < s.point_count(); ++i) s.points[i] = random_point(rng, s.axis_count);
+  }
+  if (s.kind == SegmentKind::RationalBezier) {
+    for (std::size_t i = 0; i < s.point_count(); ++i) s.weights[i] = 1 + static_cast<std::int32_t>(rng() % 0x7FFFFFFE);
+  }
+  return s;
+}
+
+bool same(const QueueSegment& a, const QueueSegment& b) {
+  return a.kind == b.kind && a.axis_count == b.axis_count && a.degree == b.degree && a.rapid == b.rapid &&
+         a.has_feed == b.has_feed && a.feed_mm_per_s == b.feed_mm_per_s && a.points == b.points &&
+         a.weights == b.weights && (a.kind != SegmentKind::Arc || a.direction == b.direction);
+}
+
+SetpointBatch batch(std::uint32_t first, std::uint8_t axes, std::initializer_list<WirePoint> points) {
+  SetpointBatch b;
+  b.first_index = first;
+  b.axis_count = axes;
+  for (const WirePoint& p : points) b.setpoints[b.count++] = p;
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("messages: every message type round-trips through encode and decode", "[protocol][messages]") {
+  std::mt19937 rng(curvestep::testing::test_seed());
+  const int count = curvestep::testing::test_count(200);
+  for (int i = 0; i < count; ++i) {
+    Hello hello{static_cast<std::uint16_t>(rng()), static_cast<std::uint16_t>(rng())};
+    const auto h = round_trip(hello).get<Hello>();
+    CHECK((h.version == hello.version && h.session == hello.session));
+
+    Capabilities caps;
+    caps.version = static_cast<std::uint16_t>(rng());
+    caps.session = static_cast<std::uint16_t>(rng());
+    caps.max_payload = static_cast<std::uint16_t>(rng());
+    caps.queue_capacity = static_cast<std::uint16_t>(rng());
+    caps.credit_end = static_cast<std::uint16_t>(rng());
+    caps.fixed_total_bits = static_cast<std::uint8_t>(rng());
+    caps.fixed_fraction_bits = static_cast<std::uint8_t>(rng());
+    caps.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
+    caps.max_degree = static_cast<std::uint8_t>(1 + rng() % 7);
+    caps.tick_rate_hz = static_cast<std::uint32_t>(rng());
+    const auto c = round_trip(caps).get<Capabilities>();
+    CHECK((c.version == caps.version && c.session == caps.session && c.max_payload == caps.max_payload &&
+           c.queue_capacity == caps.queue_capacity && c.credit_end == caps.credit_end &&
+           c.fixed_total_bits == caps.fixed_total_bits && c.fixed_fraction_bits == caps.fixed_fraction_bits &&
+           c.axis_count == caps.axis_count && c.max_degree == caps.max_degree && c.tick_rate_hz == caps.tick_rate_hz));
+
+    Ack ack{static_cast<std::uint8_t>(rng()), static_cast<std::uint16_t>(rng())};
+    const auto a = round_trip(ack).get<Ack>();
+    CHECK((a.next_expected == ack.next_expected && a.credit_end == ack.credit_end));
+
+    Nak nak{static_cast<std::uint8_t>(rng()), rng() % 2 == 0 ? Error::SequenceError : Error::QueueFull};
+    const auto n = round_trip(nak).get<Nak>();
+    CHECK((n.expected == nak.expected && n.reason == nak.reason));
+
+    MachineConfiguration config;
+    config.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
+    config.max_velocity_mm_per_s = random_raw(rng);
+    config.max_acceleration_mm_per_s2 = static_cast<std::uint32_t>(rng());
+    config.max_jerk_mm_per_s3 = static_cast<std::uint32_t>(rng());
+    config.default_feed_mm_per_s = random_raw(rng);
+    config.tolerance_mm = random_raw(rng);
+    config.junction_deviation_mm = random_raw(rng);
+    config.control_rate_hz = static_cast<std::uint32_t>(rng());
+    for (std::size_t ax = 0; ax < config.axis_count; ++ax) {
+      config.axes[ax] = AxisConfiguration{random_raw(rng), random_raw(rng), random_raw(rng), random_raw(rng),
+                                          static_cast<std::uint32_t>(rng())};
+    }
+    const auto m = round_trip(config).get<MachineConfiguration>();
+    CHECK((m.axis_count == config.axis_count && m.max_velocity_mm_per_s == config.max_velocity_mm_per_s &&
+           m.max_acceleration_mm_per_s2 == config.max_acceleration_mm_per_s2 &&
+           m.max_jerk_mm_per_s3 == config.max_jerk_mm_per_s3 &&
+           m.default_feed_mm_per_s == config.default_feed_mm_per_s && m.tolerance_mm == config.tolerance_mm &&
+           m.junction_deviation_mm == config.junction_deviation_mm && m.control_rate_hz == config.control_rate_hz));
+    for (std::size_t ax = 0; ax < config.axis_count; ++ax) {
+      CHECK((m.axes[ax].steps_per_mm == config.axes[ax].steps_per_mm &&
+             m.axes[ax].min_position_mm == config.axes[ax].min_position_mm &&
+             m.axes[ax].max_position_mm == config.axes[ax].max_position_mm &&
+             m.axes[ax].max_velocity_mm_per_s == config.axes[ax].max_velocity_mm_per_s &&
+             m.axes[ax].max_acceleration_mm_per_s2 == config.axes[ax].max_acceleration_mm_per_s2));
+    }
+
+    const QueueSegment segment = random_segment(rng);
+    CHECK(same(round_trip(segment).get<QueueSegment>(), segment));
+
+    CHECK(round_trip(Start{}).holds<Start>());
+    CHECK(round_trip(FeedHold{}).holds<FeedHold>());
+    CHECK(round_trip(Resume{}).holds<Resume>());
+    CHECK(round_trip(Abort{}).holds<Abort>());
+    CHECK(round_trip(StatusRequest{}).holds<StatusRequest>());
+
+    StatusReport status;
+    status.state = static_cast<MachineState>(rng() % 4);
+    status.error = static_cast<std::uint8_t>(rng());
+    status.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
+    status.queue_depth = static_cast<std::uint16_t>(rng());
+    status.setpoint_index = static_cast<std::uint32_t>(rng());
+    status.position = random_point(rng, status.axis_count);
+    const auto s = round_trip(status).get<StatusReport>();
+    CHECK((s.state == status.state && s.error == status.error && s.axis_count == status.axis_count &&
+           s.queue_depth == status.queue_depth && s.setpoint_index == status.setpoint_index &&
+           s.position == status.position));
+
+    SetpointBatch setpoints;
+    setpoints.first_index = static_cast<std::uint32_t>(rng());
+    setpoints.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
+    setpoints.count = static_cast<std::uint8_t>(1 + rng() % 4);  // any deltas, even full-range ones, fit 4 setpoints
+    for (std::size_t k = 0; k < setpoints.count; ++k) setpoints.setpoints[k] = random_point(rng, setpoints.axis_count);
+    const auto b = round_trip(setpoints).get<SetpointBatch>();
+    CHECK((b.first_index == setpoints.first_index && b.axis_count == setpoints.axis_count &&
+           b.count == setpoints.count && b.setpoints == setpoints.setpoints));
+
+    ErrorReport report{Error::BadPayload, static_cast<std::uint16_t>(rng()), static_cast<std::uint8_t>(rng())};
+    const auto e = round_trip(report).get<ErrorReport>();
+    CHECK((e.code == report.code && e.index == report.index && e.sequence == report.sequence));
+  }
+}
+
+TEST_CASE("messages: a setpoint batch encodes as hand-computed zig-zag varints", "[protocol][messages]") {
+  // first index 1000; (1, 2, -0.5) mm; then deltas (+100, -1, 0) and (+8192, -8193, +63) raw.
+  // zig-zag: 100 -> 200 = c8 01; -1 -> 1 = 01; 0 -> 00; 8192 -> 16384 = 80 80 01;
+  // -8193 -> 16385 = 81 80 01; 63 -> 126 = 7e.
+  const auto b = batch(1000, 3, {{65536, 131072, -32768}, {65636, 131071, -32768}, {73828, 122878, -32705}});
+  CHECK(to_hex(payload_of(b)) ==
+        "e8 03 00 00 03 03 00 00 01 00 00 00 02 00 00 80 ff ff c8 01 01 00 80 80 01 81 80 01 7e");
+  CHECK(encoded_size(b, 3) == 29);
+}
+
+TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 40 percent spare", "[protocol][messages]") {
+  // Worst case of docs/protocol.md: every axis moves 8191 raw (0.125 mm) per 1 ms setpoint,
+  // i.e. 125 mm/s per axis, so every delta takes two varint bytes.
+  SetpointBatch b;
+  b.axis_count = 3;
+  b.count = max_setpoints_per_batch;
+  for (std::size_t k = 1; k < b.count; ++k) {
+    const auto step = static_cast<std::int32_t>(k) * 8191;
+    b.setpoints[k] = {step, -step, k % 2 == 1 ? 8191 : 0};
+  }
+  CHECK(encoded_size(b, b.count) == 6 + 12 + 23 * 6);
+  std::vector<std::byte> wire(max_encoded_frame_size);
+  const auto size = encode_frame(Message(b), 0, wire);
+  REQUIRE(size.has_value());
+  CHECK(size.value() == 162);
+  const double bytes_per_second = 162.0 * 1000.0 / static_cast<double>(max_setpoints_per_batch);
+  const double link_bytes_per_second = 115200.0 / 10.0;  // 8N1: 10 bit times per byte
+  CHECK(bytes_per_second == Approx(6750.0));
+  CHECK(bytes_per_second <= 0.6 * link_bytes_per_second);
+}
+
+TEST_CASE("messages: the encoder refuses batches that leave the payload limit", "[protocol][messages]") {
+  SetpointBatch b;
+  b.axis_count = 3;
+  b.count = max_setpoints_per_batch;
+  for (std::size_t k = 0; k < b.count; ++k) {
+    const std::int32_t big = k % 2 == 0 ? 0x40000000 : -0x40000000;
+    b.setpoints[k] = {big, big, big};
+  }
+  std::array<std::byte, max_payload_size> out{};
+  const auto r = encode(b, out);
+  REQUIRE_FALSE(r.has_value());
+  CHECK(r.error() == Error::BufferTooSmall);
+  CHECK(encoded_size(b, b.count) > max_payload_size);
+}
+
+TEST_CASE("messages: every truncation of every payload is BadPayload", "[protocol][messages]") {
+  std::mt19937 rng(curvestep::testing::test_seed());
+  QueueSegment rational = random_segment(rng);
+  rational.kind = SegmentKind::RationalBezier;
+  rational.degree = 7;
+  rational.axis_count = 3;
+  for (std::size_t i = 0; i < 8; ++i) rational.weights[i] = 65536;
+  MachineConfiguration config;
+  const std::vector<Message> messages{Message(Hello{}),          Message(Capabilities{}), Message(Ack{}),
+                                      Message(Nak{}),            Message(config),         Message(rational),
+                                      Message(StatusReport{}),
+                                      Message(batch(5, 2, {{1, 2, 0}, {300, -300, 0}})),
+                                      Message(ErrorReport{})};
+  for (const Message& m : messages) {
+    const auto payload = payload_of(m);
+    INFO("type " << static_cast<int>(m.type()) << " payload " << to_hex(payload));
+    for (std::size_t n = 0; n < payload.size(); ++n) {
+      const auto r = decode_message(static_cast<std::uint8_t>(m.type()), std::span<const std::byte>(payload).first(n));
+      REQUIRE_FALSE(r.has_value());
+      CHECK(r.error() == Error::BadPayload);
+    }
+    auto longer = payload;
+    longer.push_back(std::byte{0});
+    const auto r = decode_message(static_cast<std::uint8_t>(m.type()), longer);
+    REQUIRE_FALSE(r.has_value());
+    CHECK(r.error() == Error::BadPayload);
+    CHECK(r.where() == payload.size());
+  }
+}
+
+TEST_CASE("messages: empty commands reject any payload byte", "[protocol][messages]") {
+  const auto one = hex("00");
+  for (const MessageType t : {MessageType::Start, MessageType::FeedHold, MessageType::Resume, MessageType::Abort,
+                              MessageType::StatusRequest}) {
+    CHECK(decode_message(static_cast<std::uint8_t>(t), {}).has_value());
+    CHECK(decode_message(static_cast<std::uint8_t>(t), one).error() == Error::BadPayload);
+  }
+}
+
+TEST_CASE("messages: unknown message types are UnknownMessage with the type as index", "[protocol][messages]") {
+  for (int t = 0; t < 256; ++t) {
+    const auto type = static_cast<std::uint8_t>(t);
+    const auto r = decode_message(type, {});
+    if (is_known(type)) continue;
+    REQUIRE_FALSE(r.has_value());
+    CHECK(r.error() == Error::UnknownMessage);
+    CHECK(r.where() == t);
+  }
+}
+
+TEST_CASE("messages: malformed segment fields are BadPayload at their byte offset", "[protocol][messages]") {
+  // kind 4 does not exist
+  CHECK(decode<QueueSegment>(hex("04 00")).where() == 0);
+  // reserved flag bit 0x10
+  CHECK(decode<QueueSegment>(hex("00 10 00000000 00000000 00000000 00000000")).where() == 1);
+  // clockwise flag on a line
+  CHECK(decode<QueueSegment>(hex("00 08 00000000 00000000 00000000 00000000")).where() == 1);
+  // Bezier of degree 0 and 8
+  CHECK(decode<QueueSegment>(hex("02 00 00")).where() == 2);
+  CHECK(decode<QueueSegment>(hex("02 00 08")).where() == 2);
+  // rational linear segment with weight 0 for the second point (offset 3 + 16 + 4)
+  const auto r = decode<QueueSegment>(hex("03 00 01 00000000 00000000 00000100 00000000 00000100 00000000"));
+  REQUIRE_FALSE(r.has_value());
+  CHECK(r.error() == Error::BadPayload);
+  CHECK(r.where() == 23);
+  // the same with weight 1.0 decodes
+  CHECK(decode<QueueSegment>(hex("03 00 01 00000000 00000000 00000100 00000000 00000100 00000100")).has_value());
+}
+
+TEST_CASE("messages: other malformed fields are BadPayload", "[protocol][messages]") {
+  CHECK(decode<Nak>(hex("05 00")).error() == Error::BadPayload);            // reason 0 is not an error
+  CHECK(decode<StatusReport>(hex("04 00 02 0000 00000000 00000000 00000000")).where() == 0);  // state 4
+  CHECK(decode<StatusReport>(hex("00 00 04 0000 00000000 00000000 00000000")).where() == 2);  // 4 axes
+  CHECK(decode<SetpointBatch>(hex("00000000 03 00")).where() == 5);         // zero setpoints
+  CHECK(decode<SetpointBatch>(hex("00000000 03 19")).where() == 5);         // 25 setpoints
+  CHECK(decode<MachineConfiguration>(hex("01")).where() == 0);              // one axis
+  CHECK(decode<Capabilities>(hex("0100 0000 a000 1000 1000 20 10 05 07 00000000")).where() == 12);  // 5 axes
+  // a varint longer than 5 bytes, and a delta that leaves the int32 range
+  CHECK(decode<SetpointBatch>(hex("00000000 02 02 00000000 00000000 ffffffffff01 00")).error() == Error::BadPayload);
+  const auto overflow = decode<SetpointBatch>(hex("00000000 02 02 ffffff7f 00000000 02 00"));
+  REQUIRE_FALSE(overflow.has_value());
+  CHECK(overflow.where() == 14);  // the first delta: 4 + 1 + 1 + 2 * 4
+}
+
+TEST_CASE("messages: encoders refuse messages that cannot be represented", "[protocol][messages]") {
+  std::array<std::byte, max_payload_size> out{};
+  QueueSegment s;
+  s.kind = SegmentKind::Bezier;
+  s.degree = 8;
+  CHECK(encode(s, out).error() == Error::InvalidArgument);
+  s.degree = 2;
+  s.axis_count = 4;
+  CHECK(encode(s, out).error() == Error::InvalidArgument);
+  s.axis_count = 2;
+  s.kind = SegmentKind::RationalBezier;
+  s.weights = {65536, 0, 65536};
+  const auto w = encode(s, out);
+  CHECK(w.error() == Error::NonPositiveWeight);
+  CHECK(w.where() == 1);
+  SetpointBatch empty;
+  CHECK(encode(empty, out).error() == Error::InvalidArgument);
+  std::array<std::byte, 3> tiny{};
+  CHECK(encode(Capabilities{}, tiny).error() == Error::BufferTooSmall);
+}
+
+TEST_CASE("messages: the largest segment fits the payload limit", "[protocol][messages]") {
+  QueueSegment s;
+  s.kind = SegmentKind::RationalBezier;
+  s.degree = 7;
+  s.axis_count = 3;
+  s.has_feed = true;
+  s.weights.fill(65536);
+  CHECK(payload_of(s).size() == 3 + 4 + 8 * 12 + 8 * 4);
+  CHECK(payload_of(s).size() <= max_payload_size);
+}
