@@ -3,7 +3,10 @@
 // Q16.16), clamped or unclamped, with random repeated knots up to the legal multiplicity.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <initializer_list>
+#include <span>
 #include <random>
 #include <vector>
 
@@ -62,6 +65,33 @@ RandomSplineData<S, Dim> random_spline(std::mt19937& random, std::size_t max_deg
   }
   for (const double v : values) data.knots.push_back(scalar<S>(v));
   return data;
+}
+
+/// Scalars from doubles (test data that must be representable).
+template <Scalar S>
+std::vector<S> scalars(std::initializer_list<double> values) {
+  std::vector<S> out;
+  for (const double v : values) out.push_back(scalar<S>(v));
+  return out;
+}
+
+/// 2D points from {x, y} pairs.
+template <Scalar S>
+std::vector<Vec<S, 2>> points(std::initializer_list<std::array<double, 2>> values) {
+  std::vector<Vec<S, 2>> out;
+  for (const auto& v : values) out.push_back(point<S>(v[0], v[1]));
+  return out;
+}
+
+/// A curve of type Curve from points, knots and degree; fails the test if create fails.
+template <class Curve>
+Curve make_spline(const std::vector<typename Curve::Point>& control, const std::vector<typename Curve::scalar_type>& knots,
+                  std::size_t degree) {
+  const auto made = Curve::create(std::span<const typename Curve::Point>(control),
+                                  std::span<const typename Curve::scalar_type>(knots), degree);
+  INFO("create failed with error " << static_cast<int>(made.error()) << " at " << made.where());
+  REQUIRE(made.has_value());
+  return made.value();
 }
 
 }  // namespace curvestep::testing

@@ -16,7 +16,7 @@
 // Fixed point: the stored homogeneous points w_i·P_i are rounded once; the projection adds one
 // rounding per coordinate. A weight that is not a multiple of the resolution (√2/2 in a circle) is
 // rounded too, which perturbs the curve by at most about |P|·(relative weight error): for Q16.16 and
-// weights near 1, 2^-17·|P| (see docs/bspline.md for the circle's bound).
+// weights near 1, about 2^-17·|P| (conics.hpp gives the sharper bound for the circle).
 #pragma once
 
 #include <array>
