@@ -1,0 +1,322 @@
+// SPDX-License-Identifier: MIT
+// Link state machines: handshake, retransmission, duplicates, gaps, credit, restarts.
+#include <catch2/catch.hpp>
+
+#include "link_harness.hpp"
+
+using namespace curvestep;
+using namespace curvestep::protocol;
+using namespace curvestep::protocol::testing;
+
+namespace {
+
+/// Connects a host and a controller over a perfect line at time `now`.
+template <std::size_t Window>
+void handshake(Host<Window>& host, Controller& controller, std::uint32_t now = 0) {
+  host.sender.connect(0xBEEF, now);
+  const auto hello = host.transmit(now);
+  REQUIRE(hello.size() == 1);
+  const auto replies = controller.receive(hello[0], now);
+  REQUIRE(replies.size() == 1);
+  host.receive(replies[0], now);
+  REQUIRE(host.sender.state() == LinkState::Connected);
+}
+
+}  // namespace
+
+TEST_CASE("link: the handshake reports the controller's capabilities and credit", "[protocol][link]") {
+  Host<> host;
+  Controller controller(5);
+  handshake(host, controller);
+  CHECK(host.sender.capabilities().queue_capacity == 5);
+  CHECK(host.sender.capabilities().tick_rate_hz == 100000);
+  CHECK(host.sender.capabilities().session == 0xBEEF);
+  CHECK(host.sender.credit() == 5);
+  CHECK(controller.receiver.connected());
+  CHECK(controller.connects == 1);
+}
+
+TEST_CASE("link: a handshake with a wrong version is refused on both ends", "[protocol][link]") {
+  SECTION("the controller refuses a host of another version") {
+    Host<> host;
+    Controller controller(5, {}, static_cast<std::uint16_t>(protocol_version + 1));
+    host.sender.connect(1, 0);
+    const auto replies = controller.receive(host.transmit(0)[0], 0);
+    REQUIRE(replies.size() == 1);
+    REQUIRE(controller.naks.size() == 1);
+    CHECK(controller.naks[0].reason == Error::VersionMismatch);
+    CHECK_FALSE(controller.receiver.connected());
+    host.receive(replies[0], 0);
+    CHECK(host.sender.state() == LinkState::Failed);
+    CHECK(host.sender.last_error() == Error::VersionMismatch);
+    REQUIRE(host.link_errors.size() == 1);
+    CHECK(host.link_errors[0] == Error::VersionMismatch);
+  }
+  SECTION("the host refuses Capabilities of another version") {
+    LinkSender<> sender;
+    sender.connect(7, 0);
+    Capabilities caps = controller_capabilities(4, static_cast<std::uint16_t>(protocol_version + 3));
+    caps.session = 7;
+    const auto r = sender.on_message(Message(caps), 0);
+    REQUIRE_FALSE(r.has_value());
+    CHECK(r.error() == Error::VersionMismatch);
+    CHECK(sender.state() == LinkState::Failed);
+    CHECK_FALSE(sender.submit(Message(Start{})).has_value());
+  }
+}
+
+TEST_CASE("link: Hello is repeated after the timeout and gives up with LinkTimeout", "[protocol][link]") {
+  Host<> host(SenderSettings{100, 3});
+  host.sender.connect(9, 1000);
+  CHECK(host.transmit(1000).size() == 1);
+  CHECK(host.transmit(1099).empty());
+  CHECK(host.transmit(1100).size() == 1);
+  CHECK(host.transmit(1200).size() == 1);
+  CHECK(host.transmit(1300).size() == 1);  // fourth Hello: three retransmissions
+  CHECK(host.transmit(1400).empty());
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::LinkTimeout);
+  CHECK(host.sender.state() == LinkState::Failed);
+}
+
+TEST_CASE("link: a repeated Hello of the same session does not reset the controller", "[protocol][link]") {
+  Host<> host;
+  Controller controller(4);
+  host.sender.connect(77, 0);
+  const auto hello = host.transmit(0)[0];
+  controller.receive(hello, 0);
+  host.receive(concatenate(controller.receive(hello, 1)), 1);  // the first answer was lost
+  REQUIRE(host.sender.state() == LinkState::Connected);
+  REQUIRE(host.sender.submit(Message(tagged_segment(1))).has_value());
+  controller.receive(concatenate(host.transmit(2)), 2);
+  CHECK(controller.receiver.expected_sequence() == 1);
+  controller.receive(hello, 3);  // a late copy of the Hello
+  CHECK(controller.receiver.expected_sequence() == 1);
+  CHECK(controller.connects == 1);
+  CHECK(controller.queue.size() == 1);
+}
+
+TEST_CASE("link: a lost frame is retransmitted after the timeout", "[protocol][link]") {
+  Host<> host(SenderSettings{100, 5});
+  Controller controller(8);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(tagged_segment(10))).has_value());
+  const auto first = host.transmit(10);
+  REQUIRE(first.size() == 1);  // lost on the line
+  CHECK(host.transmit(50).empty());
+  CHECK(host.transmit(109).empty());
+  const auto again = host.transmit(110);
+  REQUIRE(again.size() == 1);
+  CHECK(again[0] == first[0]);  // the same bytes, the same sequence number
+  host.receive(concatenate(controller.receive(again[0], 111)), 111);
+  CHECK(host.sender.idle());
+  REQUIRE(controller.delivered.size() == 1);
+  CHECK(controller.delivered[0].get<QueueSegment>().feed_mm_per_s == 10);
+  CHECK(host.transmit(500).empty());  // acknowledged: nothing more to resend
+}
+
+TEST_CASE("link: a gap is answered by one Nak and the host goes back at once", "[protocol][link]") {
+  Host<> host;
+  Controller controller(8);
+  handshake(host, controller);
+  for (int i = 0; i < 4; ++i) REQUIRE(host.sender.submit(Message(tagged_segment(i))).has_value());
+  const auto frames = host.transmit(10);
+  REQUIRE(frames.size() == 4);
+  // frame 0 is lost; 1, 2, 3 arrive out of order with respect to the expected 0
+  std::vector<Bytes> replies;
+  for (int i = 1; i < 4; ++i) {
+    const auto r = controller.receive(frames[static_cast<std::size_t>(i)], 11);
+    replies.insert(replies.end(), r.begin(), r.end());
+  }
+  CHECK(controller.delivered.empty());
+  REQUIRE(controller.naks.size() == 1);  // one Nak per gap, not one per frame
+  CHECK(controller.naks[0].expected == 0);
+  CHECK(controller.naks[0].reason == Error::SequenceError);
+  host.receive(concatenate(replies), 12);
+  const auto resent = host.transmit(13);  // no timeout needed
+  REQUIRE(resent.size() == 4);
+  CHECK(resent[0] == frames[0]);
+  host.receive(concatenate(controller.receive(concatenate(resent), 14)), 14);
+  REQUIRE(controller.delivered.size() == 4);
+  for (int i = 0; i < 4; ++i) CHECK(controller.delivered[static_cast<std::size_t>(i)].get<QueueSegment>().feed_mm_per_s == i);
+  CHECK(host.sender.idle());
+}
+
+TEST_CASE("link: duplicates are ignored and acknowledged again", "[protocol][link]") {
+  Host<> host;
+  Controller controller(8);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(tagged_segment(5))).has_value());
+  const auto frame = host.transmit(1);
+  REQUIRE(frame.size() == 1);
+  const auto first = controller.receive(frame[0], 2);
+  const auto second = controller.receive(frame[0], 3);  // a duplicate (e.g. the Ack was lost)
+  CHECK(controller.delivered.size() == 1);
+  CHECK(controller.queue.size() == 1);
+  REQUIRE(second.size() == 1);
+  FrameDecoder<> decoder;
+  bool seen = false;
+  for (const std::byte b : second[0]) {
+    const auto pushed = decoder.push(b);
+    REQUIRE(pushed.has_value());
+    if (!pushed.value()) continue;
+    const auto m = decode_message(decoder.frame());
+    REQUIRE(m.has_value());
+    REQUIRE(m.value().holds<Ack>());
+    CHECK(m.value().get<Ack>().next_expected == 1);
+    seen = true;
+  }
+  CHECK(seen);
+  host.receive(concatenate(first), 4);
+  host.receive(concatenate(second), 5);
+  CHECK(host.sender.idle());
+}
+
+TEST_CASE("link: the window never lets the host exceed the advertised credit", "[protocol][link]") {
+  Host<16> host;
+  Controller controller(3);
+  handshake(host, controller);
+  int submitted = 0;
+  while (host.sender.can_submit(MessageType::QueueSegment)) {
+    REQUIRE(host.sender.submit(Message(tagged_segment(submitted))).has_value());
+    ++submitted;
+  }
+  CHECK(submitted == 3);
+  const auto refused = host.sender.submit(Message(tagged_segment(99)));
+  REQUIRE_FALSE(refused.has_value());
+  CHECK(refused.error() == Error::QueueFull);
+  // Commands that take no queue slot still go through: Abort is never blocked by a full queue.
+  CHECK(host.sender.can_submit(MessageType::Abort));
+  host.receive(concatenate(controller.receive(concatenate(host.transmit(1)), 2)), 2);
+  CHECK(controller.queue.size() == 3);
+  CHECK(host.sender.credit() == 0);
+  CHECK_FALSE(host.sender.can_submit(MessageType::QueueSegment));
+  // The controller executes one segment; its next poll advertises one more credit.
+  controller.queue.pop_front();
+  host.receive(concatenate(controller.poll(3)), 3);
+  CHECK(host.sender.credit() == 1);
+  REQUIRE(host.sender.submit(Message(tagged_segment(3))).has_value());
+  CHECK_FALSE(host.sender.can_submit(MessageType::QueueSegment));
+  host.receive(concatenate(controller.receive(concatenate(host.transmit(4)), 4)), 4);
+  CHECK(controller.queue.size() == 3);
+  CHECK(controller.queue_overruns == 0);
+}
+
+TEST_CASE("link: a window of frames is the other limit", "[protocol][link]") {
+  Host<2> host;
+  Controller controller(10);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(StatusRequest{})).has_value());
+  REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  CHECK_FALSE(host.sender.can_submit(MessageType::StatusRequest));
+  CHECK(host.sender.submit(Message(Resume{})).error() == Error::QueueFull);
+  CHECK(host.sender.submit(Message(Ack{})).error() == Error::InvalidArgument);
+}
+
+TEST_CASE("link: stale acknowledgements never shrink the credit", "[protocol][link]") {
+  LinkSender<> sender;
+  sender.connect(3, 0);
+  Capabilities caps = controller_capabilities(4);
+  caps.session = 3;
+  caps.credit_end = 4;
+  REQUIRE(sender.on_message(Message(caps), 0).has_value());
+  REQUIRE(sender.on_message(Message(Ack{0, 9}), 1).has_value());
+  CHECK(sender.credit() == 9);
+  REQUIRE(sender.on_message(Message(Ack{0, 6}), 2).has_value());  // an older Ack arriving late
+  CHECK(sender.credit() == 9);
+}
+
+TEST_CASE("link: the controller refuses a segment beyond the credit it granted", "[protocol][link]") {
+  Controller controller(1);
+  Host<> host;
+  handshake(host, controller);
+  Bytes wire(max_encoded_frame_size);
+  for (std::uint8_t seq = 0; seq < 2; ++seq) {
+    const auto size = encode_frame(Message(tagged_segment(seq)), seq, wire);
+    REQUIRE(size.has_value());
+    controller.receive(Bytes(wire.begin(), wire.begin() + static_cast<std::ptrdiff_t>(size.value())), 1);
+  }
+  CHECK(controller.queue.size() == 1);
+  REQUIRE(controller.naks.size() == 1);
+  CHECK(controller.naks[0].reason == Error::QueueFull);
+  CHECK(controller.naks[0].expected == 1);
+}
+
+TEST_CASE("link: retransmission gives up with RetransmitLimit", "[protocol][link]") {
+  Host<> host(SenderSettings{100, 2});
+  Controller controller(4);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  CHECK(host.transmit(0).size() == 1);
+  CHECK(host.transmit(100).size() == 1);
+  CHECK(host.transmit(200).size() == 1);
+  CHECK(host.transmit(300).empty());
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::RetransmitLimit);
+  CHECK(host.sender.state() == LinkState::Failed);
+}
+
+TEST_CASE("link: a controller that restarted answers NotConnected and the host reports DeviceRestarted", "[protocol][link]") {
+  Host<> host;
+  Controller controller(4);
+  handshake(host, controller);
+  Controller rebooted(4);
+  REQUIRE(host.sender.submit(Message(StatusRequest{})).has_value());
+  const auto replies = rebooted.receive(concatenate(host.transmit(1)), 1);
+  REQUIRE(rebooted.naks.size() == 1);
+  CHECK(rebooted.naks[0].reason == Error::NotConnected);
+  CHECK(rebooted.delivered.empty());
+  host.receive(concatenate(replies), 2);
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::DeviceRestarted);
+  CHECK(host.sender.state() == LinkState::Failed);
+}
+
+TEST_CASE("link: a corrupted frame is answered by a Nak so the host resends at once", "[protocol][link]") {
+  Host<> host;
+  Controller controller(4);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(tagged_segment(1))).has_value());
+  auto frame = host.transmit(1)[0];
+  frame[5] ^= std::byte{0x10};
+  host.receive(concatenate(controller.receive(frame, 2)), 2);
+  REQUIRE(controller.naks.size() == 1);
+  CHECK(controller.naks[0].reason == Error::BadCrc);
+  const auto resent = host.transmit(3);
+  REQUIRE(resent.size() == 1);
+  controller.receive(resent[0], 4);
+  CHECK(controller.delivered.size() == 1);
+}
+
+TEST_CASE("link: the controller sends heartbeats and detects a silent host", "[protocol][link]") {
+  Host<> host;
+  Controller controller(4, ReceiverSettings{50, 500});
+  handshake(host, controller, 0);
+  CHECK(controller.poll(49).empty());
+  CHECK(controller.poll(50).size() == 1);
+  CHECK(controller.poll(60).empty());
+  CHECK(controller.receiver.check_link(499).has_value());
+  const auto timeout = controller.receiver.check_link(500);
+  REQUIRE_FALSE(timeout.has_value());
+  CHECK(timeout.error() == Error::LinkTimeout);
+}
+
+TEST_CASE("link: unknown message types take a sequence number and reach the application", "[protocol][link]") {
+  Host<> host;
+  Controller controller(4);
+  handshake(host, controller);
+  Bytes wire(max_encoded_frame_size);
+  const auto size = encode_frame(0x7E, 0, {}, wire);
+  REQUIRE(size.has_value());
+  wire.resize(size.value());
+  for (const std::byte b : wire) {
+    const auto pushed = controller.decoder.push(b);
+    REQUIRE(pushed.has_value());
+    if (!pushed.value()) continue;
+    const Reception r = controller.receiver.on_frame(controller.decoder.frame(), 4, 1);
+    CHECK(r.disposition == Disposition::Deliver);
+    CHECK(r.reply == ReplyKind::Ack);
+    CHECK(decode_message(controller.decoder.frame()).error() == Error::UnknownMessage);
+  }
+  CHECK(controller.receiver.expected_sequence() == 1);
+}

@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: MIT
+// Randomized: a message stream crosses a lossy, corrupting, duplicating, reordering line and
+// arrives exactly once, in order, without ever overrunning the controller's queue.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include <support/numeric.hpp>
+
+#include "link_harness.hpp"
+
+using namespace curvestep;
+using namespace curvestep::protocol;
+using namespace curvestep::protocol::testing;
+
+namespace {
+
+/// One direction of a bad serial line: whole frames are lost, bit-flipped, duplicated,
+/// delayed by a random jitter (so they overtake each other) and interleaved with garbage.
+class BadLine {
+ public:
+  struct Rates {
+    double loss = 0.08;
+    double corruption = 0.05;
+    double duplication = 0.05;
+    double garbage = 0.03;
+    std::uint32_t latency_ms = 2;
+    std::uint32_t jitter_ms = 6;
+  };
+
+  BadLine(std::mt19937& rng, Rates rates) : rng_(rng), rates_(rates) {}
+
+  void send(Bytes frame, std::uint32_t now_ms) {
+    if (chance(rates_.loss)) {
+      ++lost;
+      return;
+    }
+    if (chance(rates_.corruption)) {
+      const std::size_t at = rng_() % frame.size();
+      frame[at] ^= static_cast<std::byte>(1u << (rng_() % 8));
+      ++corrupted;
+    }
+    if (chance(rates_.garbage)) {
+      Bytes noise(1 + rng_() % 6);
+      for (std::byte& b : noise) b = static_cast<std::byte>(rng_());
+      noise.insert(noise.end(), frame.begin(), frame.end());
+      frame = noise;
+    }
+    const int copies = chance(rates_.duplication) ? 2 : 1;
+    if (copies == 2) ++duplicated;
+    for (int i = 0; i < copies; ++i) {
+      in_transit_.push_back({now_ms + rates_.latency_ms + static_cast<std::uint32_t>(rng_() % (rates_.jitter_ms + 1)),
+                             order_++, frame});
+    }
+  }
+
+  /// Bytes arriving at `now_ms`, frames in arrival order.
+  Bytes deliver(std::uint32_t now_ms) {
+    std::stable_sort(in_transit_.begin(), in_transit_.end(),
+                     [](const Flight& a, const Flight& b) { return a.arrival_ms < b.arrival_ms; });
+    Bytes out;
+    std::size_t n = 0;
+    while (n < in_transit_.size() && in_transit_[n].arrival_ms <= now_ms) {
+      if (in_transit_[n].order < newest_delivered_) ++reordered;
+      newest_delivered_ = std::max(newest_delivered_, in_transit_[n].order);
+      out.insert(out.end(), in_transit_[n].bytes.begin(), in_transit_[n].bytes.end());
+      ++n;
+    }
+    in_transit_.erase(in_transit_.begin(), in_transit_.begin() + static_cast<std::ptrdiff_t>(n));
+    return out;
+  }
+
+  int lost = 0;
+  int corrupted = 0;
+  int duplicated = 0;
+  int reordered = 0;
+
+ private:
+  struct Flight {
+    std::uint32_t arrival_ms;
+    std::uint64_t order;
+    Bytes bytes;
+  };
+  bool chance(double p) { return std::uniform_real_distribution<double>(0.0, 1.0)(rng_) < p; }
+
+  std::mt19937& rng_;
+  Rates rates_;
+  std::vector<Flight> in_transit_;
+  std::uint64_t order_ = 0;
+  std::uint64_t newest_delivered_ = 0;
+};
+
+/// Message number `i` of the stream: mostly segments, with commands mixed in.
+Message stream_message(int i) {
+  switch (i % 7) {
+    case 3: return Message(StatusRequest{});
+    case 5: return Message(i % 2 == 0 ? Message(FeedHold{}) : Message(Resume{}));
+    default: return Message(tagged_segment(i));
+  }
+}
+
+/// True if `m` is message number `i` of the stream.
+bool is_stream_message(const Message& m, int i) {
+  const Message expected = stream_message(i);
+  if (m.type() != expected.type()) return false;
+  if (!m.holds<QueueSegment>()) return true;
+  return m.get<QueueSegment>().feed_mm_per_s == i && m.get<QueueSegment>().points[1][0] == i;
+}
+
+}  // namespace
+
+TEST_CASE("link: a randomized stream crosses a bad line exactly once and in order", "[protocol][link]") {
+  const std::uint32_t seed = curvestep::testing::test_seed();
+  const int total = curvestep::testing::test_count(400);
+  INFO("seed " << seed << " messages " << total);
+  std::mt19937 rng(seed);
+  BadLine to_controller(rng, {});
+  BadLine to_host(rng, {});
+
+  Host<8> host(SenderSettings{40, 40});
+  Controller controller(5, ReceiverSettings{30, 0});
+  host.sender.connect(static_cast<std::uint16_t>(rng()), 0);
+
+  int next = 0;
+  std::uint32_t now = 0;
+  const std::uint32_t deadline = 600000;
+  std::size_t max_queue = 0;
+  int max_in_flight_segments = 0;
+  for (; now < deadline; ++now) {
+    // Host: submit what the window and credit allow, transmit, receive.
+    while (next < total && host.sender.can_submit(stream_message(next).type())) {
+      REQUIRE(host.sender.submit(stream_message(next)).has_value());
+      ++next;
+    }
+    for (Bytes& f : host.transmit(now)) to_controller.send(std::move(f), now);
+    host.receive(to_host.deliver(now), now);
+    REQUIRE(host.link_errors.empty());
+    const int outstanding = static_cast<int>(static_cast<std::uint16_t>(host.sender.segments_sent() -
+                                                                        controller.receiver.segments_accepted())) +
+                            static_cast<int>(controller.queue.size());
+    max_in_flight_segments = std::max(max_in_flight_segments, outstanding);
+
+    // Controller: receive, execute a segment now and then, advertise credit.
+    for (Bytes& f : controller.receive(to_controller.deliver(now), now)) to_host.send(std::move(f), now);
+    if (!controller.queue.empty() && rng() % 4 == 0) controller.queue.pop_front();
+    max_queue = std::max(max_queue, controller.queue.size());
+    for (Bytes& f : controller.poll(now)) to_host.send(std::move(f), now);
+
+    if (next == total && host.sender.idle()) break;
+  }
+
+  INFO("lost " << to_controller.lost << "+" << to_host.lost << " corrupted " << to_controller.corrupted << "+"
+               << to_host.corrupted << " duplicated " << to_controller.duplicated << "+" << to_host.duplicated
+               << " reordered " << to_controller.reordered << "+" << to_host.reordered << " at " << now << " ms");
+  REQUIRE(now < deadline);
+  CHECK(controller.connects == 1);
+  REQUIRE(controller.delivered.size() == static_cast<std::size_t>(total));
+  for (int i = 0; i < total; ++i) {
+    INFO("message " << i);
+    CHECK(is_stream_message(controller.delivered[static_cast<std::size_t>(i)], i));
+  }
+  CHECK(controller.queue_overruns == 0);
+  CHECK(max_queue <= 5);
+  CHECK(max_in_flight_segments <= 5);
+  for (const Nak& n : controller.naks) CHECK(n.reason != Error::QueueFull);
+  // The line really was bad in every way.
+  CHECK(to_controller.lost > 0);
+  CHECK(to_controller.corrupted > 0);
+  CHECK(to_controller.duplicated > 0);
+  CHECK(to_controller.reordered > 0);
+  CHECK(to_host.lost > 0);
+  CHECK(to_host.reordered > 0);
+}
