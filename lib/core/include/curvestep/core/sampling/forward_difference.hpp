@@ -38,9 +38,10 @@
 // u = epsilon(S)/2, D_j >= |Δʲ| over a chunk (from the hodographs' control points) and
 // D_0 = K D_1 the offset's size, the accumulated error after k <= K steps is at most
 //     u [ Σ_{j>=1} C(K,j) D_j   (seed roundings)  +  Σ_{j<n} C(K,j+1) D_j   (additions) ]
-// and K is the largest power of two for which this is <= 1/8 ulp of the largest coordinate
-// (the same policy as fixed point: stepping error <= 1/8 of the output resolution). The
-// output origin + offset adds one rounding u|p|, the double seed 3^n 4n u_double max|b|.
+// and K is the largest power of two for which this is <= 1/2 ulp of the largest coordinate
+// (the same policy as fixed point: stepping error <= 2^-budget_bits of the output resolution;
+// the default budget is 1/2 for floats, 1/16 for fixed point). The output origin + offset adds
+// one rounding u|p|, the double seed 3^n 4n u_double max|b|: in all about 1 ulp.
 //
 // ISR budget. step() is n additions per axis plus one compare; a re-seed (every K steps) is
 // about 4n² multiply-divides per axis. A 3-axis cubic in Q16.16 on a Cortex-M3 at 72 MHz is
@@ -75,15 +76,18 @@ class ForwardDifference {
   static constexpr std::size_t capacity = MaxDegree + 1;
   /// Upper limit of the re-seed interval (steps between exact re-seeds).
   static constexpr std::uint32_t max_reseed_interval = std::uint32_t{1} << 20;
-  /// Fixed point: the stepping error budget is 2^-budget raw units (4: 1/16 raw).
-  static constexpr int default_budget_bits = 4;
+  /// The stepping error budget is 2^-budget_bits of the output resolution (one raw unit in
+  /// fixed point, one ulp of the largest coordinate in floating point). Default 1/16 raw for
+  /// fixed point (its re-seeds are nearly free) and 1/2 ulp for floating point (where a
+  /// re-seed costs about 40 steps' work, so a tighter budget would cost ~10% speed).
+  static constexpr int default_budget_bits = FixedPoint<S> ? 4 : 1;
 
   /// An empty stepper (finished, at the origin).
   constexpr ForwardDifference() = default;
 
   /// Steps `curve` in `steps` equal parameter steps (h = 1/steps), starting at p(0).
   /// DegreeTooLow (degree 0), DegreeAboveCapacity, InvalidStep (steps == 0).
-  /// `budget_bits` (fixed point only) tightens the stepping budget to 2^-budget_bits raw.
+  /// `budget_bits` sets the stepping budget (see default_budget_bits); InvalidArgument outside 0..24.
   template <std::size_t CurveMaxDegree>
   [[nodiscard]] static Result<ForwardDifference> create(const Bezier<S, Dim, CurveMaxDegree>& curve,
                                                                   std::uint32_t steps,
@@ -135,7 +139,7 @@ class ForwardDifference {
       for (std::size_t i = 0; i <= n; ++i) {
         for (std::size_t axis = 0; axis < Dim; ++axis) stepper.control_[axis][i] = static_cast<double>(curve[i][axis]);
       }
-      stepper.choose_floating_interval();
+      stepper.choose_floating_interval(budget_bits);
     }
     stepper.reseed(0);
     return stepper;
@@ -159,6 +163,7 @@ class ForwardDifference {
   /// The current point p(index()/steps()), within error_bound() per coordinate.
   [[nodiscard]] constexpr Point point() const noexcept {
     Point p;
+#pragma GCC unroll 4
     for (std::size_t axis = 0; axis < Dim; ++axis) p[axis] = coordinate(axis);
     return p;
   }
@@ -182,6 +187,7 @@ class ForwardDifference {
       return;
     }
     if (degree_ == 3) {  // the fast path: three additions per axis
+#pragma GCC unroll 4
       for (std::size_t axis = 0; axis < Dim; ++axis) {
         auto& d = table_[axis];
         d[0] += d[1];
@@ -244,7 +250,7 @@ class ForwardDifference {
   }
 
   /// Floating point: choose K from the bound in the essay; also sets bound_.
-  void choose_floating_interval() noexcept {
+  void choose_floating_interval(int budget_bits) noexcept {
     const std::size_t n = degree_;
     const double u = static_cast<double>(std::numeric_limits<S>::epsilon()) / 2;
     const double h = 1.0 / static_cast<double>(steps_);
@@ -284,7 +290,7 @@ class ForwardDifference {
     };
     std::uint32_t interval = 1;
     while (interval < max_reseed_interval && interval < steps_ &&
-           stepping(2.0 * static_cast<double>(interval)) <= output_ulp / 8) {
+           stepping(2.0 * static_cast<double>(interval)) <= std::ldexp(output_ulp, -budget_bits)) {
       interval *= 2;
     }
     reseed_interval_ = interval;
@@ -333,11 +339,16 @@ class ForwardDifference {
         const auto a = detail::power_coefficients(sub, n);
         origin_[axis] = static_cast<S>(sub[0]);
         table_[axis][0] = static_cast<S>(sub[0] - static_cast<double>(origin_[axis]));  // origin's rounding
+        std::array<double, capacity> scaled{};  // a_i / K^i: exact, K is a power of two
+        double step_power = 1;
+        const double step = 1.0 / static_cast<double>(chunk);
+        for (std::size_t i = 1; i <= n; ++i) {
+          step_power *= step;
+          scaled[i] = a[i] * step_power;
+        }
         for (std::size_t j = 1; j <= n; ++j) {
           double sum = 0;
-          for (std::size_t i = j; i <= n; ++i) {
-            sum += std::ldexp(a[i] * static_cast<double>(detail::stirling_difference_weights[i][j]), -r * static_cast<int>(i));
-          }
+          for (std::size_t i = j; i <= n; ++i) sum += scaled[i] * static_cast<double>(detail::stirling_difference_weights[i][j]);
           table_[axis][j] = static_cast<S>(sum);
         }
       }

@@ -14,7 +14,6 @@
 #include <cstddef>
 #include <cstdint>
 
-#include <curvestep/core/detail/binomial.hpp>
 
 namespace curvestep::detail {
 
@@ -26,6 +25,16 @@ inline constexpr std::array<std::array<std::int64_t, 6>, 6> stirling_difference_
     {0, 1, 6, 6, 0, 0},
     {0, 1, 14, 36, 24, 0},
     {0, 1, 30, 150, 240, 120},
+}};
+
+/// C(n, k) for n, k <= 5 (seeding runs every re-seed: no loops or divisions).
+inline constexpr std::array<std::array<std::int64_t, 6>, 6> small_binomial{{
+    {1, 0, 0, 0, 0, 0},
+    {1, 1, 0, 0, 0, 0},
+    {1, 2, 1, 0, 0, 0},
+    {1, 3, 3, 1, 0, 0},
+    {1, 4, 6, 4, 1, 0},
+    {1, 5, 10, 10, 5, 1},
 }};
 
 /// Number of significant bits of v (0 for 0).
@@ -58,14 +67,12 @@ inline constexpr std::array<std::array<std::int64_t, 6>, 6> stirling_difference_
   return negative ? -signed_q : signed_q;
 }
 
-/// v / 2^bits rounded to nearest, ties away from zero (bits >= 0; bits >= 63 gives 0 or ±1 rounding).
+/// v / 2^bits rounded to nearest, ties away from zero (|v| < 2^62 when bits >= 63).
 [[nodiscard]] constexpr std::int64_t round_shift_right(std::int64_t v, int bits) noexcept {
   if (bits <= 0) return v;
-  if (bits >= 63) return 0;
+  if (bits >= 63) return 0;  // |v| < 2^62 rounds to 0
   const std::int64_t half = std::int64_t{1} << (bits - 1);
-  const std::int64_t magnitude = v < 0 ? -v : v;
-  const std::int64_t q = (magnitude + half) >> bits;
-  return v < 0 ? -q : q;
+  return (v + (v >= 0 ? half : half - 1)) >> bits;
 }
 
 /// v * 2^bits modulo 2^64 (the wrap is intended: see the essay in forward_difference.hpp).
@@ -108,6 +115,7 @@ template <class T, std::size_t Capacity>
   const T s = static_cast<T>(k0) / static_cast<T>(k1);
   left[0] = work[0];
   for (std::size_t r = 1; r <= degree; ++r) {
+#pragma GCC unroll 6
     for (std::size_t i = 0; i + r <= degree; ++i) work[i] = work[i] + (work[i + 1] - work[i]) * t1;
     left[r] = work[0];
   }
@@ -115,24 +123,23 @@ template <class T, std::size_t Capacity>
   work = left;
   sub[degree] = work[degree];
   for (std::size_t r = 1; r <= degree; ++r) {
+#pragma GCC unroll 6
     for (std::size_t i = 0; i + r <= degree; ++i) work[i] = work[i] + (work[i + 1] - work[i]) * s;
     sub[degree - r] = work[degree - r];
   }
   return sub;
 }
 
-/// Power coefficients a_i = C(n,i) Δ^i c_0 of a Bézier coordinate (exact for integers).
+/// Power coefficients a_i = C(n,i) Δ^i c_0 of a Bézier coordinate, degree <= 5 (exact for integers).
 template <class T, std::size_t Capacity>
 [[nodiscard]] constexpr std::array<T, Capacity> power_coefficients(const std::array<T, Capacity>& control,
                                                                    std::size_t degree) noexcept {
+  std::array<T, Capacity> differences = control;  // differences[i] becomes Δ^i c_0
   std::array<T, Capacity> power{};
-  for (std::size_t i = 0; i <= degree; ++i) {
-    T sum{};
-    for (std::size_t k = 0; k <= i; ++k) {
-      const auto c = static_cast<T>(binomial(i, k));
-      sum = ((i - k) % 2 == 0) ? sum + c * control[k] : sum - c * control[k];
-    }
-    power[i] = static_cast<T>(binomial(degree, i)) * sum;
+  power[0] = control[0];
+  for (std::size_t i = 1; i <= degree; ++i) {
+    for (std::size_t k = 0; k + i <= degree; ++k) differences[k] = differences[k + 1] - differences[k];
+    power[i] = static_cast<T>(small_binomial[degree][i]) * differences[0];
   }
   return power;
 }
