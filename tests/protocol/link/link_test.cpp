@@ -320,3 +320,31 @@ TEST_CASE("link: unknown message types take a sequence number and reach the appl
   }
   CHECK(controller.receiver.expected_sequence() == 1);
 }
+
+TEST_CASE("link: an Ack that arrives after a Nak-triggered go-back still releases the frames", "[protocol][link]") {
+  Host<> host(SenderSettings{100, 5});
+  Controller controller(8);
+  handshake(host, controller);
+  for (int i = 0; i < 3; ++i) REQUIRE(host.sender.submit(Message(tagged_segment(i))).has_value());
+  const auto replies = controller.receive(concatenate(host.transmit(0)), 1);
+  REQUIRE(host.sender.on_message(Message(Nak{0, Error::BadCrc}), 2).has_value());  // an old Nak: go back
+  host.receive(concatenate(replies), 3);  // before anything was resent, the Acks arrive
+  CHECK(host.sender.idle());
+  CHECK(host.transmit(4).empty());
+  CHECK(controller.delivered.size() == 3);
+}
+
+TEST_CASE("link: a late Ack that arrives after a timeout still releases the frames", "[protocol][link]") {
+  Host<> host(SenderSettings{100, 5});
+  Controller controller(8);
+  handshake(host, controller);
+  for (int i = 0; i < 3; ++i) REQUIRE(host.sender.submit(Message(tagged_segment(i))).has_value());
+  const auto replies = controller.receive(concatenate(host.transmit(0)), 1);
+  const auto resent = host.transmit(100);  // the Acks are slow: the host goes back
+  CHECK(resent.size() == 3);
+  host.receive(concatenate(replies), 101);  // now they arrive
+  CHECK(host.sender.idle());
+  CHECK(host.transmit(300).empty());
+  controller.receive(concatenate(resent), 102);  // the retransmissions are duplicates
+  CHECK(controller.delivered.size() == 3);
+}

@@ -68,6 +68,7 @@ class LinkSender {
     timer_ms_ = now_ms;
     count_ = 0;
     sent_ = 0;
+    transmitted_ = 0;
     oldest_ = 0;
     first_sequence_ = 0;
     segments_sent_ = 0;
@@ -120,6 +121,7 @@ class LinkSender {
     for (std::size_t i = 0; i < slot.size; ++i) out[i] = slot.bytes[i];
     if (sent_ == 0) timer_ms_ = now_ms;
     ++sent_;
+    if (sent_ > transmitted_) transmitted_ = sent_;
     return std::size_t{slot.size};
   }
 
@@ -195,10 +197,11 @@ class LinkSender {
       credit_end_ = credit_end;
     }
     const auto acknowledged = static_cast<std::uint8_t>(next_expected - first_sequence_);
-    if (acknowledged == 0 || acknowledged > sent_) return;  // no progress, or stale
+    if (acknowledged == 0 || acknowledged > transmitted_) return;  // no progress, or stale
     oldest_ = (oldest_ + acknowledged) % Window;
     count_ -= acknowledged;
-    sent_ -= acknowledged;
+    transmitted_ -= acknowledged;
+    sent_ = sent_ > acknowledged ? sent_ - acknowledged : 0;
     first_sequence_ = next_expected;
     timer_ms_ = now_ms;
   }
@@ -225,6 +228,7 @@ class LinkSender {
   std::size_t oldest_ = 0;  // slot index of the oldest unacknowledged frame
   std::size_t count_ = 0;   // unacknowledged frames
   std::size_t sent_ = 0;    // of those, how many have been (re)transmitted since the last go-back
+  std::size_t transmitted_ = 0;  // of those, how many have been transmitted at least once
   std::uint16_t segments_sent_ = 0;
   std::uint16_t credit_end_ = 0;
   std::uint16_t session_ = 0;
