@@ -170,6 +170,28 @@ class PathSegment {
     }
   }
 
+  /// The two pieces on [0,u] and [u,1] (Bézier kinds only; lines and arcs have no cusps to split at).
+  /// InvalidArgument for other kinds or u outside (0,1); DegenerateCurve if a piece collapses.
+  [[nodiscard]] Result<SplitCurves<PathSegment>> split(double u) const noexcept {
+    if (!(u > 0 && u < 1)) return fail(Error::InvalidArgument);
+    SplitCurves<PathSegment> pieces;
+    pieces.left = *this;
+    pieces.right = *this;
+    if (kind_ == SegmentKind::Bezier) {
+      CURVESTEP_TRY(const auto halves, polynomial_.split(u));
+      pieces.left.polynomial_ = halves.left;
+      pieces.right.polynomial_ = halves.right;
+    } else if (kind_ == SegmentKind::RationalBezier) {
+      CURVESTEP_TRY(const auto halves, rational_.split(u));
+      pieces.left.rational_ = halves.left;
+      pieces.right.rational_ = halves.right;
+    } else {
+      return fail(Error::InvalidArgument);
+    }
+    if (pieces.left.is_point() || pieces.right.is_point()) return fail(Error::DegenerateCurve);
+    return pieces;
+  }
+
  private:
   /// factor * R(angle) (start - center) in XY, z = 0.
   [[nodiscard]] MachinePoint rotated_radius(double angle, double factor) const noexcept {

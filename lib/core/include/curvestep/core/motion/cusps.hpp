@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// find_cusps: interior parameters where a Bézier segment's velocity vanishes (cusps).
+//
+// A path can only pass a cusp by stopping, because the direction of motion reverses there, and
+// the curvature is unbounded next to it. The controller therefore splits a segment at its cusps;
+// the reversal junction between the pieces then forces a stop. |p'(u)| is sampled at 257 points;
+// each local minimum below 1e-3 of the largest speed is refined by golden-section search and
+// counts as a cusp if the refined speed is below 1e-7 of the largest speed (a true cusp reaches 0
+// up to rounding; a tight loop or a near-cusp keeps a clearly positive speed and is slowed down
+// by its curvature instead).
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include <curvestep/core/motion/path_segment.hpp>
+
+namespace curvestep {
+
+/// Up to MaxCusps interior cusp parameters in increasing order, and how many were found.
+template <std::size_t MaxCusps = 6>
+struct CuspList {
+  static constexpr std::size_t capacity = MaxCusps;
+  std::array<double, MaxCusps> parameters{};
+  std::size_t count = 0;
+};
+
+/// The cusps of a Bézier or rational Bézier segment (none for lines and arcs).
+template <std::size_t MaxCusps = 6>
+[[nodiscard]] CuspList<MaxCusps> find_cusps(const PathSegment& segment) {
+  CuspList<MaxCusps> cusps;
+  if (segment.kind() == SegmentKind::Line || segment.kind() == SegmentKind::Arc) return cusps;
+  constexpr std::size_t samples = 256;
+  std::array<double, samples + 1> speed{};
+  double largest = 0;
+  for (std::size_t k = 0; k <= samples; ++k) {
+    speed[k] = norm(segment.derivative(static_cast<double>(k) / samples, 1));
+    if (speed[k] > largest) largest = speed[k];
+  }
+  if (!(largest > 0)) return cusps;
+  for (std::size_t k = 1; k < samples && cusps.count < MaxCusps; ++k) {
+    if (!(speed[k] <= speed[k - 1] && speed[k] <= speed[k + 1]) || speed[k] > 1e-3 * largest) continue;
+    // golden-section search for the minimum of |p'| on [u_{k-1}, u_{k+1}]
+    constexpr double ratio = 0.6180339887498949;
+    double low = static_cast<double>(k - 1) / samples;
+    double high = static_cast<double>(k + 1) / samples;
+    double x1 = high - ratio * (high - low);
+    double x2 = low + ratio * (high - low);
+    double f1 = norm(segment.derivative(x1, 1));
+    double f2 = norm(segment.derivative(x2, 1));
+    for (int i = 0; i < 80; ++i) {
+      if (f1 < f2) {
+        high = x2;
+        x2 = x1;
+        f2 = f1;
+        x1 = high - ratio * (high - low);
+        f1 = norm(segment.derivative(x1, 1));
+      } else {
+        low = x1;
+        x1 = x2;
+        f1 = f2;
+        x2 = low + ratio * (high - low);
+        f2 = norm(segment.derivative(x2, 1));
+      }
+    }
+    const double u = (low + high) / 2;
+    const bool is_new = cusps.count == 0 || u - cusps.parameters[cusps.count - 1] > 1e-6;
+    if (u > 1e-6 && u < 1 - 1e-6 && norm(segment.derivative(u, 1)) <= 1e-7 * largest && is_new) {
+      cusps.parameters[cusps.count++] = u;
+    }
+  }
+  return cusps;
+}
+
+}  // namespace curvestep

@@ -1,0 +1,216 @@
+// SPDX-License-Identifier: MIT
+// SegmentPlan: what the planner needs to know of one segment — its length, the speed, acceleration
+// and jerk caps along it, and its end tangents and curvature vectors for the junctions.
+//
+// Limits are sufficient conditions on the whole acceleration and jerk vectors, not just their
+// tangential parts. With T, N the unit tangent and normal, κ the curvature and a_t, j_t the
+// tangential acceleration and jerk, a moving point has
+//     a = a_t T + v²κ N                     j = (j_t − v³κ²) T + (3 v a_t κ + v³ dκ/ds) N.
+// So |a| <= a_max holds if v²κ <= ½ a_max and |a_t| <= 0.85 a_max (0.25 + 0.7225 < 1), and
+// |j| <= j_max holds if |j_t| <= ½ j_max, v³(κ² + |dκ/ds|) <= ¼ j_max and 3 v |a_t| κ <= ¼ j_max.
+// A straight segment keeps the full a_max and j_max. Per-axis velocity limits cap v |T_axis|;
+// per-axis acceleration limits lower a_max to the smallest axis limit (conservative). The chord
+// between two setpoints must stay within the tolerance: its sagitta κ (v Δt)² / 8 <= tolerance.
+// κ and dκ/ds are sampled at 129 points (dκ/ds by differences of κ over arc length, with a 25%
+// margin); the planning is a pure function of the segment and the machine (deterministic).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include <curvestep/core/motion/arc_length_table.hpp>
+#include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/core/motion/path_segment.hpp>
+#include <curvestep/core/motion/velocity_profile.hpp>
+
+namespace curvestep {
+
+/// Planning data of one segment.
+struct SegmentPlan {
+  double length_mm = 0;                 ///< arc length
+  ProfileLimits limits{};               ///< caps for the segment's speed profile
+  MachinePoint start_tangent{};         ///< unit tangent at u = 0
+  MachinePoint end_tangent{};           ///< unit tangent at u = 1
+  MachinePoint start_curvature{};       ///< curvature vector κN at u = 0
+  MachinePoint end_curvature{};         ///< curvature vector κN at u = 1
+  double max_curvature_per_mm = 0;      ///< largest κ along the segment
+};
+
+namespace detail {
+/// Cube root by Newton's method (deterministic, unlike libm's cbrt across C libraries).
+[[nodiscard]] inline double cube_root(double x) noexcept {
+  if (!(x > 0)) return 0;
+  double r = x > 1 ? x / 3 : 1;
+  for (int i = 0; i < 100; ++i) {
+    const double next = r - (r * r * r - x) / (3 * r * r);
+    if (next == r) break;
+    r = next;
+  }
+  return r;
+}
+
+/// Unit tangent and curvature vector from the first two derivatives.
+inline void tangent_and_curvature(const MachinePoint& d1, const MachinePoint& d2, MachinePoint& tangent,
+                                  MachinePoint& curvature) noexcept {
+  const double s2 = dot(d1, d1);
+  tangent = MachinePoint{};
+  curvature = MachinePoint{};
+  if (!(s2 > 0)) return;
+  const double speed = std::sqrt(s2);
+  tangent = d1 / speed;
+  const double d12 = dot(d1, d2);
+  // κN = (r'' |r'|² − r' (r'·r'')) / |r'|^4
+  curvature = (d2 * s2 - d1 * d12) / (s2 * s2);
+}
+}  // namespace detail
+
+/// Analyses a segment for the machine: length, caps, end tangents and curvatures.
+template <std::size_t Intervals = 64>
+[[nodiscard]] Result<SegmentPlan> plan_segment(const PathSegment& segment, const ArcLengthTable<Intervals>& table,
+                                               const MachineLimits& machine) {
+  SegmentPlan plan;
+  plan.length_mm = table.length();
+  double a_max = machine.a_max_mm_per_s2;
+  for (const auto& axis : machine.axes) {
+    if (axis.a_max_mm_per_s2 > 0 && axis.a_max_mm_per_s2 < a_max) a_max = axis.a_max_mm_per_s2;
+  }
+  double speed_cap = segment.rapid() ? (machine.rapid_mm_per_s > 0 ? machine.rapid_mm_per_s : machine.v_max_mm_per_s)
+                                     : (segment.feed_mm_per_s() > 0 ? segment.feed_mm_per_s() : machine.feed_mm_per_s);
+  speed_cap = std::fmin(speed_cap, machine.v_max_mm_per_s);
+
+  constexpr std::size_t samples = 128;
+  std::array<double, samples + 1> speed{};
+  double largest_speed = 0;
+  for (std::size_t k = 0; k <= samples; ++k) {
+    speed[k] = norm(segment.derivative(static_cast<double>(k) / samples, 1));
+    largest_speed = std::fmax(largest_speed, speed[k]);
+  }
+  // An end where the velocity vanishes is a cusp the controller split at: the curvature is unbounded
+  // next to it, but the speed goes to zero there (the junction is a reversal), v²κ ~ s^(5/6) -> 0.
+  // Its neighbourhood (speed below 5% of the largest) is left out of the curvature caps.
+  std::size_t first = 0;
+  std::size_t last = samples;
+  if (speed[0] <= 1e-7 * largest_speed) {
+    while (first < samples && speed[first] < 0.05 * largest_speed) ++first;
+  }
+  if (speed[samples] <= 1e-7 * largest_speed) {
+    while (last > first && speed[last] < 0.05 * largest_speed) --last;
+  }
+  double max_kappa = 0;
+  double max_kappa_rate = 0;  // |dκ/ds|
+  double previous_s = 0;
+  double peak_u = 0;
+  MachinePoint previous_curvature{};
+  std::array<double, motion_axes> max_tangent_component{};
+  auto kappa_at = [&](double u) {
+    MachinePoint tangent;
+    MachinePoint curvature;
+    detail::tangent_and_curvature(segment.derivative(u, 1), segment.derivative(u, 2), tangent, curvature);
+    return norm(curvature);
+  };
+  for (std::size_t k = 0; k <= samples; ++k) {
+    const double u = static_cast<double>(k) / samples;
+    MachinePoint tangent;
+    MachinePoint curvature;
+    detail::tangent_and_curvature(segment.derivative(u, 1), segment.derivative(u, 2), tangent, curvature);
+    if (k == 0) {
+      plan.start_tangent = tangent;
+      plan.start_curvature = curvature;
+    }
+    if (k == samples) {
+      plan.end_tangent = tangent;
+      plan.end_curvature = curvature;
+    }
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      max_tangent_component[axis] = std::fmax(max_tangent_component[axis], std::fabs(tangent[axis]));
+    }
+    if (k < first || k > last) continue;
+    const double kappa = norm(curvature);
+    const double s = table.length_at(segment, u);
+    if (k > first && s > previous_s) {
+      max_kappa_rate = std::fmax(max_kappa_rate, norm(curvature - previous_curvature) / (s - previous_s));
+    }
+    if (kappa > max_kappa) {
+      max_kappa = kappa;
+      peak_u = u;
+    }
+    previous_s = s;
+    previous_curvature = curvature;
+  }
+  // Refine the largest curvature between the neighbouring samples (golden-section search).
+  if (max_kappa > 0) {
+    constexpr double ratio = 0.6180339887498949;
+    double low = std::fmax(static_cast<double>(first) / samples, peak_u - 1.0 / samples);
+    double high = std::fmin(static_cast<double>(last) / samples, peak_u + 1.0 / samples);
+    double x1 = high - ratio * (high - low);
+    double x2 = low + ratio * (high - low);
+    double f1 = kappa_at(x1);
+    double f2 = kappa_at(x2);
+    for (int i = 0; i < 40; ++i) {
+      if (f1 > f2) {
+        high = x2;
+        x2 = x1;
+        f2 = f1;
+        x1 = high - ratio * (high - low);
+        f1 = kappa_at(x1);
+      } else {
+        low = x1;
+        x1 = x2;
+        f1 = f2;
+        x2 = low + ratio * (high - low);
+        f2 = kappa_at(x2);
+      }
+    }
+    max_kappa = std::fmax(max_kappa, std::fmax(f1, f2));
+  }
+  if (!std::isfinite(max_kappa) || !std::isfinite(max_kappa_rate)) return fail(Error::DegenerateCurve);
+  max_kappa_rate *= 1.25;
+  plan.max_curvature_per_mm = max_kappa;
+
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    const double limit = machine.axes[axis].v_max_mm_per_s;
+    if (limit > 0 && max_tangent_component[axis] > 0) speed_cap = std::fmin(speed_cap, limit / max_tangent_component[axis]);
+  }
+  double acceleration = a_max;
+  double jerk = machine.j_max_mm_per_s3;
+  if (max_kappa > 0) {
+    speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * a_max / max_kappa));                                   // v²κ <= a/2
+    speed_cap = std::fmin(speed_cap, detail::cube_root(0.25 * jerk / (max_kappa * max_kappa + max_kappa_rate)));  // normal jerk
+    const double dt = 1.0 / machine.rate_hz;
+    speed_cap = std::fmin(speed_cap, std::sqrt(8 * machine.tolerance_mm / max_kappa) / dt);                 // chord sagitta
+    acceleration = std::fmin(0.85 * a_max, 0.25 * jerk / (3 * speed_cap * max_kappa));                       // 3 v a κ <= j/4
+    jerk = 0.5 * jerk;
+  }
+  if (!(speed_cap > 0) || !(acceleration > 0)) return fail(Error::InvalidLimit);
+  plan.limits = ProfileLimits{speed_cap, acceleration, jerk, machine.jerk_limited};
+  return plan;
+}
+
+/// The largest speed at the joint from `previous` into `next` (both already planned).
+///   tangent-continuous: only the curvature jump counts: a jump Δ(κN) changes the acceleration by
+///     v²|Δ(κN)| within one tick, so with the S-curve v² |Δ(κN)| <= ½ j_max Δt;
+///   a corner of angle θ: grbl's junction deviation v² = a δ sin(θ/2) / (1 − sin(θ/2)); with the
+///     S-curve the velocity jump v·2 sin(θ/2) within one tick must also keep the jerk (<= ½ j Δt²),
+///     with the trapezoid the acceleration (<= ½ a Δt): setpoints differentiated numerically stay
+///     within the limits, at the price of near-stops at sharp corners (no corner blending yet).
+[[nodiscard]] inline double junction_speed(const SegmentPlan& previous, const SegmentPlan& next, const MachineLimits& machine) noexcept {
+  double v = std::fmin(previous.limits.speed_cap_mm_per_s, next.limits.speed_cap_mm_per_s);
+  const double dt = 1.0 / machine.rate_hz;
+  const double cos_theta = dot(previous.end_tangent, next.start_tangent);
+  const double half_angle_sin = std::sqrt(std::fmax(0.0, (1 - cos_theta) / 2));  // sin(θ/2)
+  constexpr double tangent_continuity = 1e-6;  // sin(θ/2) below this counts as a smooth join
+  if (half_angle_sin > tangent_continuity) {
+    if (half_angle_sin >= 1 - 1e-12) return 0;  // reversal
+    const double deviation = machine.junction_deviation_mm * half_angle_sin / (1 - half_angle_sin);
+    v = std::fmin(v, std::sqrt(machine.a_max_mm_per_s2 * deviation));
+    if (machine.jerk_limited) v = std::fmin(v, 0.5 * machine.j_max_mm_per_s3 * dt * dt / (2 * half_angle_sin));
+    else v = std::fmin(v, 0.5 * machine.a_max_mm_per_s2 * dt / (2 * half_angle_sin));
+  }
+  const double curvature_jump = norm(previous.end_curvature - next.start_curvature);
+  if (machine.jerk_limited && curvature_jump > 0) {
+    v = std::fmin(v, std::sqrt(0.5 * machine.j_max_mm_per_s3 * dt / curvature_jump));
+  }
+  return v;
+}
+
+}  // namespace curvestep
