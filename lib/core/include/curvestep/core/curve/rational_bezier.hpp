@@ -2,8 +2,13 @@
 // RationalBezier: r(t) = Σ w_i b_i B^n_i(t) / Σ w_i B^n_i(t), with positive weights.
 //
 // Evaluated by de Casteljau in homogeneous coordinates (w b, w) and one division, which keeps
-// every step a convex combination. Derivatives come from the homogeneous curve A(t) = (w r)(t)
-// and its weight w(t) by the Leibniz rule: w r^(k) = A^(k) - Σ_{i=1..k} C(k,i) w^(i) r^(k-i).
+// every step a convex combination. The homogeneous points are taken relative to the first control
+// point, (w (b - b_0), w), and b_0 is added back after the division: the weight coordinate carries
+// a relative rounding error (2^-17 per level in Q16.16) that the division multiplies by the
+// projected value, so this keeps the error proportional to the curve's extent instead of its
+// distance from the origin (a 1 mm arc at x = 10 m would otherwise be off by ~0.1 mm).
+// Derivatives come from the homogeneous curve A(t) = (w r)(t) and its weight w(t) by the Leibniz
+// rule: w r^(k) = A^(k) - Σ_{i=1..k} C(k,i) w^(i) r^(k-i).
 // Positive weights keep the curve inside the convex hull of its control points.
 #pragma once
 
@@ -90,16 +95,20 @@ class RationalBezier {
   [[nodiscard]] constexpr Point point_at(S t) const {
     if (t == S{}) return points_[0];
     if (t == from_int<S>(1)) return points_[degree()];
-    return project(homogeneous_.point_at(t));
+    if (const auto local = local_homogeneous()) return points_[0] + project(local.value().point_at(t));
+    return project(homogeneous_.point_at(t));  // control points too far apart for (b - b_0)
   }
 
   /// r^(order)(t) for t in [0,1] (order 0: the point).
   [[nodiscard]] constexpr Result<Point> derivative_at(S t, std::size_t order = 1) const {
     if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
     if (order > MaxDegree + 4) return fail(Error::InvalidArgument);
+    // Derivatives of order >= 1 do not change under translation: work relative to b_0.
+    const auto local = local_homogeneous();
+    const Homogeneous& base = local ? local.value() : homogeneous_;
     std::array<Vec<S, Dim + 1>, MaxDegree + 5> homogeneous_derivatives{};
     for (std::size_t k = 0; k <= order; ++k) {
-      CURVESTEP_TRY(homogeneous_derivatives[k], homogeneous_.derivative_at(t, k));
+      CURVESTEP_TRY(homogeneous_derivatives[k], base.derivative_at(t, k));
     }
     std::array<Point, MaxDegree + 5> r{};
     const S w = homogeneous_derivatives[0][Dim];
@@ -114,6 +123,7 @@ class RationalBezier {
         CURVESTEP_TRY(r[k][axis], (numerator / detail::Checked<S>(w)).result());
       }
     }
+    if (order == 0 && local) return checked_add_point(points_[0], r[0]);
     return r[order];
   }
 
@@ -123,6 +133,17 @@ class RationalBezier {
     SplitCurves<RationalBezier> out;
     out.left = from_homogeneous(halves.left);
     out.right = from_homogeneous(halves.right);
+    // Control points projected from the curve relative to b_0 (same weights, smaller errors),
+    // and the outer end points kept exactly, as point_at returns them.
+    if (const auto local = local_homogeneous()) {
+      CURVESTEP_TRY(const auto local_halves, local.value().split(t));
+      for (std::size_t i = 0; i <= degree(); ++i) {
+        out.left.points_[i] = points_[0] + project(local_halves.left[i]);
+        out.right.points_[i] = points_[0] + project(local_halves.right[i]);
+      }
+    }
+    out.left.points_[0] = points_[0];
+    out.right.points_[degree()] = points_[degree()];
     return out;
   }
 
@@ -143,6 +164,29 @@ class RationalBezier {
   }
 
  private:
+  /// (w_i (b_i - b_0), w_i): the homogeneous curve relative to the first control point.
+  /// FixedOverflow/NotFinite if b_i - b_0 or its product with w_i leaves the range.
+  [[nodiscard]] constexpr Result<Homogeneous> local_homogeneous() const noexcept {
+    std::array<Vec<S, Dim + 1>, capacity> h{};
+    for (std::size_t i = 0; i <= degree(); ++i) {
+      const S w = homogeneous_[i][Dim];
+      for (std::size_t axis = 0; axis < Dim; ++axis) {
+        CURVESTEP_TRY(const S difference, checked_sub(points_[i][axis], points_[0][axis]));
+        CURVESTEP_TRY(h[i][axis], checked_mul(difference, w));
+      }
+      h[i][Dim] = w;
+    }
+    return Homogeneous::create(std::span<const Vec<S, Dim + 1>>(h.data(), degree() + 1));
+  }
+
+  static constexpr Result<Point> checked_add_point(const Point& a, const Point& b) noexcept {
+    Point p;
+    for (std::size_t axis = 0; axis < Dim; ++axis) {
+      CURVESTEP_TRY(p[axis], checked_add(a[axis], b[axis]));
+    }
+    return p;
+  }
+
   static constexpr Point project(const Vec<S, Dim + 1>& h) {
     Point p;
     for (std::size_t axis = 0; axis < Dim; ++axis) p[axis] = h[axis] / h[Dim];
