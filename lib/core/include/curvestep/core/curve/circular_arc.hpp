@@ -4,8 +4,11 @@
 // An arc of sweep θ about centre c from a = start - c to b = end - c (|a| = |b| = r) is the
 // conic with end points start, end and, in homogeneous form, middle point
 //     H1 = (cos(θ/2) c + r m, cos(θ/2)),   r m = cos(θ/2) a + sin(θ/2) J a
-// where J turns a by +90° (counter-clockwise) or -90° (clockwise). cos(θ/2) and sin(θ/2) come
-// from cos θ = a·b / r² by the half-angle formulas, so only square roots are needed.
+// where J turns a by +90° (counter-clockwise) or -90° (clockwise). With unit vectors u_a, u_b,
+// cos(θ/2) = |u_a + u_b| / 2 and sin(θ/2) = |u_a - u_b| / 2: only square roots are needed, and
+// unlike sqrt((1 + cos θ)/2) these stay accurate near 180° (where 1 + cos θ cancels and the
+// square root would magnify a rounding of 2^-16 to 2^-8.5). Lengths are computed with the larger
+// coordinate factored out, so r² never has to fit the format (Q16.16: radii up to the range).
 //   * θ <= 90°: the quadratic form, weight cos(θ/2) >= √2/2, middle point c + r m / cos(θ/2).
 //   * 90° < θ <= 180°: the same conic degree-elevated to a cubic, whose weights (1+2cos(θ/2))/3
 //     stay positive and whose points stay finite even at θ = 180° (where the quadratic's middle
@@ -22,6 +25,35 @@
 
 namespace curvestep {
 
+namespace detail {
+/// |v| without overflow. Fixed: the exact sum of the squared raw values (< 2^63 for 32-bit
+/// reps) and a rounded integer square root, so the length is correct to half a unit at any size.
+/// Floating point: m sqrt((x/m)² + (y/m)²) with m the larger coordinate.
+template <Scalar S>
+[[nodiscard]] constexpr Result<S> scaled_length(const Vec2<S>& v) noexcept {
+  if constexpr (FixedPoint<S>) {
+    static_assert(sizeof(typename S::rep) <= 4, "squares of the raw values must fit 64 bits");
+    const auto magnitude = [](typename S::rep raw) {
+      const auto wide = static_cast<std::int64_t>(raw);
+      return static_cast<std::uint64_t>(wide < 0 ? -wide : wide);
+    };
+    const std::uint64_t x = magnitude(v[0].raw());
+    const std::uint64_t y = magnitude(v[1].raw());
+    const std::uint64_t sum = x * x + y * y;
+    std::uint64_t root = integer_sqrt(sum);
+    if (sum - root * root > root) ++root;  // sum >= (root + 1/2)^2: round up
+    return S::from_wide(static_cast<typename S::wide>(root));
+  }
+  const S ax = abs(v[0]);
+  const S ay = abs(v[1]);
+  const S m = ax < ay ? ay : ax;
+  if (m == S{}) return S{};
+  const S x = ax / m;
+  const S y = ay / m;
+  return checked_mul(m, sqrt(x * x + y * y));
+}
+}  // namespace detail
+
 /// Direction of travel around the centre.
 enum class ArcDirection : std::uint8_t {
   CounterClockwise,  ///< positive angles (G3)
@@ -36,32 +68,33 @@ template <Scalar S, std::size_t MaxDegree = 7>
 [[nodiscard]] constexpr Result<RationalBezier<S, 2, MaxDegree>> circular_arc(const Vec2<S>& center, const Vec2<S>& start,
                                                                              const Vec2<S>& end, ArcDirection direction,
                                                                              S radius_tolerance) {
-  using detail::Checked;
   using Curve = RationalBezier<S, 2, MaxDegree>;
   CURVESTEP_TRY(const auto a, checked_sub(start, center));
   CURVESTEP_TRY(const auto b, checked_sub(end, center));
   // Work in units of r so Fixed products stay small: cos θ = (a/r)·(b/r).
-  const Checked<S> r_squared = Checked<S>(a[0]) * Checked<S>(a[0]) + Checked<S>(a[1]) * Checked<S>(a[1]);
-  const Checked<S> b_squared = Checked<S>(b[0]) * Checked<S>(b[0]) + Checked<S>(b[1]) * Checked<S>(b[1]);
-  CURVESTEP_TRY(const S r, detail::checked_sqrt(r_squared).result());
-  CURVESTEP_TRY(const S rb, detail::checked_sqrt(b_squared).result());
-  if (r == S{}) return fail(Error::DegenerateCurve);
+  CURVESTEP_TRY(const S r, detail::scaled_length(a));
+  CURVESTEP_TRY(const S rb, detail::scaled_length(b));
+  if (r == S{} || rb == S{}) return fail(Error::DegenerateCurve);
   if (radius_tolerance < abs(r - rb)) return fail(Error::InvalidArgument, 1);
   const Vec2<S> ua{{a[0] / r, a[1] / r}};
   const Vec2<S> ub{{b[0] / rb, b[1] / rb}};
   const S cos_sweep = dot(ua, ub);
   const S turn = cross(ua, ub);  // sin θ for counter-clockwise travel
   const bool ccw = direction == ArcDirection::CounterClockwise;
-  const S signed_sin = ccw ? turn : -turn;
+  S signed_sin = ccw ? turn : -turn;
   const S one = from_int<S>(1);
-  if (signed_sin < S{}) return fail(Error::SweepTooLarge);
+  if (signed_sin < S{}) {
+    // A half circle whose end points were rounded may turn a hair the wrong way: accept a turn
+    // within the end points' own angular uncertainty (radius tolerance / r) as exactly 180°.
+    const S slack = radius_tolerance / r + resolution<S>() * from_int<S>(8);
+    if (!(cos_sweep < S{}) || slack < -signed_sin) return fail(Error::SweepTooLarge);
+    signed_sin = S{};
+  }
   if (signed_sin == S{} && S{} < cos_sweep) return fail(Error::DegenerateCurve);
-  S half_cos_squared = (one + cos_sweep) / from_int<S>(2);
-  S half_sin_squared = (one - cos_sweep) / from_int<S>(2);
-  if (half_cos_squared < S{}) half_cos_squared = S{};
-  if (half_sin_squared < S{}) half_sin_squared = S{};
-  const S half_cos = sqrt(half_cos_squared);  // cos(θ/2) = w1
-  const S half_sin = sqrt(half_sin_squared);
+  CURVESTEP_TRY(const S sum_length, detail::scaled_length(ua + ub));
+  CURVESTEP_TRY(const S difference_length, detail::scaled_length(ua - ub));
+  const S half_cos = sum_length / from_int<S>(2);  // cos(θ/2) = w1
+  const S half_sin = difference_length / from_int<S>(2);
   // r m = cos(θ/2) a + sin(θ/2) J a
   const Vec2<S> ja = ccw ? Vec2<S>{{-a[1], a[0]}} : Vec2<S>{{a[1], -a[0]}};
   const Vec2<S> rm = a * half_cos + ja * half_sin;
@@ -100,7 +133,11 @@ template <Scalar S, std::size_t MaxDegree = 7>
   CURVESTEP_TRY(const auto end, (vec_from_doubles<S, 2>({cx + r * std::cos(end_rad), cy + r * std::sin(end_rad)})));
   const auto direction = sweep_rad > 0 ? ArcDirection::CounterClockwise : ArcDirection::Clockwise;
   S tolerance = resolution<S>() * from_int<S>(8);
-  if constexpr (!FixedPoint<S>) tolerance = tolerance * (radius < S{1} ? S{1} : radius);
+  if constexpr (!FixedPoint<S>) {
+    // Floating-point start and end carry rounding relative to their coordinates, not the radius.
+    const S magnitude = abs(center[0]) + abs(center[1]) + radius;
+    tolerance = tolerance * (magnitude < S{1} ? S{1} : magnitude);
+  }
   return circular_arc<S, MaxDegree>(center, start, end, direction, tolerance);
 }
 
