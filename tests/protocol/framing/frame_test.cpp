@@ -3,6 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <fstream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include <curvestep/protocol/frame.hpp>
@@ -68,7 +71,33 @@ FeedResult feed(FrameDecoder<Capacity>& decoder, std::span<const std::byte> data
   return result;
 }
 
+/// docs/protocol.md, found from this file's path, with '|' removed and whitespace collapsed.
+std::string protocol_document() {
+  const std::string here = __FILE__;
+  const auto at = here.rfind("tests/protocol/");
+  REQUIRE(at != std::string::npos);
+  std::ifstream file(here.substr(0, at) + "docs/protocol.md");
+  REQUIRE(file.good());
+  std::stringstream text;
+  text << file.rdbuf();
+  std::string collapsed;
+  for (const char c : text.str()) {
+    const char d = (c == '|' || c == '\n' || c == '`') ? ' ' : c;
+    if (d == ' ' && !collapsed.empty() && collapsed.back() == ' ') continue;
+    collapsed.push_back(d);
+  }
+  return collapsed;
+}
+
 }  // namespace
+
+TEST_CASE("frame: docs/protocol.md shows the same example bytes as this test", "[protocol][framing]") {
+  const std::string doc = protocol_document();
+  CHECK(doc.find(example_raw) != std::string::npos);
+  CHECK(doc.find(example_wire) != std::string::npos);
+  CHECK(doc.find("02 01 02 01 05 34 12 26 c6 00") != std::string::npos);
+  CHECK(doc.find("05 03 07 06 28 03 1c 93 00") != std::string::npos);
+}
 
 TEST_CASE("frame: the worked example of docs/protocol.md encodes byte for byte", "[protocol][framing]") {
   std::array<std::byte, max_payload_size> payload{};
