@@ -41,6 +41,36 @@ enum class CubicEnd : std::uint8_t {
   Clamped,  ///< prescribed first derivatives (with respect to u) at both ends
 };
 
+/// (3 − √5)/2 ≈ 0.381966: lower bound on h_{i+1}/h_i in seed 002 Thm 3.3.
+template <Scalar S>
+[[nodiscard]] constexpr S knot_ratio_lower_bound() noexcept {
+  return constant<S>(0.381966011250105);
+}
+/// (3 + √5)/2 ≈ 2.618034: upper bound on h_{i+1}/h_i in seed 002 Thm 3.3.
+template <Scalar S>
+[[nodiscard]] constexpr S knot_ratio_upper_bound() noexcept {
+  return constant<S>(2.618033988749895);
+}
+
+/// True if every ratio of consecutive knot intervals lies strictly inside the bounds of seed 002
+/// Thm 3.3. Only a sufficient condition (the solver works for any increasing knots): use it for an
+/// optional warning about uneven spacing. InvalidInterval (index = knot) if knots do not increase.
+template <Scalar S>
+[[nodiscard]] constexpr Result<bool> knot_ratios_within_bound(std::span<const S> knots) noexcept {
+  using detail::Checked;
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    if (i > 0 && !(knots[i - 1] < knots[i])) return fail(Error::InvalidInterval, i);
+  }
+  for (std::size_t i = 0; i + 2 < knots.size(); ++i) {
+    CURVESTEP_TRY(const S h, (Checked<S>(knots[i + 1]) - Checked<S>(knots[i])).result());
+    CURVESTEP_TRY(const S next, (Checked<S>(knots[i + 2]) - Checked<S>(knots[i + 1])).result());
+    CURVESTEP_TRY(const S low, (Checked<S>(knot_ratio_lower_bound<S>()) * Checked<S>(h)).result());
+    CURVESTEP_TRY(const S high, (Checked<S>(knot_ratio_upper_bound<S>()) * Checked<S>(h)).result());
+    if (!(low < next) || !(next < high)) return false;
+  }
+  return true;
+}
+
 /// Solves for the tangents v_i = s'(u_i) of the C2 cubic spline through `points`.
 /// Open: knots.size() == points.size(); closed: knots.size() == points.size() + 1 (the last knot
 /// closes the curve back to points[0]) and the clamped tangents are ignored. Capacity bounds the
