@@ -84,11 +84,10 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxContr
 template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxControlPoints>
 [[nodiscard]] constexpr Result<RationalBezierSpan<S, Dim, MaxDegree>> bezier_span(
     const Nurbs<S, Dim, MaxDegree, MaxControlPoints>& curve, std::size_t knot_span) {
-  CURVESTEP_TRY(const auto homogeneous, bezier_span(curve.homogeneous(), knot_span));
   RationalBezierSpan<S, Dim, MaxDegree> piece;
-  piece.curve = RationalBezier<S, Dim, MaxDegree>::from_homogeneous(homogeneous.curve);
-  piece.start = homogeneous.start;
-  piece.end = homogeneous.end;
+  CURVESTEP_TRY(piece.curve, curve.bezier_piece(knot_span));
+  piece.start = curve.knots()[knot_span];
+  piece.end = curve.knots()[knot_span + 1];
   piece.knot_span = knot_span;
   return piece;
 }

@@ -60,6 +60,48 @@ template <Scalar S, std::size_t Dim, std::size_t N, class Parameter>
   }
   return d[q];
 }
+
+/// s^(order)(u) from the local points d[0..p] of span `span` (basis indices span−p..span): forms
+/// the local derivative control points P^(r) (checked) and runs de Boor at degree p − order.
+/// Contract: order <= p, u in [u_span, u_{span+1}].
+template <Scalar S, std::size_t Dim, std::size_t N>
+[[nodiscard]] constexpr Result<Vec<S, Dim>> derivative_in_span(std::array<Vec<S, Dim>, N> d, std::size_t p,
+                                                               std::span<const S> knots, std::size_t span, S u,
+                                                               std::size_t order) {
+  CURVESTEP_EXPECTS(order <= p);
+  for (std::size_t r = 1; r <= order; ++r) {
+    const int factor = static_cast<int>(p - r + 1);
+    for (std::size_t j = 0; j + r <= p; ++j) {
+      const std::size_t i = span - p + j;  // P^(r)_i
+      const S width = knots[i + p + 1] - knots[i + r];
+      for (std::size_t axis = 0; axis < Dim; ++axis) {
+        CURVESTEP_TRY(d[j][axis], scaled_difference(d[j][axis], d[j + 1][axis], factor, width));
+      }
+    }
+  }
+  return de_boor(d, p - order, knots, span, [u](std::size_t) { return u; });
+}
+
+/// One Boehm insertion of u into items[0..count) with knots[0..count+p] (room for one more of
+/// each): items i <= s−p stay, items s−p+1..s become combine(item_{i−1}, item_i, u − u_i,
+/// u_{i+p} − u_i), later ones shift up by one, where s is the last knot index with u_s <= u.
+/// Contract: u in the domain and below the last knot (the caller checked multiplicities).
+template <Scalar S, class Item, class Combine>
+constexpr void boehm_insert(std::span<Item> items, std::size_t count, std::span<S> knots, std::size_t p, S u,
+                            Combine combine) {
+  const std::size_t knot_total = count + p + 1;
+  CURVESTEP_EXPECTS(items.size() > count && knots.size() > knot_total && u < knots[knot_total - 1]);
+  std::size_t s = p;
+  while (s + 1 < knot_total && !(u < knots[s + 1])) ++s;
+  // From the back, so every source item is read before it is overwritten.
+  for (std::size_t i = count; i > s; --i) items[i] = items[i - 1];
+  for (std::size_t i = s; i + p > s; --i) {
+    // u_i == u means a_i = 0 (this also covers i = n+1 when u is the domain's right end).
+    items[i] = knots[i] == u ? items[i - 1] : combine(items[i - 1], items[i], u - knots[i], knots[i + p] - knots[i]);
+  }
+  for (std::size_t j = knot_total; j > s + 1; --j) knots[j] = knots[j - 1];
+  knots[s + 1] = u;
+}
 }  // namespace detail
 
 /// A B-spline curve of runtime degree 1..MaxDegree with up to MaxControlPoints control points in
@@ -174,6 +216,14 @@ class BSpline {
     return spans;
   }
 
+  /// The stored control points P_{span−p}..P_span of knot span `span` (contract: degree <= span < size()).
+  [[nodiscard]] constexpr std::array<Point, MaxDegree + 1> local_points(std::size_t span) const {
+    CURVESTEP_EXPECTS(span >= degree_ && span < count_);
+    std::array<Point, MaxDegree + 1> d{};
+    for (std::size_t j = 0; j <= degree_; ++j) d[j] = points_[span - degree_ + j];
+    return d;
+  }
+
   /// The knot span s with u_s <= u < u_{s+1} (right end: the last non-empty span).
   /// EmptyControlPolygon, NotFinite, ParameterOutOfRange.
   [[nodiscard]] constexpr Result<std::size_t> find_span(S u) const noexcept {
@@ -216,19 +266,7 @@ class BSpline {
   [[nodiscard]] constexpr Result<Point> derivative_at(S u, std::size_t order = 1) const {
     CURVESTEP_TRY(const std::size_t span, find_span(u));
     if (order > degree_) return Point{};
-    std::array<Point, MaxDegree + 1> d = local_points(span);
-    for (std::size_t r = 1; r <= order; ++r) {
-      const int factor = static_cast<int>(degree_ - r + 1);
-      for (std::size_t j = 0; j + r <= degree_; ++j) {
-        const std::size_t i = span - degree_ + j;  // P^(r)_i
-        const S width = knots_[i + degree_ + 1] - knots_[i + r];
-        for (std::size_t axis = 0; axis < Dim; ++axis) {
-          CURVESTEP_TRY(d[j][axis], detail::scaled_difference(d[j][axis], d[j + 1][axis], factor, width));
-        }
-      }
-    }
-    const std::size_t q = degree_ - order;
-    return detail::de_boor(d, q, knots(), span, [u](std::size_t) { return u; });
+    return detail::derivative_in_span(local_points(span), degree_, knots(), span, u, order);
   }
 
   /// The same curve with ū inserted `times` more times (Boehm). Errors: EmptyControlPolygon,
@@ -244,7 +282,13 @@ class BSpline {
     if (existing + times > limit) return fail(Error::KnotMultiplicityTooHigh, span);
     if (count_ + times > MaxControlPoints) return fail(Error::CapacityExceeded, count_ + times);
     BSpline curve = *this;
-    for (std::size_t k = 0; k < times; ++k) curve.insert_once(u);
+    const auto combine = [](const Point& a, const Point& b, S numerator, S denominator) {
+      return detail::ratio_lerp(a, b, numerator, denominator);
+    };
+    for (std::size_t k = 0; k < times; ++k) {
+      detail::boehm_insert(std::span<Point>(curve.points_), curve.count_, std::span<S>(curve.knots_), degree_, u, combine);
+      ++curve.count_;
+    }
     curve.layout_ = curve.clamped_layout() ? KnotLayout::Clamped : KnotLayout::Unclamped;
     return curve;
   }
@@ -287,32 +331,6 @@ class BSpline {
   [[nodiscard]] constexpr bool clamped_layout() const noexcept {
     const std::size_t last = knot_count(count_, degree_) - 1;
     return knots_[0] == knots_[degree_] && knots_[count_] == knots_[last];
-  }
-
-  /// P_{span−p}..P_span.
-  [[nodiscard]] constexpr std::array<Point, MaxDegree + 1> local_points(std::size_t span) const noexcept {
-    std::array<Point, MaxDegree + 1> d{};
-    for (std::size_t j = 0; j <= degree_; ++j) d[j] = points_[span - degree_ + j];
-    return d;
-  }
-
-  /// One Boehm insertion; the caller checked multiplicity and capacity.
-  constexpr void insert_once(S u) {
-    const std::size_t knot_total = knot_count(count_, degree_);
-    std::size_t s = degree_;  // last index with u_s <= u; u_s < u_{s+1} holds since u < u_m
-    while (s + 1 < knot_total && !(u < knots_[s + 1])) ++s;
-    // Work from the back so every source point is read before it is overwritten.
-    for (std::size_t i = count_; i > s; --i) points_[i] = points_[i - 1];
-    for (std::size_t i = s; i + degree_ > s && i >= 1; --i) {
-      if (knots_[i] == u) {
-        points_[i] = points_[i - 1];  // a_i = 0
-      } else {
-        points_[i] = detail::ratio_lerp(points_[i - 1], points_[i], u - knots_[i], knots_[i + degree_] - knots_[i]);
-      }
-    }
-    for (std::size_t j = knot_total; j > s + 1; --j) knots_[j] = knots_[j - 1];
-    knots_[s + 1] = u;
-    ++count_;
   }
 
   std::array<Point, MaxControlPoints> points_{};
