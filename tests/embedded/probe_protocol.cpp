@@ -26,7 +26,11 @@ std::size_t controller_step(FrameDecoder<>& decoder, LinkReceiver& receiver, std
       r = receiver.on_frame(decoder.frame(), 4, now_ms);
       if (r.disposition == Disposition::Deliver) {
         const auto m = decode_message(decoder.frame());
-        if (m && m.value().holds<QueueSegment>()) sink = sink + m.value().get<QueueSegment>().points[1][0];
+        if (m && m.value().holds<QueueSegment>()) {
+          const QueueSegment& segment = m.value().get<QueueSegment>();
+          sink = sink + segment.points[1][0];
+          if (auto curve = to_rational_bezier<2>(segment)) sink = sink + curve.value().point_at(Q16_16::from_raw(32768))[0].raw();
+        }
         if (!m) sink = sink + static_cast<std::int32_t>(m.error());
       }
     }

@@ -11,3 +11,4 @@
 #include <curvestep/protocol/link_receiver.hpp>
 #include <curvestep/protocol/link_sender.hpp>
 #include <curvestep/protocol/messages.hpp>
+#include <curvestep/protocol/segment_curves.hpp>
