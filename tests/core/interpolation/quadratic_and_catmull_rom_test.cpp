@@ -56,6 +56,12 @@ TEMPLATE_TEST_CASE("interpolation: TV-29 C1 quadratic with end tangent direction
   CHECK(max_error(curve.derivative_at(scalar<S>(3)).value(), {0, 6}) == 0);
   CHECK(max_error(curve.derivative_at(S{}).value(), {2, 0}) == 0);
   CHECK(joint_jump(curve, 1, false) == 0);
+  // The same spline from a parametrization, and from its start tangent s'(u_0) = (2, 0).
+  Quadratic<S> same;
+  REQUIRE(interpolate_quadratic(view(p), Parametrization::Uniform, point<S>(1, 0), point<S>(0, 1), same).has_value());
+  for (std::size_t j = 0; j < 3; ++j) CHECK(same.segment(j) == curve.segment(j));
+  REQUIRE(interpolate_quadratic(view(p), Parametrization::Uniform, point<S>(2, 0), same).has_value());
+  for (std::size_t j = 0; j < 3; ++j) CHECK(same.segment(j) == curve.segment(j));
 }
 
 TEMPLATE_TEST_CASE("interpolation: TV-29 C1 quadratic with end tangent directions, knots 0 1 3 4", "[core][interpolation][seed]",

@@ -175,6 +175,30 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
   return detail::assemble_quadratic(points, knots, m, inner, out);
 }
 
+/// Open quadratic spline with a start tangent and knots from a parametrization (u_0 = 0).
+template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegments>
+  requires(MaxDegree >= 2)
+[[nodiscard]] constexpr Result<void> interpolate_quadratic(std::span<const Vec<S, Dim>> points, Parametrization kind,
+                                                           const Vec<S, Dim>& start_tangent,
+                                                           CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
+  if (points.size() > MaxSegments + 1) return fail(Error::CapacityExceeded, points.size() - 1);
+  std::array<S, MaxSegments + 1> knots{};
+  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots)));
+  return interpolate_quadratic(points, std::span<const S>(knots.data(), count), start_tangent, out);
+}
+
+/// Plane quadratic spline with end directions and knots from a parametrization (u_0 = 0).
+template <Scalar S, std::size_t MaxDegree, std::size_t MaxSegments>
+  requires(MaxDegree >= 2)
+[[nodiscard]] constexpr Result<void> interpolate_quadratic(std::span<const Vec<S, 2>> points, Parametrization kind,
+                                                           const Vec<S, 2>& start_direction, const Vec<S, 2>& end_direction,
+                                                           CompositeBezier<S, 2, MaxDegree, MaxSegments>& out) noexcept {
+  if (points.size() > MaxSegments + 1) return fail(Error::CapacityExceeded, points.size() - 1);
+  std::array<S, MaxSegments + 1> knots{};
+  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots)));
+  return interpolate_quadratic(points, std::span<const S>(knots.data(), count), start_direction, end_direction, out);
+}
+
 /// Closed quadratic spline with knots from a parametrization (closing chord included).
 template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegments>
   requires(MaxDegree >= 2)

@@ -66,7 +66,9 @@ class RefinablePolygon {
   }
   /// The boundary rule used by every step.
   [[nodiscard]] constexpr Boundary boundary() const noexcept { return boundary_; }
+  /// Number of current vertices.
   [[nodiscard]] constexpr std::size_t size() const noexcept { return count_; }
+  /// Most vertices a level may have.
   [[nodiscard]] static constexpr std::size_t capacity() noexcept { return Capacity; }
 
  private:
