@@ -11,6 +11,9 @@ int main(int argc, char** argv) {
   CLI::App app{"curvestep: allocation-free Bezier/B-spline motion paths for CNC and plotter controllers"};
   app.require_subcommand(1);
   curvestep::host::add_demo_command(app);
+  curvestep::host::add_eval_command(app);
+  curvestep::host::add_sample_command(app);
+  curvestep::host::add_sim_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

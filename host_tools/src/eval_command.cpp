@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// `curvestep eval JOB --segment I --u U1,U2,...`: exact positions of one segment of a job file.
+#include <cstddef>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <curvestep/host/csv.hpp>
+#include <curvestep/host/job.hpp>
+
+#include "commands.hpp"
+
+namespace curvestep::host {
+namespace {
+
+struct EvalOptions {
+  std::string job;
+  std::size_t segment = 0;
+  std::vector<double> parameters;
+  std::string out;
+};
+
+void run_eval(const EvalOptions& options) {
+  const Job job = load_job(options.job);
+  std::vector<MachinePoint> points;
+  for (const double u : options.parameters) points.push_back(evaluate_segment(job, options.segment, u));
+  if (options.out.empty()) {
+    write_points_csv(std::cout, points);
+    return;
+  }
+  std::ofstream file(options.out);
+  if (!file) throw std::runtime_error(options.out + ": cannot open for writing");
+  write_points_csv(file, points);
+  if (!file) throw std::runtime_error(options.out + ": write failed");
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app) {
+  auto options = std::make_shared<EvalOptions>();
+  auto* eval = app.add_subcommand("eval", "Write the exact points of one segment of a job at its own parameter values (CSV x,y,z)");
+  eval->add_option("job", options->job, "Job file (JSON, see docs/job_format.md)")->required();
+  eval->add_option("--segment", options->segment, "Segment index in the file, counted from 0")->required();
+  eval->add_option("--u", options->parameters, "Parameter values, comma separated ([0,1], or the knot domain of a bspline/nurbs)")
+      ->required()
+      ->delimiter(',');
+  eval->add_option("-o,--output", options->out, "Output CSV file (default: standard output)");
+  eval->callback([options] { run_eval(*options); });
+}
+
+}  // namespace curvestep::host

@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: MIT
+// CSV output of points: shortest round-trip number text, header x,y,z.
+#pragma once
+
+#include <ostream>
+#include <span>
+#include <string>
+
+#include <curvestep/core/motion/path_segment.hpp>
+
+namespace curvestep::host {
+
+/// Shortest text that reads back as the same double ("0.90625", "1e+09", "0").
+[[nodiscard]] std::string format_number(double value);
+
+/// Writes "x,y,z" and one line per point.
+void write_points_csv(std::ostream& out, std::span<const MachinePoint> points);
+
+}  // namespace curvestep::host

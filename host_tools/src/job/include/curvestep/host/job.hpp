@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// Job files (JSON, docs/job_format.md): loading into PathSegments, and exact evaluation of a
+// segment of the file at its own parameter.
+//
+// Loading checks everything a planner relies on: types, counts, knots, weights, connectivity,
+// and that every coordinate fits Q16.16. Coordinates are converted to mm, quantised to Q16.16
+// and converted back to double, so the simulator and a Q16.16 firmware see the same numbers.
+// B-spline and NURBS segments are split into (rational) Bézier pieces at their knots (Bézier
+// extraction by blossoming); the pieces' control points are quantised again, so a piece is
+// within one Q16.16 rounding (2^-17 mm per coordinate) of the exact spline.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <curvestep/core/motion/path_segment.hpp>
+#include <curvestep/host/load_error.hpp>
+
+namespace curvestep::host {
+
+/// The segment types of the job format.
+enum class SegmentType : std::uint8_t { Line, Arc, Bezier, RationalBezier, BSpline, Nurbs, Rapid };
+
+/// The "type" text of a segment type ("rational_bezier").
+[[nodiscard]] std::string_view segment_type_name(SegmentType type) noexcept;
+
+/// One segment as the file gives it (after unit conversion and quantisation), and the
+/// PathSegments it became.
+struct SourceSegment {
+  SegmentType type = SegmentType::Line;
+  std::size_t line = 0;                ///< line of the segment in the file (0 if unknown)
+  std::vector<MachinePoint> points;    ///< control points / start and end, mm, quantised
+  std::vector<double> weights;         ///< rational_bezier and nurbs
+  std::vector<double> knots;           ///< bspline and nurbs
+  std::size_t degree = 0;              ///< curve degree (1 for lines and rapids, 0 for arcs)
+  double feed_mm_per_s = 0;            ///< the segment's feed, 0 for the machine default
+  std::size_t first_piece = 0;         ///< index in Job::segments of the first piece of the domain
+  std::vector<double> breaks;          ///< parameter values where the pieces meet, front..back = domain
+  [[nodiscard]] std::size_t piece_count() const noexcept { return breaks.empty() ? 0 : breaks.size() - 1; }
+  /// The parameter domain: [0,1], or [u_p, u_{n+1}] for bspline and nurbs.
+  [[nodiscard]] std::pair<double, double> domain() const noexcept {
+    return breaks.empty() ? std::pair<double, double>{0.0, 1.0} : std::pair<double, double>{breaks.front(), breaks.back()};
+  }
+};
+
+/// A loaded job: the path as PathSegments, and where each one came from.
+struct Job {
+  int version = 1;                        ///< format version of the file
+  std::string name;                       ///< file name, used in messages
+  std::vector<PathSegment> segments;      ///< the path, connected end to start
+  std::vector<std::size_t> source_index;  ///< for each PathSegment, the file's segment index
+  std::vector<SourceSegment> sources;     ///< the file's segments, in file order
+};
+
+/// Loads a job file. Throws LoadError (naming file, line, segment, field) or std::runtime_error
+/// if the file cannot be read.
+[[nodiscard]] Job load_job(const std::filesystem::path& path);
+
+/// Parses job text; `name` is used in error messages as the file name.
+[[nodiscard]] Job parse_job(std::string_view text, std::string name);
+
+/// The position of the file's segment `index` at its own parameter `u` (lines, arcs, Béziers and
+/// rapids: [0,1]; bspline and nurbs: the knot domain), from the PathSegments the machine runs.
+/// std::out_of_range (one-line message) for a bad index or a u outside the domain.
+[[nodiscard]] MachinePoint evaluate_segment(const Job& job, std::size_t index, double u);
+
+/// Reads a whole text file; std::runtime_error naming the file if it cannot be read.
+[[nodiscard]] std::string read_text_file(const std::filesystem::path& path);
+
+}  // namespace curvestep::host

@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: MIT
+// Machine files: JSON -> MachineLimits, validated, with errors that name the key.
+#include <curvestep/host/machine_file.hpp>
+
+#include <array>
+#include <string>
+
+#include <curvestep/core/error_text.hpp>
+#include <curvestep/host/csv.hpp>
+#include <curvestep/host/job.hpp>
+
+#include "json_document.hpp"
+
+namespace curvestep::host {
+namespace {
+
+using detail::Node;
+using detail::Reader;
+
+constexpr std::array<const char*, motion_axes> axis_names{"x", "y", "z"};
+
+/// The node a LimitField names, for the error's line.
+Node limit_node(const Node& root, LimitField field, std::size_t axis) {
+  switch (field) {
+    case LimitField::AxisStepsPerMm: return root.member("axes").member(axis_names[axis]).member("steps_per_mm");
+    case LimitField::AxisVMax: return root.member("axes").member(axis_names[axis]).member("v_max");
+    case LimitField::AxisAMax: return root.member("axes").member(axis_names[axis]).member("a_max");
+    default: return root.member(machine_field_name(field).substr(1, machine_field_name(field).size() - 2));
+  }
+}
+
+}  // namespace
+
+std::string machine_field_name(LimitField field, std::size_t axis) {
+  const std::string axis_prefix = std::string("\"axes\".\"") + axis_names[axis < motion_axes ? axis : 0] + "\".";
+  switch (field) {
+    case LimitField::VMax: return "\"v_max\"";
+    case LimitField::AMax: return "\"a_max\"";
+    case LimitField::JMax: return "\"j_max\"";
+    case LimitField::Feed: return "\"feed\"";
+    case LimitField::Tolerance: return "\"tolerance\"";
+    case LimitField::RateHz: return "\"rate_hz\"";
+    case LimitField::JunctionDeviation: return "\"junction_deviation\"";
+    case LimitField::MaxStepRate: return "\"max_step_rate\"";
+    case LimitField::AxisStepsPerMm: return axis_prefix + "\"steps_per_mm\"";
+    case LimitField::AxisVMax: return axis_prefix + "\"v_max\"";
+    case LimitField::AxisAMax: return axis_prefix + "\"a_max\"";
+  }
+  return "\"?\"";
+}
+
+MachineLimits parse_machine(std::string_view text, std::string name) {
+  const detail::JsonDocument document(text, std::move(name), Error::InvalidMachine);
+  const Reader reader(document, Error::InvalidMachine);
+  const Node root = reader.root();
+  reader.check_keys(root, {"version", "v_max", "a_max", "j_max", "feed", "rapid", "tolerance", "rate_hz",
+                           "junction_deviation", "max_step_rate", "profile", "axes"});
+  if (const auto version = reader.optional(root, "version")) {
+    const auto value = reader.integer(*version, 0, 1000000);
+    if (value != 1) reader.fail(*version, "unsupported version " + std::to_string(value) + " (this program reads version 1)");
+  }
+  MachineLimits limits;
+  // Required keys are read as plain numbers; validate() below judges their values, so a zero or
+  // negative limit is reported with the same wording as the core uses.
+  limits.v_max_mm_per_s = reader.number(reader.require(root, "v_max"));
+  limits.a_max_mm_per_s2 = reader.number(reader.require(root, "a_max"));
+  limits.j_max_mm_per_s3 = reader.number(reader.require(root, "j_max"));
+  limits.feed_mm_per_s = reader.number(reader.require(root, "feed"));
+  limits.tolerance_mm = reader.number(reader.require(root, "tolerance"));
+  limits.rate_hz = reader.number(reader.require(root, "rate_hz"));
+  if (const auto node = reader.optional(root, "junction_deviation")) limits.junction_deviation_mm = reader.number(*node);
+  if (const auto node = reader.optional(root, "max_step_rate")) limits.max_step_rate_hz = reader.number(*node);
+  if (const auto node = reader.optional(root, "rapid")) {
+    limits.rapid_mm_per_s = reader.positive(*node);
+  }
+  if (const auto node = reader.optional(root, "profile")) {
+    const std::string profile = reader.string(*node);
+    if (profile == "scurve") {
+      limits.jerk_limited = true;
+    } else if (profile == "trapezoid") {
+      limits.jerk_limited = false;
+    } else {
+      reader.fail(*node, "unknown profile \"" + profile + "\" (expected \"scurve\" or \"trapezoid\")");
+    }
+  }
+  if (const auto axes = reader.optional(root, "axes")) {
+    reader.check_keys(*axes, {"x", "y", "z"});
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      const auto entry = reader.optional(*axes, axis_names[axis]);
+      if (!entry) continue;
+      reader.check_keys(*entry, {"steps_per_mm", "v_max", "a_max"});
+      AxisLimits& limit = limits.axes[axis];
+      if (const auto node = reader.optional(*entry, "steps_per_mm")) limit.steps_per_mm = reader.number(*node);
+      if (const auto node = reader.optional(*entry, "v_max")) limit.v_max_mm_per_s = reader.number(*node);
+      if (const auto node = reader.optional(*entry, "a_max")) limit.a_max_mm_per_s2 = reader.number(*node);
+    }
+  }
+  const auto valid = limits.validate();
+  if (!valid) {
+    const std::size_t index = valid.where();
+    LimitField field = static_cast<LimitField>(index);
+    std::size_t axis = 0;
+    for (const LimitField base : {LimitField::AxisStepsPerMm, LimitField::AxisVMax, LimitField::AxisAMax}) {
+      const auto first = static_cast<std::size_t>(base);
+      if (index >= first && index < first + motion_axes) {
+        field = base;
+        axis = index - first;
+      }
+    }
+    Node at = limit_node(root, field, axis);
+    at.field = machine_field_name(field, axis);
+    std::string message = at.json != nullptr && at.json->is_number() ? "value " + format_number(at.json->get<double>()) + " " : "";
+    if (valid.error() == Error::InvalidRate) {
+      message += "is outside 100 Hz .. 100 kHz";
+    } else {
+      const bool may_be_zero = field == LimitField::JunctionDeviation || field == LimitField::AxisStepsPerMm ||
+                               field == LimitField::AxisVMax || field == LimitField::AxisAMax;
+      message += std::string(may_be_zero ? "must not be negative" : "must be positive") + " (" +
+                std::string(describe(valid.error())) + ")";
+    }
+    reader.fail(at, message, valid.error());
+  }
+  return limits;
+}
+
+MachineLimits load_machine(const std::filesystem::path& path) { return parse_machine(read_text_file(path), path.string()); }
+
+}  // namespace curvestep::host
