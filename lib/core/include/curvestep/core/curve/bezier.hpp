@@ -61,7 +61,8 @@ class Bezier {
   /// A degree-0 curve at the origin.
   constexpr Bezier() = default;
 
-  /// A curve from its control points. EmptyControlPolygon, DegreeAboveCapacity (index = count),
+  /// A curve from its control points. EmptyControlPolygon, DegreeAboveCapacity (index = the degree
+  /// asked for, which is also the first control point that does not fit),
   /// NotFinite (index = control point) for NaN/inf coordinates.
   [[nodiscard]] static constexpr Result<Bezier> create(std::span<const Point> control) noexcept {
     if (control.empty()) return fail(Error::EmptyControlPolygon);
@@ -99,13 +100,13 @@ class Bezier {
 
   /// p(t) for t in [0,1]; ParameterOutOfRange otherwise.
   [[nodiscard]] constexpr Result<Point> evaluate(S t) const {
-    if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
+    if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
     return point_at(t);
   }
 
   /// p(t) by de Casteljau; contract: t in [0,1] (the hot path: no Result, no checks beyond that).
   [[nodiscard]] constexpr Point point_at(S t) const {
-    CURVESTEP_EXPECTS(!(t < S{}) && !(from_int<S>(1) < t));
+    CURVESTEP_EXPECTS(S{} <= t && t <= from_int<S>(1));
     std::array<Point, capacity> work = points_;
     for (std::size_t r = 1; r <= degree_; ++r) {
       for (std::size_t i = 0; i + r <= degree_; ++i) work[i] = lerp(work[i], work[i + 1], t);
@@ -115,7 +116,7 @@ class Bezier {
 
   /// The whole de Casteljau triangle at t in [0,1].
   [[nodiscard]] constexpr Result<DeCasteljauTriangle<S, Dim, MaxDegree>> triangle(S t) const {
-    if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
+    if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
     DeCasteljauTriangle<S, Dim, MaxDegree> tri;
     tri.degree = degree_;
     tri.levels[0] = points_;
@@ -129,7 +130,7 @@ class Bezier {
 
   /// Splits at t in [0,1] into the curves on [0,t] and [t,1] (each reparametrised to [0,1]).
   [[nodiscard]] constexpr Result<SplitCurves<Bezier>> split(S t) const {
-    if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
+    if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
     SplitCurves<Bezier> halves;
     halves.left.degree_ = halves.right.degree_ = degree_;
     std::array<Point, capacity> work = points_;
@@ -145,7 +146,7 @@ class Bezier {
 
   /// The curve restricted to [t0, t1] within [0,1], reparametrised to [0,1].
   [[nodiscard]] constexpr Result<Bezier> segment(S t0, S t1) const {
-    if (t0 < S{} || from_int<S>(1) < t1 || t1 < t0) return fail(Error::ParameterOutOfRange);
+    if (!(S{} <= t0 && t0 <= t1 && t1 <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);
     std::array<S, MaxDegree> params{};
     std::array<Point, capacity> result{};
     for (std::size_t i = 0; i <= degree_; ++i) {
@@ -186,7 +187,7 @@ class Bezier {
 
   /// p^(order)(t) for t in [0,1].
   [[nodiscard]] constexpr Result<Point> derivative_at(S t, std::size_t order = 1) const {
-    if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
+    if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
     auto d = derivative(order);
     if (!d) return d.failure();
     return d.value().point_at(t);

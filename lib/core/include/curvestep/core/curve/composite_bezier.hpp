@@ -64,7 +64,7 @@ class CompositeBezier {
   /// The segment containing u and the local parameter (u on a breakpoint belongs to the later
   /// segment, except at the end). ParameterOutOfRange outside the domain or when empty.
   [[nodiscard]] constexpr Result<Location> locate(S u) const {
-    if (count_ == 0 || u < domain_start() || domain_end() < u) return fail(Error::ParameterOutOfRange);
+    if (count_ == 0 || !(domain_start() <= u && u <= domain_end())) return fail(Error::ParameterOutOfRange);  // NaN too
     std::size_t low = 0;
     std::size_t high = count_;  // invariant: breakpoints_[low] <= u, answer in [low, high)
     while (high - low > 1) {

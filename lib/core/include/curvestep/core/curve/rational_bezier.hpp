@@ -87,7 +87,7 @@ class RationalBezier {
 
   /// r(t) for t in [0,1]; ParameterOutOfRange otherwise.
   [[nodiscard]] constexpr Result<Point> evaluate(S t) const {
-    if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
+    if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
     return point_at(t);
   }
 
@@ -101,7 +101,7 @@ class RationalBezier {
 
   /// r^(order)(t) for t in [0,1] (order 0: the point).
   [[nodiscard]] constexpr Result<Point> derivative_at(S t, std::size_t order = 1) const {
-    if (t < S{} || from_int<S>(1) < t) return fail(Error::ParameterOutOfRange);
+    if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
     if (order > MaxDegree + 4) return fail(Error::InvalidArgument);
     // Derivatives of order >= 1 do not change under translation: work relative to b_0.
     const auto local = local_homogeneous();
