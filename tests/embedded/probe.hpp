@@ -11,16 +11,20 @@ namespace curvestep::probe {
 inline volatile std::int32_t sink = 0;
 
 void probe_core_curves();
+void probe_bspline();
 void probe_interpolation();
 void probe_motion();
 void probe_protocol();
+void probe_stepgen();
 
 /// Runs every probe (called from Reset_Handler).
 inline void run_all() {
   probe_core_curves();
+  probe_bspline();
   probe_interpolation();
   probe_motion();
   probe_protocol();
+  probe_stepgen();
 }
 
 }  // namespace curvestep::probe

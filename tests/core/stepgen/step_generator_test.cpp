@@ -172,8 +172,14 @@ TEST_CASE("stepgen: the steps of one tick are spread evenly inside the tick", "[
       largest = std::max(largest, rises[i] - rises[i - 1]);
     }
     CHECK(largest - smallest <= 1);
-    // The steps fill the tick: spacing within 1 % (the guard band) of the tick over the steps.
-    CHECK(std::fabs(static_cast<double>(largest) - 1000.0 / steps) <= 1000.0 / steps * 0.011 + 1);
+    // Step j is due where the straight line crosses j + 1/2 steps, at (j + 1/2) / steps of the
+    // tick; the documented bound puts each rise within [-(P - R) - 1, S] timer ticks of that.
+    for (std::size_t j = 0; j < rises.size(); ++j) {
+      const double ideal = (static_cast<double>(j) + 0.5) / steps * config.period_ticks();
+      const double error = static_cast<double>(rises[j]) - ideal;
+      CHECK(error >= -static_cast<double>(config.period_ticks() - config.window_ticks() + 1));
+      CHECK(error <= static_cast<double>(config.setup_ticks()));
+    }
     CHECK(rises.front() >= config.setup_ticks());
     CHECK(axes[0].falls.back() < config.period_ticks());
     CHECK(axes[0].count == steps);
