@@ -3,6 +3,7 @@
 // clamped, uniform / non-uniform / chord-length) and seed 001 TV-12, TV-13 (closed), property P-6.
 #include <array>
 #include <cmath>
+#include <random>
 #include <span>
 
 #include <catch2/catch.hpp>
@@ -352,4 +353,52 @@ TEST_CASE("interpolation: spline coordinates beyond the Q16.16 range report Fixe
   const auto r = interpolate_natural_cubic(std::span<const Vec2<S>>(p), Parametrization::Uniform, curve);
   REQUIRE(!r.has_value());
   CHECK(r.error() == Error::FixedOverflow);
+}
+
+TEMPLATE_TEST_CASE("interpolation: random splines in float and Q16.16 stay close to the double spline", "[core][interpolation]",
+                   float, Q16_16) {
+  using S = TestType;
+  std::mt19937 random(curvestep::testing::test_seed());
+  std::uniform_real_distribution<double> coordinate(-100, 100);
+  const int cases = curvestep::testing::test_count(100);
+  for (int c = 0; c < cases; ++c) {
+    const std::size_t n = 3 + static_cast<std::size_t>(c % 10);
+    std::array<Vec2<double>, 12> exact{};
+    std::array<Vec2<S>, 12> data{};
+    for (std::size_t i = 0; i < n; ++i) {
+      // Quantised to 1/256 so that every scalar type sees the same data.
+      data[i] = point<S>(std::round(coordinate(random) * 256) / 256, std::round(coordinate(random) * 256) / 256);
+      exact[i] = Vec2<double>{{to_double(data[i][0]), to_double(data[i][1])}};
+    }
+    const auto kind = c % 3 == 0 ? Parametrization::Uniform : (c % 3 == 1 ? Parametrization::ChordLength : Parametrization::Centripetal);
+    CompositeBezier<double, 2, 3, 16> reference;
+    CompositeBezier<S, 2, 3, 16> approximate;
+    const bool closed = c % 2 == 1;
+    const std::span<const Vec2<double>> exact_view(exact.data(), n);
+    const std::span<const Vec2<S>> data_view(data.data(), n);
+    if (closed) {
+      REQUIRE(interpolate_closed_cubic(exact_view, kind, reference).has_value());
+      REQUIRE(interpolate_closed_cubic(data_view, kind, approximate).has_value());
+    } else {
+      REQUIRE(interpolate_natural_cubic(exact_view, kind, reference).has_value());
+      REQUIRE(interpolate_natural_cubic(data_view, kind, approximate).has_value());
+    }
+    REQUIRE(approximate.size() == reference.size());
+    double worst = 0;
+    for (std::size_t j = 0; j < reference.size(); ++j) {
+      for (std::size_t k = 0; k <= 3; ++k) worst = std::fmax(worst, max_error(approximate.segment(j)[k], to_doubles(reference.segment(j)[k])));
+    }
+    // Q16.16 holds the tangents (and the system's coefficients) to an absolute 2^-16, so an inner
+    // Bézier point p + h·v/3 is off by about one unit per unit of its leg |h·v/3|: the scale is the
+    // longest leg. float errors are relative to the knots, which reach a few thousand with chord
+    // lengths, so its scale is the largest knot.
+    double longest_leg = 0;
+    for (std::size_t j = 0; j < reference.size(); ++j) {
+      const auto& b = reference.segment(j);
+      longest_leg = std::fmax(longest_leg, std::fmax(norm(b[1] - b[0]), norm(b[3] - b[2])));
+    }
+    const double scale = FixedPoint<S> ? std::fmax(100.0, longest_leg) : std::fmax(100.0, to_double(reference.domain_end()));
+    CHECK(worst <= solve_tolerance<S>(scale));
+    CHECK(joint_jump(approximate, 1, closed) <= solve_tolerance<S>(scale));
+  }
 }

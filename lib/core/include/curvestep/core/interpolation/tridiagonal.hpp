@@ -59,7 +59,8 @@ template <Scalar S, std::size_t Dim>
 /// True when |pivot| is too small against the row magnitude to divide by safely.
 template <Scalar S>
 [[nodiscard]] constexpr bool negligible_pivot(S pivot, S row_magnitude) noexcept {
-  const Checked<S> threshold = Checked<S>(row_magnitude) * Checked<S>(resolution<S>()) * Checked<S>(from_int<S>(16));
+  // 16·resolution first: with Fixed, resolution·|row| alone would round to zero for |row| < ½.
+  const Checked<S> threshold = Checked<S>(resolution<S>()) * Checked<S>(from_int<S>(16)) * Checked<S>(row_magnitude);
   if (!threshold.ok) return false;  // a huge row: the pivot test below is moot, overflow is caught later
   return !(threshold.value < abs(pivot)) || pivot == S{};
 }
