@@ -16,5 +16,15 @@
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/core/geometry/bounding_box.hpp>
 #include <curvestep/core/geometry/vec.hpp>
+#include <curvestep/core/interpolation/catmull_rom.hpp>
+#include <curvestep/core/interpolation/cubic_spline.hpp>
+#include <curvestep/core/interpolation/hermite.hpp>
+#include <curvestep/core/interpolation/parametrization.hpp>
+#include <curvestep/core/interpolation/quadratic_spline.hpp>
+#include <curvestep/core/interpolation/tridiagonal.hpp>
 #include <curvestep/core/result.hpp>
 #include <curvestep/core/scalar.hpp>
+#include <curvestep/core/subdivision/limit.hpp>
+#include <curvestep/core/subdivision/refinable_polygon.hpp>
+#include <curvestep/core/subdivision/refine.hpp>
+#include <curvestep/core/subdivision/subdivision_mask.hpp>
