@@ -7,6 +7,9 @@
 // check structure (lengths, counts, enum values, reserved bits, positive weights) and return
 // BadPayload with the byte offset of the offending field; the firmware validates meaning
 // (limits, rates, continuity) with the planner's own error codes.
+// Memory: a Message is about 300 bytes (the union's largest member is SetpointBatch). A
+// controller short of stack can check Frame::type and call decode<QueueSegment> (140 bytes)
+// directly instead of decode_message.
 #pragma once
 
 #include <array>
@@ -708,6 +711,8 @@ class Message {
   MessageType type_ = MessageType::Hello;
   Body body_;
 };
+
+static_assert(std::is_trivially_copyable_v<Message>, "Message is copied as bytes into queues");
 
 /// Calls `visitor(const T&)` with the message held by `m`; returns what the visitor returns.
 template <class Visitor>
