@@ -15,6 +15,7 @@ void probe_bspline();
 void probe_interpolation();
 void probe_motion();
 void probe_protocol();
+void probe_stepgen();
 
 /// Runs every probe (called from Reset_Handler).
 inline void run_all() {
@@ -23,6 +24,7 @@ inline void run_all() {
   probe_interpolation();
   probe_motion();
   probe_protocol();
+  probe_stepgen();
 }
 
 }  // namespace curvestep::probe
