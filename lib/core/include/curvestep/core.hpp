@@ -2,6 +2,12 @@
 // Umbrella header for curvestep::core: fixed point, vectors and curves. Allocation-free.
 #pragma once
 
+#include <curvestep/core/bspline/basis.hpp>
+#include <curvestep/core/bspline/bezier_extraction.hpp>
+#include <curvestep/core/bspline/bspline.hpp>
+#include <curvestep/core/bspline/conics.hpp>
+#include <curvestep/core/bspline/knot_vector.hpp>
+#include <curvestep/core/bspline/nurbs.hpp>
 #include <curvestep/core/contract.hpp>
 #include <curvestep/core/curve/arc_length.hpp>
 #include <curvestep/core/curve/bernstein.hpp>
