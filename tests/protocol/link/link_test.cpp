@@ -348,3 +348,20 @@ TEST_CASE("link: a late Ack that arrives after a timeout still releases the fram
   controller.receive(concatenate(resent), 102);  // the retransmissions are duplicates
   CHECK(controller.delivered.size() == 3);
 }
+
+TEST_CASE("link: a host that hears nothing for the link timeout fails with LinkTimeout", "[protocol][link]") {
+  Host<> host(SenderSettings{100, 10, 300});
+  Controller controller(4, ReceiverSettings{100, 0});
+  handshake(host, controller, 0);
+  for (std::uint32_t now = 1; now < 1000; ++now) {
+    host.receive(concatenate(controller.poll(now)), now);  // heartbeats keep the link alive
+    CHECK(host.transmit(now).empty());
+  }
+  REQUIRE(host.link_errors.empty());
+  CHECK(host.transmit(1199).empty());  // the controller went silent after its heartbeat at 900
+  CHECK(host.link_errors.empty());
+  CHECK(host.transmit(1200).empty());
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::LinkTimeout);
+  CHECK(host.sender.state() == LinkState::Failed);
+}

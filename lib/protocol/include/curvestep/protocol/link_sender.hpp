@@ -20,7 +20,8 @@
 // Capabilities with the same session arrives (LinkTimeout after max_retransmits tries). A
 // Capabilities with another version, or Nak(VersionMismatch), refuses the connection with
 // VersionMismatch. Once connected, Nak(NotConnected) means the controller restarted:
-// DeviceRestarted.
+// DeviceRestarted. With link_timeout_ms set, a connected host that hears nothing (the
+// controller's heartbeat Acks included) for that long fails with LinkTimeout.
 // Time is passed in (now_ms, wrapping uint32 arithmetic); nothing allocates. Memory is
 // Window * (max_encoded_frame_size + 2) bytes plus counters: 8 slots take about 1.3 KiB.
 #pragma once
@@ -48,6 +49,7 @@ enum class LinkState : std::uint8_t {
 struct SenderSettings {
   std::uint32_t retransmit_timeout_ms = 100;  ///< resend unacknowledged frames after this silence
   std::uint8_t max_retransmits = 10;          ///< go-backs of one frame (or Hellos) before failing
+  std::uint32_t link_timeout_ms = 0;          ///< connected and nothing heard for this long: LinkTimeout (0: never)
 };
 
 /// The host's end of the link; `Window` frames may be unacknowledged at once.
@@ -112,6 +114,9 @@ class LinkSender {
       return size;
     }
     if (state_ != LinkState::Connected) return std::size_t{0};
+    if (settings_.link_timeout_ms != 0 && now_ms - heard_ms_ >= settings_.link_timeout_ms) {
+      return give_up(Error::LinkTimeout, now_ms - heard_ms_);
+    }
     if (sent_ > 0 && now_ms - timer_ms_ >= settings_.retransmit_timeout_ms) {
       CURVESTEP_CHECK(go_back());
     }
@@ -129,8 +134,9 @@ class LinkSender {
   /// messages are the application's and ignored here. Fails with VersionMismatch,
   /// DeviceRestarted or RetransmitLimit (state becomes Failed).
   [[nodiscard]] constexpr Result<void> on_message(const Message& m, std::uint32_t now_ms) noexcept {
+    heard_ms_ = now_ms;
     switch (m.type()) {
-      case MessageType::Capabilities: return on_capabilities(m.get<Capabilities>());
+      case MessageType::Capabilities: return on_capabilities(m.get<Capabilities>(), now_ms);
       case MessageType::Ack: on_ack(m.get<Ack>().next_expected, m.get<Ack>().credit_end, true, now_ms); return ok();
       case MessageType::Nak: return on_nak(m.get<Nak>(), now_ms);
       default: return ok();
@@ -181,12 +187,13 @@ class LinkSender {
     return ok();
   }
 
-  [[nodiscard]] constexpr Result<void> on_capabilities(const Capabilities& c) noexcept {
+  [[nodiscard]] constexpr Result<void> on_capabilities(const Capabilities& c, std::uint32_t now_ms) noexcept {
     if (state_ != LinkState::Connecting || c.session != session_) return ok();  // stale or repeated answer
     if (c.version != protocol_version) return give_up(Error::VersionMismatch, c.version);
     capabilities_ = c;
     credit_end_ = c.credit_end;
     state_ = LinkState::Connected;
+    heard_ms_ = now_ms;
     return ok();
   }
 
@@ -225,6 +232,7 @@ class LinkSender {
   Capabilities capabilities_{};
   SenderSettings settings_;
   std::uint32_t timer_ms_ = 0;
+  std::uint32_t heard_ms_ = 0;  // when the controller last sent anything
   std::size_t oldest_ = 0;  // slot index of the oldest unacknowledged frame
   std::size_t count_ = 0;   // unacknowledged frames
   std::size_t sent_ = 0;    // of those, how many have been (re)transmitted since the last go-back
