@@ -119,7 +119,7 @@ TEST_CASE("link: a randomized stream crosses a bad line exactly once and in orde
   BadLine to_controller(rng, {});
   BadLine to_host(rng, {});
 
-  Host<8> host(SenderSettings{40, 40});
+  Host<8> host(SenderSettings{40, 40, 1000});
   Controller controller(5, ReceiverSettings{30, 0});
   host.sender.connect(static_cast<std::uint16_t>(rng()), 0);
 
