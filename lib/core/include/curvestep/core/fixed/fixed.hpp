@@ -70,7 +70,7 @@ class Fixed {
   constexpr Fixed() noexcept = default;
 
   /// An integer value; out of range is a contract violation (use from_integer for input data).
-  constexpr explicit Fixed(int integer) : raw_(checked_raw(wide{integer} * one_raw)) {}
+  constexpr explicit Fixed(int integer) : raw_(checked_raw_integer(static_cast<long long>(integer) * one_raw)) {}
 
   /// Wraps a raw Q-format integer. Escape hatch: the caller vouches for the scaling.
   [[nodiscard]] static constexpr Fixed from_raw(Rep raw) noexcept {
@@ -98,7 +98,8 @@ class Fixed {
     const double scaled = value * static_cast<double>(one_raw);
     const double limit_high = static_cast<double>(std::numeric_limits<Rep>::max()) + 0.5;
     const double limit_low = static_cast<double>(std::numeric_limits<Rep>::min()) - 0.5;
-    if (!(scaled < limit_high) || !(scaled >= limit_low)) return fail(Error::FixedOverflow);
+    // Both limits are exclusive: min - 0.5 would round (ties away from zero) to min - 1.
+    if (!(scaled < limit_high) || !(scaled > limit_low)) return fail(Error::FixedOverflow);
     return from_raw(static_cast<Rep>(round_half_away(scaled)));
   }
 
@@ -140,12 +141,12 @@ class Fixed {
   }
   /// Multiplication and division by an integer (exact for multiplication).
   [[nodiscard]] friend constexpr Fixed operator*(Fixed a, int k) {
-    return from_raw(checked_raw(wide{a.raw_} * k));
+    return from_raw(checked_raw_integer(static_cast<long long>(a.raw_) * k));
   }
   [[nodiscard]] friend constexpr Fixed operator*(int k, Fixed a) { return a * k; }
   [[nodiscard]] friend constexpr Fixed operator/(Fixed a, int k) {
     CURVESTEP_EXPECTS(k != 0);
-    return from_raw(checked_raw(round_divide(wide{a.raw_}, wide{k})));
+    return from_raw(checked_raw_integer(round_divide_integer(static_cast<long long>(a.raw_), static_cast<long long>(k))));
   }
 
   constexpr Fixed& operator+=(Fixed b) { return *this = *this + b; }
@@ -194,7 +195,7 @@ class Fixed {
   [[nodiscard]] static constexpr wide round_shift(wide v, int bits) noexcept {
     if (bits <= 0) return v;
     const wide half = wide{1} << (bits - 1);
-    return (v + (v >= 0 ? half : half - 1)) >> bits;
+    return static_cast<wide>((v + (v >= 0 ? half : half - 1)) >> bits);
   }
   /// Narrows a wide raw value; FixedOverflow if it does not fit.
   [[nodiscard]] static constexpr Result<Fixed> from_wide(wide raw) noexcept {
@@ -213,6 +214,20 @@ class Fixed {
   }
   static constexpr wide divide_raw(Rep a, Rep b) noexcept {
     return round_divide(wide{a} * one_raw, wide{b});
+  }
+  /// Narrows a product or quotient computed in long long (int arguments need not fit `wide`).
+  static constexpr Rep checked_raw_integer(long long raw) {
+    CURVESTEP_EXPECTS(raw <= static_cast<long long>(std::numeric_limits<Rep>::max()) &&
+                      raw >= static_cast<long long>(std::numeric_limits<Rep>::min()));
+    return static_cast<Rep>(raw);
+  }
+  /// n / d rounded to nearest, ties away from zero, for |n|, |d| < 2^62.
+  static constexpr long long round_divide_integer(long long n, long long d) noexcept {
+    const bool negative = (n < 0) != (d < 0);
+    const long long magnitude_n = n < 0 ? -n : n;
+    const long long magnitude_d = d < 0 ? -d : d;
+    const long long q = (magnitude_n + magnitude_d / 2) / magnitude_d;
+    return negative ? -q : q;
   }
   static constexpr Rep checked_raw(wide raw) {
     CURVESTEP_EXPECTS(raw <= wide{std::numeric_limits<Rep>::max()} &&
