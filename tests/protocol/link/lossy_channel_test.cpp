@@ -109,23 +109,22 @@ bool is_stream_message(const Message& m, int i) {
   return m.get<QueueSegment>().feed_mm_per_s == i && m.get<QueueSegment>().points[1][0] == i;
 }
 
-}  // namespace
-
-TEST_CASE("link: a randomized stream crosses a bad line exactly once and in order", "[protocol][link]") {
-  const std::uint32_t seed = curvestep::testing::test_seed();
-  const int total = curvestep::testing::test_count(400);
-  INFO("seed " << seed << " messages " << total);
+/// Runs `total` messages from a host with `Window` frames through two bad lines to a
+/// controller with `queue_capacity` slots, and checks delivery and flow control.
+template <std::size_t Window>
+void run_stream(std::uint32_t seed, int total, BadLine::Rates rates, std::uint16_t queue_capacity) {
+  INFO("seed " << seed << " messages " << total << " window " << Window << " queue " << queue_capacity);
   std::mt19937 rng(seed);
-  BadLine to_controller(rng, {});
-  BadLine to_host(rng, {});
+  BadLine to_controller(rng, rates);
+  BadLine to_host(rng, rates);
 
-  Host<8> host(SenderSettings{40, 40, 1000});
-  Controller controller(5, ReceiverSettings{30, 0});
+  Host<Window> host(SenderSettings{40, 60, 2000});
+  Controller controller(queue_capacity, ReceiverSettings{30, 0});
   host.sender.connect(static_cast<std::uint16_t>(rng()), 0);
 
   int next = 0;
   std::uint32_t now = 0;
-  const std::uint32_t deadline = 600000;
+  const std::uint32_t deadline = 2000000;
   std::size_t max_queue = 0;
   int max_in_flight_segments = 0;
   for (; now < deadline; ++now) {
@@ -162,8 +161,8 @@ TEST_CASE("link: a randomized stream crosses a bad line exactly once and in orde
     CHECK(is_stream_message(controller.delivered[static_cast<std::size_t>(i)], i));
   }
   CHECK(controller.queue_overruns == 0);
-  CHECK(max_queue <= 5);
-  CHECK(max_in_flight_segments <= 5);
+  CHECK(max_queue <= queue_capacity);
+  CHECK(max_in_flight_segments <= queue_capacity);
   for (const Nak& n : controller.naks) CHECK(n.reason != Error::QueueFull);
   // The line really was bad in every way.
   CHECK(to_controller.lost > 0);
@@ -172,4 +171,20 @@ TEST_CASE("link: a randomized stream crosses a bad line exactly once and in orde
   CHECK(to_controller.reordered > 0);
   CHECK(to_host.lost > 0);
   CHECK(to_host.reordered > 0);
+}
+
+}  // namespace
+
+TEST_CASE("link: a randomized stream crosses a bad line exactly once and in order", "[protocol][link]") {
+  run_stream<8>(curvestep::testing::test_seed(), curvestep::testing::test_count(400), BadLine::Rates{}, 5);
+}
+
+TEST_CASE("link: a randomized stream crosses a very bad line with a small window and queue", "[protocol][link]") {
+  BadLine::Rates harsh;
+  harsh.loss = 0.25;
+  harsh.corruption = 0.15;
+  harsh.duplication = 0.2;
+  harsh.garbage = 0.1;
+  harsh.jitter_ms = 20;
+  run_stream<3>(curvestep::testing::test_seed() + 1, curvestep::testing::test_count(400) / 2, harsh, 2);
 }
