@@ -89,13 +89,12 @@ class LinkReceiver {
       return acknowledge(free_queue_slots, now_ms);
     }
     if (distance != 0) return nak(Error::SequenceError, false);  // ahead: a gap
-    Reception r;
     grow_credit(free_queue_slots);
     if (consumes_credit(type) && segments_accepted_ == credit_end_) return nak(Error::QueueFull, true);
     ++expected_;
     nak_sent_ = false;
     if (consumes_credit(type)) ++segments_accepted_;
-    r = acknowledge_current(now_ms);
+    Reception r = acknowledge_current(now_ms);
     r.disposition = Disposition::Deliver;
     return r;
   }
@@ -117,7 +116,7 @@ class LinkReceiver {
     return acknowledge_current(now_ms);
   }
 
-  /// LinkTimeout (index = ms of silence, capped) if connected and nothing arrived for link_timeout_ms.
+  /// LinkTimeout (index = ms of silence, capped at 0xFFFF) if connected and nothing arrived for link_timeout_ms.
   [[nodiscard]] constexpr Result<void> check_link(std::uint32_t now_ms) const noexcept {
     if (!connected_ || settings_.link_timeout_ms == 0) return ok();
     const std::uint32_t silence = now_ms - last_frame_ms_;
