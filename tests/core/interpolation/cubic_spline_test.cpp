@@ -5,6 +5,7 @@
 #include <cmath>
 #include <random>
 #include <span>
+#include <type_traits>
 
 #include <catch2/catch.hpp>
 
@@ -243,37 +244,39 @@ TEMPLATE_TEST_CASE("interpolation: TV-13 closed C2 cubic through a pentagon, uni
 }
 
 namespace {
-/// ∫|s''|² du over a composite cubic, exactly: s'' is linear on each segment.
-double bending_energy(const CompositeBezier<double, 2, 3, 16>& curve) {
+/// ∫|s''|² du over a composite cubic, exactly (in double): s'' is linear on each segment.
+template <class S>
+double bending_energy(const CompositeBezier<S, 2, 3, 16>& curve) {
   double energy = 0;
   for (std::size_t j = 0; j < curve.size(); ++j) {
-    const auto a = curve.segment_derivative(j, 0.0, 2).value();
-    const auto b = curve.segment_derivative(j, 1.0, 2).value();
-    const double h = curve.breakpoint(j + 1) - curve.breakpoint(j);
-    energy += h * (dot(a, a) + dot(a, b) + dot(b, b)) / 3;
+    const auto a = to_doubles(curve.segment_derivative(j, S{}, 2).value());
+    const auto b = to_doubles(curve.segment_derivative(j, from_int<S>(1), 2).value());
+    const double h = to_double(curve.breakpoint(j + 1)) - to_double(curve.breakpoint(j));
+    energy += h * (a[0] * a[0] + a[1] * a[1] + a[0] * b[0] + a[1] * b[1] + b[0] * b[0] + b[1] * b[1]) / 3;
   }
   return energy;
 }
 }  // namespace
 
-TEST_CASE("interpolation: P-6 the clamped C2 spline has the least bending energy", "[core][interpolation][seed]") {
-  const std::array<Vec2<double>, 5> p{{{{0, 0}}, {{1, 2}}, {{3, 3}}, {{4, 0}}, {{6, 1}}}};
-  const std::array<double, 5> u{0, 1, 2, 3, 4};
-  CompositeBezier<double, 2, 3, 16> spline;
-  REQUIRE(interpolate_clamped_cubic(std::span<const Vec2<double>>(p), std::span<const double>(u), Vec2<double>{{1, 1}},
-                                    Vec2<double>{{1, -1}}, spline)
-              .has_value());
+TEMPLATE_TEST_CASE("interpolation: P-6 the clamped C2 spline has the least bending energy", "[core][interpolation][seed]", double,
+                   float, Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 5>({{{0, 0}, {1, 2}, {3, 3}, {4, 0}, {6, 1}}});
+  const auto u = scalars<S, 5>({0, 1, 2, 3, 4});
+  Spline<S> spline;
+  REQUIRE(interpolate_clamped_cubic(view(p), view(u), point<S>(1, 1), point<S>(1, -1), spline).has_value());
   const double minimum = bending_energy(spline);
-  std::array<Vec2<double>, 5> v{};
-  for (std::size_t j = 0; j < 5; ++j) {
-    v[j] = j < 4 ? spline.segment_derivative(j, 0.0, 1).value() : spline.segment_derivative(3, 1.0, 1).value();
-  }
+  std::array<Vec2<S>, 5> v{};
+  for (std::size_t j = 0; j < 5; ++j) v[j] = tangent_at_knot(spline, j);
+  // The energy grows quadratically in the perturbation: small steps only where rounding allows.
+  const std::array<double, 4> steps = FixedPoint<S> || std::is_same_v<S, float> ? std::array<double, 4>{-0.5, -0.125, 0.125, 0.5}
+                                                                                 : std::array<double, 4>{-0.5, -0.01, 0.01, 0.5};
   for (std::size_t j = 1; j < 4; ++j) {
-    for (const double delta : {-0.5, -0.01, 0.01, 0.5}) {
+    for (const double delta : steps) {
       for (std::size_t axis = 0; axis < 2; ++axis) {
         auto w = v;
-        w[j][axis] += delta;
-        CompositeBezier<double, 2, 3, 16> other;
+        w[j][axis] = w[j][axis] + scalar<S>(delta);
+        Spline<S> other(u[0]);
         for (std::size_t i = 0; i < 4; ++i) {
           REQUIRE(other.try_append(hermite_to_bezier(p[i], p[i + 1], w[i], w[i + 1], u[i], u[i + 1]).value(), u[i + 1]).has_value());
         }
@@ -283,12 +286,53 @@ TEST_CASE("interpolation: P-6 the clamped C2 spline has the least bending energy
   }
 }
 
+TEMPLATE_TEST_CASE("interpolation: TV-24 tangents straight from the solver", "[core][interpolation][seed]", double, float, Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 5>({{{0, 0}, {1, 2}, {3, 3}, {4, 0}, {6, 1}}});
+  const auto u = scalars<S, 5>({0, 1, 2, 3, 4});
+  std::array<Vec2<S>, 5> tangents{};
+  REQUIRE((cubic_spline_tangents<8>(view(p), view(u), CubicEnd::Natural, Vec2<S>{}, Vec2<S>{}, std::span<Vec2<S>>(tangents))
+               .has_value()));
+  const std::array<std::array<double, 2>, 5> d{
+      {{9 / 14., 107 / 56.}, {12 / 7., 61 / 28.}, {1.5, -13 / 8.}, {9 / 7., -47 / 28.}, {33 / 14., 131 / 56.}}};
+  for (std::size_t j = 0; j < 5; ++j) CHECK(max_error(tangents[j], d[j]) <= solve_tolerance<S>(4));
+  std::array<Vec2<S>, 4> short_buffer{};
+  CHECK((cubic_spline_tangents<8>(view(p), view(u), CubicEnd::Natural, Vec2<S>{}, Vec2<S>{}, std::span<Vec2<S>>(short_buffer))
+             .error() == Error::BufferTooSmall));
+  CHECK((cubic_spline_tangents<4>(view(p), view(u), CubicEnd::Natural, Vec2<S>{}, Vec2<S>{}, std::span<Vec2<S>>(tangents))
+             .error() == Error::CapacityExceeded));
+}
+
+TEMPLATE_TEST_CASE("interpolation: parametrize reports short buffers and too few points", "[core][interpolation]", double, float,
+                   Q16_16) {
+  using S = TestType;
+  const auto p = points2<S, 3>({{{0, 0}, {3, 4}, {3, 10}}});
+  std::array<S, 3> u{};
+  CHECK(parametrize(view(p), Parametrization::ChordLength, std::span<S>(u)).value() == 3);
+  const auto r = parametrize(view(p), Parametrization::ChordLength, std::span<S>(u), Closure::Closed);
+  CHECK(r.error() == Error::BufferTooSmall);
+  CHECK(r.where() == 4);
+  CHECK(parametrize(view(p).first(1), Parametrization::Uniform, std::span<S>(u)).error() == Error::TooFewPoints);
+  CHECK(to_double(checked_distance(p[1], p[2]).value()) == 6);
+}
+
+TEST_CASE("interpolation: Q16.16 distances do not overflow for far-apart points", "[core][interpolation]") {
+  // 60000 mm apart: the squared distance would overflow Q16.16 many times over.
+  const auto a = point<Q16_16>(-30000, -100);
+  const auto b = point<Q16_16>(30000, 100);
+  const auto d = checked_distance(a, b);
+  REQUIRE(d.has_value() == false);  // 60000.3 is beyond the Q16.16 range itself
+  CHECK(d.error() == Error::FixedOverflow);
+  const auto c = checked_distance(point<Q16_16>(-15000, 0), point<Q16_16>(15000, 400));
+  CHECK(to_double(c.value()) == Approx(std::hypot(30000.0, 400.0)).margin(1e-4));
+}
+
 TEMPLATE_TEST_CASE("interpolation: centripetal knots are square roots of the chords", "[core][interpolation]", double, float,
                    Q16_16) {
   using S = TestType;
   const auto p = points2<S, 4>({{{0, 0}, {3, 4}, {3, 13}, {3, 14}}});
   std::array<S, 5> u{};
-  REQUIRE(parametrize(view(p), Parametrization::Centripetal, std::span<S>(u), true).value() == 5);
+  REQUIRE(parametrize(view(p), Parametrization::Centripetal, std::span<S>(u), Closure::Closed).value() == 5);
   const std::array<double, 5> expected{0, std::sqrt(5.0), std::sqrt(5.0) + 3, std::sqrt(5.0) + 4, std::sqrt(5.0) + 4 + std::sqrt(std::sqrt(205.0))};
   for (std::size_t i = 0; i < 5; ++i) CHECK(std::fabs(to_double(u[i]) - expected[i]) <= solve_tolerance<S>(16));
   Spline<S> closed;

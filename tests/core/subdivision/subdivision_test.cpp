@@ -238,6 +238,23 @@ TEMPLATE_TEST_CASE("subdivision: TV-15 open zigzag with replicated end points", 
   }
 }
 
+TEMPLATE_TEST_CASE("subdivision: limits of open polygons follow the boundary rule", "[core][subdivision]", double, float, Q16_16) {
+  using S = TestType;
+  const auto p = zigzag<S>();
+  const std::span<const Vec2<S>> polygon(p);
+  // Finite rule: no neighbour beyond the ends, so no limit at P_0 and no piece ending at P_K.
+  CHECK(limit_point(SubdivisionScheme::CubicBSpline, polygon, 0, Boundary::Finite).error() == Error::InvalidArgument);
+  CHECK(limit_bezier(SubdivisionScheme::Chaikin, polygon, 4, Boundary::Finite).error() == Error::InvalidArgument);
+  CHECK(limit_bezier(SubdivisionScheme::CubicBSpline, polygon, 4, Boundary::PseudoFinite).error() == Error::InvalidArgument);
+  CHECK(max_error(limit_point(SubdivisionScheme::CubicBSpline, polygon, 1, Boundary::Finite).value(), {4, 16 / 3.}) <=
+        to_double(resolution<S>()) * (FixedPoint<S> ? 1 : 16));
+  CHECK(limit_point(SubdivisionScheme::FourPoint, polygon, 0, Boundary::Finite).value() == p[0]);
+  // Pseudo-finite: replicated ends, (5 P_0 + P_1)/6 and (7 P_0 + P_1)/8.
+  CHECK(max_error(limit_point(SubdivisionScheme::CubicBSpline, polygon, 0, Boundary::PseudoFinite).value(), {2 / 3., 4 / 3.}) <=
+        to_double(resolution<S>()) * (FixedPoint<S> ? 1 : 16));
+  CHECK(max_error(limit_point(SubdivisionScheme::Chaikin, polygon, 0, Boundary::PseudoFinite).value(), {0.5, 1}) == 0);
+}
+
 TEMPLATE_TEST_CASE("subdivision: TV-16 the four-point scheme reproduces cubics but not quartics", "[core][subdivision][seed]", double,
                    float, Q16_16) {
   using S = TestType;

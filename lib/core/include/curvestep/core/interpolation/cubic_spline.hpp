@@ -37,8 +37,9 @@ namespace curvestep {
 
 /// End condition of an open C2 cubic spline.
 enum class CubicEnd : std::uint8_t {
-  Natural,  ///< zero second derivative at both ends
-  Clamped,  ///< prescribed first derivatives (with respect to u) at both ends
+  Natural,  ///< open; zero second derivative at both ends
+  Clamped,  ///< open; prescribed first derivatives (with respect to u) at both ends
+  Closed,   ///< closed loop (periodic C2), no ends
 };
 
 /// (3 − √5)/2 ≈ 0.381966: lower bound on h_{i+1}/h_i in seed 002 Thm 3.3.
@@ -72,18 +73,19 @@ template <Scalar S>
 }
 
 /// Solves for the tangents v_i = s'(u_i) of the C2 cubic spline through `points`.
-/// Open: knots.size() == points.size(); closed: knots.size() == points.size() + 1 (the last knot
-/// closes the curve back to points[0]) and the clamped tangents are ignored. Capacity bounds the
+/// Open ends: knots.size() == points.size(); CubicEnd::Closed: knots.size() == points.size() + 1
+/// (the last knot closes the curve back to points[0]). The tangents are used only when Clamped. Capacity bounds the
 /// number of points. Errors: TooFewPoints (< 2 open, < 3 closed), CapacityExceeded, BufferTooSmall
 /// (tangents shorter than points), InvalidArgument (knot count), InvalidInterval, NotFinite,
 /// SingularSystem, FixedOverflow.
 template <std::size_t Capacity, Scalar S, std::size_t Dim>
 [[nodiscard]] constexpr Result<void> cubic_spline_tangents(std::span<const Vec<S, Dim>> points, std::span<const S> knots,
-                                                           bool closed, CubicEnd end, const Vec<S, Dim>& start_tangent,
+                                                           CubicEnd end, const Vec<S, Dim>& start_tangent,
                                                            const Vec<S, Dim>& end_tangent,
                                                            std::span<Vec<S, Dim>> tangents) noexcept {
   using detail::Checked;
   const std::size_t n = points.size();
+  const bool closed = end == CubicEnd::Closed;
   if (n < (closed ? 3u : 2u)) return fail(Error::TooFewPoints, n);
   if (n > Capacity) return fail(Error::CapacityExceeded, n);
   if (tangents.size() < n) return fail(Error::BufferTooSmall, n);
@@ -99,7 +101,7 @@ template <std::size_t Capacity, Scalar S, std::size_t Dim>
   for (std::size_t j = 0; j < n; ++j) {
     const bool first = j == 0;
     const bool last = j + 1 == n;
-    if (!closed && (first || last) && end == CubicEnd::Clamped) {
+    if ((first || last) && end == CubicEnd::Clamped) {
       diagonal[j] = from_int<S>(1);
       tangents[j] = first ? start_tangent : end_tangent;
       continue;
@@ -162,7 +164,7 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
 [[nodiscard]] constexpr Result<void> interpolate_natural_cubic(std::span<const Vec<S, Dim>> points, std::span<const S> knots,
                                                                CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   std::array<Vec<S, Dim>, MaxSegments + 1> tangents{};
-  CURVESTEP_CHECK((cubic_spline_tangents<MaxSegments + 1>(points, knots, false, CubicEnd::Natural, Vec<S, Dim>{}, Vec<S, Dim>{},
+  CURVESTEP_CHECK((cubic_spline_tangents<MaxSegments + 1>(points, knots, CubicEnd::Natural, Vec<S, Dim>{}, Vec<S, Dim>{},
                                                           std::span<Vec<S, Dim>>(tangents))));
   return detail::assemble_hermite(points, std::span<const Vec<S, Dim>>(tangents.data(), points.size()), knots,
                                   points.size() - 1, out);
@@ -175,7 +177,7 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
                                                                const Vec<S, Dim>& start_tangent, const Vec<S, Dim>& end_tangent,
                                                                CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   std::array<Vec<S, Dim>, MaxSegments + 1> tangents{};
-  CURVESTEP_CHECK((cubic_spline_tangents<MaxSegments + 1>(points, knots, false, CubicEnd::Clamped, start_tangent, end_tangent,
+  CURVESTEP_CHECK((cubic_spline_tangents<MaxSegments + 1>(points, knots, CubicEnd::Clamped, start_tangent, end_tangent,
                                                           std::span<Vec<S, Dim>>(tangents))));
   return detail::assemble_hermite(points, std::span<const Vec<S, Dim>>(tangents.data(), points.size()), knots,
                                   points.size() - 1, out);
@@ -188,7 +190,7 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
 [[nodiscard]] constexpr Result<void> interpolate_closed_cubic(std::span<const Vec<S, Dim>> points, std::span<const S> knots,
                                                               CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   std::array<Vec<S, Dim>, MaxSegments> tangents{};
-  CURVESTEP_CHECK((cubic_spline_tangents<MaxSegments>(points, knots, true, CubicEnd::Natural, Vec<S, Dim>{}, Vec<S, Dim>{},
+  CURVESTEP_CHECK((cubic_spline_tangents<MaxSegments>(points, knots, CubicEnd::Closed, Vec<S, Dim>{}, Vec<S, Dim>{},
                                                       std::span<Vec<S, Dim>>(tangents))));
   return detail::assemble_hermite(points, std::span<const Vec<S, Dim>>(tangents.data(), points.size()), knots, points.size(),
                                   out);
@@ -224,7 +226,7 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
                                                               CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   if (points.size() > MaxSegments) return fail(Error::CapacityExceeded, points.size());
   std::array<S, MaxSegments + 1> knots{};
-  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots), true));
+  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots), Closure::Closed));
   return interpolate_closed_cubic(points, std::span<const S>(knots.data(), count), out);
 }
 

@@ -35,6 +35,12 @@ enum class Parametrization : std::uint8_t {
   Centripetal,  ///< u_{i+1} − u_i = sqrt(|p_{i+1} − p_i|)
 };
 
+/// Whether a point sequence is an open curve or a closed loop (the last point joins the first).
+enum class Closure : std::uint8_t {
+  Open,    ///< n points, n knots
+  Closed,  ///< n points, n + 1 knots (the last for the closing chord p_{n-1} -> p_0)
+};
+
 /// |a − b| without intermediate overflow. FixedOverflow if the distance itself is out of range.
 template <Scalar S, std::size_t Dim>
 [[nodiscard]] constexpr Result<S> checked_distance(const Vec<S, Dim>& a, const Vec<S, Dim>& b) noexcept {
@@ -94,16 +100,16 @@ template <Scalar S, std::size_t Dim>
   return sqrt(d);
 }
 
-/// Writes u_0 = 0, u_1, …, u_{n-1} for the n points into `knots` (open curve); with `closed`,
-/// also u_n for the closing chord back to points[0] (n + 1 knots). Returns the number written.
+/// Writes u_0 = 0, u_1, …, u_{n-1} for the n points into `knots` (open curve); Closure::Closed
+/// also writes u_n for the closing chord back to points[0] (n + 1 knots). Returns the number written.
 /// TooFewPoints for fewer than 2 points, BufferTooSmall if `knots` is short, DegenerateCurve for
 /// coincident consecutive points (non-uniform), FixedOverflow/NotFinite if the sum leaves the range.
 template <Scalar S, std::size_t Dim>
 [[nodiscard]] constexpr Result<std::size_t> parametrize(std::span<const Vec<S, Dim>> points, Parametrization kind,
-                                                        std::span<S> knots, bool closed = false) noexcept {
+                                                        std::span<S> knots, Closure closure = Closure::Open) noexcept {
   const std::size_t n = points.size();
   if (n < 2) return fail(Error::TooFewPoints, n);
-  const std::size_t count = closed ? n + 1 : n;
+  const std::size_t count = closure == Closure::Closed ? n + 1 : n;
   if (knots.size() < count) return fail(Error::BufferTooSmall, count);
   knots[0] = S{};
   for (std::size_t i = 1; i < count; ++i) {

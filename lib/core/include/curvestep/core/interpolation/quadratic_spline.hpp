@@ -68,11 +68,12 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
   return ok();
 }
 
-/// Common input checks; `closed` adds the closing knot.
+/// Common input checks; Closure::Closed adds the closing knot.
 template <Scalar S, std::size_t Dim, std::size_t MaxSegments>
 [[nodiscard]] constexpr Result<void> check_quadratic_input(std::span<const Vec<S, Dim>> points, std::span<const S> knots,
-                                                           bool closed) noexcept {
+                                                           Closure closure) noexcept {
   const std::size_t n = points.size();
+  const bool closed = closure == Closure::Closed;
   if (n < (closed ? 3u : 2u)) return fail(Error::TooFewPoints, n);
   const std::size_t segments = closed ? n : n - 1;
   if (segments > MaxSegments) return fail(Error::CapacityExceeded, segments);
@@ -91,7 +92,7 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
                                                            const Vec<S, Dim>& start_tangent,
                                                            CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   using detail::Checked;
-  CURVESTEP_CHECK((detail::check_quadratic_input<S, Dim, MaxSegments>(points, knots, false)));
+  CURVESTEP_CHECK((detail::check_quadratic_input<S, Dim, MaxSegments>(points, knots, Closure::Open)));
   CURVESTEP_TRY(const S h, detail::interval_width(knots, 0));
   Vec<S, Dim> inner;
   for (std::size_t axis = 0; axis < Dim; ++axis) {
@@ -112,7 +113,7 @@ template <Scalar S, std::size_t MaxDegree, std::size_t MaxSegments>
                                                            const Vec<S, 2>& start_direction, const Vec<S, 2>& end_direction,
                                                            CompositeBezier<S, 2, MaxDegree, MaxSegments>& out) noexcept {
   using detail::Checked;
-  CURVESTEP_CHECK((detail::check_quadratic_input<S, 2, MaxSegments>(points, knots, false)));
+  CURVESTEP_CHECK((detail::check_quadratic_input<S, 2, MaxSegments>(points, knots, Closure::Open)));
   const std::size_t n = points.size() - 1;  // segments
   // R = Σ_{j<n} (−1)^j δ_{n−1−j}
   std::array<Checked<S>, 2> alternating{};
@@ -153,7 +154,7 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
 [[nodiscard]] constexpr Result<void> interpolate_closed_quadratic(std::span<const Vec<S, Dim>> points, std::span<const S> knots,
                                                                   CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   using detail::Checked;
-  CURVESTEP_CHECK((detail::check_quadratic_input<S, Dim, MaxSegments>(points, knots, true)));
+  CURVESTEP_CHECK((detail::check_quadratic_input<S, Dim, MaxSegments>(points, knots, Closure::Closed)));
   const std::size_t m = points.size();
   if (m % 2 == 0) return fail(Error::EvenClosedQuadratic, m);
   // Once round the loop from q_0 = 0 gives A; then q_0 = A/2.
@@ -206,7 +207,7 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
                                                                   CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   if (points.size() > MaxSegments) return fail(Error::CapacityExceeded, points.size());
   std::array<S, MaxSegments + 1> knots{};
-  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots), true));
+  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots), Closure::Closed));
   return interpolate_closed_quadratic(points, std::span<const S>(knots.data(), count), out);
 }
 
