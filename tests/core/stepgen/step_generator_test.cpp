@@ -105,6 +105,7 @@ TEST_CASE("stepgen: the configuration follows the documented tick layout", "[cor
   CHECK(config.max_fine_delta() == 99u * 65536u);
   CHECK(config.max_steps_per_tick() == 100);
   CHECK(config.max_events_per_tick() == 3 * (1 + 2 * 100));
+  CHECK(config.usable_step_rate_hz() == 99000.0);  // R / P of the 100 kHz driver limit
 }
 
 TEST_CASE("stepgen: nanosecond timings round up to whole timer ticks", "[core][stepgen]") {

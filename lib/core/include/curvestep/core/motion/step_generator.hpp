@@ -128,7 +128,7 @@ class StepConfig {
     if (static_cast<double>(period_ticks) * limits.rate_hz != timer) {
       return fail(Error::InvalidRate, static_cast<std::size_t>(LimitField::RateHz));
     }
-    const double rate_spacing = timer / limits.max_step_rate_hz;  // > 0, <= 2^32 / tiny: clamp below
+    const double rate_spacing = timer / limits.max_step_rate_hz;  // clamped to 2^32 for tiny rates
     std::uint64_t spacing_rate = rate_spacing >= 4294967296.0 ? 4294967296u : static_cast<std::uint64_t>(rate_spacing);
     if (static_cast<double>(spacing_rate) < rate_spacing) ++spacing_rate;
     const std::uint64_t pulse = at_least_one(ns_to_ticks(timing.min_pulse_ns, timing.timer_hz));
@@ -182,6 +182,13 @@ class StepConfig {
   /// Most steps one axis can take in one tick.
   [[nodiscard]] constexpr std::uint32_t max_steps_per_tick() const noexcept {
     return static_cast<std::uint32_t>(max_fine_delta_ >> fine_step_bits) + 1;
+  }
+  /// Fastest steady step rate an axis can run at under the per-tick rule, in steps per second:
+  /// max_fine_delta() / 65536 steps per tick times the control rate. Plan axis speeds below it.
+  [[nodiscard]] constexpr double usable_step_rate_hz() const noexcept {
+    if (period_ticks_ == 0) return 0;
+    return static_cast<double>(max_fine_delta_) / 65536.0 * static_cast<double>(timer_hz_) /
+           static_cast<double>(period_ticks_);
   }
   /// Most edges one tick can produce on all axes (size a StepBatch with at least this).
   [[nodiscard]] constexpr std::size_t max_events_per_tick() const noexcept {
@@ -363,14 +370,14 @@ class StepGenerator {
     batch.clear(tick_ * config_.period_ticks());
     std::array<AxisCursor, motion_axes> cursors{};
     for (std::size_t axis = 0; axis < motion_axes; ++axis) start_cursor(cursors[axis], moves[axis], axis);
-    // Three-way merge of the axes' time-ordered edge sequences; ties go to the lower axis.
+    // Merge of the axes' time-ordered edge sequences; ties go to the lower axis.
     for (;;) {
-      std::size_t chosen = motion_axes;
-      for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-        if (cursors[axis].active && (chosen == motion_axes || cursors[axis].time < cursors[chosen].time)) chosen = axis;
+      std::size_t chosen = 0;
+      for (std::size_t axis = 1; axis < motion_axes; ++axis) {
+        if (cursors[axis].time < cursors[chosen].time) chosen = axis;
       }
-      if (chosen == motion_axes) break;
       AxisCursor& cursor = cursors[chosen];
+      if (cursor.time == idle_time) break;
       const bool stored = batch.try_push(StepEvent{cursor.time, static_cast<std::uint8_t>(chosen), cursor.edge});
       CURVESTEP_EXPECTS(stored);
       step_cursor(cursor);
@@ -394,22 +401,36 @@ class StepGenerator {
   [[nodiscard]] constexpr const StepConfig& config() const noexcept { return config_; }
 
  private:
+  /// Time of a cursor with no edges left (offsets are below 2^23).
+  static constexpr std::uint32_t idle_time = 0xFFFFFFFFu;
+
   /// One axis's edges within the tick being generated.
   struct AxisCursor {
-    bool active = false;
-    std::uint32_t time = 0;           // offset of the next edge
+    std::uint32_t time = idle_time;   // offset of the next edge
     StepEdge edge = StepEdge::StepHigh;
-    StepEdge step_direction = StepEdge::DirectionPositive;
     std::uint32_t remaining = 0;      // rising edges still to emit
-    std::uint64_t rise = 0;           // floor(d_j * R / D) for the next step
+    std::uint32_t rise = 0;           // S + floor(d_j * R / D): offset of the current step's rise
+    std::uint32_t increment = 0;      // floor(65536 * R / D) (< 2^23 when two or more steps)
     std::uint64_t remainder = 0;      // (d_j * R) mod D
-    std::uint64_t increment = 0;      // floor(65536 * R / D)
     std::uint64_t increment_remainder = 0;  // (65536 * R) mod D
     std::uint64_t divisor = 0;        // D
   };
 
   static constexpr std::int8_t direction_of(const detail::AxisMove& move) noexcept {
     return move.count_to > move.count_from ? 1 : -1;
+  }
+
+  /// n / d with the remainder; one hardware 32-bit division when both fit (the usual case: fewer
+  /// than 65536 steps per tick, a window below 2^16 ticks), else the 64-bit library routine.
+  static constexpr std::uint64_t divide(std::uint64_t n, std::uint64_t d, std::uint64_t& remainder) noexcept {
+    if ((n >> 32) == 0 && (d >> 32) == 0) {
+      const auto n32 = static_cast<std::uint32_t>(n);
+      const auto d32 = static_cast<std::uint32_t>(d);
+      remainder = n32 % d32;
+      return n32 / d32;
+    }
+    remainder = n % d;
+    return n / d;
   }
 
   constexpr void start_cursor(AxisCursor& cursor, const detail::AxisMove& move, std::size_t axis) noexcept {
@@ -421,20 +442,19 @@ class StepGenerator {
                                    (direction > 0 ? fine_steps_per_step / 2 : -fine_steps_per_step / 2);
     const std::int64_t first = direction > 0 ? threshold - move.fine_from : move.fine_from - threshold;
     const std::uint64_t window = config_.window_ticks();
+    const std::uint64_t numerator = static_cast<std::uint64_t>(first) * window;  // <= 2^16 * 2^23
     cursor.divisor = move.fine_distance();
-    cursor.rise = static_cast<std::uint64_t>(first) * window / cursor.divisor;
-    cursor.remainder = static_cast<std::uint64_t>(first) * window % cursor.divisor;
-    cursor.increment = (window << fine_step_bits) / cursor.divisor;
-    cursor.increment_remainder = (window << fine_step_bits) % cursor.divisor;
+    cursor.rise = config_.setup_ticks() + static_cast<std::uint32_t>(divide(numerator, cursor.divisor, cursor.remainder));
+    if (steps > 1) {  // a single step needs no spacing
+      cursor.increment = static_cast<std::uint32_t>(divide(window << fine_step_bits, cursor.divisor, cursor.increment_remainder));
+    }
     cursor.remaining = steps;
-    cursor.step_direction = direction > 0 ? StepEdge::DirectionPositive : StepEdge::DirectionNegative;
-    cursor.active = true;
     if (direction_[axis] != direction) {
       direction_[axis] = direction;
       cursor.time = 0;
-      cursor.edge = cursor.step_direction;
+      cursor.edge = direction > 0 ? StepEdge::DirectionPositive : StepEdge::DirectionNegative;
     } else {
-      cursor.time = config_.setup_ticks() + static_cast<std::uint32_t>(cursor.rise);
+      cursor.time = cursor.rise;
       cursor.edge = StepEdge::StepHigh;
     }
   }
@@ -443,16 +463,16 @@ class StepGenerator {
     switch (cursor.edge) {
       case StepEdge::DirectionPositive:
       case StepEdge::DirectionNegative:
-        cursor.time = config_.setup_ticks() + static_cast<std::uint32_t>(cursor.rise);
+        cursor.time = cursor.rise;
         cursor.edge = StepEdge::StepHigh;
         return;
       case StepEdge::StepHigh:
-        cursor.time += config_.pulse_ticks();
+        cursor.time = cursor.rise + config_.pulse_ticks();
         cursor.edge = StepEdge::StepLow;
         return;
       case StepEdge::StepLow:
         if (--cursor.remaining == 0) {
-          cursor.active = false;
+          cursor.time = idle_time;
           return;
         }
         cursor.rise += cursor.increment;
@@ -461,7 +481,7 @@ class StepGenerator {
           cursor.remainder -= cursor.divisor;
           ++cursor.rise;
         }
-        cursor.time = config_.setup_ticks() + static_cast<std::uint32_t>(cursor.rise);
+        cursor.time = cursor.rise;
         cursor.edge = StepEdge::StepHigh;
         return;
     }

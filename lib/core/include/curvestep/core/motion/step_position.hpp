@@ -118,8 +118,9 @@ template <Scalar S>
   } else {
     const double value = static_cast<double>(position_mm);
     if (!is_finite(value)) return fail(Error::NotFinite);
-    const double steps = value * scale.steps_per_mm();  // the one rounding of the float path
-    const double fine = steps * 65536.0;                // exact: a power of two
+    // One multiplication by steps_per_mm * 2^16: the same double as round(value * steps_per_mm)
+    // * 2^16, because scaling by a power of two is exact. The one rounding of the float path.
+    const double fine = value * (static_cast<double>(scale.raw()) / 65536.0);
     negative = fine < 0.0;
     const double magnitude = negative ? -fine : fine;
     if (!(magnitude < static_cast<double>(limit))) return fail(Error::StepCountOverflow);
