@@ -102,7 +102,7 @@ class JobParser {
     const auto mm = quantise(value * scale_);
     if (!mm) {
       std::string text = "value " + format_number(value);
-      if (scale_ != 1) text += " in (" + format_number(value * scale_) + " mm)";
+      if (scale_ != 1) text += " in (= " + format_number(value * scale_) + " mm)";
       reader_.fail(node, text + " is outside the Q16.16 range (-32768 to 32768 mm)", Error::FixedOverflow);
     }
     return *mm;
