@@ -7,47 +7,27 @@
 #include <stdexcept>
 #include <string>
 
-#include <curvestep/core/motion/deterministic_math.hpp>
+#include <curvestep/core/error_text.hpp>
+#include <curvestep/core/sampling/flatten.hpp>
 
 namespace curvestep::host {
 namespace {
 
-constexpr int max_depth = 48;
 constexpr double pi = 3.14159265358979323846;
 
-double distance_to_chord(const MachinePoint& p, const MachinePoint& a, const MachinePoint& b) {
-  const MachinePoint ab = b - a;
-  const MachinePoint ap = p - a;
-  const double length2 = dot(ab, ab);
-  double t = length2 > 0 ? dot(ap, ab) / length2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  const MachinePoint off = ap - ab * t;
-  return std::sqrt(dot(off, off));
-}
-
-/// Largest distance of a control point from the chord: bounds the curve's distance from it.
-double hull_deviation(std::span<const MachinePoint> control) {
-  double worst = 0;
-  for (std::size_t i = 1; i + 1 < control.size(); ++i) {
-    worst = std::max(worst, distance_to_chord(control[i], control.front(), control.back()));
-  }
-  return worst;
-}
-
+/// Appends the vertices of a (rational) Bézier after its start, through the core's flatten.
 template <class Curve>
-void flatten_curve(const Curve& curve, double tolerance, int depth, std::vector<MachinePoint>& out) {
-  if (hull_deviation(curve.control_points()) <= tolerance) {
-    out.push_back(curve.back());
-    return;
+void flatten_curve(const Curve& curve, double tolerance, std::vector<MachinePoint>& out) {
+  bool first = true;
+  const auto flattened = flatten(curve, tolerance, [&](const FlattenVertex<double, motion_axes>& vertex) {
+    if (!first) out.push_back(vertex.point);
+    first = false;
+  });
+  if (!flattened) {
+    throw std::invalid_argument(std::string("cannot flatten a curve to tolerance ") + std::to_string(tolerance) + " mm: " +
+                                std::string(describe(flattened.error())));
   }
-  if (depth >= max_depth) {
-    throw std::invalid_argument("tolerance too small: a curve still deviates after " + std::to_string(max_depth) +
-                                " halvings");
-  }
-  const auto halves = curve.split(0.5);
-  if (!halves) throw std::invalid_argument("cannot split a curve while flattening");
-  flatten_curve(halves.value().left, tolerance, depth + 1, out);
-  flatten_curve(halves.value().right, tolerance, depth + 1, out);
+  out.back() = curve.back();  // the end exactly, so the next segment starts on it
 }
 
 void flatten_arc(const PathSegment& arc, double tolerance, std::vector<MachinePoint>& out) {
@@ -81,8 +61,8 @@ void flatten_segment(const PathSegment& segment, double tolerance_mm, std::vecto
   switch (segment.kind()) {
     case SegmentKind::Line: out.push_back(segment.end()); break;
     case SegmentKind::Arc: flatten_arc(segment, tolerance_mm, out); break;
-    case SegmentKind::Bezier: flatten_curve(segment.polynomial(), tolerance_mm, 0, out); break;
-    case SegmentKind::RationalBezier: flatten_curve(segment.rational(), tolerance_mm, 0, out); break;
+    case SegmentKind::Bezier: flatten_curve(segment.polynomial(), tolerance_mm, out); break;
+    case SegmentKind::RationalBezier: flatten_curve(segment.rational(), tolerance_mm, out); break;
   }
 }
 

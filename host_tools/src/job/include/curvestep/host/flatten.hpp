@@ -1,12 +1,11 @@
 // SPDX-License-Identifier: MIT
 // Flattening: a polyline that stays within a tolerance of every segment of a path.
 //
-// Béziers (polynomial and rational with positive weights) lie in the convex hull of their control
-// points. The distance to the chord P0-Pn is a convex function, so over that hull it is largest
-// at a control point: max_i dist(P_i, [P0, Pn]) bounds the distance of the whole curve to its
-// chord. A piece is emitted as one chord when that bound is within the tolerance, otherwise it is
-// split at t = 1/2 (de Casteljau) and both halves are flattened in turn. Each halving shrinks
-// the bound about 4×, so the depth grows like log4(size / tolerance); it is capped at 48.
+// Béziers (polynomial and rational) go through the core's flatten (sampling/flatten.hpp): with
+// positive weights a piece lies in the convex hull of its control points, so the farthest control
+// point of its halves from the chord bounds the curve's distance from that chord; pieces are
+// chosen greedily as long as that bound stays within the tolerance. The last vertex is set to
+// the segment's exact end so that consecutive segments share it.
 //
 // Arcs use the sagitta: a chord spanning Δθ of a circle of radius r stays within
 // r(1 − cos(Δθ/2)) of the arc, so Δθ = 2 acos(1 − tol/r) (at most π/2) and n = ⌈|θ|/Δθ⌉ equal
