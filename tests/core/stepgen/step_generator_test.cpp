@@ -90,6 +90,35 @@ std::vector<std::uint64_t> rises_between(const AxisWaveform& w, std::uint64_t fr
   return out;
 }
 
+/// A random walk of positions on a 1/1024 mm grid (exact in float and double); the expected
+/// counts are computed from the grid integers alone: g/1024 mm is g * 64 raw Q16.16 units.
+template <Scalar S>
+void grid_walk(const StepConfig& config, const StepTiming& timing, std::mt19937& random, int ticks) {
+  std::uniform_int_distribution<std::int32_t> velocity(-1024, 1024);
+  std::array<std::int64_t, 3> grid{5000, -777, 12};
+  const std::array<std::int64_t, 3> start_grid = grid;
+  auto millimetres = [](std::int64_t g) { return static_cast<S>(static_cast<double>(g) / 1024.0); };
+  std::vector<Setpoint<S>> job{setpoint_at(0, millimetres(grid[0]), millimetres(grid[1]), millimetres(grid[2]))};
+  std::array<std::int32_t, 3> speed{};
+  for (int tick = 1; tick <= ticks; ++tick) {
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      if (random() % 16 == 0) speed[axis] = velocity(random) / (axis == 2 ? 8 : 1);
+      grid[axis] += speed[axis];
+    }
+    job.push_back(setpoint_at(static_cast<std::uint64_t>(tick), millimetres(grid[0]), millimetres(grid[1]), millimetres(grid[2])));
+  }
+  REQUIRE(check_step_rate(std::span<const Setpoint<S>>(job), config).has_value());
+  const auto axes = curvestep::testing::measure(run_job(config, job));
+  const std::array<std::int64_t, 3> steps_per_mm{80, 80, 400};
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const std::int64_t start = curvestep::testing::expected_q16_steps(start_grid[axis] * 64, steps_per_mm[axis], 1);
+    const std::int64_t end = curvestep::testing::expected_q16_steps(grid[axis] * 64, steps_per_mm[axis], 1);
+    INFO("axis " << axis);
+    CHECK(axes[axis].count == end - start);
+  }
+  curvestep::testing::require_driver_timing(axes, timing, 100000);
+}
+
 }  // namespace
 
 TEST_CASE("stepgen: the configuration follows the documented tick layout", "[core][stepgen]") {
@@ -338,29 +367,11 @@ TEST_CASE("stepgen: the step count on every axis equals the end position in step
     curvestep::testing::require_driver_timing(axes, timing, 100000);
   }
 
-  SECTION("double positions on a 1/1024 mm grid, counts from llround") {
-    std::uniform_int_distribution<std::int32_t> velocity(-1024, 1024);
-    std::array<std::int64_t, 3> grid{5000, -777, 12};
-    auto millimetres = [](std::int64_t g) { return static_cast<double>(g) / 1024.0; };
-    std::vector<Setpoint<double>> job{setpoint_at(0, millimetres(grid[0]), millimetres(grid[1]), millimetres(grid[2]))};
-    std::array<std::int32_t, 3> speed{};
-    for (int tick = 1; tick <= ticks; ++tick) {
-      for (std::size_t axis = 0; axis < 3; ++axis) {
-        if (random() % 16 == 0) speed[axis] = velocity(random) / (axis == 2 ? 8 : 1);
-        grid[axis] += speed[axis];
-      }
-      job.push_back(setpoint_at(static_cast<std::uint64_t>(tick), millimetres(grid[0]), millimetres(grid[1]), millimetres(grid[2])));
-    }
-    REQUIRE(check_step_rate(std::span<const Setpoint<double>>(job), config).has_value());
-    const auto axes = curvestep::testing::measure(run_job(config, job));
-    const std::array<double, 3> steps_per_mm{80, 80, 400};
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      const std::int64_t start = std::llround(job.front().position[axis] * steps_per_mm[axis]);
-      const std::int64_t end = std::llround(millimetres(grid[axis]) * steps_per_mm[axis]);
-      INFO("axis " << axis);
-      CHECK(axes[axis].count == end - start);
-    }
-    curvestep::testing::require_driver_timing(axes, timing, 100000);
+  SECTION("double positions on a 1/1024 mm grid, counts from exact integers") {
+    grid_walk<double>(config, timing, random, ticks);
+  }
+  SECTION("float positions on a 1/1024 mm grid, counts from exact integers") {
+    grid_walk<float>(config, timing, random, ticks);
   }
 }
 
