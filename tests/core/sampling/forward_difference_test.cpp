@@ -7,6 +7,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <curvestep/core/bspline/bezier_extraction.hpp>
+#include <curvestep/core/bspline/bspline.hpp>
 #include <curvestep/core/sampling/forward_difference.hpp>
 #include <support/numeric.hpp>
 
@@ -204,4 +206,29 @@ TEMPLATE_TEST_CASE("forward_difference: invalid inputs are reported", "[core][sa
   fd.step();
   CHECK(fd.finished());
   CHECK(fd.point() == point<S>(1, 1));
+}
+
+TEST_CASE("forward_difference: B-spline spans are stepped through Bezier extraction and match de Boor",
+          "[core][sampling][bspline]") {
+  // TV-13-like cubic B-spline; each knot span becomes one Bézier piece, stepped in 256 steps.
+  using Spline = BSpline<double, 2, 3, 16>;
+  const std::array<Vec<double, 2>, 6> control{point<double>(0, 0), point<double>(10, 30), point<double>(30, 30),
+                                              point<double>(40, 0), point<double>(60, 10), point<double>(70, 40)};
+  const std::array<double, 10> knots{0, 0, 0, 0, 1, 2, 3, 3, 3, 3};
+  const auto spline = Spline::create(control, knots, 3).value();
+  std::size_t pieces = 0;
+  const auto walked = for_each_bezier(spline, [&](const BezierSpan<double, 2, 3>& piece) {
+    auto fd = ForwardDifference<double, 2>::create(piece.curve, 256).value();
+    ++pieces;
+    while (true) {
+      const double u = to_double(piece.start) + (to_double(piece.end) - to_double(piece.start)) * fd.index() / 256.0;
+      const auto expected = spline.evaluate(u).value();
+      CHECK(std::fabs(fd.point()[0] - expected[0]) <= 1e-9);
+      CHECK(std::fabs(fd.point()[1] - expected[1]) <= 1e-9);
+      if (fd.finished()) break;
+      fd.step();
+    }
+  });
+  CHECK(walked.has_value());
+  CHECK(pieces == 3);
 }
