@@ -16,6 +16,7 @@ void probe_interpolation();
 void probe_motion();
 void probe_protocol();
 void probe_stepgen();
+void probe_sampling();
 
 /// Runs every probe (called from Reset_Handler).
 inline void run_all() {
@@ -25,6 +26,7 @@ inline void run_all() {
   probe_motion();
   probe_protocol();
   probe_stepgen();
+  probe_sampling();
 }
 
 }  // namespace curvestep::probe

@@ -34,3 +34,8 @@
 #include <curvestep/core/subdivision/refinable_polygon.hpp>
 #include <curvestep/core/subdivision/refine.hpp>
 #include <curvestep/core/subdivision/subdivision_mask.hpp>
+#include <curvestep/core/sampling/adaptive_forward_difference.hpp>
+#include <curvestep/core/sampling/arc_length_table.hpp>
+#include <curvestep/core/sampling/flatten.hpp>
+#include <curvestep/core/sampling/forward_difference.hpp>
+#include <curvestep/core/sampling/rational_forward_difference.hpp>
