@@ -18,7 +18,7 @@ namespace {
 
 struct EvalOptions {
   std::string job;
-  std::size_t segment = 0;
+  long long segment = 0;
   std::vector<double> parameters;
   std::string out;
 };
@@ -26,7 +26,7 @@ struct EvalOptions {
 void run_eval(const EvalOptions& options) {
   const Job job = load_job(options.job);
   std::vector<MachinePoint> points;
-  for (const double u : options.parameters) points.push_back(evaluate_segment(job, options.segment, u));
+  for (const double u : options.parameters) points.push_back(evaluate_segment(job, static_cast<std::size_t>(options.segment), u));
   if (options.out.empty()) {
     write_points_csv(std::cout, points);
     return;
@@ -43,7 +43,9 @@ void add_eval_command(CLI::App& app) {
   auto options = std::make_shared<EvalOptions>();
   auto* eval = app.add_subcommand("eval", "Write the exact points of one segment of a job at its own parameter values (CSV x,y,z)");
   eval->add_option("job", options->job, "Job file (JSON, see docs/job_format.md)")->required();
-  eval->add_option("--segment", options->segment, "Segment index in the file, counted from 0")->required();
+  eval->add_option("--segment", options->segment, "Segment index in the file, counted from 0")
+      ->required()
+      ->check(CLI::Range(0LL, 1000000000LL));
   eval->add_option("--u", options->parameters, "Parameter values, comma separated ([0,1], or the knot domain of a bspline/nurbs)")
       ->required()
       ->delimiter(',');

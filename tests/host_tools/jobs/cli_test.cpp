@@ -44,6 +44,10 @@ TEST_CASE("cli: eval outside the domain fails with a one-line cause", "[host_too
   CHECK(result.exit_code != 0);
   CHECK(line_count(result.err) == 1);
   CHECK(result.err.find("u = 1.5 is outside the domain [0, 1] of segment 0 (bezier)") != std::string::npos);
+  CHECK(result.out.empty());  // nothing is written when any parameter is bad
+  const auto negative = run_curvestep("eval " + quoted(job_example("seed_cubic.json")) + " --segment 0 --u=-0.5");
+  CHECK(negative.exit_code != 0);
+  CHECK(negative.err.find("u = -0.5 is outside the domain [0, 1]") != std::string::npos);
 }
 
 TEST_CASE("cli: eval of a missing segment index fails with a one-line cause", "[host_tools][jobs]") {
@@ -51,6 +55,9 @@ TEST_CASE("cli: eval of a missing segment index fails with a one-line cause", "[
   CHECK(result.exit_code != 0);
   CHECK(line_count(result.err) == 1);
   CHECK(result.err.find("segment 4 does not exist") != std::string::npos);
+  const auto negative = run_curvestep("eval " + quoted(job_example("seed_cubic.json")) + " --segment -1 --u 0.5");
+  CHECK(negative.exit_code != 0);
+  CHECK(negative.err.find("--segment") != std::string::npos);
 }
 
 TEST_CASE("cli: eval of a B-spline takes u in its knot domain", "[host_tools][jobs]") {
