@@ -47,7 +47,7 @@ TEMPLATE_TEST_CASE("bspline: extraction of TV-19 gives the digest's two cubic sp
                    double, float, Q16_16) {
   using S = TestType;
   std::array<Piece2<S>, 4> pieces{};
-  const auto count = extract_bezier(tv19_curve<S>(), std::span<Piece2<S>>(pieces));
+  const auto count = extract_bezier(tv19_curve<S>(), std::span(pieces));  // static extent works too
   REQUIRE(count.has_value());
   REQUIRE(count.value() == 2);
   const std::array<std::array<std::array<double, 2>, 4>, 2> expected{

@@ -216,3 +216,25 @@ TEMPLATE_TEST_CASE("bspline: the uniform clamped helper interpolates the end poi
     }
   }
 }
+
+TEMPLATE_TEST_CASE("bspline: inserting an unclamped domain end degree times makes the curve end at a control point",
+                   "[core][bspline]", double, float, Q16_16) {
+  using S = TestType;
+  const auto control = curvestep::testing::points<S>({{0, 0}, {6, 0}, {6, 6}, {0, 6}, {-3, 3}});
+  const auto curve = Curve<S>::create(std::span<const Vec2<S>>(control),
+                                      std::span<const S>(curvestep::testing::scalars<S>({0, 1, 2, 3, 4, 5, 6, 7, 8})), 3)
+                         .value();
+  const auto start = curve.insert_knot(scalar<S>(3), 3);
+  REQUIRE(start.has_value());
+  const auto both = start.value().insert_knot(scalar<S>(5), 3);
+  REQUIRE(both.has_value());
+  const auto& clamped = both.value();
+  CHECK(clamped.layout() == KnotLayout::Unclamped);  // u_0 = 0 still differs from u_p = 3
+  CHECK(clamped.size() == 11);
+  CHECK(to_double(clamped.domain_start()) == 3.0);
+  CHECK(to_double(clamped.domain_end()) == 5.0);
+  // The curve now starts at the new control point P_p and ends at P_{n−p}.
+  CHECK(max_error(clamped.control_points()[3], to_doubles(curve.evaluate(scalar<S>(3)).value())) <= tolerance<S>(6, 8));
+  CHECK(max_error(clamped.control_points()[7], to_doubles(curve.evaluate(scalar<S>(5)).value())) <= tolerance<S>(6, 8));
+  CHECK(curve.insert_knot(scalar<S>(3), 4).error() == Error::KnotMultiplicityTooHigh);
+}

@@ -25,6 +25,7 @@
 #include <span>
 
 #include <curvestep/core/bspline/detail/ratio.hpp>
+#include <curvestep/core/bspline/knot_vector.hpp>
 #include <curvestep/core/result.hpp>
 #include <curvestep/core/scalar.hpp>
 
@@ -35,13 +36,8 @@ namespace detail {
 template <Scalar S>
 [[nodiscard]] constexpr Result<void> check_basis_knots(std::span<const S> knots, std::size_t degree, S u) noexcept {
   if (knots.size() < 2 * degree + 2) return fail(Error::WrongKnotCount, knots.size());
-  for (std::size_t i = 0; i < knots.size(); ++i) {
-    if (!is_finite(knots[i])) return fail(Error::NotFinite, i);
-    if (i > 0 && knots[i] < knots[i - 1]) return fail(Error::KnotsNotNondecreasing, i);
-  }
-  if (!checked_sub(knots.back(), knots.front())) return fail(Error::FixedOverflow, knots.size() - 1);
+  CURVESTEP_CHECK(check_knot_order(knots, degree));
   const std::size_t last = knots.size() - degree - 2;
-  if (!(knots[degree] < knots[last + 1])) return fail(Error::InvalidInterval, degree);
   if (!is_finite(u)) return fail(Error::NotFinite);
   if (u < knots[degree] || knots[last + 1] < u) return fail(Error::ParameterOutOfRange);
   return ok();

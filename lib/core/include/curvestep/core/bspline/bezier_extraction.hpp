@@ -129,9 +129,9 @@ template <class Curve, class Callback>
 /// Writes every Bézier piece into `out` (one per non-empty knot span, in order) and returns how
 /// many. BufferTooSmall (index = pieces needed) if `out` has fewer than curve.span_count() places;
 /// nothing is written then.
-template <class Curve, class Piece>
+template <class Curve, class Piece, std::size_t Extent>
   requires requires(const Curve& c) { bezier_span(c, std::size_t{}); }
-[[nodiscard]] constexpr Result<std::size_t> extract_bezier(const Curve& curve, std::span<Piece> out) {
+[[nodiscard]] constexpr Result<std::size_t> extract_bezier(const Curve& curve, std::span<Piece, Extent> out) {
   const std::size_t needed = curve.span_count();
   if (out.size() < needed) return fail(Error::BufferTooSmall, needed);
   std::size_t written = 0;

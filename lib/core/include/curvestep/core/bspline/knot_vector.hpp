@@ -38,26 +38,41 @@ namespace curvestep {
   return control_count + degree + 1;
 }
 
-/// Checks `knots` for a B-spline of `degree` >= 1 with `control_count` control points.
-/// Errors, in the order checked: WrongKnotCount (index = knots.size()), NotFinite (index = knot),
-/// KnotsNotNondecreasing (index = the knot smaller than its predecessor), FixedOverflow (knot range
-/// wider than the fixed-point format, index = last knot), InvalidInterval (empty domain
-/// u_p == u_{n+1}), KnotMultiplicityTooHigh (index = the first knot of a run that is too long:
-/// more than degree inside the domain, more than degree+1 anywhere).
+namespace detail {
+/// The checks every use of a knot vector needs: finite (NotFinite, index = knot), non-decreasing
+/// (KnotsNotNondecreasing, index = knot), a range the scalar can subtract (FixedOverflow /
+/// NotFinite, index = last knot) and a non-empty domain [u_degree, u_{size−degree−1}]
+/// (InvalidInterval). Contract: knots.size() >= 2·degree + 2.
 template <Scalar S>
-[[nodiscard]] constexpr Result<void> validate_knots(std::span<const S> knots, std::size_t degree,
-                                                   std::size_t control_count) noexcept {
-  if (knots.size() != knot_count(control_count, degree)) return fail(Error::WrongKnotCount, knots.size());
+[[nodiscard]] constexpr Result<void> check_knot_order(std::span<const S> knots, std::size_t degree) noexcept {
+  CURVESTEP_EXPECTS(knots.size() >= 2 * degree + 2);
   for (std::size_t i = 0; i < knots.size(); ++i) {
     if (!is_finite(knots[i])) return fail(Error::NotFinite, i);
   }
   for (std::size_t i = 1; i < knots.size(); ++i) {
     if (knots[i] < knots[i - 1]) return fail(Error::KnotsNotNondecreasing, i);
   }
-  if (!checked_sub(knots.back(), knots.front())) return fail(Error::FixedOverflow, knots.size() - 1);
+  if (const auto range = checked_sub(knots.back(), knots.front()); !range) return fail(range.error(), knots.size() - 1);
+  if (!(knots[degree] < knots[knots.size() - degree - 1])) return fail(Error::InvalidInterval, degree);
+  return ok();
+}
+}  // namespace detail
+
+/// Checks `knots` for a B-spline of `degree` >= 1 with `control_count` control points.
+/// Errors, in the order checked: TooFewPoints (fewer than degree+1 points), WrongKnotCount
+/// (index = knots.size()), NotFinite (index = knot),
+/// KnotsNotNondecreasing (index = the knot smaller than its predecessor), FixedOverflow / NotFinite
+/// (knot range wider than the scalar's range, index = last knot), InvalidInterval (empty domain
+/// u_p == u_{n+1}), KnotMultiplicityTooHigh (index = the first knot of a run that is too long:
+/// more than degree inside the domain, more than degree+1 anywhere).
+template <Scalar S>
+[[nodiscard]] constexpr Result<void> validate_knots(std::span<const S> knots, std::size_t degree,
+                                                   std::size_t control_count) noexcept {
+  if (control_count < degree + 1) return fail(Error::TooFewPoints, control_count);
+  if (knots.size() != knot_count(control_count, degree)) return fail(Error::WrongKnotCount, knots.size());
+  CURVESTEP_CHECK(detail::check_knot_order(knots, degree));
   const S start = knots[degree];
   const S end = knots[control_count];
-  if (!(start < end)) return fail(Error::InvalidInterval, degree);
   std::size_t run_start = 0;
   for (std::size_t i = 1; i <= knots.size(); ++i) {
     if (i < knots.size() && knots[i] == knots[run_start]) continue;

@@ -268,16 +268,9 @@ class Nurbs {
 
   [[nodiscard]] static constexpr detail::Checked<S> scale_by_binomial(const detail::Checked<S>& value, std::size_t k,
                                                                       std::size_t i) noexcept {
-    if (!value.ok) return value;
-    const auto scaled = detail::scale_ratio(value.value, detail::binomial(k, i), 1);
-    detail::Checked<S> r;
-    if (!scaled) {
-      r.ok = false;
-      r.error = scaled.error();
-      return r;
-    }
-    r.value = scaled.value();
-    return r;
+    return detail::Checked<S>::combine(value, detail::Checked<S>{}, [k, i](S x, S) {
+      return detail::scale_ratio(x, detail::binomial(k, i), 1);
+    });
   }
 
   Spline spline_{};
