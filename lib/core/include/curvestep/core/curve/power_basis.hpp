@@ -23,11 +23,30 @@ struct PowerBasis {
   std::array<Vec<S, Dim>, MaxDegree + 1> coefficients{};  ///< a_i, the coefficient of t^i
   std::size_t degree = 0;                                 ///< n
 
-  /// p(t) by Horner's rule (any t; no range checks: use for t in [0,1] with Fixed).
+  /// p(t) by Horner's rule. Fixed: the partial sums a_n t^k + ... may leave the range even where
+  /// p(t) does not, so they are kept in the wide type (one rounding per step); a result or partial
+  /// sum beyond that is a contract violation. Use for t in [0,1] with Fixed.
   [[nodiscard]] constexpr Vec<S, Dim> evaluate(S t) const {
-    Vec<S, Dim> r = coefficients[degree];
-    for (std::size_t i = degree; i-- > 0;) r = r * t + coefficients[i];
-    return r;
+    if constexpr (FixedPoint<S>) {
+      using W = typename S::wide;
+      Vec<S, Dim> r;
+      for (std::size_t axis = 0; axis < Dim; ++axis) {
+        W sum = coefficients[degree][axis].raw();
+        for (std::size_t i = degree; i-- > 0;) {
+          W product = 0;
+          CURVESTEP_EXPECTS(!__builtin_mul_overflow(sum, W{t.raw()}, &product));
+          sum = S::round_shift(product, S::fraction_bits) + W{coefficients[i][axis].raw()};
+        }
+        const auto narrowed = S::from_wide(sum);
+        CURVESTEP_EXPECTS(narrowed.has_value());
+        r[axis] = narrowed.value();
+      }
+      return r;
+    } else {
+      Vec<S, Dim> r = coefficients[degree];
+      for (std::size_t i = degree; i-- > 0;) r = r * t + coefficients[i];
+      return r;
+    }
   }
 };
 
