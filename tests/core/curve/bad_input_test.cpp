@@ -276,3 +276,28 @@ TEMPLATE_TEST_CASE("bad input: curvature at a cusp and other degenerate analysis
   check_failure(arc_length(tv04<S>(), S{}, from_int<S>(1), S{}), Error::InvalidTolerance);
   check_failure(arc_length(tv04<S>(), from_int<S>(1), S{}, scalar<S>(0.01)), Error::InvalidInterval);
 }
+
+TEST_CASE("power basis: Horner on an in-range Q16.16 curve does not stop on large partial sums", "[core][bezier][error]") {
+  using S = Q16_16;
+  // b = (0, -10000, -10000, 30000): a = (0, -30000, 30000, 30000) all fit, but the Horner partial
+  // sum a3 t + a2 reaches 60000 at t = 1 although p(1) = 30000.
+  const auto curve = must(Curve<S, 1>::create({Vec<S, 1>{{scalar<S>(0)}}, Vec<S, 1>{{scalar<S>(-10000)}},
+                                               Vec<S, 1>{{scalar<S>(-10000)}}, Vec<S, 1>{{scalar<S>(30000)}}}));
+  const auto power = must(to_power_basis(curve));
+  CHECK(to_double(power.coefficients[1][0]) == -30000);
+  CHECK(to_double(power.coefficients[2][0]) == 30000);
+  CHECK(to_double(power.coefficients[3][0]) == 30000);
+  for (const double t : {0.0, 0.25, 0.5, 0.75, 0.9, 1.0}) {
+    INFO("t = " << t);
+    // Exact dyadic values: p(t) = -30000 t + 30000 t² + 30000 t³.
+    const double expected = -30000 * t + 30000 * t * t + 30000 * t * t * t;
+    Vec<S, 1> value{};
+    REQUIRE_NOTHROW(value = power.evaluate(scalar<S>(t)));
+    // Three roundings of half a unit, each magnified by at most t <= 1, plus t = 0.9 rounded
+    // (|p'| <= 90000 times half a unit of t).
+    CHECK(std::fabs(to_double(value[0]) - (t == 0.9 ? -30000 * to_double(scalar<S>(t)) +
+                                                          30000 * std::pow(to_double(scalar<S>(t)), 2) +
+                                                          30000 * std::pow(to_double(scalar<S>(t)), 3)
+                                                    : expected)) <= 4 * unit<S>());
+  }
+}
