@@ -264,10 +264,12 @@ struct AxisMove {
   std::int32_t count_from = 0;
   std::int32_t count_to = 0;
 
+  /// Steps taken in the tick.
   [[nodiscard]] constexpr std::uint32_t steps() const noexcept {
     const std::int64_t delta = std::int64_t{count_to} - count_from;
     return static_cast<std::uint32_t>(delta < 0 ? -delta : delta);
   }
+  /// D: the distance moved in the tick, in 1/65536 step.
   [[nodiscard]] constexpr std::uint64_t fine_distance() const noexcept {
     const std::int64_t delta = fine_to - fine_from;
     return static_cast<std::uint64_t>(delta < 0 ? -delta : delta);

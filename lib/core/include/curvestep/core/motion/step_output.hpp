@@ -5,7 +5,7 @@
 // The step generator does not touch pins. For every control tick it fills a StepBatch with the
 // edges of that tick, sorted by time, each as an offset in step-timer ticks from the start of the
 // tick. A board replays the batch from a timer-compare interrupt (one pin write and one compare
-// register write per edge, about 20 to 40 cycles on a Cortex-M3), or hands it to play() with an
+// register write per edge, estimated at 20 to 40 cycles on a Cortex-M3), or hands it to play() with an
 // output that writes GPIO lines at the given times. Keeping the pins out of the generator is what
 // lets the host simulator, the Linux GPIO board and the tests share the same edges (design.md:
 // "the waveform logic is tested through the same output interface with a recording
@@ -36,6 +36,7 @@ struct StepEvent {
   std::uint8_t axis = 0;                     ///< 0 x, 1 y, 2 z
   StepEdge edge = StepEdge::DirectionPositive;  ///< which line and level
 
+  /// Same time, axis and edge.
   friend constexpr bool operator==(const StepEvent&, const StepEvent&) = default;
 };
 
@@ -65,6 +66,7 @@ class StepBatch {
   }
   /// Iteration over the held edges.
   [[nodiscard]] constexpr const StepEvent* begin() const noexcept { return events_.data(); }
+  /// One past the last held edge.
   [[nodiscard]] constexpr const StepEvent* end() const noexcept { return events_.data() + size_; }
 
   /// Step-timer time of the start of the tick (offsets are relative to it).
@@ -116,6 +118,7 @@ struct RecordedEdge {
   std::uint8_t axis = 0;                        ///< 0 x, 1 y, 2 z
   StepEdge edge = StepEdge::DirectionPositive;  ///< which line and level
 
+  /// Same time, axis and edge.
   friend constexpr bool operator==(const RecordedEdge&, const RecordedEdge&) = default;
 };
 
@@ -148,6 +151,7 @@ class RecordingStepOutput {
   }
   /// Iteration over the recorded edges.
   [[nodiscard]] constexpr const RecordedEdge* begin() const noexcept { return edges_.data(); }
+  /// One past the last recorded edge.
   [[nodiscard]] constexpr const RecordedEdge* end() const noexcept { return edges_.data() + size_; }
   /// Forgets every edge.
   constexpr void clear() noexcept {

@@ -90,6 +90,7 @@ class StepScale {
   /// True if the axis is not driven by steps.
   [[nodiscard]] constexpr bool is_zero() const noexcept { return raw_ == 0; }
 
+  /// Same quantised scale.
   friend constexpr bool operator==(StepScale, StepScale) noexcept = default;
 
  private:
