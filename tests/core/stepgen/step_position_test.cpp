@@ -22,6 +22,12 @@ StepScale scale_of(double steps_per_mm) {
 }
 }  // namespace
 
+// The conversion is constexpr: these run in the compiler.
+static_assert(position_in_steps(Q16_16::from_raw(2048), StepScale::create(80).value()).value() == 3);
+static_assert(position_in_steps(Q16_16::from_raw(-2047), StepScale::create(80).value()).value() == -2);
+static_assert(position_in_steps(0.03125, StepScale::create(80).value()).value() == 3);
+static_assert(steps_of_fine_position(-(std::int64_t{5} << 15)) == -3);  // -2.5 steps
+
 TEST_CASE("stepgen: a step scale stores steps per millimetre as a 32.32 integer", "[core][stepgen]") {
   CHECK(scale_of(80).raw() == std::uint64_t{80} << 32);
   CHECK(scale_of(0.5).raw() == std::uint64_t{1} << 31);
