@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include <curvestep/core/bspline/bspline.hpp>
+#include <curvestep/core/bspline/nurbs.hpp>
 #include <curvestep/core/curve/circular_arc.hpp>
 #include <curvestep/core/sampling/flatten.hpp>
 #include <support/numeric.hpp>
@@ -227,4 +228,30 @@ TEMPLATE_TEST_CASE("flatten: buffers, straight lines, points and invalid toleran
   std::size_t calls = 0;
   const auto stopped = flatten(curved, scalar<S>(0.001), [&](const FlattenVertex<S, 2>&) { return ++calls < 3; });
   CHECK(stopped.value() == 3);
+}
+
+TEST_CASE("flatten: the 9-point NURBS circle is flattened within tolerance with near-optimal chords",
+          "[core][sampling][flatten]") {
+  // seed_004 Appendix A: knots {0,0,0,1/4,1/4,1/2,1/2,3/4,3/4,1,1,1}, weights 1, sqrt(2)/2 alternating.
+  const double r = 20;
+  const double s = std::sqrt(0.5);
+  using Circle = Nurbs<double, 2, 2, 16>;
+  const auto circle = Circle::create({point<double>(r, 0), point<double>(r, r), point<double>(0, r), point<double>(-r, r),
+                                      point<double>(-r, 0), point<double>(-r, -r), point<double>(0, -r), point<double>(r, -r),
+                                      point<double>(r, 0)},
+                                     {1, s, 1, s, 1, s, 1, s, 1}, {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1}, 2)
+                          .value();
+  std::vector<FlattenVertex<double, 2>> vertices;
+  REQUIRE(flatten(circle, 0.01, [&](const FlattenVertex<double, 2>& v) { vertices.push_back(v); }).has_value());
+  CHECK(vertices.front().parameter == 0.0);
+  CHECK(vertices.back().parameter == 1.0);
+  for (std::size_t k = 0; k + 1 < vertices.size(); ++k) {
+    const auto a = as_long_double<2>(vertices[k].point);
+    const auto b = as_long_double<2>(vertices[k + 1].point);
+    CHECK(std::hypot(a[0], a[1]) == Approx(r).margin(1e-9));
+    CHECK(r - std::hypot((a[0] + b[0]) / 2, (a[1] + b[1]) / 2) <= 0.01L);  // the chord's sagitta
+  }
+  const double optimal = std::ceil(2 * 3.14159265358979323846 / (2 * std::acos(1 - 0.01 / r)));
+  INFO("segments " << vertices.size() - 1 << " optimal " << optimal);
+  CHECK(static_cast<double>(vertices.size() - 1) <= 2 * optimal);
 }

@@ -43,10 +43,12 @@
 // the default budget is 1/2 for floats, 1/16 for fixed point). The output origin + offset adds
 // one rounding u|p|, the double seed 3^n 4n u_double max|b|: in all about 1 ulp.
 //
-// ISR budget. step() is n additions per axis plus one compare; a re-seed (every K steps) is
-// about 4n² multiply-divides per axis. A 3-axis cubic in Q16.16 on a Cortex-M3 at 72 MHz is
-// 9 64-bit additions (~30 cycles) per step plus ~1 cycle amortised re-seed: far inside a
-// 100 kHz tick (720 cycles). See docs/forward_differencing.md for measured figures.
+// ISR budget. step() is n additions per axis plus one compare; point() one rounding shift per
+// axis; a re-seed (every K steps) about 4n² multiply-divides per axis. A 3-axis cubic in
+// Q16.16 on a Cortex-M3 at 72 MHz: 9 64-bit additions and 3 shifts, estimated at ~40 cycles
+// per step plus ~1 cycle of amortised re-seed, far inside a 100 kHz tick (720 cycles). On the
+// host it is 68 instructions per 3-axis point against 703 for Q16.16 de Casteljau (callgrind,
+// benchmarks/run_callgrind.sh; figures in docs/forward_differencing.md).
 #pragma once
 
 #include <array>
