@@ -3,10 +3,14 @@
 //
 // Usage: forward_difference_benchmark [--steps N] [--repetitions R] [--method NAME]
 // Each method evaluates the same cubic at t = k/N for k = 0..N, R times, and folds every
-// coordinate into a checksum so nothing is optimised away. Forward differencing includes its
+// coordinate into a checksum so nothing is optimised away. The JSON also gives the largest
+// deviation from a long-double de Casteljau over all points: the library's steppers and, for
+// comparison, naive float forward differencing (seeded once, never re-seeded). Forward differencing includes its
 // create() (the seed) and every re-seed. --method runs one method only (for callgrind:
 // benchmarks/run_callgrind.sh counts the instructions inside the function bench_<method>).
+#include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -80,6 +84,66 @@ std::int64_t run_horner(std::uint32_t steps) {
   return sum;
 }
 
+/// p(k/N) of the benchmark curve in long double (the accuracy reference).
+std::array<long double, 3> reference(std::uint32_t k, std::uint32_t steps) {
+  const auto curve = benchmark_curve<double>();
+  std::array<std::array<long double, 3>, 4> w{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    for (std::size_t a = 0; a < 3; ++a) w[i][a] = curve[i][a];
+  }
+  const long double t = static_cast<long double>(k) / steps;
+  for (std::size_t r = 1; r <= 3; ++r) {
+    for (std::size_t i = 0; i + r <= 3; ++i) {
+      for (std::size_t a = 0; a < 3; ++a) w[i][a] = (1 - t) * w[i][a] + t * w[i + 1][a];
+    }
+  }
+  return w[0];
+}
+
+template <class P>
+long double deviation(const P& p, const std::array<long double, 3>& exact) {
+  long double m = 0;
+  for (std::size_t a = 0; a < 3; ++a) m = std::fmax(m, std::fabs(static_cast<long double>(to_double(p[a])) - exact[a]));
+  return m;
+}
+
+/// Largest deviation of the library's stepper from the reference over all N+1 points (mm).
+template <class S>
+double stepper_error(std::uint32_t steps) {
+  auto fd = ForwardDifference<S, 3, 3>::create(benchmark_curve<S>(), steps).value();
+  long double worst = deviation(fd.point(), reference(0, steps));
+  while (!fd.finished()) {
+    fd.step();
+    worst = std::fmax(worst, deviation(fd.point(), reference(fd.index(), steps)));
+  }
+  return static_cast<double>(worst);
+}
+
+/// The same for naive float forward differencing: seeded once from the power form, never
+/// re-seeded, every addition in float (what the library avoids).
+double naive_float_error(std::uint32_t steps) {
+  const auto power = to_power_basis(benchmark_curve<double>()).value();
+  const double h = 1.0 / steps;
+  std::array<std::array<float, 4>, 3> d{};
+  for (std::size_t a = 0; a < 3; ++a) {
+    const double a1 = power.coefficients[1][a], a2 = power.coefficients[2][a], a3 = power.coefficients[3][a];
+    d[a] = {static_cast<float>(power.coefficients[0][a]), static_cast<float>(a1 * h + a2 * h * h + a3 * h * h * h),
+            static_cast<float>(2 * a2 * h * h + 6 * a3 * h * h * h), static_cast<float>(6 * a3 * h * h * h)};
+  }
+  long double worst = 0;
+  for (std::uint32_t k = 0;; ++k) {
+    const auto exact = reference(k, steps);
+    for (std::size_t a = 0; a < 3; ++a) worst = std::fmax(worst, std::fabs(static_cast<long double>(d[a][0]) - exact[a]));
+    if (k == steps) break;
+    for (auto& axis : d) {
+      axis[0] += axis[1];
+      axis[1] += axis[2];
+      axis[2] += axis[3];
+    }
+  }
+  return static_cast<double>(worst);
+}
+
 }  // namespace
 
 // C linkage and no inlining give callgrind plain names to toggle collection on.
@@ -147,6 +211,10 @@ int main(int argc, char** argv) {
   std::printf("    \"forward_difference_float_over_de_casteljau_float\": %.2f,\n", rate[1] / rate[3]);
   std::printf("    \"forward_difference_q16_16_over_horner_q16_16\": %.2f,\n", rate[0] / rate[4]);
   std::printf("    \"forward_difference_float_over_horner_float\": %.2f\n", rate[1] / rate[5]);
+  std::printf("  },\n  \"max_error_mm\": {\n");
+  std::printf("    \"forward_difference_q16_16\": %.3g,\n", stepper_error<Q16_16>(steps));
+  std::printf("    \"forward_difference_float\": %.3g,\n", stepper_error<float>(steps));
+  std::printf("    \"naive_float_forward_difference\": %.3g\n", naive_float_error(steps));
   std::printf("  },\n  \"checksum\": %lld\n}\n", static_cast<long long>(checksum));
   return 0;
 }
