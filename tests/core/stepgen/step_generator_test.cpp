@@ -407,6 +407,11 @@ TEST_CASE("stepgen: the peak speed check rejects a too-fast axis and accepts one
   CHECK(z.error() == Error::StepRateTooHigh);
   CHECK(z.where() == 2);
   CHECK(check_step_rate({std::nan(""), 0.0, 0.0}, limits).error() == Error::NotFinite);
+  MachineLimits broken = limits;
+  broken.axes[1].steps_per_mm = -80;  // would make every speed pass if it were not rejected
+  const auto invalid = check_step_rate({1.0e6, 1.0e6, 1.0e6}, broken);
+  CHECK(invalid.error() == Error::InvalidLimit);
+  CHECK(invalid.where() == static_cast<std::uint16_t>(LimitField::AxisStepsPerMm) + 1);
 }
 
 TEST_CASE("stepgen: the machine check uses each axis's own speed limit", "[core][stepgen]") {

@@ -223,9 +223,11 @@ class StepConfig {
 };
 
 /// Checks peak axis speeds against the driver limit: StepRateTooHigh (index = axis) if
-/// |v_axis| * steps_per_mm > max_step_rate_hz, NotFinite (index = axis) for NaN/inf.
+/// |v_axis| * steps_per_mm > max_step_rate_hz, NotFinite (index = axis) for NaN/inf; first
+/// whatever limits.validate() reports.
 [[nodiscard]] constexpr Result<void> check_step_rate(const std::array<double, motion_axes>& peak_speed_mm_per_s,
                                                      const MachineLimits& limits) noexcept {
+  CURVESTEP_CHECK(limits.validate());
   for (std::size_t axis = 0; axis < motion_axes; ++axis) {
     const double speed = peak_speed_mm_per_s[axis] < 0 ? -peak_speed_mm_per_s[axis] : peak_speed_mm_per_s[axis];
     if (!is_finite(speed)) return fail(Error::NotFinite, axis);
