@@ -70,9 +70,9 @@ class AdaptiveForwardDifference {
   static_assert(MaxDegree >= 1 && MaxDegree <= 5, "forward differencing supports degrees 1 to 5");
 
  public:
-  using scalar_type = S;
-  using Point = Vec<S, Dim>;
-  static constexpr std::size_t capacity = MaxDegree + 1;
+  using scalar_type = S;                                 ///< coordinate type
+  using Point = Vec<S, Dim>;                             ///< a point of the curve
+  static constexpr std::size_t capacity = MaxDegree + 1; ///< difference-table entries per axis
   /// Finest level: h = 2^-30.
   static constexpr int max_level = 30;
   /// Default error budget, as ForwardDifference::default_budget_bits.

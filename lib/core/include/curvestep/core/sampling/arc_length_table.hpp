@@ -36,9 +36,9 @@ class ArcLengthTable {
   static_assert(Capacity >= 1, "an arc-length table needs at least one interval");
 
  public:
-  using scalar_type = typename Curve::scalar_type;
-  using S = scalar_type;
-  static constexpr std::size_t capacity = Capacity;
+  using scalar_type = typename Curve::scalar_type;   ///< parameter and length type
+  using S = scalar_type;                             ///< shorthand
+  static constexpr std::size_t capacity = Capacity;  ///< most quadrature intervals
 
   /// An empty table (length 0).
   constexpr ArcLengthTable() = default;

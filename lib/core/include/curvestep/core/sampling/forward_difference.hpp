@@ -71,11 +71,11 @@ class ForwardDifference {
   static_assert(MaxDegree >= 1 && MaxDegree <= 5, "forward differencing supports degrees 1 to 5");
 
  public:
-  using scalar_type = S;
-  using Point = Vec<S, Dim>;
-  static constexpr std::size_t dimension = Dim;
-  static constexpr std::size_t max_degree = MaxDegree;
-  static constexpr std::size_t capacity = MaxDegree + 1;
+  using scalar_type = S;                                 ///< coordinate type
+  using Point = Vec<S, Dim>;                             ///< a point of the curve
+  static constexpr std::size_t dimension = Dim;          ///< coordinates per point
+  static constexpr std::size_t max_degree = MaxDegree;   ///< highest degree accepted (<= 5)
+  static constexpr std::size_t capacity = MaxDegree + 1; ///< difference-table entries per axis
   /// Upper limit of the re-seed interval (steps between exact re-seeds).
   static constexpr std::uint32_t max_reseed_interval = std::uint32_t{1} << 20;
   /// The stepping error budget is 2^-budget_bits of the output resolution (one raw unit in

@@ -32,10 +32,10 @@ namespace curvestep {
 template <Scalar S, std::size_t Dim, std::size_t MaxDegree = 5>
 class RationalForwardDifference {
  public:
-  using scalar_type = S;
-  using Point = Vec<S, Dim>;
+  using scalar_type = S;      ///< coordinate type
+  using Point = Vec<S, Dim>;  ///< a point of the curve
   using Homogeneous = ForwardDifference<S, Dim + 1, MaxDegree>;  ///< the stepper of (w b, w)
-  static constexpr std::size_t dimension = Dim;
+  static constexpr std::size_t dimension = Dim;  ///< coordinates per point
 
   /// An empty stepper.
   constexpr RationalForwardDifference() = default;
