@@ -10,6 +10,7 @@
 #include <curvestep/core/bspline/bspline.hpp>
 #include <curvestep/core/bspline/nurbs.hpp>
 #include <curvestep/core/curve/circular_arc.hpp>
+#include <curvestep/core/curve/composite_bezier.hpp>
 #include <curvestep/core/sampling/flatten.hpp>
 #include <support/numeric.hpp>
 
@@ -254,4 +255,32 @@ TEST_CASE("flatten: the 9-point NURBS circle is flattened within tolerance with 
   const double optimal = std::ceil(2 * 3.14159265358979323846 / (2 * std::acos(1 - 0.01 / r)));
   INFO("segments " << vertices.size() - 1 << " optimal " << optimal);
   CHECK(static_cast<double>(vertices.size() - 1) <= 2 * optimal);
+}
+
+TEMPLATE_TEST_CASE("flatten: composite Bezier curves are flattened segment by segment on their global parameter",
+                   "[core][sampling][flatten]", double, float, Q16_16) {
+  using S = TestType;
+  using Segment = Bezier<S, 2, 3>;
+  CompositeBezier<S, 2, 3, 4> path(scalar<S>(1));
+  REQUIRE(path.try_append(Segment::create({point<S>(0, 0), point<S>(0, 40), point<S>(40, 40), point<S>(40, 0)}).value(),
+                          scalar<S>(2)));
+  REQUIRE(path.try_append(Segment::create({point<S>(40, 0), point<S>(40, -30), point<S>(70, -30), point<S>(80, 10)}).value(),
+                          scalar<S>(4)));
+  std::vector<FlattenVertex<S, 2>> vertices;
+  REQUIRE(flatten(path, scalar<S>(0.01), [&](const FlattenVertex<S, 2>& v) { vertices.push_back(v); }).has_value());
+  CHECK(vertices.front().parameter == 1.0);
+  CHECK(vertices.back().parameter == 4.0);
+  // Reference: each segment's control points in long double, located by the global parameter.
+  const auto first = reference_polygon(path.segment(0));
+  const auto second = reference_polygon(path.segment(1));
+  const long double deviation = measured_deviation<2>(vertices, [&](long double u) {
+    return u <= 2 ? reference_point<2>(first, u - 1) : reference_point<2>(second, (u - 2) / 2);
+  });
+  CHECK(deviation <= 0.01L);
+  CompositeBezier<S, 2, 3, 4> broken;
+  REQUIRE(broken.try_append(Segment::create({point<S>(0, 0), point<S>(1, 1)}).value(), scalar<S>(1)));
+  REQUIRE(broken.try_append(Segment::create({point<S>(2, 2), point<S>(3, 3)}).value(), scalar<S>(2)));
+  const auto refused = flatten(broken, scalar<S>(0.01), [](const FlattenVertex<S, 2>&) {});
+  CHECK(refused.error() == Error::NotContinuous);
+  CHECK(refused.where() == 1);
 }

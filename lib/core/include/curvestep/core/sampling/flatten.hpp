@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// flatten: any curve (Bézier, rational Bézier, arc, B-spline, NURBS) to a polyline within a chord tolerance.
+// flatten: any curve (Bézier, rational Bézier, arc, composite, B-spline, NURBS) to a polyline within a chord tolerance.
 //
 // Why this bound. The polyline replaces the piece of curve on [a,b] by the chord from p(a) to
 // p(b). With positive weights every point of a (rational) Bézier piece is a convex combination
@@ -34,6 +34,7 @@
 
 #include <curvestep/core/bspline/bezier_extraction.hpp>
 #include <curvestep/core/curve/bezier.hpp>
+#include <curvestep/core/curve/composite_bezier.hpp>
 #include <curvestep/core/curve/rational_bezier.hpp>
 #include <curvestep/core/result.hpp>
 
@@ -306,14 +307,34 @@ template <class Curve, class Sink>
   return count;
 }
 
+/// Flattens a composite Bézier curve segment by segment into one polyline within `tolerance`;
+/// vertex parameters are global u. EmptyControlPolygon for no segments, NotContinuous (index =
+/// segment) if a segment does not start where the previous one ends; errors as flatten().
+template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegments, class Sink>
+[[nodiscard]] Result<std::size_t> flatten(const CompositeBezier<S, Dim, MaxDegree, MaxSegments>& curve, S tolerance, Sink&& sink) {
+  if (!(S{} < tolerance) || !is_finite(tolerance)) return fail(Error::InvalidTolerance);
+  if (curve.size() == 0) return fail(Error::EmptyControlPolygon);
+  for (std::size_t j = 1; j < curve.size(); ++j) {
+    if (!(curve.segment(j).front() == curve.segment(j - 1).back())) return fail(Error::NotContinuous, j);
+  }
+  std::size_t count = 0;
+  for (std::size_t j = 0; j < curve.size(); ++j) {
+    const auto polygon = detail::flatten_polygon_of(curve.segment(j));
+    CURVESTEP_TRY(const bool go_on, (detail::flatten_polygon<S, Dim>(polygon, to_double(tolerance), to_double(curve.breakpoint(j)),
+                                                                     to_double(curve.breakpoint(j + 1)), j == 0, sink, count)));
+    if (!go_on) break;
+  }
+  return count;
+}
+
 /// Flattens any curve flatten() accepts into `out`; returns the number of vertices written.
 /// BufferTooSmall (index = out.size()) if the polyline needs more vertices than `out` holds.
 template <class Curve>
 [[nodiscard]] Result<std::size_t> flatten_into(const Curve& curve, typename Curve::scalar_type tolerance,
-                                               std::span<Vec<typename Curve::scalar_type, Curve::dimension>> out) {
+                                               std::span<typename Curve::Point> out) {
   using S = typename Curve::scalar_type;
   std::size_t written = 0;
-  const auto result = flatten(curve, tolerance, [&](const FlattenVertex<S, Curve::dimension>& vertex) -> Result<void> {
+  const auto result = flatten(curve, tolerance, [&](const FlattenVertex<S, Curve::Point::dimension>& vertex) -> Result<void> {
     if (written == out.size()) return fail(Error::BufferTooSmall, out.size());
     out[written++] = vertex.point;
     return ok();
