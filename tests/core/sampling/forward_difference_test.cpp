@@ -232,3 +232,17 @@ TEST_CASE("forward_difference: B-spline spans are stepped through Bezier extract
   CHECK(walked.has_value());
   CHECK(pieces == 3);
 }
+
+TEST_CASE("forward_difference: Q16.16 quintics spanning almost the whole range keep the bound", "[core][sampling][property]") {
+  std::mt19937 rng(curvestep::testing::test_seed() + 2);
+  std::uniform_int_distribution<std::uint32_t> step_count(1, 400);
+  for (int c = 0; c < curvestep::testing::test_count(10); ++c) {
+    for (std::size_t degree = 1; degree <= 5; ++degree) {
+      const auto curve = random_curve<Q16_16, 2>(rng, degree, 32700.0);
+      double bound = 0;
+      const long double error = max_deviation(curve, c == 0 ? 1u : step_count(rng), nullptr, &bound);
+      CHECK(bound < 0.6 * to_double(resolution<Q16_16>()));
+      CHECK(error <= static_cast<long double>(bound));
+    }
+  }
+}
