@@ -14,7 +14,7 @@
 // Where in the tick do the steps go? Step j is taken where the straight line crosses the j-th
 // half-step threshold, i.e. at the fraction x_j = d_j / D of the tick, with D = |u1 - u0| and
 // d_j = d_0 + j * 65536 the distance from u0 to the threshold. That is a DDA on the step timer:
-// after one division per axis and tick, each further step costs two additions and a compare
+// after one or two divisions per axis and tick, each further step costs two additions and a compare
 // (quotient and remainder of d_j * R / D advance by fixed amounts). At a constant speed the pulse
 // train is uniform across tick boundaries too, including speeds below one step per tick; this
 // removes the aliasing that grbl's AMASS fights by over-driving its ISR at low step rates.
@@ -46,8 +46,9 @@
 //     >= M. Inside a tick: successive rises differ by >= floor(65536 * R / D), which is >= M when
 //     D <= max_fine_delta = floor(65536 * R / M). That is the per-tick step-rate check: a tick with
 //     two or more steps and D > max_fine_delta is StepRateTooHigh, before any edge is written;
-//   * timing error: a rise sits within [-(P - R) - 1, S] ticks of the exact crossing time x_j * P,
-//     so the usable rate is R / P of timer_hz / M (99 % for a 1 kHz tick on a 1 MHz timer).
+//   * timing error: a rise sits within [-(P - R) - 1, S] ticks of the exact crossing time x_j * P;
+//   * the window costs rate: the usable steady rate is R / P of timer_hz / M
+//     (usable_step_rate_hz(); 99 % for a 1 kHz tick on a 1 MHz timer).
 //
 // Before a job runs, check_step_rate() over its setpoints applies the same per-tick rule on the
 // host (the failure Klipper reports only at run time as "Rescheduled timer in the past", and of
