@@ -22,13 +22,6 @@
 namespace curvestep {
 
 namespace detail {
-/// floor(sqrt(n)) rounded to nearest.
-[[nodiscard]] constexpr std::uint64_t rounded_sqrt(std::uint64_t n) noexcept {
-  std::uint64_t root = integer_sqrt(n);
-  if (n - root * root > root) ++root;  // n >= (root + 1/2)^2
-  return root;
-}
-
 /// |v| in raw units of S for raw components |v_i| < 2^32 and Dim <= 3 (exact sum of squares),
 /// larger components are shifted down first.
 template <std::size_t Dim>

@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <limits>
 
 #include <curvestep/core/result.hpp>
 #include <curvestep/core/scalar.hpp>
@@ -122,10 +124,48 @@ template <Scalar S, std::size_t Dim>
   return dot(a, a);
 }
 
-/// Euclidean length |a|.
+namespace detail {
+/// sqrt(n) rounded to nearest.
+[[nodiscard]] constexpr std::uint64_t rounded_sqrt(std::uint64_t n) noexcept {
+  std::uint64_t root = integer_sqrt(n);
+  if (n - root * root > root) ++root;  // n >= (root + 1/2)^2
+  return root;
+}
+}  // namespace detail
+
+/// Euclidean length |a|. Fixed: the rounded square root of the exact sum of the squared raw
+/// values, so |a|² never has to fit the format (Q16.16: it would not above 181) and the result is
+/// within half a unit; a length beyond the range is a contract violation.
 template <Scalar S, std::size_t Dim>
 [[nodiscard]] constexpr S norm(const Vec<S, Dim>& a) {
-  return sqrt(squared_norm(a));
+  if constexpr (FixedPoint<S>) {
+    static_assert(sizeof(typename S::rep) <= 4, "squared raw values must fit 64 bits");
+    std::uint64_t largest = 0;
+    for (std::size_t i = 0; i < Dim; ++i) {
+      const auto raw = static_cast<std::int64_t>(a[i].raw());
+      const auto m = static_cast<std::uint64_t>(raw < 0 ? -raw : raw);
+      if (m > largest) largest = m;
+    }
+    // Drop low bits only if Dim squares of the largest value could overflow 64 bits.
+    int shift = 0;
+    std::uint64_t bound = 0;
+    while (__builtin_mul_overflow((largest >> shift) * (largest >> shift), std::uint64_t{Dim}, &bound) ||
+           ((largest >> shift) >> 32) != 0) {
+      ++shift;
+    }
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0; i < Dim; ++i) {
+      const auto raw = static_cast<std::int64_t>(a[i].raw());
+      const std::uint64_t m = static_cast<std::uint64_t>(raw < 0 ? -raw : raw) >> shift;
+      sum += m * m;
+    }
+    const std::uint64_t root = detail::rounded_sqrt(sum) << shift;
+    const auto r = S::from_wide(static_cast<typename S::wide>(root));
+    CURVESTEP_EXPECTS(root <= static_cast<std::uint64_t>(std::numeric_limits<typename S::rep>::max()) && r.has_value());
+    return r.value();
+  } else {
+    return sqrt(squared_norm(a));
+  }
 }
 
 /// Largest |coordinate| (the infinity norm).
