@@ -48,6 +48,15 @@ Curve<S> random_curve(std::mt19937& random, int c, double range = 100) {
   return made.value();
 }
 
+Curve<Q16_16> make_spline_for_limits(const std::vector<std::array<double, 2>>& control, const std::vector<double>& knots,
+                                     std::size_t degree) {
+  std::vector<Vec2<Q16_16>> points;
+  for (const auto& p : control) points.push_back(curvestep::testing::point<Q16_16>(p[0], p[1]));
+  std::vector<Q16_16> scaled;
+  for (const double k : knots) scaled.push_back(scalar<Q16_16>(k));
+  return Curve<Q16_16>::create(std::span<const Vec2<Q16_16>>(points), std::span<const Q16_16>(scaled), degree).value();
+}
+
 /// Parameters on a 1/64 grid across the domain (exact in every type), knots included.
 template <class S>
 std::vector<S> sample_parameters(const Curve<S>& curve) {
@@ -237,4 +246,30 @@ TEMPLATE_TEST_CASE("bspline: inserting an unclamped domain end degree times make
   CHECK(max_error(clamped.control_points()[3], to_doubles(curve.evaluate(scalar<S>(3)).value())) <= tolerance<S>(6, 8));
   CHECK(max_error(clamped.control_points()[7], to_doubles(curve.evaluate(scalar<S>(5)).value())) <= tolerance<S>(6, 8));
   CHECK(curve.insert_knot(scalar<S>(3), 4).error() == Error::KnotMultiplicityTooHigh);
+}
+
+TEST_CASE("bspline: Q16.16 evaluation keeps full resolution for points and knots near the format's limits",
+          "[core][bspline][property]") {
+  // Control points ±30000 apart and knot spans of up to 30000: the ratio step's product needs
+  // all 64 bits and long spans drop their lowest bits first (detail/ratio.hpp).
+  const auto line = make_spline_for_limits({{-30000, 0}, {30000, 20000}}, {0, 0, 30000, 30000}, 1);
+  CHECK(line.evaluate(Q16_16::from_double(10000).value()).value() ==
+        Vec2<Q16_16>{{Q16_16::from_double(-10000).value(), Q16_16::from_double(20000 / 3.0).value()}});
+  std::mt19937 random(curvestep::testing::test_seed() + 9);
+  std::uniform_real_distribution<double> coordinate(-30000, 30000);
+  for (int c = 0; c < 100; ++c) {
+    std::vector<std::array<double, 2>> control;
+    for (int i = 0; i < 6; ++i) control.push_back({std::round(coordinate(random)), std::round(coordinate(random))});
+    const auto curve = make_spline_for_limits(control, {0, 0, 0, 0, 7000, 25000, 32000, 32000, 32000, 32000}, 3);
+    const auto exact = Curve<double>::create(
+        std::span<const Vec2<double>>(curvestep::testing::points<double>({{control[0][0], control[0][1]}, {control[1][0], control[1][1]},
+                                                                          {control[2][0], control[2][1]}, {control[3][0], control[3][1]},
+                                                                          {control[4][0], control[4][1]}, {control[5][0], control[5][1]}})),
+        std::span<const double>(curvestep::testing::scalars<double>({0, 0, 0, 0, 7000, 25000, 32000, 32000, 32000, 32000})), 3);
+    for (int k = 0; k <= 64; ++k) {
+      const double u = 500.0 * k;
+      CHECK(max_error(curve.evaluate(Q16_16::from_double(u).value()).value(), to_doubles(exact.value().evaluate(u).value())) <=
+            3 * to_double(resolution<Q16_16>()));
+    }
+  }
 }

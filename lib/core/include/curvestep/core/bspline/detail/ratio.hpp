@@ -4,11 +4,10 @@
 // Every B-spline algorithm (de Boor, Boehm, blossoms, Cox–de Boor) combines two values with a
 // ratio of knot differences α = (u − u_i)/(u_j − u_i). Rounding α first and then multiplying
 // would cost |b − a|·2^-F-1 per step in fixed point (0.8 µm for points 100 mm apart in Q16.16);
-// here the exact product (b − a)·num is formed in the wide integer and divided once, so each
-// step costs at most half a unit whatever the distance. If that product cannot be held in 64
-// bits (points and knots both huge) the rounded-α form is used instead: still deterministic,
-// since both paths are pure integer arithmetic, and still inside [a, b].
-// For float/double these are the plain expressions.
+// here (b − a)·num/den is computed exactly and rounded once (a 64-bit long division, no 128-bit
+// type needed), so each step costs at most half a unit whatever the distance and the knot
+// values. Pure integer arithmetic: bit-identical on every target. For float/double these are
+// the plain expressions.
 #pragma once
 
 #include <cstddef>
@@ -21,20 +20,28 @@
 
 namespace curvestep::detail {
 
+/// round(value·n/d) for |value| < 2^33 and 0 <= n <= d < 2^31, exact (one rounding, ties away
+/// from zero) with 64-bit operations only: value is split into 16-bit halves (long division).
+[[nodiscard]] constexpr std::int64_t scale_exactly(std::int64_t value, std::int64_t n, std::int64_t d) noexcept {
+  const std::int64_t magnitude = value < 0 ? -value : value;
+  const std::int64_t high = magnitude >> 16;     // < 2^17
+  const std::int64_t low = magnitude & 0xFFFF;   // < 2^16
+  const std::int64_t first = high * n;           // < 2^48
+  const std::int64_t second = ((first % d) << 16) + low * n;  // < 2^48
+  std::int64_t quotient = ((first / d) << 16) + second / d;
+  if (2 * (second % d) >= d) ++quotient;
+  return value < 0 ? -quotient : quotient;
+}
+
 /// a + (b − a)·numerator/denominator. Contract: 0 <= numerator <= denominator, denominator > 0.
 /// The result lies between a and b (inclusive) and cannot overflow.
 template <Scalar S>
 [[nodiscard]] constexpr S ratio_lerp(S a, S b, S numerator, S denominator) {
   CURVESTEP_EXPECTS(S{} < denominator && !(numerator < S{}) && !(denominator < numerator));
   if constexpr (FixedPoint<S>) {
-    using W = typename S::wide;
-    const W difference = W{b.raw()} - W{a.raw()};
-    W product = 0;
-    if (!__builtin_mul_overflow(difference, W{numerator.raw()}, &product)) {
-      return S::from_raw(static_cast<typename S::rep>(W{a.raw()} + S::round_divide(product, W{denominator.raw()})));
-    }
-    const W t = S::round_divide(W{numerator.raw()} * S::one_raw, W{denominator.raw()});  // <= one_raw
-    return S::from_raw(static_cast<typename S::rep>(W{a.raw()} + S::round_shift(difference * t, S::fraction_bits)));
+    const std::int64_t difference = std::int64_t{b.raw()} - std::int64_t{a.raw()};
+    return S::from_raw(static_cast<typename S::rep>(std::int64_t{a.raw()} +
+                                                    scale_exactly(difference, numerator.raw(), denominator.raw())));
   } else {
     const S t = numerator / denominator;
     return (S{1} - t) * a + t * b;

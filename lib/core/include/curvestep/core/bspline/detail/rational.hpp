@@ -20,6 +20,7 @@
 #include <span>
 #include <type_traits>
 
+#include <curvestep/core/bspline/detail/ratio.hpp>
 #include <curvestep/core/contract.hpp>
 #include <curvestep/core/geometry/vec.hpp>
 #include <curvestep/core/scalar.hpp>
@@ -69,7 +70,7 @@ template <Scalar S>
 template <Scalar S>
 [[nodiscard]] constexpr S unscale_weight(WeightRep<S> weight, int shift) noexcept {
   if constexpr (FixedPoint<S>) {
-    const std::int64_t raw = S::round_shift(weight, shift);
+    const std::int64_t raw = shift > 0 ? (weight + (std::int64_t{1} << (shift - 1))) >> shift : weight;
     return S::from_raw(static_cast<typename S::rep>(raw < 1 ? 1 : raw));
   } else {
     static_cast<void>(shift);
@@ -97,9 +98,9 @@ template <Scalar S, std::size_t Dim>
     const auto beta_numerator = static_cast<W>(right >> drop);
     const auto beta_denominator = static_cast<W>(total >> drop);  // >= 2^30 once anything is dropped
     for (std::size_t axis = 0; axis < Dim; ++axis) {
-      const W difference = W{b.point[axis].raw()} - W{a.point[axis].raw()};  // |.| < 2^32
+      const W difference = W{b.point[axis].raw()} - W{a.point[axis].raw()};  // |.| < 2^33
       r.point[axis] = S::from_raw(static_cast<typename S::rep>(
-          W{a.point[axis].raw()} + S::round_divide(difference * beta_numerator, beta_denominator)));
+          W{a.point[axis].raw()} + scale_exactly(difference, beta_numerator, beta_denominator)));
     }
     r.weight = static_cast<W>((total + den / 2) / den);
   } else {
