@@ -74,8 +74,8 @@ template <Scalar S>
 
 /// Solves for the tangents v_i = s'(u_i) of the C2 cubic spline through `points`.
 /// Open ends: knots.size() == points.size(); CubicEnd::Closed: knots.size() == points.size() + 1
-/// (the last knot closes the curve back to points[0]). The tangents are used only when Clamped. Capacity bounds the
-/// number of points. Errors: TooFewPoints (< 2 open, < 3 closed), CapacityExceeded, BufferTooSmall
+/// (the last knot closes the curve back to points[0]). The tangents are used only when Clamped.
+/// Capacity bounds the number of points. Errors: TooFewPoints (< 2 open, < 3 closed), CapacityExceeded, BufferTooSmall
 /// (tangents shorter than points), InvalidArgument (knot count), InvalidInterval, NotFinite,
 /// SingularSystem, FixedOverflow.
 template <std::size_t Capacity, Scalar S, std::size_t Dim>
@@ -124,13 +124,12 @@ template <std::size_t Capacity, Scalar S, std::size_t Dim>
     if (has_before && has_after) {
       CURVESTEP_TRY(lambda, (h_after / (h_before + h_after)).result());
       CURVESTEP_TRY(mu, (Checked<S>(from_int<S>(1)) - Checked<S>(lambda)).result());
-      diagonal[j] = from_int<S>(2);
     } else {
       // natural end: 2v_0 + v_1 = 3δ_0 (lambda = 0, mu = 1) or v_{n−2} + 2v_{n−1} = 3δ_{n−2}
       lambda = has_before ? from_int<S>(1) : S{};
       mu = has_after ? from_int<S>(1) : S{};
-      diagonal[j] = from_int<S>(2);
     }
+    diagonal[j] = from_int<S>(2);
     lower[j] = lambda;
     upper[j] = mu;
     for (std::size_t axis = 0; axis < Dim; ++axis) {

@@ -96,7 +96,8 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
   CURVESTEP_TRY(const S h, detail::interval_width(knots, 0));
   Vec<S, Dim> inner;
   for (std::size_t axis = 0; axis < Dim; ++axis) {
-    const auto q = (Checked<S>(points[0][axis]) + Checked<S>(h) * Checked<S>(start_tangent[axis]) / Checked<S>(from_int<S>(2))).result();
+    const Checked<S> half_step = Checked<S>(h) * Checked<S>(start_tangent[axis]) / Checked<S>(from_int<S>(2));
+    const auto q = (Checked<S>(points[0][axis]) + half_step).result();
     if (!q) return fail(q.error(), 0);
     inner[axis] = q.value();
   }

@@ -181,7 +181,8 @@ template <Scalar S, class Value>
   z[0] = gamma;
   z[n - 1] = alpha;
   CURVESTEP_CHECK(detail::thomas_sweep<S>(n, lower_of, diagonal_of, upper_of, z, coefficients));
-  const Checked<S> denominator = Checked<S>(from_int<S>(1)) + Checked<S>(z[0]) + Checked<S>(beta) * Checked<S>(z[n - 1]) / Checked<S>(gamma);
+  const Checked<S> denominator =
+      Checked<S>(from_int<S>(1)) + Checked<S>(z[0]) + Checked<S>(beta) * Checked<S>(z[n - 1]) / Checked<S>(gamma);
   CURVESTEP_TRY(const S divisor, denominator.result());
   if (detail::negligible_pivot(divisor, from_int<S>(1))) return fail(Error::SingularSystem, n - 1);
   for (std::size_t axis = 0; axis < component_count(values[0]); ++axis) {
@@ -189,7 +190,8 @@ template <Scalar S, class Value>
                                  Checked<S>(beta) * Checked<S>(component(values[n - 1], axis)) / Checked<S>(gamma);
     CURVESTEP_TRY(const S factor, (numerator / Checked<S>(divisor)).result());
     for (std::size_t i = 0; i < n; ++i) {
-      CURVESTEP_TRY(component(values[i], axis), (Checked<S>(component(values[i], axis)) - Checked<S>(factor) * Checked<S>(z[i])).result());
+      const Checked<S> corrected = Checked<S>(component(values[i], axis)) - Checked<S>(factor) * Checked<S>(z[i]);
+      CURVESTEP_TRY(component(values[i], axis), corrected.result());
     }
   }
   return ok();
