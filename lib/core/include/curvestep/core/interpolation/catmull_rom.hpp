@@ -31,9 +31,9 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
   if (n < 2) return fail(Error::TooFewPoints, n);
   if (n - 1 > MaxSegments) return fail(Error::CapacityExceeded, n - 1);
   if (tangents.size() != n) return fail(Error::InvalidArgument, tangents.size());
-  CURVESTEP_CHECK(detail::check_points_finite(points));
-  CURVESTEP_CHECK(detail::check_points_finite(tangents));
-  CURVESTEP_CHECK(detail::check_knots(knots, n));
+  CURVESTEP_CHECK(detail::check_interpolation_points(points));
+  CURVESTEP_CHECK(detail::check_interpolation_points(tangents));
+  CURVESTEP_CHECK(detail::check_interpolation_knots(knots, n));
   return detail::assemble_hermite(points, tangents, knots, n - 1, out);
 }
 
@@ -62,13 +62,13 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
   const std::size_t n = points.size();
   if (n < 2) return fail(Error::TooFewPoints, n);
   if (n - 1 > MaxSegments) return fail(Error::CapacityExceeded, n - 1);
-  CURVESTEP_CHECK(detail::check_points_finite(points));
+  CURVESTEP_CHECK(detail::check_interpolation_points(points));
   std::array<Vec<S, Dim>, MaxSegments + 1> tangents{};
   std::array<S, MaxSegments + 1> knots{};
   tangents[0] = start_tangent;
   tangents[n - 1] = end_tangent;
   for (std::size_t j = 0; j < n; ++j) {
-    CURVESTEP_TRY(knots[j], detail::knot_from_index<S>(j));
+    CURVESTEP_TRY(knots[j], detail::uniform_knot<S>(j));
     if (j > 0 && j + 1 < n) {
       CURVESTEP_TRY(tangents[j], detail::central_tangent(points[j - 1], points[j + 1], j));
     }
@@ -85,11 +85,11 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
   const std::size_t m = points.size();
   if (m < 3) return fail(Error::TooFewPoints, m);
   if (m > MaxSegments) return fail(Error::CapacityExceeded, m);
-  CURVESTEP_CHECK(detail::check_points_finite(points));
+  CURVESTEP_CHECK(detail::check_interpolation_points(points));
   std::array<Vec<S, Dim>, MaxSegments> tangents{};
   std::array<S, MaxSegments + 1> knots{};
   for (std::size_t j = 0; j <= m; ++j) {
-    CURVESTEP_TRY(knots[j], detail::knot_from_index<S>(j));
+    CURVESTEP_TRY(knots[j], detail::uniform_knot<S>(j));
     if (j < m) {
       CURVESTEP_TRY(tangents[j], detail::central_tangent(points[(j + m - 1) % m], points[(j + 1) % m], j));
     }

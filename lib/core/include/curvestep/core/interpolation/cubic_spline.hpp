@@ -89,8 +89,8 @@ template <std::size_t Capacity, Scalar S, std::size_t Dim>
   if (n < (closed ? 3u : 2u)) return fail(Error::TooFewPoints, n);
   if (n > Capacity) return fail(Error::CapacityExceeded, n);
   if (tangents.size() < n) return fail(Error::BufferTooSmall, n);
-  CURVESTEP_CHECK(detail::check_points_finite(points));
-  CURVESTEP_CHECK(detail::check_knots(knots, closed ? n + 1 : n));
+  CURVESTEP_CHECK(detail::check_interpolation_points(points));
+  CURVESTEP_CHECK(detail::check_interpolation_knots(knots, closed ? n + 1 : n));
   std::array<S, Capacity> lower{};
   std::array<S, Capacity> diagonal{};
   std::array<S, Capacity> upper{};
@@ -116,10 +116,10 @@ template <std::size_t Capacity, Scalar S, std::size_t Dim>
     Checked<S> h_before{};
     Checked<S> h_after{};
     if (has_before) {
-      CURVESTEP_TRY(h_before, detail::interval_width(knots, before));
+      CURVESTEP_TRY(h_before, detail::knot_interval(knots, before));
     }
     if (has_after) {
-      CURVESTEP_TRY(h_after, detail::interval_width(knots, after));
+      CURVESTEP_TRY(h_after, detail::knot_interval(knots, after));
     }
     if (has_before && has_after) {
       CURVESTEP_TRY(lambda, (h_after / (h_before + h_after)).result());

@@ -52,8 +52,8 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
       return fail(appended.error(), i);
     }
     if (i + 1 < segment_count) {
-      CURVESTEP_TRY(const S h, interval_width(knots, i));
-      CURVESTEP_TRY(const S h_next, interval_width(knots, i + 1));
+      CURVESTEP_TRY(const S h, knot_interval(knots, i));
+      CURVESTEP_TRY(const S h_next, knot_interval(knots, i + 1));
       for (std::size_t axis = 0; axis < Dim; ++axis) {
         const Checked<S> p(points[next][axis]);
         const auto q = (p + Checked<S>(h_next) * (p - Checked<S>(inner[axis])) / Checked<S>(h)).result();
@@ -77,8 +77,8 @@ template <Scalar S, std::size_t Dim, std::size_t MaxSegments>
   if (n < (closed ? 3u : 2u)) return fail(Error::TooFewPoints, n);
   const std::size_t segments = closed ? n : n - 1;
   if (segments > MaxSegments) return fail(Error::CapacityExceeded, segments);
-  CURVESTEP_CHECK(check_points_finite(points));
-  return check_knots(knots, closed ? n + 1 : n);
+  CURVESTEP_CHECK(check_interpolation_points(points));
+  return check_interpolation_knots(knots, closed ? n + 1 : n);
 }
 
 }  // namespace detail
@@ -93,7 +93,7 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
                                                            CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   using detail::Checked;
   CURVESTEP_CHECK((detail::check_quadratic_input<S, Dim, MaxSegments>(points, knots, Closure::Open)));
-  CURVESTEP_TRY(const S h, detail::interval_width(knots, 0));
+  CURVESTEP_TRY(const S h, detail::knot_interval(knots, 0));
   Vec<S, Dim> inner;
   for (std::size_t axis = 0; axis < Dim; ++axis) {
     const Checked<S> half_step = Checked<S>(h) * Checked<S>(start_tangent[axis]) / Checked<S>(from_int<S>(2));
@@ -120,7 +120,7 @@ template <Scalar S, std::size_t MaxDegree, std::size_t MaxSegments>
   std::array<Checked<S>, 2> alternating{};
   for (std::size_t j = 0; j < n; ++j) {
     const std::size_t i = n - 1 - j;
-    CURVESTEP_TRY(const S h, detail::interval_width(knots, i));
+    CURVESTEP_TRY(const S h, detail::knot_interval(knots, i));
     for (std::size_t axis = 0; axis < 2; ++axis) {
       const Checked<S> slope = (Checked<S>(points[i + 1][axis]) - Checked<S>(points[i][axis])) / Checked<S>(h);
       alternating[axis] = j % 2 == 0 ? alternating[axis] + slope : alternating[axis] - slope;
@@ -138,7 +138,7 @@ template <Scalar S, std::size_t MaxDegree, std::size_t MaxSegments>
   CURVESTEP_TRY(const S magnitude, scale.result());
   if (detail::negligible_pivot(det, magnitude)) return fail(Error::SingularSystem);
   const Checked<S> lambda = (c0x * alternating[1] - c0y * alternating[0]) / determinant;
-  CURVESTEP_TRY(const S h, detail::interval_width(knots, 0));
+  CURVESTEP_TRY(const S h, detail::knot_interval(knots, 0));
   Vec<S, 2> inner;
   for (std::size_t axis = 0; axis < 2; ++axis) {
     const auto q = (Checked<S>(points[0][axis]) + Checked<S>(h) * lambda * Checked<S>(start_direction[axis])).result();
@@ -162,8 +162,8 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
   Vec<S, Dim> inner{};
   for (std::size_t i = 0; i < m; ++i) {
     const std::size_t next = i + 1 == m ? 0 : i + 1;
-    CURVESTEP_TRY(const S h, detail::interval_width(knots, i));
-    CURVESTEP_TRY(const S h_next, detail::interval_width(knots, next));
+    CURVESTEP_TRY(const S h, detail::knot_interval(knots, i));
+    CURVESTEP_TRY(const S h_next, detail::knot_interval(knots, next));
     for (std::size_t axis = 0; axis < Dim; ++axis) {
       const Checked<S> p(points[next][axis]);
       const auto q = (p + Checked<S>(h_next) * (p - Checked<S>(inner[axis])) / Checked<S>(h)).result();

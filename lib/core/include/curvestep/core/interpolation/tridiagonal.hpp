@@ -40,19 +40,19 @@ namespace detail {
 
 /// Number of scalar components of a right-hand-side entry (a scalar or a Vec).
 template <Scalar S>
-[[nodiscard]] constexpr std::size_t component_count(const S&) noexcept {
+[[nodiscard]] constexpr std::size_t rhs_component_count(const S&) noexcept {
   return 1;
 }
 template <Scalar S, std::size_t Dim>
-[[nodiscard]] constexpr std::size_t component_count(const Vec<S, Dim>&) noexcept {
+[[nodiscard]] constexpr std::size_t rhs_component_count(const Vec<S, Dim>&) noexcept {
   return Dim;
 }
 template <Scalar S>
-[[nodiscard]] constexpr S& component(S& value, std::size_t) noexcept {
+[[nodiscard]] constexpr S& rhs_component(S& value, std::size_t) noexcept {
   return value;
 }
 template <Scalar S, std::size_t Dim>
-[[nodiscard]] constexpr S& component(Vec<S, Dim>& value, std::size_t axis) noexcept {
+[[nodiscard]] constexpr S& rhs_component(Vec<S, Dim>& value, std::size_t axis) noexcept {
   return value[axis];
 }
 
@@ -81,16 +81,16 @@ template <Scalar S, class Value, class Lower, class Diagonal, class Upper>
     CURVESTEP_TRY(const S row_magnitude, magnitude.result());
     if (negligible_pivot(w, row_magnitude)) return fail(Error::SingularSystem, i);
     CURVESTEP_TRY(scratch[i], (Checked<S>(c) / Checked<S>(w)).result());
-    for (std::size_t axis = 0; axis < component_count(x[i]); ++axis) {
-      Checked<S> d = Checked<S>(component(x[i], axis));
-      if (i > 0) d = d - Checked<S>(a) * Checked<S>(component(x[i - 1], axis));
-      CURVESTEP_TRY(component(x[i], axis), (d / Checked<S>(w)).result());
+    for (std::size_t axis = 0; axis < rhs_component_count(x[i]); ++axis) {
+      Checked<S> d = Checked<S>(rhs_component(x[i], axis));
+      if (i > 0) d = d - Checked<S>(a) * Checked<S>(rhs_component(x[i - 1], axis));
+      CURVESTEP_TRY(rhs_component(x[i], axis), (d / Checked<S>(w)).result());
     }
   }
   for (std::size_t i = n - 1; i-- > 0;) {
-    for (std::size_t axis = 0; axis < component_count(x[i]); ++axis) {
-      const Checked<S> v = Checked<S>(component(x[i], axis)) - Checked<S>(scratch[i]) * Checked<S>(component(x[i + 1], axis));
-      CURVESTEP_TRY(component(x[i], axis), v.result());
+    for (std::size_t axis = 0; axis < rhs_component_count(x[i]); ++axis) {
+      const Checked<S> v = Checked<S>(rhs_component(x[i], axis)) - Checked<S>(scratch[i]) * Checked<S>(rhs_component(x[i + 1], axis));
+      CURVESTEP_TRY(rhs_component(x[i], axis), v.result());
     }
   }
   return ok();
@@ -124,8 +124,8 @@ template <Scalar S, class Value>
                                                               std::span<const S> upper, std::span<Value> values,
                                                               std::span<S> scratch) noexcept {
   using detail::Checked;
-  using detail::component;
-  using detail::component_count;
+  using detail::rhs_component;
+  using detail::rhs_component_count;
   const std::size_t n = diagonal.size();
   CURVESTEP_EXPECTS(lower.size() == n && upper.size() == n && values.size() == n);
   if (scratch.size() < 2 * n) return fail(Error::BufferTooSmall, 2 * n);
@@ -134,8 +134,8 @@ template <Scalar S, class Value>
     CURVESTEP_TRY(const S b, (Checked<S>(diagonal[0]) + Checked<S>(lower[0]) + Checked<S>(upper[0])).result());
     const S magnitude = abs(diagonal[0]) + abs(lower[0]) + abs(upper[0]);
     if (detail::negligible_pivot(b, magnitude)) return fail(Error::SingularSystem, 0);
-    for (std::size_t axis = 0; axis < component_count(values[0]); ++axis) {
-      CURVESTEP_TRY(component(values[0], axis), (Checked<S>(component(values[0], axis)) / Checked<S>(b)).result());
+    for (std::size_t axis = 0; axis < rhs_component_count(values[0]); ++axis) {
+      CURVESTEP_TRY(rhs_component(values[0], axis), (Checked<S>(rhs_component(values[0], axis)) / Checked<S>(b)).result());
     }
     return ok();
   }
@@ -150,13 +150,13 @@ template <Scalar S, class Value>
                                   Checked<S>(abs(m01.value)) * Checked<S>(abs(m10.value)))
                                      .result());
     if (detail::negligible_pivot(determinant, scale)) return fail(Error::SingularSystem, 1);
-    for (std::size_t axis = 0; axis < component_count(values[0]); ++axis) {
-      const Checked<S> d0(component(values[0], axis));
-      const Checked<S> d1(component(values[1], axis));
+    for (std::size_t axis = 0; axis < rhs_component_count(values[0]); ++axis) {
+      const Checked<S> d0(rhs_component(values[0], axis));
+      const Checked<S> d1(rhs_component(values[1], axis));
       CURVESTEP_TRY(const S x0, ((d0 * m11 - m01 * d1) / Checked<S>(determinant)).result());
       CURVESTEP_TRY(const S x1, ((m00 * d1 - d0 * m10) / Checked<S>(determinant)).result());
-      component(values[0], axis) = x0;
-      component(values[1], axis) = x1;
+      rhs_component(values[0], axis) = x0;
+      rhs_component(values[1], axis) = x1;
     }
     return ok();
   }
@@ -185,13 +185,13 @@ template <Scalar S, class Value>
       Checked<S>(from_int<S>(1)) + Checked<S>(z[0]) + Checked<S>(beta) * Checked<S>(z[n - 1]) / Checked<S>(gamma);
   CURVESTEP_TRY(const S divisor, denominator.result());
   if (detail::negligible_pivot(divisor, from_int<S>(1))) return fail(Error::SingularSystem, n - 1);
-  for (std::size_t axis = 0; axis < component_count(values[0]); ++axis) {
-    const Checked<S> numerator = Checked<S>(component(values[0], axis)) +
-                                 Checked<S>(beta) * Checked<S>(component(values[n - 1], axis)) / Checked<S>(gamma);
+  for (std::size_t axis = 0; axis < rhs_component_count(values[0]); ++axis) {
+    const Checked<S> numerator = Checked<S>(rhs_component(values[0], axis)) +
+                                 Checked<S>(beta) * Checked<S>(rhs_component(values[n - 1], axis)) / Checked<S>(gamma);
     CURVESTEP_TRY(const S factor, (numerator / Checked<S>(divisor)).result());
     for (std::size_t i = 0; i < n; ++i) {
-      const Checked<S> corrected = Checked<S>(component(values[i], axis)) - Checked<S>(factor) * Checked<S>(z[i]);
-      CURVESTEP_TRY(component(values[i], axis), corrected.result());
+      const Checked<S> corrected = Checked<S>(rhs_component(values[i], axis)) - Checked<S>(factor) * Checked<S>(z[i]);
+      CURVESTEP_TRY(rhs_component(values[i], axis), corrected.result());
     }
   }
   return ok();

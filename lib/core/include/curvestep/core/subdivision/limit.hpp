@@ -55,11 +55,11 @@ enum class SubdivisionScheme : std::uint8_t {
 namespace detail {
 /// Vertex k + offset under the boundary rule (cyclic or clamped); false if it does not exist.
 template <Scalar S, std::size_t Dim>
-[[nodiscard]] constexpr bool neighbour(std::span<const Vec<S, Dim>> polygon, std::int64_t k, Boundary boundary,
+[[nodiscard]] constexpr bool boundary_vertex(std::span<const Vec<S, Dim>> polygon, std::int64_t k, Boundary boundary,
                                        Vec<S, Dim>& out) noexcept {
   const auto n = static_cast<std::int64_t>(polygon.size());
   if (boundary == Boundary::Closed) {
-    k = k - n * floor_divide(k, n);
+    k = k - n * floor_divide_positive(k, n);
   } else if (k < 0 || k >= n) {
     if (boundary == Boundary::Finite) return false;
     k = k < 0 ? 0 : n - 1;
@@ -70,13 +70,13 @@ template <Scalar S, std::size_t Dim>
 
 /// Σ weights[r]·P_{first + r} / denominator with boundary-resolved indices.
 template <Scalar S, std::size_t Dim, std::size_t Count>
-[[nodiscard]] constexpr Result<Vec<S, Dim>> stencil(std::span<const Vec<S, Dim>> polygon, std::int64_t first, Boundary boundary,
+[[nodiscard]] constexpr Result<Vec<S, Dim>> limit_stencil(std::span<const Vec<S, Dim>> polygon, std::int64_t first, Boundary boundary,
                                                     const std::array<std::int64_t, Count>& weights, std::int64_t denominator,
                                                     std::size_t index) noexcept {
   std::array<Vec<S, Dim>, Count> points{};
   for (std::size_t r = 0; r < Count; ++r) {
     if (weights[r] == 0) continue;
-    if (!neighbour(polygon, first + static_cast<std::int64_t>(r), boundary, points[r])) {
+    if (!boundary_vertex(polygon, first + static_cast<std::int64_t>(r), boundary, points[r])) {
       return fail(Error::InvalidArgument, index);
     }
   }
@@ -95,10 +95,10 @@ template <Scalar S, std::size_t Dim>
   const auto first = static_cast<std::int64_t>(k) - 1;
   switch (scheme) {
     case SubdivisionScheme::CubicBSpline:
-      return detail::stencil<S, Dim, 3>(polygon, first, boundary, {1, 4, 1}, 6, k);
+      return detail::limit_stencil<S, Dim, 3>(polygon, first, boundary, {1, 4, 1}, 6, k);
     case SubdivisionScheme::Chaikin:
     case SubdivisionScheme::TernaryQuadratic:
-      return detail::stencil<S, Dim, 3>(polygon, first, boundary, {1, 6, 1}, 8, k);
+      return detail::limit_stencil<S, Dim, 3>(polygon, first, boundary, {1, 6, 1}, 8, k);
     case SubdivisionScheme::FourPoint:
       break;
   }
@@ -117,15 +117,15 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree = 3>
   std::array<Vec<S, Dim>, 4> control{};
   if (scheme == SubdivisionScheme::CubicBSpline) {
     if (boundary != Boundary::Closed && j + 1 >= polygon.size()) return fail(Error::InvalidArgument, j);
-    CURVESTEP_TRY(control[0], (detail::stencil<S, Dim, 3>(polygon, k - 1, boundary, {1, 4, 1}, 6, j)));
-    CURVESTEP_TRY(control[1], (detail::stencil<S, Dim, 2>(polygon, k, boundary, {2, 1}, 3, j)));
-    CURVESTEP_TRY(control[2], (detail::stencil<S, Dim, 2>(polygon, k, boundary, {1, 2}, 3, j)));
-    CURVESTEP_TRY(control[3], (detail::stencil<S, Dim, 3>(polygon, k, boundary, {1, 4, 1}, 6, j)));
+    CURVESTEP_TRY(control[0], (detail::limit_stencil<S, Dim, 3>(polygon, k - 1, boundary, {1, 4, 1}, 6, j)));
+    CURVESTEP_TRY(control[1], (detail::limit_stencil<S, Dim, 2>(polygon, k, boundary, {2, 1}, 3, j)));
+    CURVESTEP_TRY(control[2], (detail::limit_stencil<S, Dim, 2>(polygon, k, boundary, {1, 2}, 3, j)));
+    CURVESTEP_TRY(control[3], (detail::limit_stencil<S, Dim, 3>(polygon, k, boundary, {1, 4, 1}, 6, j)));
     return Bezier<S, Dim, MaxDegree>::create(std::span<const Vec<S, Dim>>(control.data(), 4));
   }
-  CURVESTEP_TRY(control[0], (detail::stencil<S, Dim, 2>(polygon, k - 1, boundary, {1, 1}, 2, j)));
+  CURVESTEP_TRY(control[0], (detail::limit_stencil<S, Dim, 2>(polygon, k - 1, boundary, {1, 1}, 2, j)));
   control[1] = polygon[j];
-  CURVESTEP_TRY(control[2], (detail::stencil<S, Dim, 2>(polygon, k, boundary, {1, 1}, 2, j)));
+  CURVESTEP_TRY(control[2], (detail::limit_stencil<S, Dim, 2>(polygon, k, boundary, {1, 1}, 2, j)));
   return Bezier<S, Dim, MaxDegree>::create(std::span<const Vec<S, Dim>>(control.data(), 3));
 }
 

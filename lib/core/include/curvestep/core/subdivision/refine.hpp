@@ -45,7 +45,7 @@ struct RefinedRange {
 namespace detail {
 
 /// Floor division for a positive divisor.
-[[nodiscard]] constexpr std::int64_t floor_divide(std::int64_t n, std::int64_t d) noexcept {
+[[nodiscard]] constexpr std::int64_t floor_divide_positive(std::int64_t n, std::int64_t d) noexcept {
   const std::int64_t q = n / d;
   return (n % d != 0 && n < 0) ? q - 1 : q;
 }
@@ -68,7 +68,7 @@ struct TapSpan {
 }
 
 /// The range of new vertices produced for an open polygon with old vertices 0..last.
-[[nodiscard]] constexpr RefinedRange open_range(const SubdivisionMask& mask, std::int64_t last, Boundary boundary) noexcept {
+[[nodiscard]] constexpr RefinedRange refined_open_range(const SubdivisionMask& mask, std::int64_t last, Boundary boundary) noexcept {
   const auto a = static_cast<std::int64_t>(mask.arity());
   const std::int64_t from = mask.first_index() - a;
   const std::int64_t to = a * last + mask.last_index() + a;
@@ -111,7 +111,7 @@ struct TapSpan {
     return RefinedRange{0, mask.arity() * vertex_count};
   }
   if (vertex_count < 2) return fail(Error::TooFewPoints, vertex_count);
-  return detail::open_range(mask, static_cast<std::int64_t>(vertex_count) - 1, boundary);
+  return detail::refined_open_range(mask, static_cast<std::int64_t>(vertex_count) - 1, boundary);
 }
 
 /// One refinement step of `polygon` into `output`. BufferTooSmall (index = vertices needed) if
@@ -134,7 +134,7 @@ template <Scalar S, std::size_t Dim>
       if (mask.numerator(s) == 0 || (i - s) % a != 0) continue;
       std::int64_t k = (i - s) / a;
       if (boundary == Boundary::Closed) {
-        k = k - n * detail::floor_divide(k, n);
+        k = k - n * detail::floor_divide_positive(k, n);
       } else if (k < 0) {
         k = 0;
       } else if (k >= n) {

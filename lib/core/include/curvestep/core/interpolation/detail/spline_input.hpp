@@ -13,7 +13,7 @@ namespace curvestep::detail {
 
 /// NotFinite (index = point) for NaN/inf coordinates.
 template <Scalar S, std::size_t Dim>
-[[nodiscard]] constexpr Result<void> check_points_finite(std::span<const Vec<S, Dim>> points) noexcept {
+[[nodiscard]] constexpr Result<void> check_interpolation_points(std::span<const Vec<S, Dim>> points) noexcept {
   for (std::size_t i = 0; i < points.size(); ++i) {
     for (std::size_t axis = 0; axis < Dim; ++axis) {
       if (!is_finite(points[i][axis])) return fail(Error::NotFinite, i);
@@ -25,7 +25,7 @@ template <Scalar S, std::size_t Dim>
 /// InvalidArgument (index = knot count) for the wrong count; InvalidInterval (index = knot) if
 /// the knots are not strictly increasing; NotFinite for NaN/inf.
 template <Scalar S>
-[[nodiscard]] constexpr Result<void> check_knots(std::span<const S> knots, std::size_t expected_count) noexcept {
+[[nodiscard]] constexpr Result<void> check_interpolation_knots(std::span<const S> knots, std::size_t expected_count) noexcept {
   if (knots.size() != expected_count) return fail(Error::InvalidArgument, knots.size());
   for (std::size_t i = 0; i < knots.size(); ++i) {
     if (!is_finite(knots[i])) return fail(Error::NotFinite, i);
@@ -36,7 +36,7 @@ template <Scalar S>
 
 /// The uniform knot u_j = j (FixedOverflow past the Q range).
 template <Scalar S>
-[[nodiscard]] constexpr Result<S> knot_from_index(std::size_t j) noexcept {
+[[nodiscard]] constexpr Result<S> uniform_knot(std::size_t j) noexcept {
   if constexpr (FixedPoint<S>) {
     return S::from_integer(static_cast<long long>(j));
   } else {
@@ -46,7 +46,7 @@ template <Scalar S>
 
 /// Interval width u_{i+1} − u_i, checked.
 template <Scalar S>
-[[nodiscard]] constexpr Result<S> interval_width(std::span<const S> knots, std::size_t i) noexcept {
+[[nodiscard]] constexpr Result<S> knot_interval(std::span<const S> knots, std::size_t i) noexcept {
   const auto h = checked_sub(knots[i + 1], knots[i]);
   if (!h) return fail(h.error(), i);
   return h.value();
