@@ -105,11 +105,13 @@ template <Scalar S, std::size_t MaxDegree = 7>
     return Curve::create(points, weights);
   }
   // 90° < θ <= 180°: the degree-elevated cubic.
+  // With the homogeneous middle point h1 = cos(θ/2) c + r m: q1 = (start + 2 h1) / (1 + 2 cos(θ/2)),
+  // taken relative to the centre, c + (a + 2 r m) / (1 + 2 cos(θ/2)), so that no intermediate
+  // sum of absolute coordinates can leave the Fixed range far from the origin.
   const S middle_weight = (one + from_int<S>(2) * half_cos) / from_int<S>(3);
-  const Vec2<S> h1 = center * half_cos + rm;  // homogeneous middle point without its weight
   const S denominator = one + from_int<S>(2) * half_cos;
-  const Vec2<S> q1 = (start + h1 * from_int<S>(2)) / denominator;
-  const Vec2<S> q2 = (end + h1 * from_int<S>(2)) / denominator;
+  const Vec2<S> q1 = center + (a + rm * from_int<S>(2)) / denominator;
+  const Vec2<S> q2 = center + (b + rm * from_int<S>(2)) / denominator;
   const std::array<Vec2<S>, 4> points{start, q1, q2, end};
   const std::array<S, 4> weights{one, middle_weight, middle_weight, one};
   return Curve::create(points, weights);
