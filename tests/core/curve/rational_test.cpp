@@ -398,3 +398,33 @@ TEMPLATE_TEST_CASE("rational bezier: evaluation error does not grow with the dis
     CHECK(worst_split <= 2 * tol);
   }
 }
+
+TEMPLATE_TEST_CASE("circular arc: arcs far from the origin keep their accuracy", "[core][rational][arc][property]", double, float,
+                   Q16_16) {
+  using S = TestType;
+  Random random(27);
+  const int count = test_count(100);
+  for (int c = 0; c < count; ++c) {
+    const double radius = random.uniform(0.5, 100);
+    const double cx = random.uniform(-30000, 30000);
+    const double cy = random.uniform(-30000, 30000);
+    const auto center = must(vec_from_doubles<S, 2>({cx, cy}));
+    const double start_angle = random.uniform(-3.2, 3.2);
+    double sweep = random.uniform(0.001, std::acos(-1.0));
+    if (random.chance(0.5)) sweep = -sweep;
+    const double x0 = to_double(center[0]);
+    const double y0 = to_double(center[1]);
+    const auto start = must(vec_from_doubles<S, 2>({x0 + radius * std::cos(start_angle), y0 + radius * std::sin(start_angle)}));
+    const auto end = must(vec_from_doubles<S, 2>({x0 + radius * std::cos(start_angle + sweep), y0 + radius * std::sin(start_angle + sweep)}));
+    INFO("case " << c << " centre " << cx << ", " << cy << " radius " << radius << " sweep " << sweep);
+    const double scale = std::fabs(cx) + std::fabs(cy) + radius;
+    // Fixed units are absolute: the bound depends on the radius only. Floats: on the coordinates.
+    const double input = FixedPoint<S> ? 2 * unit<S>() : 4 * unit<S>() * scale;
+    const double on_circle = FixedPoint<S> ? 8 * unit<S>() * (1 + radius) : 8 * unit<S>() * (radius + scale);
+    const auto direction = sweep > 0 ? ArcDirection::CounterClockwise : ArcDirection::Clockwise;
+    const auto arc = circular_arc<S, 7>(center, start, end, direction, from_double<S>(input).value());
+    INFO("error " << error_name(arc.error()) << " at " << arc.where());
+    REQUIRE(arc.has_value());
+    check_arc(arc.value(), center, start, end, sweep, on_circle);
+  }
+}
