@@ -444,5 +444,14 @@ TEMPLATE_TEST_CASE("interpolation: random splines in float and Q16.16 stay close
     const double scale = FixedPoint<S> ? std::fmax(100.0, longest_leg) : std::fmax(100.0, to_double(reference.domain_end()));
     CHECK(worst <= solve_tolerance<S>(scale));
     CHECK(joint_jump(approximate, 1, closed) <= solve_tolerance<S>(scale));
+    // C2 from both sides, at the wrap too: the second derivative is 6·(leg difference)/h², so its
+    // error is the leg error times 12/h² for the shortest interval h, plus the rounding of the
+    // derivative evaluation itself (a few units of the format).
+    double shortest = to_double(reference.breakpoint(1)) - to_double(reference.breakpoint(0));
+    for (std::size_t j = 1; j < reference.size(); ++j) {
+      shortest = std::fmin(shortest, to_double(reference.breakpoint(j + 1)) - to_double(reference.breakpoint(j)));
+    }
+    const double evaluation = 4 * to_double(resolution<S>()) * (FixedPoint<S> ? 1 : scale);
+    CHECK(joint_jump(approximate, 2, closed) <= 12 * solve_tolerance<S>(scale) / (shortest * shortest) + evaluation);
   }
 }
