@@ -48,9 +48,11 @@ template <ParametricCurve C>
     if (t < a) t = a;
     if (b < t) t = b;
     CURVESTEP_TRY(const auto d, curve.derivative_at(t, 1));
-    sum = sum + weight * norm(d);
+    // Each term scaled by the half width first: Σ w_k = 2, so Σ w_k |r'| alone could leave the
+    // Fixed range for speeds above half of it although the integral over [a,b] ⊆ [0,1] does not.
+    sum = sum + weight * (norm(d) * half_width);
   }
-  return sum * half_width;
+  return sum;
 }
 }  // namespace detail
 
