@@ -67,3 +67,18 @@ TEMPLATE_TEST_CASE("arc length: machine-sized curves match a long double quadrat
   }
   CHECK(checked > count / 3);
 }
+
+TEMPLATE_TEST_CASE("arc length: a 20 m line within the Q16.16 range", "[core][bezier]", double, float, Q16_16) {
+  using S = TestType;
+  // A straight cubic from x = 0 to x = 20000 mm whose speed reaches 20000 mm per unit t: the
+  // length (20000) and every speed fit Q16.16, the sum of the quadrature weights times the
+  // speeds (~40000) does not.
+  const auto line = must(Bezier<S, 2, 7>::create({point<S>(0, 0), point<S>(6000, 0), point<S>(14000, 0), point<S>(20000, 0)}));
+  const auto length = arc_length(line, S{}, from_int<S>(1), scalar<S>(0.01));
+  if (!length) FAIL_CHECK("arc_length failed: " << error_name(length.error()));
+  // Fixed: the quadrature nodes are Q16.16 parameters, rounded by half a unit, which moves each
+  // speed sample by up to |r''| / 2 units (|r''| <= 12000 here) and the integral as much; float:
+  // relative rounding of 20000.
+  const double format = FixedPoint<S> ? 12000 * unit<S>() + 64 * unit<S>() : 64 * unit<S>() * 20000;
+  if (length) CHECK(std::fabs(to_double(length.value()) - 20000) <= 0.01 + format);
+}
