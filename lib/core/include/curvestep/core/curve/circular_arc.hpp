@@ -7,8 +7,9 @@
 // where J turns a by +90° (counter-clockwise) or -90° (clockwise). With unit vectors u_a, u_b,
 // cos(θ/2) = |u_a + u_b| / 2 and sin(θ/2) = |u_a - u_b| / 2: only square roots are needed, and
 // unlike sqrt((1 + cos θ)/2) these stay accurate near 180° (where 1 + cos θ cancels and the
-// square root would magnify a rounding of 2^-16 to 2^-8.5). Lengths are computed with the larger
-// coordinate factored out, so r² never has to fit the format (Q16.16: radii up to the range).
+// square root would magnify a rounding of 2^-16 to 2^-8.5). Fixed lengths are the rounded integer
+// square root of the exact sum of squared raw values, so r² never has to fit the format (Q16.16:
+// radii up to the range); the cubic's points are formed relative to the centre for the same reason.
 //   * θ <= 90°: the quadratic form, weight cos(θ/2) >= √2/2, middle point c + r m / cos(θ/2).
 //   * 90° < θ <= 180°: the same conic degree-elevated to a cubic, whose weights (1+2cos(θ/2))/3
 //     stay positive and whose points stay finite even at θ = 180° (where the quadratic's middle
