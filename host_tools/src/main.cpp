@@ -2,6 +2,7 @@
 // curvestep: evaluate, sample, simulate and stream motion paths.
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -10,6 +11,8 @@
 int main(int argc, char** argv) {
   CLI::App app{"curvestep: allocation-free Bezier/B-spline motion paths for CNC and plotter controllers"};
   app.require_subcommand(1);
+  // One line on failure: the cause, no "Run with --help" hint.
+  app.failure_message([](const CLI::App*, const CLI::Error& e) { return std::string("curvestep: ") + e.what() + "\n"; });
   curvestep::host::add_demo_command(app);
   curvestep::host::add_eval_command(app);
   curvestep::host::add_sample_command(app);

@@ -209,3 +209,48 @@ TEST_CASE("motion: configuration and state errors are reported", "[core][motion]
   REQUIRE(small.try_push(line(mp(1, 0), mp(2, 0)), 1).has_value());
   CHECK(small.try_push(line(mp(2, 0), mp(3, 0)), 2).error() == Error::QueueFull);
 }
+
+TEST_CASE("motion: per-axis velocity and acceleration limits hold on every axis", "[core][motion]") {
+  MachineLimits m = test_machine();
+  m.feed_mm_per_s = 100;
+  m.axes[0].v_max_mm_per_s = 60;    // x slower than the feed
+  m.axes[2].a_max_mm_per_s2 = 300;  // a slow z axis
+  m.axes[2].v_max_mm_per_s = 10;
+  const std::vector<PathSegment> job{line(mp(0, 0, 0), mp(200, 100, 0)), line(mp(200, 100, 0), mp(200, 100, 20)),
+                                     cubic(mp(200, 100, 20), mp(250, 150, 20), mp(300, 50, 25), mp(350, 100, 30))};
+  const auto sp = run_job<double>(job, m);
+  const double dt = 1.0 / m.rate_hz;
+  std::array<double, 3> peak_v{}, peak_a{};
+  for (std::size_t i = 2; i < sp.size(); ++i) {
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const double d1 = sp[i].position[axis] - sp[i - 1].position[axis];
+      const double d2 = sp[i].position[axis] - 2 * sp[i - 1].position[axis] + sp[i - 2].position[axis];
+      peak_v[axis] = std::fmax(peak_v[axis], std::fabs(d1) / dt);
+      peak_a[axis] = std::fmax(peak_a[axis], std::fabs(d2) / (dt * dt));
+    }
+  }
+  CHECK(peak_v[0] <= 60 * 1.01);
+  CHECK(peak_v[2] <= 10 * 1.01);
+  CHECK(peak_a[2] <= 300 * 1.01);
+  // The slow z axis does not slow the XY move: x and y accelerate well beyond z's limit.
+  CHECK(std::fmax(peak_a[0], peak_a[1]) > 600);
+  const auto peaks = measure(sp, m.rate_hz);
+  CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
+  CHECK(peaks.jerk <= m.j_max_mm_per_s3 * 1.01);
+}
+
+TEST_CASE("motion: the trapezoidal profile keeps speed and acceleration limits", "[core][motion]") {
+  MachineLimits m = test_machine();
+  m.jerk_limited = false;
+  for (const auto& job : acceptance_jobs()) {
+    const auto sp = run_job<double>(job, m);
+    const auto peaks = measure(sp, m.rate_hz);
+    CHECK(peaks.speed <= m.feed_mm_per_s * 1.01);
+    CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
+  }
+  // A line: T = L/v + v/a for a trapezoid.
+  m.feed_mm_per_s = 100;
+  const auto sp = run_job<double>({line(mp(0, 0), mp(300, 0))}, m);
+  const double analytic = 300 / m.feed_mm_per_s + m.feed_mm_per_s / m.a_max_mm_per_s2;
+  CHECK(std::fabs(static_cast<double>(sp.back().tick) / m.rate_hz - analytic) <= 0.01 * analytic);
+}

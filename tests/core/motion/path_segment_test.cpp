@@ -98,3 +98,11 @@ TEST_CASE("path_segment: lines and Béziers start and end exactly where they wer
   const std::array<MachinePoint, 3> same{mp(1, 1), mp(1, 1), mp(1, 1)};
   CHECK(PathSegment::make_bezier(same).error() == Error::DegenerateCurve);
 }
+
+TEST_CASE("path_segment: an arc whose end radius differs slightly spirals onto its end point", "[core][motion]") {
+  const auto arc = PathSegment::make_arc(mp(10, 0), mp(0, 10.002), mp(0, 0), ArcDirection::CounterClockwise, 0, 0.01).value();
+  const auto near_end = arc.point(1 - 1e-9);
+  CHECK(difference(near_end, mp(0, 10.002)) < 1e-7);  // no jump at u = 1
+  CHECK(norm(arc.point(0.5) - mp(0, 0)) == Approx(10.001).margin(1e-12));  // radius halfway between
+  check_derivatives_match_finite_differences(arc);
+}

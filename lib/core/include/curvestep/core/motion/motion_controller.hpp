@@ -26,7 +26,7 @@
 #include <cstdint>
 
 #include <curvestep/core/container/ring_buffer.hpp>
-#include <curvestep/core/motion/arc_length_table.hpp>
+#include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/cusps.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
@@ -91,7 +91,7 @@ class MotionController {
     SegmentPlan previous = previous_plan_;
     bool has_previous = has_previous_;
     for (std::size_t i = 0; i < count; ++i) {
-      CURVESTEP_TRY(const auto table, ArcLengthTable<TableIntervals>::build(pieces[i]));
+      CURVESTEP_TRY(const auto table, PathLengthTable<TableIntervals>::build(pieces[i]));
       auto plan = plan_segment(pieces[i], table, machine_);
       if (!plan) return fail(plan.error(), job_index);
       entries[i] = Entry{pieces[i], plan.value(), has_previous ? junction_speed(previous, plan.value(), machine_) : 0, job_index};
@@ -221,7 +221,7 @@ class MotionController {
 
   /// Starts following the front segment from arc length `offset` at speed v0 at time `origin`.
   [[nodiscard]] Result<void> begin_segment(double offset, double v0, double origin) noexcept {
-    CURVESTEP_TRY(table_, ArcLengthTable<TableIntervals>::build(front().segment));
+    CURVESTEP_TRY(table_, PathLengthTable<TableIntervals>::build(front().segment));
     offset_mm_ = offset;
     origin_s_ = origin;
     const double remaining = table_.length() - offset;
@@ -274,7 +274,7 @@ class MotionController {
       s -= table_.length();
       hold_base_mm_ -= table_.length();
       queue_.pop_front();
-      CURVESTEP_TRY(table_, ArcLengthTable<TableIntervals>::build(front().segment));
+      CURVESTEP_TRY(table_, PathLengthTable<TableIntervals>::build(front().segment));
     }
     if (s > table_.length()) s = table_.length();
     if (tau >= hold_profile_.duration_s()) {
@@ -314,7 +314,7 @@ class MotionController {
   RingBuffer<Entry, QueueCapacity> queue_{};
   SegmentPlan previous_plan_{};
   bool has_previous_ = false;
-  ArcLengthTable<TableIntervals> table_{};
+  PathLengthTable<TableIntervals> table_{};
   VelocityProfile profile_{};
   VelocityProfile hold_profile_{};
   double offset_mm_ = 0;

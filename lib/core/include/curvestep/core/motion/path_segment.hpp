@@ -83,6 +83,7 @@ class PathSegment {
     s.radius_ = r;
     s.sweep_ = sweep;
     s.dz_ = end[2] - start[2];
+    s.end_radius_scale_ = rb / r;
     return s;
   }
 
@@ -146,7 +147,8 @@ class PathSegment {
     if (u == 0) return start();
     if (u == 1) return end();
     switch (kind_) {
-      case SegmentKind::Arc: return rotated_radius(u * sweep_, 1.0) + MachinePoint{{center_[0], center_[1], start_[2] + u * dz_}};
+      case SegmentKind::Arc:
+        return rotated_radius(u * sweep_, radius_scale(u)) + MachinePoint{{center_[0], center_[1], start_[2] + u * dz_}};
       case SegmentKind::RationalBezier: return rational_.point_at(u);
       default: return polynomial_.point_at(u);
     }
@@ -157,11 +159,16 @@ class PathSegment {
     CURVESTEP_EXPECTS(u >= 0 && u <= 1 && order >= 1);
     switch (kind_) {
       case SegmentKind::Arc: {
-        // d^k/du^k of R(uθ) a = |θ|^k R(uθ + k sign(θ) π/2) a; z is linear in u.
+        // p(u) = c + ρ(u) R(uθ) a with ρ linear (ρ(0) = 1, ρ(1) = r_end / r_start) and
+        // d^k/du^k R(uθ) a = |θ|^k R(uθ + k sign(θ) π/2) a, so by Leibniz
+        // p^(k) = ρ |θ|^k R(uθ + k s π/2) a + k ρ' |θ|^(k-1) R(uθ + (k-1) s π/2) a.
         const double sign = sweep_ >= 0 ? 1.0 : -1.0;
-        double factor = 1;
-        for (std::size_t k = 0; k < order; ++k) factor *= std::fabs(sweep_);
-        auto d = rotated_radius(u * sweep_ + static_cast<double>(order) * sign * detail::pi / 2, factor);
+        const double quarter = sign * detail::pi / 2;
+        double power = 1;  // |θ|^(k-1)
+        for (std::size_t k = 1; k < order; ++k) power *= std::fabs(sweep_);
+        const double k = static_cast<double>(order);
+        auto d = rotated_radius(u * sweep_ + k * quarter, radius_scale(u) * power * std::fabs(sweep_)) +
+                 rotated_radius(u * sweep_ + (k - 1) * quarter, k * (end_radius_scale_ - 1) * power);
         d[2] = order == 1 ? dz_ : 0.0;
         return d;
       }
@@ -193,6 +200,10 @@ class PathSegment {
   }
 
  private:
+  /// ρ(u): the radius relative to the start radius, linear from 1 to r_end / r_start, so that an
+  /// arc whose end radius differs slightly (within the tolerance) still ends exactly at its end.
+  [[nodiscard]] constexpr double radius_scale(double u) const noexcept { return 1 + u * (end_radius_scale_ - 1); }
+
   /// factor * R(angle) (start - center) in XY, z = 0.
   [[nodiscard]] MachinePoint rotated_radius(double angle, double factor) const noexcept {
     const auto sc = detail::sin_cos(angle);
@@ -218,6 +229,7 @@ class PathSegment {
   double radius_ = 0;
   double sweep_ = 0;
   double dz_ = 0;
+  double end_radius_scale_ = 1;
 };
 
 }  // namespace curvestep

@@ -9,7 +9,9 @@
 // So |a| <= a_max holds if v²κ <= ½ a_max and |a_t| <= 0.85 a_max (0.25 + 0.7225 < 1), and
 // |j| <= j_max holds if |j_t| <= ½ j_max, v³(κ² + |dκ/ds|) <= ¼ j_max and 3 v |a_t| κ <= ¼ j_max.
 // A straight segment keeps the full a_max and j_max. Per-axis velocity limits cap v |T_axis|;
-// per-axis acceleration limits lower a_max to the smallest axis limit (conservative). The chord
+// an axis sees |a_t| |T_axis| + v²κ |N_axis| <= (0.85 + 0.5) a_eff max(|T_axis|, |N_axis|) on a
+// curved segment and a_t |T_axis| on a straight one, so each axis limit caps the segment's
+// a_eff accordingly (an XY move is not slowed by a slow Z axis). The chord
 // between two setpoints must stay within the tolerance: its sagitta κ (v Δt)² / 8 <= tolerance.
 // κ and dκ/ds are sampled at 129 points (dκ/ds by differences of κ over arc length, with a 25%
 // margin); the planning is a pure function of the segment and the machine (deterministic).
@@ -18,7 +20,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include <curvestep/core/motion/arc_length_table.hpp>
+#include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
 #include <curvestep/core/motion/velocity_profile.hpp>
@@ -66,14 +68,11 @@ inline void tangent_and_curvature(const MachinePoint& d1, const MachinePoint& d2
 
 /// Analyses a segment for the machine: length, caps, end tangents and curvatures.
 template <std::size_t Intervals = 64>
-[[nodiscard]] Result<SegmentPlan> plan_segment(const PathSegment& segment, const ArcLengthTable<Intervals>& table,
+[[nodiscard]] Result<SegmentPlan> plan_segment(const PathSegment& segment, const PathLengthTable<Intervals>& table,
                                                const MachineLimits& machine) {
   SegmentPlan plan;
   plan.length_mm = table.length();
   double a_max = machine.a_max_mm_per_s2;
-  for (const auto& axis : machine.axes) {
-    if (axis.a_max_mm_per_s2 > 0 && axis.a_max_mm_per_s2 < a_max) a_max = axis.a_max_mm_per_s2;
-  }
   double speed_cap = segment.rapid() ? (machine.rapid_mm_per_s > 0 ? machine.rapid_mm_per_s : machine.v_max_mm_per_s)
                                      : (segment.feed_mm_per_s() > 0 ? segment.feed_mm_per_s() : machine.feed_mm_per_s);
   speed_cap = std::fmin(speed_cap, machine.v_max_mm_per_s);
@@ -102,6 +101,7 @@ template <std::size_t Intervals = 64>
   double peak_u = 0;
   MachinePoint previous_curvature{};
   std::array<double, motion_axes> max_tangent_component{};
+  std::array<double, motion_axes> max_normal_component{};
   auto kappa_at = [&](double u) {
     MachinePoint tangent;
     MachinePoint curvature;
@@ -121,11 +121,12 @@ template <std::size_t Intervals = 64>
       plan.end_tangent = tangent;
       plan.end_curvature = curvature;
     }
+    const double kappa = norm(curvature);
     for (std::size_t axis = 0; axis < motion_axes; ++axis) {
       max_tangent_component[axis] = std::fmax(max_tangent_component[axis], std::fabs(tangent[axis]));
+      if (kappa > 0) max_normal_component[axis] = std::fmax(max_normal_component[axis], std::fabs(curvature[axis]) / kappa);
     }
     if (k < first || k > last) continue;
-    const double kappa = norm(curvature);
     const double s = table.length_at(segment, u);
     if (k > first && s > previous_s) {
       max_kappa_rate = std::fmax(max_kappa_rate, norm(curvature - previous_curvature) / (s - previous_s));
@@ -171,6 +172,13 @@ template <std::size_t Intervals = 64>
     const double limit = machine.axes[axis].v_max_mm_per_s;
     if (limit > 0 && max_tangent_component[axis] > 0) speed_cap = std::fmin(speed_cap, limit / max_tangent_component[axis]);
   }
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    const double limit = machine.axes[axis].a_max_mm_per_s2;
+    if (!(limit > 0)) continue;
+    const double share = max_kappa > 0 ? 1.35 * std::fmax(max_tangent_component[axis], max_normal_component[axis])
+                                       : max_tangent_component[axis];
+    if (share > 0) a_max = std::fmin(a_max, limit / share);
+  }
   double acceleration = a_max;
   double jerk = machine.j_max_mm_per_s3;
   if (max_kappa > 0) {
@@ -190,9 +198,10 @@ template <std::size_t Intervals = 64>
 ///   tangent-continuous: only the curvature jump counts: a jump Δ(κN) changes the acceleration by
 ///     v²|Δ(κN)| within one tick, so with the S-curve v² |Δ(κN)| <= ½ j_max Δt;
 ///   a corner of angle θ: grbl's junction deviation v² = a δ sin(θ/2) / (1 − sin(θ/2)); with the
-///     S-curve the velocity jump v·2 sin(θ/2) within one tick must also keep the jerk (<= ½ j Δt²),
-///     with the trapezoid the acceleration (<= ½ a Δt): setpoints differentiated numerically stay
-///     within the limits, at the price of near-stops at sharp corners (no corner blending yet).
+///     S-curve the velocity jump v·2 sin(θ/2) within one tick must also keep the jerk (<= ½ j Δt²);
+///     the trapezoid stops (its full acceleration starts beside the jump): setpoints differentiated
+///     numerically stay within the limits, at the price of (near-)stops at sharp corners (no
+///     corner blending yet).
 [[nodiscard]] inline double junction_speed(const SegmentPlan& previous, const SegmentPlan& next, const MachineLimits& machine) noexcept {
   double v = std::fmin(previous.limits.speed_cap_mm_per_s, next.limits.speed_cap_mm_per_s);
   const double dt = 1.0 / machine.rate_hz;
@@ -203,8 +212,10 @@ template <std::size_t Intervals = 64>
     if (half_angle_sin >= 1 - 1e-12) return 0;  // reversal
     const double deviation = machine.junction_deviation_mm * half_angle_sin / (1 - half_angle_sin);
     v = std::fmin(v, std::sqrt(machine.a_max_mm_per_s2 * deviation));
-    if (machine.jerk_limited) v = std::fmin(v, 0.5 * machine.j_max_mm_per_s3 * dt * dt / (2 * half_angle_sin));
-    else v = std::fmin(v, 0.5 * machine.a_max_mm_per_s2 * dt / (2 * half_angle_sin));
+    // S-curve: the acceleration is zero at the joint, the velocity jump alone makes the jerk.
+    // Trapezoid: the full tangential acceleration starts at once beside the jump, so only a stop
+    // keeps the measured acceleration within a_max.
+    v = machine.jerk_limited ? std::fmin(v, 0.5 * machine.j_max_mm_per_s3 * dt * dt / (2 * half_angle_sin)) : 0;
   }
   const double curvature_jump = norm(previous.end_curvature - next.start_curvature);
   if (machine.jerk_limited && curvature_jump > 0) {

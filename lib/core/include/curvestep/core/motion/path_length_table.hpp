@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// ArcLengthTable: arc length s(u) of a path segment and its inverse u(s), so feed follows arc length.
+// PathLengthTable: arc length s(u) of a path segment and its inverse u(s), so feed follows arc length.
 //
 // The segment's parameter range [0,1] is cut into Intervals equal pieces; the length of each piece
 // is the 5-point Gauss–Legendre integral of |p'(u)| (exact for polynomial speed of degree 9; on
@@ -21,15 +21,15 @@ namespace curvestep {
 
 /// Arc-length table of one segment with Intervals pieces.
 template <std::size_t Intervals = 64>
-class ArcLengthTable {
+class PathLengthTable {
   static_assert(Intervals >= 2, "an arc-length table needs at least two intervals");
 
  public:
-  constexpr ArcLengthTable() = default;
+  constexpr PathLengthTable() = default;
 
   /// Builds the table for `segment`. DegenerateCurve if the segment has zero length.
-  [[nodiscard]] static Result<ArcLengthTable> build(const PathSegment& segment) {
-    ArcLengthTable table;
+  [[nodiscard]] static Result<PathLengthTable> build(const PathSegment& segment) {
+    PathLengthTable table;
     double s = 0;
     table.length_[0] = 0;
     table.speed_[0] = norm(segment.derivative(0, 1));

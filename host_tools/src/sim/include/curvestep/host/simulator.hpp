@@ -1,0 +1,63 @@
+// SPDX-License-Identifier: MIT
+// The host simulator: replays a job through the firmware's MotionController and measures the result.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/host/job.hpp>
+
+namespace curvestep::host {
+
+/// One setpoint as written to CSV: time, position, speed, and the raw Q16.16 position.
+struct SetpointRecord {
+  double time_s = 0;
+  std::array<double, 3> position_mm{};
+  double speed_mm_per_s = 0;
+  std::array<std::int32_t, 3> raw_q16{};  ///< the bits a Q16.16 firmware sends (fixed-point runs)
+  std::uint32_t segment = 0;               ///< the job file's segment index
+};
+
+/// What `curvestep sim` reports.
+struct SimulationSummary {
+  std::size_t setpoints = 0;
+  double duration_s = 0;
+  double distance_mm = 0;
+  double peak_speed_mm_per_s = 0;          ///< numerical, from the exact (double) positions
+  double peak_acceleration_mm_per_s2 = 0;  ///< |second difference| / dt²
+  double peak_jerk_mm_per_s3 = 0;          ///< |third difference| / dt³
+  double max_quantisation_mm = 0;          ///< largest |Q16.16 setpoint − exact point on the path|
+  double max_chord_deviation_mm = 0;       ///< largest sagitta between consecutive setpoints (|Δ²p|/8)
+  std::array<double, 3> peak_step_rate_hz{};  ///< per axis: peak |velocity| × steps/mm
+  std::vector<std::string> violations;    ///< limits exceeded (by more than 1%), one line each
+};
+
+/// Options of one simulation.
+struct SimulationOptions {
+  bool fixed_point = true;  ///< Q16.16 setpoints (the firmware's); false: double
+  std::function<void(double fraction)> progress;  ///< called now and then with 0..1 (may be empty)
+};
+
+/// The setpoints and the summary of a run.
+struct SimulationResult {
+  std::vector<SetpointRecord> setpoints;
+  SimulationSummary summary;
+};
+
+/// Runs the job on the machine. Throws std::runtime_error with a one-line cause if the controller
+/// rejects a segment (naming the job file and segment) or faults.
+[[nodiscard]] SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options = {});
+
+/// Writes `t,x,y,z,v` and one line per setpoint (shortest round-trip decimals).
+void write_setpoints_csv(std::ostream& out, const std::vector<SetpointRecord>& setpoints);
+
+/// The summary as the human-readable block `curvestep sim` prints.
+[[nodiscard]] std::string format_summary(const SimulationSummary& summary, const MachineLimits& machine);
+
+}  // namespace curvestep::host

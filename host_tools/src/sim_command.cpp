@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: MIT
+// `curvestep sim JOB --machine MACHINE.json [--rate HZ] [-o setpoints.csv]`: replays a job through
+// the firmware's motion code and prints what the machine would do.
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/simulator.hpp>
+
+#include "commands.hpp"
+
+namespace curvestep::host {
+namespace {
+
+struct SimOptions {
+  std::string job;
+  std::string machine;
+  double rate_hz = 0;
+  std::string output;
+  bool double_precision = false;
+};
+
+/// Exit status for a job the machine cannot run within its limits.
+constexpr int exit_limits_exceeded = 3;
+
+int run_sim(const SimOptions& o) {
+  const Job job = load_job(o.job);
+  MachineLimits machine = load_machine(o.machine);
+  if (o.rate_hz > 0) {
+    machine.rate_hz = o.rate_hz;
+    if (auto valid = machine.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
+  }
+  SimulationOptions options;
+  options.fixed_point = !o.double_precision;
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  if (terminal) {
+    options.progress = [](double fraction) {
+      const int width = 40;
+      const int filled = static_cast<int>(fraction * width);
+      std::cerr << "\r  [" << std::string(static_cast<std::size_t>(filled), '#') << std::string(static_cast<std::size_t>(width - filled), ' ')
+                << "] " << static_cast<int>(fraction * 100) << "%" << std::flush;
+    };
+  }
+  const SimulationResult result = simulate(job, machine, options);
+  if (terminal) std::cerr << "\r" << std::string(60, ' ') << "\r";
+  if (!o.output.empty()) {
+    std::ofstream out(o.output);
+    if (!out) throw std::runtime_error("cannot write " + o.output);
+    write_setpoints_csv(out, result.setpoints);
+    if (!out) throw std::runtime_error("error writing " + o.output);
+  }
+  std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16") << ")\n"
+            << format_summary(result.summary, machine);
+  if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
+  return result.summary.violations.empty() ? 0 : exit_limits_exceeded;
+}
+
+}  // namespace
+
+void add_sim_command(CLI::App& app) {
+  auto options = std::make_shared<SimOptions>();
+  auto* sim = app.add_subcommand("sim", "Replay a job exactly as the firmware would run it and report the motion");
+  sim->add_option("job", options->job, "Job file (.json)")->required()->check(CLI::ExistingFile);
+  sim->add_option("--machine,-m", options->machine, "Machine file (.json)")->required()->check(CLI::ExistingFile);
+  sim->add_option("--rate", options->rate_hz, "Setpoint rate in Hz (100..100000), overriding the machine file");
+  sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v)");
+  sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
+  sim->callback([options] {
+    const int status = run_sim(*options);
+    if (status != 0) throw CLI::RuntimeError(status);
+  });
+}
+
+}  // namespace curvestep::host

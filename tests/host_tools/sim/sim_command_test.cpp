@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+// `curvestep sim`: the real program on the bundled jobs, its CSV, its summary and its failures.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include <catch2/catch.hpp>
+
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/simulator.hpp>
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string output;
+};
+
+Run run(const std::string& arguments) {
+  const std::string command = std::string(CURVESTEP_BINARY) + " " + arguments + " 2>&1";
+  Run r;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe) != nullptr) r.output += buffer;
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+std::string source(const std::string& relative) { return std::string(CURVESTEP_SOURCE_DIR) + "/" + relative; }
+
+std::string temporary(const std::string& name, const std::string& content) {
+  const std::string path = std::string("/tmp/curvestep_sim_test_") + name;
+  std::ofstream(path) << content;
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("sim: the bundled jobs run within the limits and write CSV", "[host_tools][sim]") {
+  const std::string csv = "/tmp/curvestep_sim_test_out.csv";
+  const Run r = run("sim " + source("examples/jobs/every_type.json") + " --machine " + source("examples/jobs/machine.json") + " -o " + csv);
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK(r.output.find("limit violations:    none") != std::string::npos);
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  CHECK(header == "t,x,y,z,v");
+  std::string line;
+  std::size_t rows = 0;
+  std::string last;
+  while (std::getline(in, line)) {
+    ++rows;
+    last = line;
+  }
+  CHECK(rows > 100);
+  // The last setpoint stands still (v = 0).
+  CHECK(last.substr(last.rfind(',') + 1) == "0");
+}
+
+TEST_CASE("sim: the CSV's last position is the job's end point", "[host_tools][sim]") {
+  const auto job = curvestep::host::parse_job(
+      R"({"version": 1, "units": "mm", "segments": [{"type": "bezier", "points": [[0,0],[1,2],[3,3],[4,0]]},
+          {"type": "line", "points": [[4,0],[10,0.5]]}]})", "inline.json");
+  const auto machine = curvestep::host::load_machine(source("examples/jobs/machine.json"));
+  const auto result = curvestep::host::simulate(job, machine);
+  CHECK(result.setpoints.back().position_mm[0] == 10.0);
+  CHECK(result.setpoints.back().position_mm[1] == 0.5);
+  CHECK(result.setpoints.back().raw_q16[1] == 32768);  // 0.5 in Q16.16
+  CHECK(result.setpoints.front().position_mm[0] == 0.0);
+  CHECK(result.summary.violations.empty());
+  CHECK(result.summary.distance_mm == Approx(5.829927224626644 + std::hypot(6.0, 0.5)).epsilon(1e-4));  // seed TV-12 length + line
+}
+
+TEST_CASE("sim: a rate override changes the setpoint count", "[host_tools][sim]") {
+  const Run slow = run("sim " + source("examples/jobs/seed_cubic.json") + " --machine " + source("examples/jobs/machine.json") + " --rate 500");
+  const Run fast = run("sim " + source("examples/jobs/seed_cubic.json") + " --machine " + source("examples/jobs/machine.json") + " --rate 2000");
+  CHECK(slow.status == 0);
+  CHECK(fast.status == 0);
+  CHECK(slow.output.find("at 500 Hz") != std::string::npos);
+  CHECK(fast.output.find("at 2000 Hz") != std::string::npos);
+  const Run bad = run("sim " + source("examples/jobs/seed_cubic.json") + " --machine " + source("examples/jobs/machine.json") + " --rate 50");
+  CHECK(bad.status != 0);
+  CHECK(bad.output.find("--rate") != std::string::npos);
+}
+
+TEST_CASE("sim: an invalid job fails with a one-line cause naming file and segment", "[host_tools][sim]") {
+  const std::string job = temporary("bad_job.json",
+                                    R"({"version": 1, "units": "mm", "segments": [{"type": "line", "points": [[0,0],[1,0]]},
+                                        {"type": "line", "points": [[2,0],[3,0]]}]})");
+  const Run r = run("sim " + job + " --machine " + source("examples/jobs/machine.json"));
+  CHECK(r.status == 1);
+  CHECK(r.output.find("bad_job.json") != std::string::npos);
+  CHECK(r.output.find("segment 1") != std::string::npos);
+  CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+}
+
+TEST_CASE("sim: a job the machine cannot run exits with status 3 and names the limit", "[host_tools][sim]") {
+  std::ifstream in(source("examples/jobs/machine.json"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string machine = text.str();
+  const auto at = machine.find("\"max_step_rate\": 40000");
+  REQUIRE(at != std::string::npos);
+  machine.replace(at, std::string("\"max_step_rate\": 40000").size(), "\"max_step_rate\": 1000");
+  const std::string path = temporary("slow_machine.json", machine);
+  const Run r = run("sim " + source("examples/jobs/every_type.json") + " --machine " + path);
+  CHECK(r.status == 3);
+  CHECK(r.output.find("steps/s") != std::string::npos);
+}
+
+TEST_CASE("sim: a missing machine option is a usage error", "[host_tools][sim]") {
+  const Run r = run("sim " + source("examples/jobs/every_type.json"));
+  CHECK(r.status != 0);
+  CHECK(r.output.find("--machine") != std::string::npos);
+}
