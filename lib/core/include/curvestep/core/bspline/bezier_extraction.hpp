@@ -8,7 +8,8 @@
 // ratio in that triangle lies in [0,1], so the Bézier points are convex combinations of the
 // span's control points: no overflow in fixed point, at most p/2 units of rounding each.
 // This gives the same points as inserting every interior knot until its multiplicity is p
-// (Boehm), without needing room for the extra control points.
+// (Boehm), without needing room for the extra control points. A NURBS piece is formed the same
+// way from the weighted points (Nurbs::bezier_piece) and comes out as a RationalBezier.
 //
 // The end points b_0 and b_p are the curve's own values s(u_s) and s(u_{s+1}) as evaluate()
 // computes them, so consecutive pieces share their joint bit for bit in every scalar type:
