@@ -91,11 +91,13 @@ TEST_CASE("fixed: from_double rejects the half unit just outside each end of the
   CHECK(Q7_8::from_double(-128.0 - 1.0 / 512).error() == Error::FixedOverflow);
 }
 
-TEMPLATE_TEST_CASE("fixed: from_double of every quarter unit matches round half away from zero", "[core][fixed]", Q3_4, Q7_8) {
+TEMPLATE_TEST_CASE("fixed: from_double of quarter units across the range matches round half away from zero", "[core][fixed]", Q3_4, Q7_8) {
   using F = TestType;
   const double unit = std::ldexp(1.0, -F::fraction_bits);
-  // Every quarter unit from 3 units below the range to 3 units above it.
-  for (long long q = 4 * raw_min<F> - 12; q <= 4 * raw_max<F> + 12; ++q) {
+  // Every quarter unit within 64 units of both ends and of zero, every 7th elsewhere (all of Q3.4).
+  const long long low = 4 * raw_min<F> - 12;
+  const long long high = 4 * raw_max<F> + 12;
+  for (long long q = low; q <= high;) {
     const double x = static_cast<double>(q) * unit / 4;
     const double expected = std::round(x / unit);  // std::round: ties away from zero
     const auto r = F::from_double(x);
@@ -108,6 +110,8 @@ TEMPLATE_TEST_CASE("fixed: from_double of every quarter unit matches round half 
       REQUIRE_FALSE(r.has_value());
       QUIET_CHECK(r.error() == Error::FixedOverflow);
     }
+    const bool near_special = q - low < 256 || high - q < 256 || (q > -256 && q < 256);
+    q += (near_special || sizeof(typename F::rep) == 1) ? 1 : 7;
   }
 }
 
@@ -192,7 +196,7 @@ TEMPLATE_TEST_CASE("fixed: sqrt is correctly rounded for every raw value", "[cor
 TEMPLATE_TEST_CASE("fixed: checked_lerp is one rounding of the exact affine combination", "[core][fixed]", Q3_4, Q7_8) {
   using F = TestType;
   std::mt19937 engine(curvestep::testing::test_seed() + 1);
-  const auto values = raw_values<F>(engine, 60, false);
+  const auto values = raw_values<F>(engine, 32, false);
   const long long one = 1LL << F::fraction_bits;
   for (long long a : values) {
     for (long long b : values) {
@@ -213,7 +217,7 @@ TEST_CASE("fixed: Q16.16 integer multiples and divisions against exact integers"
   std::uniform_int_distribution<long long> raw(raw_min<Q16_16>, raw_max<Q16_16>);
   std::uniform_int_distribution<int> divisor(-100000, 100000);
   std::uniform_int_distribution<int> factor(-40, 40);
-  for (int k = 0; k < curvestep::testing::test_count(20000); ++k) {
+  for (int k = 0; k < curvestep::testing::test_count(5000); ++k) {
     const long long a = raw(engine);
     const int d = divisor(engine);
     const int m = factor(engine);
