@@ -25,6 +25,16 @@ inline constexpr std::array<double, 5> gauss_legendre_5_nodes{
 inline constexpr std::array<double, 5> gauss_legendre_5_weights{
     0.236926885056189087514264, 0.478628670499366468041982, 0.568888888888888888888889,
     0.478628670499366468041982, 0.236926885056189087514264};
+/// The same nodes and weights in S, converted at compile time (no runtime double maths on an MCU).
+template <Scalar S>
+inline constexpr std::array<S, 5> gauss_legendre_5_nodes_as{
+    constant<S>(gauss_legendre_5_nodes[0]), constant<S>(gauss_legendre_5_nodes[1]), constant<S>(gauss_legendre_5_nodes[2]),
+    constant<S>(gauss_legendre_5_nodes[3]), constant<S>(gauss_legendre_5_nodes[4])};
+template <Scalar S>
+inline constexpr std::array<S, 5> gauss_legendre_5_weights_as{
+    constant<S>(gauss_legendre_5_weights[0]), constant<S>(gauss_legendre_5_weights[1]),
+    constant<S>(gauss_legendre_5_weights[2]), constant<S>(gauss_legendre_5_weights[3]),
+    constant<S>(gauss_legendre_5_weights[4])};
 
 /// ∫_a^b |r'| by the 5-point rule.
 template <ParametricCurve C>
@@ -35,15 +45,8 @@ template <ParametricCurve C>
   const S middle = a + half_width;
   S sum{};
   for (std::size_t k = 0; k < 5; ++k) {
-    S node{};
-    S weight{};
-    if constexpr (FixedPoint<S>) {
-      node = S::from_double(gauss_legendre_5_nodes[k]).value();
-      weight = S::from_double(gauss_legendre_5_weights[k]).value();
-    } else {
-      node = static_cast<S>(gauss_legendre_5_nodes[k]);
-      weight = static_cast<S>(gauss_legendre_5_weights[k]);
-    }
+    const S node = gauss_legendre_5_nodes_as<S>[k];
+    const S weight = gauss_legendre_5_weights_as<S>[k];
     S t = middle + half_width * node;
     if (t < a) t = a;
     if (b < t) t = b;
