@@ -95,7 +95,7 @@ class RationalBezier {
   [[nodiscard]] constexpr Point point_at(S t) const {
     if (t == S{}) return points_[0];
     if (t == from_int<S>(1)) return points_[degree()];
-    if (const auto local = local_homogeneous()) return points_[0] + project(local.value().point_at(t));
+    if (const auto local = local_homogeneous(true)) return points_[0] + project(local.value().point_at(t));
     return project(homogeneous_.point_at(t));  // control points too far apart for (b - b_0)
   }
 
@@ -103,8 +103,9 @@ class RationalBezier {
   [[nodiscard]] constexpr Result<Point> derivative_at(S t, std::size_t order = 1) const {
     if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
     if (order > MaxDegree + 4) return fail(Error::InvalidArgument);
+    if (order == 0) return point_at(t);
     // Derivatives of order >= 1 do not change under translation: work relative to b_0.
-    const auto local = local_homogeneous();
+    const auto local = local_homogeneous(false);
     const Homogeneous& base = local ? local.value() : homogeneous_;
     std::array<Vec<S, Dim + 1>, MaxDegree + 5> homogeneous_derivatives{};
     for (std::size_t k = 0; k <= order; ++k) {
@@ -123,7 +124,6 @@ class RationalBezier {
         CURVESTEP_TRY(r[k][axis], (numerator / detail::Checked<S>(w)).result());
       }
     }
-    if (order == 0 && local) return checked_add_point(points_[0], r[0]);
     return r[order];
   }
 
@@ -135,7 +135,7 @@ class RationalBezier {
     out.right = from_homogeneous(halves.right);
     // Control points projected from the curve relative to b_0 (same weights, smaller errors),
     // and the outer end points kept exactly, as point_at returns them.
-    if (const auto local = local_homogeneous()) {
+    if (const auto local = local_homogeneous(true)) {
       CURVESTEP_TRY(const auto local_halves, local.value().split(t));
       for (std::size_t i = 0; i <= degree(); ++i) {
         out.left.points_[i] = points_[0] + project(local_halves.left[i]);
@@ -165,11 +165,42 @@ class RationalBezier {
 
  private:
   /// (w_i (b_i - b_0), w_i): the homogeneous curve relative to the first control point.
+  /// `scaled` (Fixed, for points only): all weights multiplied by the largest power of two that
+  /// keeps w and w |b - b_0| at most 2^13. The projection does not change, but the weight
+  /// coordinate gains that many bits of relative precision, which is what limits the accuracy of
+  /// the division (not used for derivatives, whose Leibniz products would grow by the same factor).
   /// FixedOverflow/NotFinite if b_i - b_0 or its product with w_i leaves the range.
-  [[nodiscard]] constexpr Result<Homogeneous> local_homogeneous() const noexcept {
+  [[nodiscard]] constexpr Result<Homogeneous> local_homogeneous(bool scaled) const noexcept {
+    int shift = 0;
+    if constexpr (FixedPoint<S>) {
+      if (scaled) {
+        using W = typename S::wide;
+        W largest_weight = 0;
+        W extent = 0;
+        for (std::size_t i = 0; i <= degree(); ++i) {
+          const W w = homogeneous_[i][Dim].raw();
+          if (w > largest_weight) largest_weight = w;
+          for (std::size_t axis = 0; axis < Dim; ++axis) {
+            W d = W{points_[i][axis].raw()} - W{points_[0][axis].raw()};
+            if (d < 0) d = -d;
+            if (d > extent) extent = d;
+          }
+        }
+        // Keep the scaled weight and weight · extent at most 2^13 (in raw units 2^(F+13)): the
+        // homogeneous de Casteljau forms convex combinations, so nothing grows beyond that.
+        if (extent <= W{std::numeric_limits<typename S::rep>::max()}) {
+          const W limit = W{1} << (S::fraction_bits + 13);
+          const W product = S::round_shift(extent * largest_weight, S::fraction_bits);
+          while (shift < S::fraction_bits && (largest_weight << (shift + 1)) <= limit && (product << (shift + 1)) <= limit) {
+            ++shift;
+          }
+        }
+      }
+    }
     std::array<Vec<S, Dim + 1>, capacity> h{};
     for (std::size_t i = 0; i <= degree(); ++i) {
-      const S w = homogeneous_[i][Dim];
+      S w = homogeneous_[i][Dim];
+      if constexpr (FixedPoint<S>) w = S::from_raw(static_cast<typename S::rep>(w.raw() << shift));
       for (std::size_t axis = 0; axis < Dim; ++axis) {
         CURVESTEP_TRY(const S difference, checked_sub(points_[i][axis], points_[0][axis]));
         CURVESTEP_TRY(h[i][axis], checked_mul(difference, w));
@@ -177,14 +208,6 @@ class RationalBezier {
       h[i][Dim] = w;
     }
     return Homogeneous::create(std::span<const Vec<S, Dim + 1>>(h.data(), degree() + 1));
-  }
-
-  static constexpr Result<Point> checked_add_point(const Point& a, const Point& b) noexcept {
-    Point p;
-    for (std::size_t axis = 0; axis < Dim; ++axis) {
-      CURVESTEP_TRY(p[axis], checked_add(a[axis], b[axis]));
-    }
-    return p;
   }
 
   static constexpr Point project(const Vec<S, Dim + 1>& h) {
