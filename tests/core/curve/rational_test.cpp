@@ -32,15 +32,18 @@ RealPoint<Dim> rational_reference(const std::vector<RealPoint<Dim>>& b, const st
   return numerator;
 }
 
-/// Error bound of rational evaluation in the format of S. The homogeneous de Casteljau rounds the
-/// weight coordinate (relative error up to ~(n+1)/2 units of S near 1); the division multiplies that
-/// by the distance from the first control point (at most the polygon's extent) over the smallest
-/// weight, and the coordinates themselves carry (n+2) roundings.
+/// Error bound of rational evaluation in the format of S: n + 2 roundings (homogeneous points,
+/// n de Casteljau levels, the division), amplified by the ratio of the weights. Floating point: the
+/// weight coordinate's relative error is multiplied by the distance from the first control point
+/// (at most the polygon's extent) over the smallest weight. Fixed: the same holds with the weight
+/// coordinate's resolution 2^-16 relative to the largest homogeneous value, which the evaluation
+/// may raise to 2^13 by scaling the weights; only a curve whose extent times weights exceeds that
+/// pays in proportion to its size.
 template <Scalar S>
-double rational_tolerance(double extent, double smallest_weight, double scale, std::size_t degree) {
+double rational_tolerance(double extent, double smallest_weight, double largest_weight, double scale, std::size_t degree) {
   const auto n = static_cast<double>(degree);
   if constexpr (FixedPoint<S>) {
-    return (n + 2) * unit<S>() * (1 + extent / smallest_weight);
+    return 2 * (n + 2) * unit<S>() * (1 + largest_weight / smallest_weight) * (1 + extent * largest_weight / 8192);
   } else {
     return 8 * (n + 2) * unit<S>() * (scale + extent / smallest_weight);
   }
@@ -117,13 +120,17 @@ TEMPLATE_TEST_CASE("rational bezier: equal weights give the polynomial curve", "
     const auto ones = must(Rational<S, 3>::from_polynomial(plain));
     const auto n = plain.degree();
     INFO("case " << c << " degree " << n << " weight " << to_double(weight));
-    const double tol = rational_tolerance<S>(200 * std::sqrt(3.0), to_double(weight), 100, n);
+    const double tol = rational_tolerance<S>(200 * std::sqrt(3.0), to_double(weight), to_double(weight), 100, n);
+    const auto b = to_real<S, 3>(points);
     double worst = 0;
     for (int k = 0; k < 8; ++k) {
       const S t = random.parameter<S>();
-      const auto expected = to_real(must(plain.evaluate(t)));
+      // The polynomial curve itself (long double Bernstein sum), and the library's polynomial
+      // evaluation within its own bound of it.
+      const auto expected = bernstein_sum(b, to_real(t));
+      CHECK(max_error_real(must(plain.evaluate(t)), expected) <= evaluation_tolerance<S>(100, n));
       worst = std::fmax(worst, max_error_real(must(curve.evaluate(t)), expected));
-      CHECK(max_error_real(must(ones.evaluate(t)), expected) <= evaluation_tolerance<S>(100, 1));
+      worst = std::fmax(worst, max_error_real(must(ones.evaluate(t)), expected));
     }
     CHECK(worst <= tol);
   }
@@ -188,7 +195,7 @@ TEMPLATE_TEST_CASE("rational bezier: derivatives match a central finite differen
       worst1 = std::fmax(worst1, max_error_real(must(curve.derivative_at(t, 1)), reference[0]));
       worst2 = std::fmax(worst2, max_error_real(must(curve.derivative_at(t, 2)), reference[1]));
       CHECK(max_error_real(must(curve.derivative_at(t, 0)), rational_reference(b, wr, to_real(t))) <=
-            rational_tolerance<S>(2 * range * std::sqrt(2.0), 0.5, range, n));
+            rational_tolerance<S>(2 * range * std::sqrt(2.0), 0.5, 2, range, n));
     }
     CHECK(worst1 <= tol1);
     CHECK(worst2 <= tol2);
@@ -212,7 +219,7 @@ TEMPLATE_TEST_CASE("rational bezier: random curves stay in the control box and s
     INFO("case " << c << " degree " << n);
     const auto box = curve.bounding_box();
     const auto hull = convex_hull(b);
-    const double tol = rational_tolerance<S>(200 * std::sqrt(2.0), 0.25, 100, n);
+    const double tol = rational_tolerance<S>(200 * std::sqrt(2.0), 0.25, 4, 100, n);
     const S split_at = random.parameter<S>();
     const auto halves = must(curve.split(split_at));
     CHECK(halves.left.front() == points.front());
@@ -382,7 +389,7 @@ TEMPLATE_TEST_CASE("rational bezier: evaluation error does not grow with the dis
     INFO("case " << c << " offset " << ox << ", " << oy << " degree " << curve.degree());
     // The bound depends on the extent (2√2) and the coordinate scale (floats: 30000), not on the
     // offset itself for Fixed, whose units are absolute.
-    const double tol = rational_tolerance<S>(2 * std::sqrt(2.0), 0.5, 30000, curve.degree());
+    const double tol = rational_tolerance<S>(2 * std::sqrt(2.0), 0.5, 1, 30000, curve.degree());
     double worst = 0;
     double worst_split = 0;
     const S split_at = random.parameter<S>();
@@ -426,5 +433,29 @@ TEMPLATE_TEST_CASE("circular arc: arcs far from the origin keep their accuracy",
     INFO("error " << error_name(arc.error()) << " at " << arc.where());
     REQUIRE(arc.has_value());
     check_arc(arc.value(), center, start, end, sweep, on_circle);
+  }
+}
+
+TEMPLATE_TEST_CASE("rational bezier: 200 mm curves with moderate weights evaluate within a few units", "[core][rational][property]",
+                   double, float, Q16_16) {
+  using S = TestType;
+  Random random(28);
+  const int count = test_count(300);
+  for (int c = 0; c < count; ++c) {
+    const auto points = random.polygon<S, 2>(random.integer(2, 8), 100);
+    std::vector<S> weights(points.size());
+    for (auto& w : weights) w = random.coordinate<S>(0.5, 1);
+    const auto curve = must(Rational<S>::create(points, weights));
+    const auto b = to_real<S, 2>(points);
+    std::vector<Real> wr;
+    for (S w : weights) wr.push_back(to_real(w));
+    INFO("case " << c << " degree " << curve.degree());
+    const double tol = rational_tolerance<S>(200 * std::sqrt(2.0), 0.5, 1, 100, curve.degree());
+    double worst = 0;
+    for (int k = 0; k < 8; ++k) {
+      const S t = random.parameter<S>();
+      worst = std::fmax(worst, max_error_real(must(curve.evaluate(t)), rational_reference(b, wr, to_real(t))));
+    }
+    CHECK(worst <= tol);
   }
 }
