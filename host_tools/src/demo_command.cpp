@@ -14,7 +14,7 @@
 #include <curvestep/core.hpp>
 #include <curvestep/core/error_text.hpp>
 
-#include "commands.hpp"
+#include "command_registry.hpp"
 #include "svg_plot.hpp"
 
 namespace curvestep::host {
@@ -98,6 +98,8 @@ void run_demo(const DemoOptions& options) {
 
 }  // namespace
 
+namespace {
+
 void add_demo_command(CLI::App& app) {
   auto options = std::make_shared<DemoOptions>();
   auto* demo = app.add_subcommand("demo", "Run the bundled demo end to end and write its outputs");
@@ -105,5 +107,9 @@ void add_demo_command(CLI::App& app) {
   demo->add_option("--samples", options->samples_per_segment, "Samples per segment")->check(CLI::Range(2, 100000))->capture_default_str();
   demo->callback([options] { run_demo(*options); });
 }
+
+const RegisterCommand registered{90, add_demo_command};
+
+}  // namespace
 
 }  // namespace curvestep::host

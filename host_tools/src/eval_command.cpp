@@ -11,7 +11,7 @@
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/job.hpp>
 
-#include "commands.hpp"
+#include "command_registry.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -39,6 +39,8 @@ void run_eval(const EvalOptions& options) {
 
 }  // namespace
 
+namespace {
+
 void add_eval_command(CLI::App& app) {
   auto options = std::make_shared<EvalOptions>();
   auto* eval = app.add_subcommand("eval", "Write the exact points of one segment of a job at its own parameter values (CSV x,y,z)");
@@ -52,5 +54,9 @@ void add_eval_command(CLI::App& app) {
   eval->add_option("-o,--output", options->out, "Output CSV file (default: standard output)");
   eval->callback([options] { run_eval(*options); });
 }
+
+const RegisterCommand registered{20, add_eval_command};
+
+}  // namespace
 
 }  // namespace curvestep::host

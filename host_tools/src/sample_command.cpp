@@ -10,7 +10,7 @@
 #include <curvestep/host/flatten.hpp>
 #include <curvestep/host/job.hpp>
 
-#include "commands.hpp"
+#include "command_registry.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -37,6 +37,8 @@ void run_sample(const SampleOptions& options) {
 
 }  // namespace
 
+namespace {
+
 void add_sample_command(CLI::App& app) {
   auto options = std::make_shared<SampleOptions>();
   auto* sample = app.add_subcommand("sample", "Flatten a job into a polyline within a tolerance (CSV x,y,z)");
@@ -45,5 +47,9 @@ void add_sample_command(CLI::App& app) {
   sample->add_option("-o,--output", options->out, "Output CSV file (default: standard output)");
   sample->callback([options] { run_sample(*options); });
 }
+
+const RegisterCommand registered{30, add_sample_command};
+
+}  // namespace
 
 }  // namespace curvestep::host

@@ -12,7 +12,7 @@
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/simulator.hpp>
 
-#include "commands.hpp"
+#include "command_registry.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -62,6 +62,8 @@ int run_sim(const SimOptions& o) {
 
 }  // namespace
 
+namespace {
+
 void add_sim_command(CLI::App& app) {
   auto options = std::make_shared<SimOptions>();
   auto* sim = app.add_subcommand("sim", "Replay a job exactly as the firmware would run it and report the motion");
@@ -75,5 +77,9 @@ void add_sim_command(CLI::App& app) {
     if (status != 0) throw CLI::RuntimeError(status);
   });
 }
+
+const RegisterCommand registered{40, add_sim_command};
+
+}  // namespace
 
 }  // namespace curvestep::host
