@@ -34,10 +34,13 @@ class CompositeBezier {
   constexpr explicit CompositeBezier(S start = S{}) noexcept { breakpoints_[0] = start; }
 
   /// Appends a segment on [last breakpoint, end]. InvalidInterval if end is not after the last
-  /// breakpoint, CapacityExceeded when full. Continuity is not required (check it with continuity()).
+  /// breakpoint, FixedOverflow if the width end - last breakpoint is not representable (every
+  /// lookup and derivative divides by it), CapacityExceeded when full. Continuity is not required
+  /// (check it with continuity()). The index is the segment's.
   [[nodiscard]] constexpr Result<void> try_append(const Segment& segment, S end) noexcept {
     if (count_ == MaxSegments) return fail(Error::CapacityExceeded, count_);
     if (!(breakpoints_[count_] < end)) return fail(Error::InvalidInterval, count_);
+    if (const auto width = checked_sub(end, breakpoints_[count_]); !width) return fail(width.error(), count_);
     segments_[count_] = segment;
     breakpoints_[++count_] = end;
     return ok();
