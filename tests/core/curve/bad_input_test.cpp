@@ -301,3 +301,16 @@ TEST_CASE("power basis: Horner on an in-range Q16.16 curve does not stop on larg
                                                     : expected)) <= 4 * unit<S>());
   }
 }
+
+TEST_CASE("bad input: a Q16.16 composite interval wider than the range is refused, not trapped later", "[core][composite][error]") {
+  using S = Q16_16;
+  const auto curve = tv04<S>();
+  CompositeBezier<S, 2, 7, 4> composite(scalar<S>(-30000));
+  // u_1 - u_0 = 60000 does not fit: the width could never be formed by locate() or derivatives.
+  check_failure(composite.try_append(curve, scalar<S>(30000)), Error::FixedOverflow, 0);
+  CHECK(composite.size() == 0);
+  // A representable width works everywhere in the domain.
+  REQUIRE(composite.try_append(curve, scalar<S>(2000)).has_value());
+  CHECK(max_error(must(composite.evaluate(scalar<S>(-14000))), {2, 15 / 8.}) == 0.0);
+  CHECK(must(composite.derivative_at(scalar<S>(2000), 1))[1] < S{});
+}
