@@ -314,3 +314,21 @@ TEST_CASE("bad input: a Q16.16 composite interval wider than the range is refuse
   CHECK(max_error(must(composite.evaluate(scalar<S>(-14000))), {2, 15 / 8.}) == 0.0);
   CHECK(must(composite.derivative_at(scalar<S>(2000), 1))[1] < S{});
 }
+
+TEMPLATE_TEST_CASE("bad input: NaN arc data is NotFinite", "[core][rational][arc][error]", double, float) {
+  using S = TestType;
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  const auto ccw = ArcDirection::CounterClockwise;
+  const S tol = S{0.001f};
+  for (const auto& [center, start, end] : {std::array<Vec2<S>, 3>{Vec2<S>{{nan, S{0}}}, point<S>(1, 0), point<S>(0, 1)},
+                                           std::array<Vec2<S>, 3>{point<S>(0, 0), Vec2<S>{{S{1}, nan}}, point<S>(0, 1)},
+                                           std::array<Vec2<S>, 3>{point<S>(0, 0), point<S>(1, 0), Vec2<S>{{nan, S{1}}}}}) {
+    const auto arc = circular_arc<S, 7>(center, start, end, ccw, tol);
+    REQUIRE_FALSE(arc.has_value());
+    CHECK(arc.error() == Error::NotFinite);
+  }
+  const auto circle = full_circle<S, 7>(Vec2<S>{{nan, S{0}}}, S{1});
+  REQUIRE_FALSE(circle.has_value());
+  CHECK(circle.error() == Error::NotFinite);
+  CHECK_FALSE(full_circle<S, 7>(point<S>(0, 0), nan).has_value());
+}
