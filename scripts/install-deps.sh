@@ -9,6 +9,7 @@ packages=(
   libserialport-dev libgpiod-dev
   libcli11-dev nlohmann-json3-dev
   qemu-system-arm socat valgrind
+  chromium
 )
 
 missing=()
