@@ -8,6 +8,7 @@ packages=(
   gcc-arm-none-eabi libstdc++-arm-none-eabi-newlib libnewlib-arm-none-eabi binutils-arm-none-eabi
   libserialport-dev libgpiod-dev
   libcli11-dev nlohmann-json3-dev
+  libtinyxml2-dev
   qemu-system-arm socat valgrind
   chromium
 )
