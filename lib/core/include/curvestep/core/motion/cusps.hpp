@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 
+#include <curvestep/core/detail/golden_section.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
 
 namespace curvestep {
@@ -41,29 +42,9 @@ template <std::size_t MaxCusps = 6>
   for (std::size_t k = 1; k < samples && cusps.count < MaxCusps; ++k) {
     if (!(speed[k] <= speed[k - 1] && speed[k] <= speed[k + 1]) || speed[k] > 1e-3 * largest) continue;
     // golden-section search for the minimum of |p'| on [u_{k-1}, u_{k+1}]
-    constexpr double ratio = 0.6180339887498949;
-    double low = static_cast<double>(k - 1) / samples;
-    double high = static_cast<double>(k + 1) / samples;
-    double x1 = high - ratio * (high - low);
-    double x2 = low + ratio * (high - low);
-    double f1 = norm(segment.derivative(x1, 1));
-    double f2 = norm(segment.derivative(x2, 1));
-    for (int i = 0; i < 80; ++i) {
-      if (f1 < f2) {
-        high = x2;
-        x2 = x1;
-        f2 = f1;
-        x1 = high - ratio * (high - low);
-        f1 = norm(segment.derivative(x1, 1));
-      } else {
-        low = x1;
-        x1 = x2;
-        f1 = f2;
-        x2 = low + ratio * (high - low);
-        f2 = norm(segment.derivative(x2, 1));
-      }
-    }
-    const double u = (low + high) / 2;
+    const auto minimum = detail::golden_section_minimum([&](double x) { return norm(segment.derivative(x, 1)); },
+                                                        static_cast<double>(k - 1) / samples, static_cast<double>(k + 1) / samples, 80);
+    const double u = minimum.x;
     const bool is_new = cusps.count == 0 || u - cusps.parameters[cusps.count - 1] > 1e-6;
     if (u > 1e-6 && u < 1 - 1e-6 && norm(segment.derivative(u, 1)) <= 1e-7 * largest && is_new) {
       cusps.parameters[cusps.count++] = u;

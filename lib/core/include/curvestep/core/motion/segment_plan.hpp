@@ -20,6 +20,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include <curvestep/core/detail/golden_section.hpp>
 #include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
@@ -140,29 +141,10 @@ template <std::size_t Intervals = 64>
   }
   // Refine the largest curvature between the neighbouring samples (golden-section search).
   if (max_kappa > 0) {
-    constexpr double ratio = 0.6180339887498949;
-    double low = std::fmax(static_cast<double>(first) / samples, peak_u - 1.0 / samples);
-    double high = std::fmin(static_cast<double>(last) / samples, peak_u + 1.0 / samples);
-    double x1 = high - ratio * (high - low);
-    double x2 = low + ratio * (high - low);
-    double f1 = kappa_at(x1);
-    double f2 = kappa_at(x2);
-    for (int i = 0; i < 40; ++i) {
-      if (f1 > f2) {
-        high = x2;
-        x2 = x1;
-        f2 = f1;
-        x1 = high - ratio * (high - low);
-        f1 = kappa_at(x1);
-      } else {
-        low = x1;
-        x1 = x2;
-        f1 = f2;
-        x2 = low + ratio * (high - low);
-        f2 = kappa_at(x2);
-      }
-    }
-    max_kappa = std::fmax(max_kappa, std::fmax(f1, f2));
+    const double low = std::fmax(static_cast<double>(first) / samples, peak_u - 1.0 / samples);
+    const double high = std::fmin(static_cast<double>(last) / samples, peak_u + 1.0 / samples);
+    const auto peak = detail::golden_section_minimum([&](double u) { return -kappa_at(u); }, low, high, 40);
+    max_kappa = std::fmax(max_kappa, -peak.value);
   }
   if (!std::isfinite(max_kappa) || !std::isfinite(max_kappa_rate)) return fail(Error::DegenerateCurve);
   max_kappa_rate *= 1.25;
