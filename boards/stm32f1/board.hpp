@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: MIT
+// Stm32F1Board: STM32F103C8 (Cortex-M3, 72 MHz, no FPU) bring-up: clocks, USART1, SysTick, step/dir GPIO.
+//
+// Pins (see README.md): USART1 TX PA9, RX PA10 (115200 8N1); STEP X/Y/Z = PA0/PA1/PA2,
+// DIR X/Y/Z = PA3/PA4/PA5 (push-pull outputs). Registers from RM0008 (STM32F101/F103 reference
+// manual); no vendor SDK. The same image runs on QEMU's stm32vldiscovery (STM32F100): QEMU 7.2
+// models the USART and the Cortex-M core but not RCC, flash interface or GPIO (reads as 0, writes
+// ignored), so the clock set-up times out waiting for HSERDY and stays on the 8 MHz HSI.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <curvestep/boards/stm32/clocks.hpp>
+#include <curvestep/core/fixed/fixed.hpp>
+
+namespace curvestep::boards {
+
+using stm32::Clocks;  ///< clock frequencies after init()
+
+/// The STM32F103C8 board ("blue pill" class, 8 MHz crystal).
+class Stm32F1Board {
+ public:
+  using Scalar = Q16_16;                                 ///< no FPU: fixed point
+  static constexpr const char* name = "stm32f1";        ///< board name in reports
+  static constexpr std::size_t axes = 3;                 ///< step/dir channels
+  static constexpr std::uint32_t baud = 115200;          ///< console baud rate
+  static constexpr std::size_t console_buffer = 256;     ///< bytes in each console ring
+  static constexpr std::uint32_t hse_hz = 8'000'000;     ///< crystal
+  static constexpr std::uint32_t target_hclk_hz = 72'000'000;  ///< PLL x9 from the crystal
+
+  /// Clocks (HSE -> PLL 72 MHz, or HSI 8 MHz fallback), GPIO and USART1 with its interrupt.
+  Clocks init() noexcept;
+
+  /// Queues console bytes; returns how many fitted in the transmit ring.
+  std::size_t write(std::span<const std::uint8_t> bytes) noexcept;
+  /// Queues every byte, waiting for room.
+  void write_all(std::span<const std::uint8_t> bytes) noexcept;
+  /// Takes one received console byte; false when none.
+  bool read(std::uint8_t& byte) noexcept;
+  /// Room in the transmit ring.
+  [[nodiscard]] std::size_t writable() const noexcept;
+  /// Received bytes lost to a full ring or a hardware overrun.
+  [[nodiscard]] std::uint32_t receive_overruns() const noexcept;
+
+  /// Starts the control tick: `callback(context)` from the SysTick interrupt `rate_hz` times a second.
+  bool start_tick(std::uint32_t rate_hz, void (*callback)(void*), void* context) noexcept;
+  /// Ticks since start_tick().
+  [[nodiscard]] std::uint32_t ticks() const noexcept;
+
+  /// Drives the DIR lines: bit a of `positive_mask` set = axis a moves in the positive direction.
+  void set_directions(std::uint32_t positive_mask) noexcept;
+  /// Raises the STEP lines of the axes in `mask` (one BSRR write).
+  void raise_steps(std::uint32_t mask) noexcept;
+  /// Lowers the STEP lines of the axes in `mask` (one BSRR write).
+  void lower_steps(std::uint32_t mask) noexcept;
+
+  /// Clocks measured by init().
+  [[nodiscard]] const Clocks& clocks() const noexcept { return clocks_; }
+
+ private:
+  Clocks clocks_{8'000'000, 8'000'000, 8'000'000, false};
+};
+
+}  // namespace curvestep::boards
