@@ -1,0 +1,6 @@
+// SPDX-License-Identifier: MIT
+// Umbrella header of curvestep::gcode: the line parser and the modal interpreter.
+#pragma once
+
+#include <curvestep/gcode/interpreter.hpp>
+#include <curvestep/gcode/parser.hpp>

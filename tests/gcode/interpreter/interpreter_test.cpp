@@ -1,0 +1,325 @@
+// SPDX-License-Identifier: MIT
+// The G-code modal interpreter: motions with hand-computed geometry (LinuxCNC's documented
+// formulas), modal state, and every error with the column of the word at fault.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <initializer_list>
+#include <string_view>
+
+#include <curvestep/gcode.hpp>
+
+using namespace curvestep;
+using namespace curvestep::gcode;
+
+namespace {
+
+using Machine = Interpreter<16>;
+
+/// Runs `lines` (all must succeed) and returns the last line's motion.
+Motion run(Machine& machine, std::initializer_list<std::string_view> lines) {
+  Motion last;
+  for (const auto line : lines) {
+    INFO(line);
+    const auto block = parse_line(line);
+    REQUIRE(block);
+    const auto motion = machine.execute(block.value());
+    REQUIRE(motion);
+    last = motion.value();
+  }
+  return last;
+}
+
+/// Runs `lines`; all but the last must succeed; returns the last one's failure.
+Failure run_failing(std::initializer_list<std::string_view> lines) {
+  Machine machine;
+  std::size_t i = 0;
+  for (const auto line : lines) {
+    INFO(line);
+    const auto block = parse_line(line);
+    REQUIRE(block);
+    const auto motion = machine.execute(block.value());
+    if (++i < lines.size()) {
+      REQUIRE(motion);
+    } else {
+      REQUIRE_FALSE(motion);
+      return motion.failure();
+    }
+  }
+  FAIL("no lines");
+  return {};
+}
+
+Point pt(double x, double y, double z = 0) { return Point{{x, y, z}}; }
+
+}  // namespace
+
+TEST_CASE("gcode interpreter: G0 and G1 lines in absolute and incremental distance mode", "[gcode][interpreter]") {
+  Machine m;
+  auto motion = run(m, {"G0 X10 Y5"});
+  CHECK(motion.kind == MotionKind::Rapid);
+  CHECK(motion.start == pt(0, 0));
+  CHECK(motion.end == pt(10, 5));
+  motion = run(m, {"G1 Z-1 F300"});
+  CHECK(motion.kind == MotionKind::Line);
+  CHECK(motion.end == pt(10, 5, -1));
+  CHECK(motion.feed_mm_per_min == 300.0);
+  motion = run(m, {"G91 X2 Y-3"});  // modal G1, incremental
+  CHECK(motion.kind == MotionKind::Line);
+  CHECK(motion.end == pt(12, 2, -1));
+  motion = run(m, {"G90 X0"});
+  CHECK(motion.end == pt(0, 2, -1));
+  motion = run(m, {"X0"});  // no move
+  CHECK(motion.kind == MotionKind::None);
+}
+
+TEST_CASE("gcode interpreter: G20 multiplies lengths and the feed by 25.4", "[gcode][interpreter]") {
+  Machine m;
+  auto motion = run(m, {"G20 G1 X1 Y-0.5 F10"});
+  CHECK(motion.end == pt(25.4, -12.7));
+  CHECK(motion.feed_mm_per_min == 254.0);
+  CHECK(m.units() == Units::Inches);
+  motion = run(m, {"G21 X1"});  // back to mm; F is read in the units of the motion
+  CHECK(motion.end == pt(1, -12.7));
+  CHECK(motion.feed_mm_per_min == 10.0);
+}
+
+TEST_CASE("gcode interpreter: G2 and G3 centre form with incremental and absolute centres", "[gcode][interpreter]") {
+  Machine m;
+  auto motion = run(m, {"G0 X10 Y0", "G3 X0 Y10 I-10 J0"});
+  CHECK(motion.kind == MotionKind::Arc);
+  CHECK(motion.direction == ArcDirection::CounterClockwise);
+  CHECK(motion.center == pt(0, 0));
+  CHECK(motion.end == pt(0, 10));
+  CHECK(motion.full_turns == 0);
+  // G90.1: I J are the centre itself.
+  motion = run(m, {"G90.1 G2 X10 Y0 I0 J0"});
+  CHECK(motion.direction == ArcDirection::Clockwise);
+  CHECK(motion.center == pt(0, 0));
+  CHECK(m.arc_centers_absolute());
+}
+
+TEST_CASE("gcode interpreter: G91 with G91.1 arcs are relative to the start", "[gcode][interpreter]") {
+  Machine m;
+  const auto motion = run(m, {"G0 X5 Y5", "G91 G91.1", "G2 X10 Y0 I5 J0"});
+  CHECK(motion.kind == MotionKind::Arc);
+  CHECK(motion.start == pt(5, 5));
+  CHECK(motion.end == pt(15, 5));
+  CHECK(motion.center == pt(10, 5));
+  CHECK(motion.direction == ArcDirection::Clockwise);
+}
+
+TEST_CASE("gcode interpreter: the radius form picks the centre by the sign of R", "[gcode][interpreter]") {
+  // Chord (0,0)-(6,0), |R| = 5: centre at distance sqrt(25 - 9) = 4 from the chord midpoint (3,0).
+  Machine a;
+  CHECK(run(a, {"G3 X6 Y0 R5"}).center == pt(3, 4));  // counter-clockwise, short arc: centre left of the chord
+  Machine b;
+  CHECK(run(b, {"G2 X6 Y0 R5"}).center == pt(3, -4));
+  Machine c;
+  CHECK(run(c, {"G3 X6 Y0 R-5"}).center == pt(3, -4));  // long arc
+  Machine d;
+  CHECK(run(d, {"G2 X10 Y0 R5"}).center == pt(5, 0));  // half circle
+}
+
+TEST_CASE("gcode interpreter: full circles, extra turns and helical arcs", "[gcode][interpreter]") {
+  Machine m;
+  auto motion = run(m, {"G0 X10", "G2 X10 Y0 I-10"});
+  CHECK(motion.kind == MotionKind::Arc);
+  CHECK(motion.start == motion.end);
+  CHECK(motion.center == pt(0, 0));
+  motion = run(m, {"G3 I-10 Z-3 P3"});  // helix: three turns down 3 mm
+  CHECK(motion.kind == MotionKind::Arc);
+  CHECK(motion.end == pt(10, 0, -3));
+  CHECK(motion.center == pt(0, 0, 0));
+  CHECK(motion.full_turns == 2);
+  motion = run(m, {"G3 X0 Y10 Z-5 I-10"});
+  CHECK(motion.end == pt(0, 10, -5));
+}
+
+TEST_CASE("gcode interpreter: arc radius tolerance follows LinuxCNC", "[gcode][interpreter]") {
+  // r0 = 10. Within: |r1 - r0| = 0.004 <= 0.005. Also within: 0.02 at r0 = 100 (<= 0.1 % of r0).
+  Machine a;
+  CHECK(run(a, {"G0 X10", "G3 X0 Y10.004 I-10"}).kind == MotionKind::Arc);
+  Machine b;
+  CHECK(run(b, {"G0 X100", "G3 X0 Y100.02 I-100"}).kind == MotionKind::Arc);
+  // Beyond: 0.02 at r0 = 10 (> 0.005 and > 0.01), and 0.6 > 0.5 at r0 = 1000.
+  auto f = run_failing({"G0 X10", "G3 X0 Y10.02 I-10"});
+  CHECK(f.code == Error::GcodeArcRadiusMismatch);
+  CHECK(f.index == 1);
+  f = run_failing({"G0 X1000", "G3 X0 Y1000.6 I-1000"});
+  CHECK(f.code == Error::GcodeArcRadiusMismatch);
+  // A radius too small to reach the end.
+  f = run_failing({"G2 X10 Y0 R4"});
+  CHECK(f.code == Error::GcodeArcRadiusMismatch);
+  CHECK(f.index == 11);
+}
+
+TEST_CASE("gcode interpreter: G5 control points are P0, P0 plus IJ, P1 plus PQ, P1", "[gcode][interpreter][spline]") {
+  Machine m;
+  const auto motion = run(m, {"G5 I0 J3 P0 Q-3 X1 Y1"});  // LinuxCNC's documentation example
+  REQUIRE(motion.kind == MotionKind::Cubic);
+  CHECK(motion.control[0] == pt(0, 0));
+  CHECK(motion.control[1] == pt(0, 3));
+  CHECK(motion.control[2] == pt(1, -2));
+  CHECK(motion.control[3] == pt(1, 1));
+}
+
+TEST_CASE("gcode interpreter: G5 without I J continues the previous G5's end tangent", "[gcode][interpreter][spline]") {
+  // I,J = -(P,Q) of the PREVIOUS G5 (LinuxCNC), not of this block (the grblHAL reading): the second
+  // block's own P Q differ, so the two readings give different control points.
+  Machine m;
+  const auto motion = run(m, {"G5 I0 J3 P-1 Q-2 X1 Y1", "G5 P4 Q5 X2 Y2"});
+  REQUIRE(motion.kind == MotionKind::Cubic);
+  CHECK(motion.control[0] == pt(1, 1));
+  CHECK(motion.control[1] == pt(2, 3));  // (1,1) + (1,2)
+  CHECK(motion.control[2] == pt(6, 7));
+  CHECK(motion.control[3] == pt(2, 2));
+}
+
+TEST_CASE("gcode interpreter: G5 errors as LinuxCNC reports them", "[gcode][interpreter][spline]") {
+  auto f = run_failing({"G5 P0 Q1 X1 Y1"});  // first of a series without I J
+  CHECK(f.code == Error::GcodeSplineNoTangent);
+  CHECK(f.index == 1);
+  f = run_failing({"G5 I1 J1 P0 Q1 X1 Y1", "G1 X3", "G5 P0 Q1 X4 Y1"});  // the series was broken by G1
+  CHECK(f.code == Error::GcodeSplineNoTangent);
+  f = run_failing({"G18", "G5 I1 J1 P0 Q1 X1 Y1"});
+  CHECK(f.code == Error::GcodeSplineNotG17);
+  CHECK(f.index == 1);
+  f = run_failing({"G5 I1 P0 Q1 X1 Y1"});  // I without J
+  CHECK(f.code == Error::GcodeMissingWord);
+  f = run_failing({"G5 I1 J1 P0 X1 Y1"});  // Q missing
+  CHECK(f.code == Error::GcodeMissingWord);
+  f = run_failing({"G5 I1 J1 P0 Q1 X1 Y1 Z2"});  // only X and Y may move
+  CHECK(f.code == Error::GcodeConflictingWords);
+  CHECK(f.index == 22);
+}
+
+TEST_CASE("gcode interpreter: G5.1 is the quadratic P0, P0 plus IJ, P1", "[gcode][interpreter][spline]") {
+  Machine m;
+  const auto motion = run(m, {"G0 X1 Y1", "G5.1 I1 J2 X4 Y1"});
+  REQUIRE(motion.kind == MotionKind::Quadratic);
+  CHECK(motion.control[0] == pt(1, 1));
+  CHECK(motion.control[1] == pt(2, 3));
+  CHECK(motion.control[2] == pt(4, 1));
+  auto f = run_failing({"G5.1 X4 Y1"});
+  CHECK(f.code == Error::GcodeMissingWord);
+  f = run_failing({"G19 G5.1 I1 X4"});
+  CHECK(f.code == Error::GcodeSplineNotG17);
+  CHECK(f.index == 5);
+}
+
+TEST_CASE("gcode interpreter: a G5.2 G5.3 block collects weighted control points", "[gcode][interpreter][nurbs]") {
+  Machine m;
+  for (const auto line : {"G0 X0 Y0", "F10", "G5.2 P1 L3", "X0 Y1 P1", "X2 Y2 P1", "X2 Y0 P1"}) {
+    CHECK(run(m, {line}).kind == MotionKind::None);
+  }
+  CHECK(m.in_nurbs_block());
+  CHECK(run(m, {"X0 Y0 P2"}).kind == MotionKind::None);
+  const auto motion = run(m, {"G5.3"});
+  REQUIRE(motion.kind == MotionKind::Nurbs);
+  CHECK_FALSE(m.in_nurbs_block());
+  CHECK(motion.nurbs_order == 3);
+  CHECK(motion.start == pt(0, 0));
+  CHECK(motion.end == pt(0, 0));
+  const auto points = m.nurbs_points();
+  const auto weights = m.nurbs_weights();
+  REQUIRE(points.size() == 5);
+  CHECK(points[0] == pt(0, 0));
+  CHECK(points[1] == pt(0, 1));
+  CHECK(points[2] == pt(2, 2));
+  CHECK(points[3] == pt(2, 0));
+  CHECK(points[4] == pt(0, 0));
+  CHECK(weights[0] == 1.0);
+  CHECK(weights[4] == 2.0);
+  // X Y on the G5.2 line: the current point has weight 1, the G5.2 point the given weight.
+  Machine n;
+  run(n, {"G0 X1", "G5.2 X2 Y1 P3 L2", "X4 Y0"});
+  const auto line = run(n, {"G5.3"});
+  REQUIRE(line.kind == MotionKind::Nurbs);
+  CHECK(line.nurbs_order == 2);
+  REQUIRE(n.nurbs_points().size() == 3);
+  CHECK(n.nurbs_weights()[0] == 1.0);
+  CHECK(n.nurbs_weights()[1] == 3.0);
+  CHECK(n.nurbs_points()[1] == pt(2, 1));
+}
+
+TEST_CASE("gcode interpreter: malformed NURBS blocks are GcodeNurbsBlock", "[gcode][interpreter][nurbs]") {
+  auto f = run_failing({"G5.3"});
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  f = run_failing({"G5.2", "X1 Y1", "G1 X2"});
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  CHECK(f.index == 1);
+  f = run_failing({"G5.2", "X1 Y1 L4"});
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  CHECK(f.index == 7);
+  f = run_failing({"G5.2 L4", "X1 Y1", "X2 Y0", "G5.3"});  // order 4 needs 4 control points
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  f = run_failing({"G5.2 L9"});
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  CHECK(f.index == 6);
+  f = run_failing({"G5.2", "X1 Y1 P0"});
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  CHECK(f.index == 7);
+  f = run_failing({"G5.2", "X1 Y1", "M2"});
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  f = run_failing({"G5.2", "X1 Y1 Z1"});
+  CHECK(f.code == Error::GcodeConflictingWords);
+  f = run_failing({"G18 G5.2"});
+  CHECK(f.code == Error::GcodeSplineNotG17);
+}
+
+TEST_CASE("gcode interpreter: a NURBS block longer than the capacity is refused", "[gcode][interpreter][nurbs]") {
+  Interpreter<3> m;
+  for (const auto line : {"G5.2", "X1 Y1", "X2 Y1"}) {
+    REQUIRE(m.execute(parse_line(line).value()));
+  }
+  const auto r = m.execute(parse_line("X3 Y1").value());
+  REQUIRE_FALSE(r);
+  CHECK(r.error() == Error::GcodeNurbsBlock);
+}
+
+TEST_CASE("gcode interpreter: unsupported and conflicting words are errors that point at the word", "[gcode][interpreter]") {
+  struct Case {
+    std::initializer_list<std::string_view> lines;
+    Error code;
+    std::size_t column;
+  };
+  const Case cases[] = {
+      {{"G4 P1"}, Error::GcodeUnsupportedWord, 1},
+      {{"G1 G81 X1"}, Error::GcodeUnsupportedWord, 4},
+      {{"M3"}, Error::GcodeUnsupportedWord, 1},
+      {{"G1.5 X1"}, Error::GcodeUnsupportedWord, 1},
+      {{"G0 G1 X1"}, Error::GcodeConflictingWords, 4},
+      {{"G20 G21"}, Error::GcodeConflictingWords, 5},
+      {{"X1 Y2"}, Error::GcodeMissingWord, 1},          // no motion mode yet
+      {{"G1 X1 I1"}, Error::GcodeConflictingWords, 7},  // I has no use in G1
+      {{"G2 X1 Y1 R1 I1"}, Error::GcodeConflictingWords, 10},
+      {{"G2 X1 Y1 I1 K1"}, Error::GcodeConflictingWords, 13},
+      {{"G2 X1 Y1"}, Error::GcodeMissingWord, 1},       // neither I J nor R
+      {{"G2 X0 Y0 R1"}, Error::GcodeMissingWord, 10},   // R cannot describe a full circle
+      {{"G2 X0 Y0 I0 J0"}, Error::GcodeArcRadiusMismatch, 1},  // zero radius
+      {{"G18", "G2 X1 Z1 I1"}, Error::GcodeUnsupportedWord, 1},
+      {{"G2 X2 I1 P1.5"}, Error::GcodeBadNumber, 10},
+      {{"G1 X40000"}, Error::GcodeBadNumber, 4},        // beyond the Q16.16 range
+      {{"G20 G1 X2000"}, Error::GcodeBadNumber, 8},     // 50800 mm
+      {{"G91 G1 X30000", "X30000"}, Error::GcodeBadNumber, 1},
+      {{"G1 X1 F-5"}, Error::GcodeBadNumber, 7},
+  };
+  for (const auto& c : cases) {
+    INFO(*(c.lines.end() - 1));
+    const auto f = run_failing(c.lines);
+    CHECK(f.code == c.code);
+    CHECK(f.index == c.column);
+  }
+}
+
+TEST_CASE("gcode interpreter: M2 and M30 end the program", "[gcode][interpreter]") {
+  Machine m;
+  auto motion = run(m, {"G1 X1 M2"});
+  CHECK(motion.kind == MotionKind::Line);
+  CHECK(motion.program_end);
+  CHECK(m.ended());
+  Machine n;
+  CHECK(run(n, {"M30"}).program_end);
+}

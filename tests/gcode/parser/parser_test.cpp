@@ -1,0 +1,128 @@
+// SPDX-License-Identifier: MIT
+// The allocation-free G-code line parser: numbers, words, comments, line numbers and its errors.
+#include <catch2/catch.hpp>
+
+#include <cstddef>
+#include <string_view>
+
+#include <curvestep/gcode/parser.hpp>
+
+using namespace curvestep;
+using namespace curvestep::gcode;
+
+namespace {
+
+Result<double> number(std::string_view text) {
+  std::size_t position = 0;
+  return parse_number(text, position);
+}
+
+}  // namespace
+
+TEST_CASE("gcode parser: numbers are the correctly rounded doubles of their decimals", "[gcode][parser]") {
+  // Expected values are C++ literals, which the compiler rounds correctly.
+  CHECK(number("0").value() == 0.0);
+  CHECK(number("12").value() == 12.0);
+  CHECK(number("-1.5").value() == -1.5);
+  CHECK(number("+.5").value() == 0.5);
+  CHECK(number("5.").value() == 5.0);
+  CHECK(number("0.1").value() == 0.1);
+  CHECK(number("-0.0001").value() == -0.0001);
+  CHECK(number("3.14159265358979").value() == 3.14159265358979);
+  CHECK(number("123456789.012345").value() == 123456789.012345);
+  CHECK(number("0.30000000000000000000").value() == 0.3);  // trailing zeros beyond 15 digits are harmless
+  CHECK(number("  - 2.25").value() == -2.25);              // blanks before the number and after the sign
+}
+
+TEST_CASE("gcode parser: a number with no digit or too many digits is GcodeBadNumber at its column", "[gcode][parser]") {
+  for (const std::string_view bad : {"", "-", ".", "+.", "1234567890123456", "0.1234567890123456", "0.00000000000000000000001"}) {
+    INFO(bad);
+    const auto r = number(bad);
+    REQUIRE_FALSE(r);
+    CHECK(r.error() == Error::GcodeBadNumber);
+    CHECK(r.where() == 1);
+  }
+}
+
+TEST_CASE("gcode parser: G and M codes keep their value in tenths", "[gcode][parser]") {
+  CHECK(code_tenths(0.0) == 0);
+  CHECK(code_tenths(5.0) == 50);
+  CHECK(code_tenths(number("5.1").value()) == 51);
+  CHECK(code_tenths(number("5.2").value()) == 52);
+  CHECK(code_tenths(number("91.1").value()) == 911);
+  CHECK(code_tenths(number("5.25").value()) == -1);
+  CHECK(code_tenths(-1.0) == -1);
+}
+
+TEST_CASE("gcode parser: a line becomes words with letters, values and columns", "[gcode][parser]") {
+  const auto block = parse_line("N10 g1 x1.5 Y-2 (move) F600 ; comment X9");
+  REQUIRE(block);
+  const auto& b = block.value();
+  CHECK(b.has_line_number());
+  CHECK(b.line_number() == 10.0);
+  REQUIRE(b.size() == 4);
+  CHECK(b.words()[0].letter == 'G');
+  CHECK(b.words()[0].code_tenths == 10);
+  CHECK(b.words()[0].column == 5);
+  CHECK(b.words()[1].letter == 'X');
+  CHECK(b.words()[1].value == 1.5);
+  CHECK(b.words()[1].column == 8);
+  CHECK(b.words()[2].letter == 'Y');
+  CHECK(b.words()[2].value == -2.0);
+  CHECK(b.words()[2].column == 13);
+  CHECK(b.words()[3].letter == 'F');
+  CHECK(b.words()[3].value == 600.0);
+  CHECK(b.find('Z') == nullptr);
+}
+
+TEST_CASE("gcode parser: blank lines, comments and the percent delimiter hold no words", "[gcode][parser]") {
+  for (const std::string_view line : {"", "   ", "(only a comment)", "; semicolon comment", "%", "  %  ", "\r"}) {
+    INFO(line);
+    const auto block = parse_line(line);
+    REQUIRE(block);
+    CHECK(block.value().empty());
+  }
+}
+
+TEST_CASE("gcode parser: letters and blanks between letter and number", "[gcode][parser]") {
+  const auto block = parse_line("G 2 X 1 Y1");
+  REQUIRE(block);
+  REQUIRE(block.value().size() == 3);
+  CHECK(block.value().words()[0].code_tenths == 20);
+  CHECK(block.value().words()[1].value == 1.0);
+}
+
+TEST_CASE("gcode parser: errors name the column of the word at fault", "[gcode][parser]") {
+  struct Case {
+    std::string_view line;
+    Error code;
+    std::size_t column;
+  };
+  const Case cases[] = {
+      {"G1 A5", Error::GcodeUnsupportedWord, 4},      // unknown axis letter
+      {"G1 X1 T2", Error::GcodeUnsupportedWord, 7},   // tool word
+      {"/G1 X1", Error::GcodeUnsupportedWord, 1},     // block delete
+      {"G1 X1 X2", Error::GcodeConflictingWords, 7},  // X twice
+      {"G1 X1 N5", Error::GcodeSyntax, 7},            // N not first
+      {"G1 X1 (open", Error::GcodeSyntax, 7},         // unclosed comment
+      {"G1 X1 #1=2", Error::GcodeSyntax, 7},          // parameters are not supported
+      {"G1 X", Error::GcodeBadNumber, 5},             // letter without number
+      {"G1 X1.2.3", Error::GcodeSyntax, 8},           // second decimal point
+      {"G1 X12345678901234567", Error::GcodeBadNumber, 5},
+      {"% G1", Error::GcodeSyntax, 3},
+  };
+  for (const auto& c : cases) {
+    INFO(c.line);
+    const auto block = parse_line(c.line);
+    REQUIRE_FALSE(block);
+    CHECK(block.error() == c.code);
+    CHECK(block.where() == c.column);
+  }
+}
+
+TEST_CASE("gcode parser: a line with more words than the capacity is refused, not truncated", "[gcode][parser]") {
+  const auto block = parse_line<2>("G1 X1 Y2");
+  REQUIRE_FALSE(block);
+  CHECK(block.error() == Error::GcodeSyntax);
+  CHECK(block.where() == 7);
+}
