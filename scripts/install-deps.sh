@@ -10,6 +10,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev
   libtinyxml2-dev
   qemu-system-arm socat valgrind
+  clang libclang-rt-14-dev
   chromium
 )
 
