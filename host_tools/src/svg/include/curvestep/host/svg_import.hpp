@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// SVG import: a drawing's paths and shapes as a host Job whose curves stay curves.
+//
+// Every path command (M L H V C S Q T A Z, absolute and relative), the basic shapes and nested
+// groups with transforms are mapped through one affine map per element onto machine millimetres
+// (docs/svg_import.md): lines stay lines, quadratic and cubic Béziers keep their control points
+// (Béziers are affine invariant), and elliptical arcs become rational quadratic Béziers of at most
+// 90° of the underlying circle each, which represent an ellipse exactly. Control points are
+// quantised to Q16.16 like job files. Subpaths are joined by rapid moves.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <curvestep/core/motion/path_segment.hpp>
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/load_error.hpp>
+
+namespace curvestep::host {
+
+/// How a drawing becomes a job.
+struct SvgOptions {
+  bool optimize = false;             ///< reorder subpaths (greedy nearest neighbour, open ones may be reversed)
+  MachinePoint start{};              ///< where the machine stands before the job, mm (the first rapid starts here)
+  double feed_mm_per_s = 0;          ///< feed of the drawing segments, 0 for the machine default
+};
+
+/// A job made from a drawing, with what the import did.
+struct SvgImport {
+  Job job;                              ///< the path: rapids between subpaths, curves as (rational) Béziers
+  std::size_t subpath_count = 0;        ///< drawn subpaths (each one pen-down stretch)
+  std::size_t reversed_count = 0;       ///< subpaths the optimiser drew backwards
+  double travel_document_mm = 0;        ///< rapid travel in document order
+  double travel_mm = 0;                 ///< rapid travel of `job`
+  std::vector<std::string> warnings;    ///< elements not drawn ("file:line: <text> is not drawn ...")
+  /// Rapid travel the optimiser saved, mm.
+  [[nodiscard]] double travel_saved_mm() const noexcept { return travel_document_mm - travel_mm; }
+};
+
+/// Imports an SVG file. Throws LoadError (file, line, element, attribute, cause) or
+/// std::runtime_error if the file cannot be read.
+[[nodiscard]] SvgImport load_svg(const std::filesystem::path& path, const SvgOptions& options = {});
+
+/// Imports SVG text; `name` is the file name used in messages.
+[[nodiscard]] SvgImport parse_svg(std::string_view text, std::string name, const SvgOptions& options = {});
+
+/// load_svg(...).job.
+[[nodiscard]] Job import_svg(const std::filesystem::path& path, const SvgOptions& options = {});
+
+/// parse_svg(...).job.
+[[nodiscard]] Job parse_svg_job(std::string_view text, std::string name, const SvgOptions& options = {});
+
+}  // namespace curvestep::host
