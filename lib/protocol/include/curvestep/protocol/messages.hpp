@@ -138,6 +138,7 @@ struct QueueSegment {
   std::uint8_t degree = 1;  ///< Bézier degree 1..7 (Line: 1, Arc: 2, fixed by kind)
   bool rapid = false;       ///< rapid move (G0): feed is the machine maximum
   bool has_feed = false;    ///< feed_mm_per_s is given (else the configured default)
+  bool end_of_job = false;  ///< the last segment of the job: the controller may start without a full look-ahead
   ArcDirection direction = ArcDirection::CounterClockwise;  ///< Arc only
   std::int32_t feed_mm_per_s = 0;                           ///< Q16.16 feed, if has_feed
   std::array<WirePoint, max_segment_degree + 1> points{};  ///< Q16.16 points, point_count() used
@@ -303,6 +304,7 @@ inline constexpr std::uint8_t segment_flag_rapid = 0x01;      ///< rapid move
 inline constexpr std::uint8_t segment_flag_feed = 0x02;       ///< a feed field follows
 inline constexpr std::uint8_t segment_flag_three_axes = 0x04; ///< points have X, Y, Z (else X, Y)
 inline constexpr std::uint8_t segment_flag_clockwise = 0x08;  ///< Arc only: clockwise (G2)
+inline constexpr std::uint8_t segment_flag_end_of_job = 0x80; ///< the last segment of the job
 
 /// Encodes a QueueSegment payload; InvalidArgument (index = field number) for an impossible segment.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueueSegment& m, std::span<std::byte> out) noexcept {
@@ -315,6 +317,7 @@ inline constexpr std::uint8_t segment_flag_clockwise = 0x08;  ///< Arc only: clo
   if (m.has_feed) flags |= segment_flag_feed;
   if (m.axis_count == 3) flags |= segment_flag_three_axes;
   if (m.kind == SegmentKind::Arc && m.direction == ArcDirection::Clockwise) flags |= segment_flag_clockwise;
+  if (m.end_of_job) flags |= segment_flag_end_of_job;
   ByteWriter w(out);
   w.u8(static_cast<std::uint8_t>(m.kind));
   w.u8(flags);
@@ -495,11 +498,12 @@ template <>
   m.kind = static_cast<SegmentKind>(kind);
   const std::uint8_t flags = r.u8();
   const std::uint8_t allowed = static_cast<std::uint8_t>(
-      segment_flag_rapid | segment_flag_feed | segment_flag_three_axes |
+      segment_flag_rapid | segment_flag_feed | segment_flag_three_axes | segment_flag_end_of_job |
       (m.kind == SegmentKind::Arc ? segment_flag_clockwise : 0));
   if ((flags & ~allowed) != 0) r.reject_at(Error::BadPayload, 1);
   m.rapid = (flags & segment_flag_rapid) != 0;
   m.has_feed = (flags & segment_flag_feed) != 0;
+  m.end_of_job = (flags & segment_flag_end_of_job) != 0;
   m.axis_count = (flags & segment_flag_three_axes) != 0 ? 3 : 2;
   m.direction = (flags & segment_flag_clockwise) != 0 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
   if (m.kind == SegmentKind::Line) m.degree = 1;

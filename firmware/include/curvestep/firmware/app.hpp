@@ -1,0 +1,558 @@
+// SPDX-License-Identifier: MIT
+// App<Board>: the board-independent controller (link, queue, planner, interpolator, steps, safety).
+//
+// Public API (stable; boards and the host board build on it):
+//
+//   template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16>
+//   class App {
+//     explicit App(B& board, AppSettings settings = {});
+//     void poll();        // main loop: serial in -> frames -> link -> commands; reports; serial out
+//     void on_tick();     // once per control period (control_rate_hz()): one setpoint, its steps
+//     protocol::MachineState state();      // Idle, Running, Holding, Fault (as in StatusReport)
+//     bool configured();  std::uint32_t control_rate_hz();   // 0 until a MachineConfiguration
+//     bool moving();      // on_tick() produces setpoints
+//     const Controller& controller();   // the MotionController, for reports and tests
+//     const AppStatistics& statistics(); // dropped frames and setpoints
+//   };
+//
+// poll() and on_tick() must not run concurrently: call both from one context (the main loop,
+// with on_tick() paced by a timer flag, as the host board does), or mask the tick interrupt
+// while poll() runs. The edge interrupt that replays the board's step edges may run at any time.
+//
+// What happens, in the order of a job:
+//   Hello                -> LinkReceiver answers Capabilities (protocol version, queue slots, the
+//                           wire's Q16.16 format, axis count, highest degree, step-timer rate);
+//                           a new session stops and clears any job.
+//   MachineConfiguration -> to_machine_limits, MotionController::configure, StepConfig from the
+//                           board's StepTiming (InvalidRate if the timer is no multiple of the rate).
+//   QueueSegment         -> continuity with the previous segment (SegmentsNotConnected), to_path_segment,
+//                           try_push. The credit granted to the host counts whole wire segments of
+//                           the worst case: a Bézier may be split at up to 6 cusps into 7 queue
+//                           slots, so free credit = free slots / 7 and an accepted segment always fits.
+//                           Flag "end of job" marks the last one.
+//   Start                -> arms the job; motion begins when the queue holds Lookahead + 1
+//                           segments or the job's last segment (the start rule, below).
+//   FeedHold / Resume    -> MotionController::hold / resume (braking along the path).
+//   Abort                -> stop at once: controller aborted and flushed, board.fault_stop().
+//   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, position).
+// Every failed command is answered with ErrorReport(code, index, the frame's sequence number).
+//
+// The start rule (bit-identical streams). The planner's exit speed for a segment comes from a
+// window of the next Lookahead segments that always ends at rest, so a segment's plan equals the
+// simulator's exactly when at least Lookahead segments follow it in the queue, or the job ends
+// inside the window. The firmware therefore does not begin until the queue holds Lookahead + 1
+// segments or the job's end is known; a host that keeps the queue topped up then gets
+// `curvestep sim`'s setpoints bit for bit.
+//
+// Safety:
+//   * queue underrun: the window ends at rest, so an empty queue is a controlled stop on the path
+//     (the controller's Starved state); the App reports QueueUnderrun in a StatusReport and goes on
+//     by itself once the start rule holds again;
+//   * loss of the link: no valid frame for settings.link_timeout_ms -> feed hold (plus an
+//     ErrorReport(LinkTimeout) in case the host still listens); Resume continues;
+//   * abort: immediate stop and flush, no braking, board.fault_stop();
+//   * a fault (a setpoint outside Q16.16, a step rate the drivers cannot follow, ...): the
+//     controller stops, board.fault_stop(), state Fault, ErrorReport(code, index); only Abort or
+//     a new session leaves Fault.
+//
+// Setpoints are also streamed to the host (settings.stream_setpoints) as SetpointBatch messages
+// of up to 24 setpoints; a setpoint that finds the 48-entry buffer full is dropped and counted
+// (the next batch's first_index shows the gap). Setpoints while held or starved are not sent.
+//
+// Time budget of on_tick(): one MotionController::next_setpoint (a profile evaluation, a table
+// search, one de Casteljau evaluation in double) plus StepGenerator::advance (see its header:
+// ~800 to ~3500 Cortex-M3 instructions) plus one copy into the setpoint ring; it never waits.
+// The planning work (try_push, segment starts) runs in poll() or at segment boundaries.
+// Nothing allocates; all buffers are members sized at compile time (see docs/firmware.md).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <curvestep/core/container/ring_buffer.hpp>
+#include <curvestep/core/fixed/fixed.hpp>
+#include <curvestep/core/motion/cusps.hpp>
+#include <curvestep/core/motion/motion_controller.hpp>
+#include <curvestep/core/motion/step_generator.hpp>
+#include <curvestep/core/motion/step_output.hpp>
+#include <curvestep/core/scalar.hpp>
+#include <curvestep/firmware/board.hpp>
+#include <curvestep/firmware/conversions.hpp>
+#include <curvestep/protocol/frame.hpp>
+#include <curvestep/protocol/frame_decoder.hpp>
+#include <curvestep/protocol/link_receiver.hpp>
+#include <curvestep/protocol/messages.hpp>
+
+namespace curvestep::firmware {
+
+/// Run-time settings of the App (link timing, streaming).
+struct AppSettings {
+  std::uint32_t link_timeout_ms = 1000;  ///< no valid frame for this long while connected: feed hold (0: never)
+  std::uint32_t ack_interval_ms = 250;   ///< heartbeat Ack period while connected (0: none)
+  bool stream_setpoints = true;          ///< send SetpointBatch messages while moving
+};
+
+/// Counters of things the App had to drop instead of blocking.
+struct AppStatistics {
+  std::uint32_t dropped_frames = 0;     ///< outgoing frames that found the transmit buffer full
+  std::uint32_t dropped_setpoints = 0;  ///< setpoints that found the setpoint buffer full
+};
+
+/// Bytes of the transmit buffer (three largest frames).
+inline constexpr std::size_t transmit_buffer_bytes = 3 * protocol::max_encoded_frame_size;
+/// Setpoints buffered for SetpointBatch messages (two batches).
+inline constexpr std::size_t setpoint_buffer_size = 2 * protocol::max_setpoints_per_batch;
+/// Queue slots one wire segment may need (a Bézier split at every cusp the planner finds).
+inline constexpr std::size_t slots_per_segment = CuspList<>::capacity + 1;
+
+/// The controller application for board B; S is the setpoint scalar (Q16.16 for bit-identity).
+template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16>
+class App {
+  static_assert(Queue >= Lookahead + slots_per_segment,
+                "the credit scheme must let the queue reach Lookahead + 1 segments (start rule)");
+
+ public:
+  /// The motion controller type.
+  using Controller = MotionController<S, Queue, Lookahead>;
+
+  /// An App driving `board` (which must outlive it), idle and unconfigured.
+  explicit App(B& board, AppSettings settings = {}) noexcept
+      : board_(board), settings_(settings), receiver_(make_capabilities(), make_receiver_settings(settings)) {}
+
+  /// Main-loop work: reads serial bytes, runs the link and the commands, reports, writes bytes.
+  void poll() noexcept {
+    const std::uint32_t now = board_.now_ms();
+    receive(now);
+    service_tick_events();
+    apply_start_rule();
+    watch_link(now);
+    send_setpoints();
+    flush();
+  }
+
+  /// One control period: the next setpoint, its step edges to the board, the setpoint to the stream.
+  void on_tick() noexcept {
+    if (!moving_) return;
+    const ControllerState before = controller_.state();
+    auto next = controller_.next_setpoint();
+    if (!next) {
+      moving_ = false;
+      if (controller_.state() == ControllerState::Fault) raise_fault(controller_.fault());
+      return;
+    }
+    Setpoint<S> setpoint = next.value();
+    const std::uint64_t job_tick = setpoint.tick;
+    setpoint.tick = tick_base_ + job_tick;
+    protocol::WirePoint wire{};
+    for (std::size_t axis = 0; axis < protocol::max_axes; ++axis) {
+      auto raw = to_raw(setpoint.position[axis]);
+      if (!raw) return raise_fault(fail(raw.error(), setpoint.segment));
+      wire[axis] = raw.value();
+    }
+    if (first_tick_) {
+      if (auto reset = steps_.reset(setpoint); !reset) return raise_fault(reset.failure());
+      first_tick_ = false;
+    } else {
+      if (auto advanced = steps_.advance(setpoint, batch_); !advanced) return raise_fault(advanced.failure());
+      play(batch_, board_);
+    }
+    position_ = wire;
+    setpoint_index_ = static_cast<std::uint32_t>(job_tick);
+    const bool in_motion = before == ControllerState::Running || before == ControllerState::Holding;
+    if (settings_.stream_setpoints && in_motion) {
+      if (!setpoints_.try_push(IndexedSetpoint{setpoint_index_, wire})) ++statistics_.dropped_setpoints;
+    }
+    const ControllerState after = controller_.state();
+    if (after == ControllerState::Finished) {
+      moving_ = false;
+      job_done_ = true;
+      tick_base_ = steps_.tick();
+    } else if (after == ControllerState::Starved && before == ControllerState::Running) {
+      underrun_ = true;
+    }
+  }
+
+  /// The state reported to the host.
+  [[nodiscard]] protocol::MachineState state() const noexcept { return state_; }
+  /// True once a MachineConfiguration was accepted.
+  [[nodiscard]] bool configured() const noexcept { return configured_; }
+  /// The configured setpoint rate in Hz (0 before configuration): call on_tick() this often.
+  [[nodiscard]] std::uint32_t control_rate_hz() const noexcept { return control_rate_hz_; }
+  /// True while on_tick() produces setpoints.
+  [[nodiscard]] bool moving() const noexcept { return moving_; }
+  /// The motion controller (queue, planner, interpolator).
+  [[nodiscard]] const Controller& controller() const noexcept { return controller_; }
+  /// Counts of dropped frames and setpoints.
+  [[nodiscard]] const AppStatistics& statistics() const noexcept { return statistics_; }
+  /// The last error reported (Error code), 0 if none.
+  [[nodiscard]] std::uint8_t last_error() const noexcept { return last_error_; }
+  /// The commanded position (Q16.16 raw) of the last setpoint.
+  [[nodiscard]] const protocol::WirePoint& position() const noexcept { return position_; }
+  /// Whole wire segments the queue can take now (the credit offered to the host).
+  [[nodiscard]] std::uint16_t free_segments() const noexcept {
+    if (!configured_ || state_ == protocol::MachineState::Fault) return 0;
+    return static_cast<std::uint16_t>((Queue - controller_.queued()) / slots_per_segment);
+  }
+
+ private:
+  struct IndexedSetpoint {
+    std::uint32_t index = 0;
+    protocol::WirePoint position{};
+  };
+
+  [[nodiscard]] static constexpr protocol::Capabilities make_capabilities() noexcept {
+    protocol::Capabilities c;
+    c.queue_capacity = static_cast<std::uint16_t>(Queue);
+    c.axis_count = static_cast<std::uint8_t>(B::axis_count);
+    c.max_degree = static_cast<std::uint8_t>(protocol::max_segment_degree);
+    c.tick_rate_hz = B::step_timing().timer_hz;
+    return c;
+  }
+  [[nodiscard]] static constexpr protocol::ReceiverSettings make_receiver_settings(const AppSettings& s) noexcept {
+    return protocol::ReceiverSettings{s.ack_interval_ms, s.link_timeout_ms};
+  }
+
+  [[nodiscard]] static Result<std::int32_t> to_raw(const S& value) noexcept {
+    if constexpr (std::is_same_v<S, Q16_16>) {
+      return value.raw();
+    } else {
+      CURVESTEP_TRY(const Q16_16 q, from_double<Q16_16>(to_double(value)));
+      return q.raw();
+    }
+  }
+
+  // --- receiving ---------------------------------------------------------------------------
+
+  void receive(std::uint32_t now) noexcept {
+    std::array<std::byte, 64> chunk{};
+    for (int round = 0; round < 8; ++round) {
+      const std::size_t count = board_.read(chunk);
+      if (count == 0) return;
+      for (std::size_t i = 0; i < count && i < chunk.size(); ++i) {
+        const auto pushed = decoder_.push(chunk[i]);
+        if (!pushed) {
+          send_reply(receiver_.on_bad_frame(pushed.error()));
+        } else if (pushed.value()) {
+          on_frame(decoder_.frame(), now);
+        }
+      }
+    }
+  }
+
+  void on_frame(const protocol::Frame& frame, std::uint32_t now) noexcept {
+    link_hold_latched_ = false;
+    const protocol::Reception r = receiver_.on_frame(frame, free_segments(), now);
+    send_reply(r);
+    if (r.disposition == protocol::Disposition::Connect) {
+      stop_job(false);
+      last_error_ = 0;
+      has_last_end_ = false;
+    } else if (r.disposition == protocol::Disposition::Deliver) {
+      sequence_ = frame.sequence;
+      dispatch(frame);
+    }
+  }
+
+  void dispatch(const protocol::Frame& frame) noexcept {
+    using protocol::MessageType;
+    switch (static_cast<MessageType>(frame.type)) {
+      case MessageType::MachineConfiguration: {
+        const auto m = protocol::decode<protocol::MachineConfiguration>(frame.payload);
+        if (!m) return report(m.failure());
+        return report_if_failed(configure(m.value()));
+      }
+      case MessageType::QueueSegment: {
+        const auto m = protocol::decode<protocol::QueueSegment>(frame.payload);
+        if (!m) return report(m.failure());
+        return report_if_failed(queue_segment(m.value()));
+      }
+      case MessageType::Start:
+        if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
+        return report_if_failed(start());
+      case MessageType::FeedHold:
+        if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
+        return feed_hold();
+      case MessageType::Resume:
+        if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
+        return report_if_failed(resume());
+      case MessageType::Abort:
+        if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
+        return stop_job(true);
+      case MessageType::StatusRequest:
+        if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
+        return send_status();
+      default: return report(fail(Error::UnknownMessage, frame.type));
+    }
+  }
+
+  // --- commands --------------------------------------------------------------------------
+
+  [[nodiscard]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
+    if (moving_ || start_pending_ || held_before_start_) return fail(Error::PlannerBusy);
+    if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
+    CURVESTEP_TRY(const MachineLimits limits, to_machine_limits(m));
+    CURVESTEP_TRY(const StepConfig step_config, StepConfig::create(limits, B::step_timing()));
+    if (controller_.state() != ControllerState::Idle) controller_.reset();
+    CURVESTEP_CHECK(controller_.configure(limits));
+    steps_ = StepGenerator(step_config);
+    first_tick_ = true;
+    configured_ = true;
+    axis_count_ = m.axis_count;
+    control_rate_hz_ = m.control_rate_hz;
+    return ok();
+  }
+
+  [[nodiscard]] Result<void> queue_segment(const protocol::QueueSegment& s) noexcept {
+    if (!configured_) return fail(Error::ConfigurationMissing);
+    if (state_ == protocol::MachineState::Fault || job_end_known_) return fail(Error::InvalidState);
+    if (s.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
+    const protocol::WirePoint start = segment_start(s);
+    if (has_last_end_ && start != last_end_) return fail(Error::SegmentsNotConnected, job_segments_);
+    CURVESTEP_TRY(const PathSegment segment, to_path_segment(s));
+    CURVESTEP_CHECK(controller_.try_push(segment, job_segments_));
+    last_end_ = segment_end(s);
+    has_last_end_ = true;
+    ++job_segments_;
+    if (s.end_of_job) {
+      controller_.end_of_job();
+      job_end_known_ = true;
+    }
+    return ok();
+  }
+
+  [[nodiscard]] Result<void> start() noexcept {
+    if (!configured_) return fail(Error::ConfigurationMissing);
+    if (state_ != protocol::MachineState::Idle) return fail(Error::InvalidState);
+    start_pending_ = true;
+    state_ = protocol::MachineState::Running;
+    apply_start_rule();
+    return ok();
+  }
+
+  void feed_hold() noexcept {
+    if (start_pending_) {
+      start_pending_ = false;
+      held_before_start_ = true;
+      state_ = protocol::MachineState::Holding;
+      return;
+    }
+    if (!moving_ || controller_.state() != ControllerState::Running) return;
+    controller_.hold();
+    state_ = protocol::MachineState::Holding;
+  }
+
+  [[nodiscard]] Result<void> resume() noexcept {
+    if (held_before_start_) {
+      held_before_start_ = false;
+      start_pending_ = true;
+      state_ = protocol::MachineState::Running;
+      apply_start_rule();
+      return ok();
+    }
+    if (state_ != protocol::MachineState::Holding) return fail(Error::InvalidState);
+    CURVESTEP_CHECK(controller_.resume());
+    state_ = protocol::MachineState::Running;
+    return ok();
+  }
+
+  /// Ends the job at once; `outputs` also stops the board's scheduled edges (Abort).
+  void stop_job(bool outputs) noexcept {
+    if (outputs) board_.fault_stop();
+    controller_.abort();
+    controller_.reset();
+    if (!first_tick_) tick_base_ = steps_.tick();
+    first_tick_ = true;
+    moving_ = false;
+    start_pending_ = false;
+    held_before_start_ = false;
+    job_end_known_ = false;
+    job_done_ = false;
+    underrun_ = false;
+    fault_pending_ = false;
+    job_segments_ = 0;
+    has_last_end_ = false;
+    state_ = protocol::MachineState::Idle;
+  }
+
+  // --- tick events, start rule, link watch ----------------------------------------------------
+
+  void raise_fault(Failure failure) noexcept {
+    board_.fault_stop();
+    controller_.abort();
+    moving_ = false;
+    fault_ = failure;
+    fault_pending_ = true;
+  }
+
+  void service_tick_events() noexcept {
+    if (fault_pending_) {
+      fault_pending_ = false;
+      state_ = protocol::MachineState::Fault;
+      start_pending_ = false;
+      report(fault_);
+      send_status();
+    }
+    if (job_done_) {
+      job_done_ = false;
+      controller_.reset();
+      first_tick_ = true;
+      job_end_known_ = false;
+      job_segments_ = 0;
+      state_ = protocol::MachineState::Idle;
+      send_status();
+    }
+    if (underrun_) {
+      underrun_ = false;
+      last_error_ = static_cast<std::uint8_t>(Error::QueueUnderrun);
+      send_status();
+    }
+  }
+
+  [[nodiscard]] bool window_ready(std::size_t ahead_of_front) const noexcept {
+    const std::size_t queued = controller_.queued();
+    if (job_end_known_) return queued >= 1 + ahead_of_front;
+    return queued >= Lookahead + 1 + ahead_of_front || (free_segments() == 0 && queued > ahead_of_front);
+  }
+
+  void apply_start_rule() noexcept {
+    if (start_pending_ && window_ready(0)) {
+      start_pending_ = false;
+      if (auto started = controller_.start(); !started) {
+        state_ = protocol::MachineState::Idle;
+        return report(started.failure());
+      }
+      moving_ = true;
+    }
+    // After an underrun the finished segment is still at the front: resume() drops it.
+    if (moving_ && controller_.state() == ControllerState::Starved && state_ == protocol::MachineState::Running &&
+        window_ready(1)) {
+      if (auto resumed = controller_.resume(); !resumed) report(resumed.failure());
+    }
+  }
+
+  void watch_link(std::uint32_t now) noexcept {
+    send_reply(receiver_.poll(free_segments(), now));
+    if (link_hold_latched_ || receiver_.check_link(now)) return;
+    link_hold_latched_ = true;
+    if (!(moving_ && controller_.state() == ControllerState::Running) && !start_pending_) return;
+    feed_hold();
+    report(fail(Error::LinkTimeout));
+  }
+
+  // --- sending -------------------------------------------------------------------------------
+
+  void send_reply(const protocol::Reception& r) noexcept {
+    if (r.reply == protocol::ReplyKind::None) return;
+    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
+    const auto size = receiver_.encode_reply(r, frame);
+    if (size) queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
+  }
+
+  template <class M>
+  void send_message(const M& m) noexcept {
+    std::array<std::byte, protocol::max_payload_size> payload{};
+    const auto length = protocol::encode(m, payload);
+    if (!length) return;
+    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
+    const auto size = protocol::encode_frame(static_cast<std::uint8_t>(M::type), receiver_.next_outgoing_sequence(),
+                                             std::span<const std::byte>(payload.data(), length.value()), frame);
+    if (size) queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
+  }
+
+  void queue_bytes(std::span<const std::byte> bytes) noexcept {
+    if (transmit_.available() < bytes.size()) {
+      ++statistics_.dropped_frames;
+      return;
+    }
+    for (const std::byte b : bytes) [[maybe_unused]] const bool pushed = transmit_.try_push(b);
+  }
+
+  void report(Failure failure) noexcept {
+    last_error_ = static_cast<std::uint8_t>(failure.code);
+    send_message(protocol::ErrorReport{failure.code, failure.index, sequence_});
+  }
+  void report_if_failed(const Result<void>& r) noexcept {
+    if (!r) report(r.failure());
+  }
+
+  void send_status() noexcept {
+    protocol::StatusReport s;
+    s.state = state_;
+    s.error = last_error_;
+    s.axis_count = axis_count_;
+    s.queue_depth = static_cast<std::uint16_t>(controller_.queued());
+    s.setpoint_index = setpoint_index_;
+    s.position = position_;
+    send_message(s);
+  }
+
+  void send_setpoints() noexcept {
+    const bool stopped = !moving_ || controller_.state() == ControllerState::Held ||
+                         controller_.state() == ControllerState::Starved;
+    while (!setpoints_.empty() && transmit_.available() >= protocol::max_encoded_frame_size) {
+      if (setpoints_.size() < protocol::max_setpoints_per_batch && !stopped) return;
+      protocol::SetpointBatch batch;
+      batch.axis_count = axis_count_;
+      batch.first_index = setpoints_.front().index;
+      std::size_t count = 0;
+      while (!setpoints_.empty() && count < protocol::max_setpoints_per_batch &&
+             setpoints_.front().index == batch.first_index + count) {
+        batch.setpoints[count++] = setpoints_.front().position;
+        setpoints_.pop_front();
+      }
+      batch.count = static_cast<std::uint8_t>(count);
+      send_message(batch);
+    }
+  }
+
+  void flush() noexcept {
+    std::array<std::byte, 64> chunk{};
+    while (!transmit_.empty()) {
+      std::size_t count = 0;
+      while (count < chunk.size() && count < transmit_.size()) {
+        chunk[count] = transmit_[count];
+        ++count;
+      }
+      const std::size_t written = board_.write(std::span<const std::byte>(chunk.data(), count));
+      for (std::size_t i = 0; i < written && i < count; ++i) transmit_.pop_front();
+      if (written < count) return;
+    }
+  }
+
+  B& board_;
+  AppSettings settings_;
+  protocol::FrameDecoder<> decoder_{};
+  protocol::LinkReceiver receiver_;
+  Controller controller_{};
+  StepGenerator steps_{StepConfig{}};
+  StepBatch<B::step_events_per_tick> batch_{};
+  RingBuffer<std::byte, transmit_buffer_bytes> transmit_{};
+  RingBuffer<IndexedSetpoint, setpoint_buffer_size> setpoints_{};
+  AppStatistics statistics_{};
+  protocol::WirePoint position_{};
+  protocol::WirePoint last_end_{};
+  Failure fault_{Error::InvalidState, no_index};
+  std::uint64_t tick_base_ = 0;
+  std::uint32_t control_rate_hz_ = 0;
+  std::uint32_t setpoint_index_ = 0;
+  std::uint32_t job_segments_ = 0;
+  protocol::MachineState state_ = protocol::MachineState::Idle;
+  std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
+  std::uint8_t last_error_ = 0;
+  std::uint8_t sequence_ = 0;
+  bool configured_ = false;
+  bool moving_ = false;
+  bool first_tick_ = true;
+  bool start_pending_ = false;
+  bool held_before_start_ = false;
+  bool job_end_known_ = false;
+  bool job_done_ = false;
+  bool underrun_ = false;
+  bool fault_pending_ = false;
+  bool has_last_end_ = false;
+  bool link_hold_latched_ = false;
+};
+
+}  // namespace curvestep::firmware

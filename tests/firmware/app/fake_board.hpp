@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+// FakeBoard and a scripted host for App tests: serial bytes in memory, a settable clock, edge counts.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <span>
+#include <vector>
+
+#include <curvestep/core/motion/step_generator.hpp>
+#include <curvestep/firmware/app.hpp>
+#include <curvestep/firmware/board.hpp>
+#include <curvestep/protocol/frame_decoder.hpp>
+#include <curvestep/protocol/link_sender.hpp>
+
+namespace curvestep::firmware::testing {
+
+/// A board in memory: the host writes into `incoming`, the App's bytes land in `outgoing`.
+class FakeBoard {
+ public:
+  static constexpr std::uint8_t axis_count = 3;
+  static constexpr std::size_t step_events_per_tick = 64;
+  static constexpr StepTiming step_timing() { return StepTiming{1000000, 2000, 2000, 1000, 1000}; }
+
+  std::uint32_t now_ms() { return clock_ms; }
+  std::size_t read(std::span<std::byte> into) {
+    std::size_t n = 0;
+    while (n < into.size() && !incoming.empty()) {
+      into[n++] = incoming.front();
+      incoming.pop_front();
+    }
+    return n;
+  }
+  std::size_t write(std::span<const std::byte> bytes) {
+    const std::size_t n = bytes.size() < write_limit ? bytes.size() : write_limit;
+    outgoing.insert(outgoing.end(), bytes.begin(), bytes.begin() + static_cast<std::ptrdiff_t>(n));
+    return n;
+  }
+  void set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive) {
+    last_edge_time = time_ticks;
+    direction[axis] = positive;
+  }
+  void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) {
+    last_edge_time = time_ticks;
+    if (high) steps[axis] += direction[axis] ? 1 : -1;
+  }
+  void fault_stop() { ++fault_stops; }
+
+  std::uint32_t clock_ms = 0;
+  std::size_t write_limit = 1u << 20;
+  std::deque<std::byte> incoming;
+  std::vector<std::byte> outgoing;
+  std::array<bool, 3> direction{};
+  std::array<std::int64_t, 3> steps{};
+  std::uint64_t last_edge_time = 0;
+  int fault_stops = 0;
+};
+
+static_assert(Board<FakeBoard>);
+
+/// What the host received, decoded.
+struct Received {
+  std::vector<protocol::StatusReport> status;
+  std::vector<protocol::SetpointBatch> batches;
+  std::vector<protocol::ErrorReport> errors;
+  std::vector<protocol::Nak> naks;
+  std::vector<protocol::Ack> acks;
+  int capabilities = 0;
+  protocol::Capabilities last_capabilities{};
+};
+
+/// The host end: a LinkSender over the FakeBoard's byte queues, with the App in the loop.
+template <class AppType>
+class Host {
+ public:
+  Host(FakeBoard& board, AppType& app) : board_(board), app_(app), sender_(protocol::SenderSettings{100, 10, 0}) {}
+
+  /// Handshake; true once Capabilities arrived.
+  bool connect(std::uint16_t session = 0x1234) {
+    sender_.connect(session, board_.clock_ms);
+    for (int i = 0; i < 20 && sender_.state() != protocol::LinkState::Connected; ++i) pump();
+    return sender_.state() == protocol::LinkState::Connected;
+  }
+
+  /// Submits a message (waiting for window and credit by pumping); false if it never fits.
+  bool send(const protocol::Message& m) {
+    for (int i = 0; i < 200; ++i) {
+      if (sender_.can_submit(m.type())) return sender_.submit(m).has_value();
+      pump();
+    }
+    return false;
+  }
+
+  /// One exchange: host frames out, App poll, App frames back into the host.
+  void pump() {
+    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
+    for (;;) {
+      const auto r = sender_.poll(board_.clock_ms, frame);
+      if (!r || r.value() == 0) break;
+      for (std::size_t i = 0; i < r.value(); ++i) board_.incoming.push_back(frame[i]);
+    }
+    app_.poll();
+    take_output();
+  }
+
+  /// Runs `ticks` control ticks, pumping the link every tick.
+  void run_ticks(int ticks, int ms_per_tick_divisor = 1) {
+    for (int t = 0; t < ticks; ++t) {
+      app_.on_tick();
+      if (t % ms_per_tick_divisor == 0) ++board_.clock_ms;
+      pump();
+    }
+  }
+
+  /// Decodes what the App wrote so far.
+  void take_output() {
+    for (const std::byte b : board_.outgoing) {
+      const auto pushed = decoder_.push(b);
+      if (!pushed || !pushed.value()) continue;
+      const auto m = protocol::decode_message(decoder_.frame());
+      if (!m) continue;
+      const protocol::Message& msg = m.value();
+      [[maybe_unused]] const auto handled = sender_.on_message(msg, board_.clock_ms);
+      switch (msg.type()) {
+        case protocol::MessageType::Capabilities:
+          ++received.capabilities;
+          received.last_capabilities = msg.get<protocol::Capabilities>();
+          break;
+        case protocol::MessageType::Ack: received.acks.push_back(msg.get<protocol::Ack>()); break;
+        case protocol::MessageType::Nak: received.naks.push_back(msg.get<protocol::Nak>()); break;
+        case protocol::MessageType::StatusReport: received.status.push_back(msg.get<protocol::StatusReport>()); break;
+        case protocol::MessageType::SetpointBatch: received.batches.push_back(msg.get<protocol::SetpointBatch>()); break;
+        case protocol::MessageType::ErrorReport: received.errors.push_back(msg.get<protocol::ErrorReport>()); break;
+        default: break;
+      }
+    }
+    board_.outgoing.clear();
+  }
+
+  /// The setpoints of every batch received, in order, with their indices.
+  std::vector<std::pair<std::uint32_t, protocol::WirePoint>> setpoints() const {
+    std::vector<std::pair<std::uint32_t, protocol::WirePoint>> out;
+    for (const auto& b : received.batches) {
+      for (std::size_t k = 0; k < b.count; ++k) out.emplace_back(b.first_index + static_cast<std::uint32_t>(k), b.setpoints[k]);
+    }
+    return out;
+  }
+
+  protocol::LinkSender<8>& sender() { return sender_; }
+  Received received;
+
+ private:
+  FakeBoard& board_;
+  AppType& app_;
+  protocol::LinkSender<8> sender_;
+  protocol::FrameDecoder<> decoder_;
+};
+
+}  // namespace curvestep::firmware::testing

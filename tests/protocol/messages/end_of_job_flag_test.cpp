@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// QueueSegment flag bit 7 (end of job): hand-computed bytes, round trip, and the bit stays reserved elsewhere.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include <curvestep/protocol/messages.hpp>
+
+#include "../support/bytes.hpp"
+
+using namespace curvestep;
+using namespace curvestep::protocol;
+using curvestep::protocol::testing::hex;
+
+TEST_CASE("messages: the end-of-job flag is bit 7 of a segment's flags byte", "[protocol][messages]") {
+  QueueSegment s;
+  s.kind = SegmentKind::Line;
+  s.axis_count = 2;
+  s.end_of_job = true;
+  s.points[1] = WirePoint{65536, -65536, 0};
+  std::array<std::byte, max_payload_size> out{};
+  const auto size = encode(s, out);
+  REQUIRE(size.has_value());
+  // kind 0, flags 0x80 (end of job, two axes, no feed), start (0, 0), end (1, -1) mm
+  const auto expected = hex("00 80 00000000 00000000 00000100 0000ffff");
+  REQUIRE(size.value() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) CHECK(out[i] == expected[i]);
+  const auto back = decode<QueueSegment>(std::span<const std::byte>(out.data(), size.value()));
+  REQUIRE(back.has_value());
+  CHECK(back.value().end_of_job);
+  CHECK(back.value().points[1][0] == 65536);
+  CHECK(back.value().points[1][1] == -65536);
+}
+
+TEST_CASE("messages: a segment without the end-of-job flag decodes with end_of_job false", "[protocol][messages]") {
+  const auto back = decode<QueueSegment>(hex("00 00 00000000 00000000 00000100 0000ffff"));
+  REQUIRE(back.has_value());
+  CHECK_FALSE(back.value().end_of_job);
+  // bits 4 to 6 stay reserved
+  CHECK(decode<QueueSegment>(hex("00 20 00000000 00000000 00000100 0000ffff")).where() == 1);
+  CHECK(decode<QueueSegment>(hex("00 40 00000000 00000000 00000100 0000ffff")).where() == 1);
+}
