@@ -274,3 +274,300 @@ TEST_CASE("firmware: a job longer than the queue is topped up while running and 
   CHECK(mismatches == 0);
   CHECK(board.steps == std::array<std::int64_t, 3>{60 * 80, 0, 0});
 }
+
+namespace {
+
+/// Connects, configures and returns once the configuration is acknowledged.
+template <class AppType>
+void connect_and_configure(Host<AppType>& host, const MachineConfiguration& config = machine()) {
+  REQUIRE(host.connect());
+  REQUIRE(host.send(Message(config)));
+  for (int i = 0; i < 5; ++i) host.pump();
+  REQUIRE(host.received.errors.empty());
+}
+
+/// Queues `job` (as far as the credit allows, pumping) and sends Start.
+template <class AppType>
+void queue_and_start(Host<AppType>& host, const std::vector<QueueSegment>& job) {
+  for (const auto& s : job) REQUIRE(host.send(Message(s)));
+  REQUIRE(host.send(Message(Start{})));
+  for (int i = 0; i < 5; ++i) host.pump();
+}
+
+std::int64_t steps_of(double mm) { return static_cast<std::int64_t>(mm * 80.0); }
+
+}  // namespace
+
+TEST_CASE("firmware: a two-axis job is bit-identical to the motion controller too", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  MachineConfiguration config = machine();
+  config.axis_count = 2;
+  REQUIRE(host.connect());
+  REQUIRE(host.send(Message(config)));
+  std::vector<QueueSegment> job;
+  job.push_back(line(p(0, 0), p(3, 0), 2));
+  QueueSegment arc;
+  arc.kind = protocol::SegmentKind::Arc;
+  arc.axis_count = 2;
+  arc.degree = 2;
+  arc.points[0] = p(3, 0);
+  arc.points[1] = p(3, 2);
+  arc.points[2] = p(3, 1);
+  arc.direction = ArcDirection::Clockwise;
+  job.push_back(arc);
+  job.push_back(line(p(3, 2), p(0, 2), 2));
+  job.back().end_of_job = true;
+  stream_job(host, app, board, job);
+  const auto expected = reference(config, job);
+  const auto got = host.setpoints();
+  REQUIRE(host.received.errors.empty());
+  REQUIRE(got.size() == expected.size());
+  CHECK(got == expected);
+  CHECK(board.steps == std::array<std::int64_t, 3>{0, steps_of(2), 0});
+}
+
+TEST_CASE("firmware: feed hold stops on the path and resume finishes the job", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  QueueSegment s = line(p(0, 0), p(40, 0));
+  s.end_of_job = true;
+  queue_and_start(host, {s});
+  host.run_ticks(200);
+  REQUIRE(app.moving());
+  REQUIRE(host.send(Message(FeedHold{})));
+  host.pump();
+  CHECK(app.state() == MachineState::Holding);
+  host.run_ticks(500);
+  REQUIRE(app.controller().state() == ControllerState::Held);
+  const auto held_at = app.position();
+  const auto held_steps = board.steps;
+  CHECK(held_at[0] > q(5));
+  CHECK(held_at[0] < q(40));
+  host.run_ticks(200);
+  CHECK(app.position() == held_at);
+  CHECK(board.steps == held_steps);
+  REQUIRE(host.send(Message(Resume{})));
+  host.run_ticks(3000);
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(app.position() == p(40, 0));
+  CHECK(board.steps == std::array<std::int64_t, 3>{steps_of(40), 0, 0});
+  CHECK(host.received.errors.empty());
+}
+
+TEST_CASE("firmware: abort stops at once, flushes the queue and allows a new job", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  std::vector<QueueSegment> job{line(p(0, 0), p(20, 0)), line(p(20, 0), p(20, 20))};
+  job.back().end_of_job = true;
+  queue_and_start(host, job);
+  host.run_ticks(150);
+  REQUIRE(app.moving());
+  REQUIRE(host.send(Message(Abort{})));
+  host.pump();
+  CHECK(board.fault_stops == 1);
+  CHECK(app.state() == MachineState::Idle);
+  CHECK_FALSE(app.moving());
+  CHECK(app.controller().queued() == 0);
+  const auto stopped_at = app.position();
+  const auto steps = board.steps;
+  host.run_ticks(50);
+  CHECK(app.position() == stopped_at);
+  CHECK(board.steps == steps);
+  // A new job from where the machine stopped runs to its end.
+  QueueSegment back = line(stopped_at, p(0, 0));
+  back.end_of_job = true;
+  queue_and_start(host, {back});
+  host.run_ticks(2000);
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(board.steps == std::array<std::int64_t, 3>{0, 0, 0});
+  CHECK(host.received.errors.empty());
+}
+
+TEST_CASE("firmware: losing the host link holds the machine and Resume continues", "[firmware][app]") {
+  FakeBoard board;
+  AppSettings settings;
+  settings.link_timeout_ms = 50;
+  TestApp app(board, settings);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  QueueSegment s = line(p(0, 0), p(30, 0));
+  s.end_of_job = true;
+  queue_and_start(host, {s});
+  REQUIRE(app.moving());
+  host.run_ticks(49);  // the host sends nothing while the job runs
+  CHECK(app.state() == MachineState::Running);
+  host.run_ticks(600);
+  CHECK(app.state() == MachineState::Holding);
+  CHECK(app.controller().state() == ControllerState::Held);
+  REQUIRE(host.received.errors.size() == 1);
+  CHECK(host.received.errors[0].code == Error::LinkTimeout);
+  REQUIRE(host.send(Message(Resume{})));
+  for (int t = 0; t < 3000 && app.state() != MachineState::Idle; ++t) {
+    if (t % 40 == 0) REQUIRE(host.send(Message(StatusRequest{})));
+    host.run_ticks(1);
+  }
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(app.position() == p(30, 0));
+}
+
+TEST_CASE("firmware: a corrupted frame is Nak-ed and the queue is not disturbed", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  REQUIRE(host.sender().submit(Message(line(p(0, 0), p(1, 0)))).has_value());
+  std::array<std::byte, max_encoded_frame_size> frame{};
+  const auto size = host.sender().poll(board.clock_ms, frame);
+  REQUIRE(size.has_value());
+  REQUIRE(size.value() > 10);
+  frame[8] = frame[8] == std::byte{0x55} ? std::byte{0x56} : std::byte{0x55};  // one damaged data byte
+  for (std::size_t i = 0; i < size.value(); ++i) board.incoming.push_back(frame[i]);
+  app.poll();
+  host.take_output();
+  REQUIRE(host.received.naks.size() == 1);
+  CHECK((host.received.naks[0].reason == Error::BadCrc || host.received.naks[0].reason == Error::BadFraming));
+  CHECK(app.controller().queued() == 0);
+  for (int i = 0; i < 5; ++i) host.pump();  // the Nak made the host resend at once
+  CHECK(app.controller().queued() == 1);
+  CHECK(host.sender().idle());
+  CHECK(host.received.errors.empty());
+}
+
+TEST_CASE("firmware: a segment beyond the granted credit is refused with QueueFull", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  std::uint8_t sequence = 1;  // the configuration took sequence 0
+  double x = 0;
+  while (host.sender().credit() > 0) {
+    REQUIRE(host.send(Message(line(p(x, 0), p(x + 1, 0)))));
+    x += 1;
+    ++sequence;
+    for (int i = 0; i < 3; ++i) host.pump();
+  }
+  const std::size_t queued = app.controller().queued();
+  // Credit lasts while 7 slots (the worst-case split) are free: 32 - 7 + 1 = 26 one-slot segments.
+  CHECK(queued == 26);
+  std::array<std::byte, max_encoded_frame_size> frame{};
+  const auto size = encode_frame(Message(line(p(x, 0), p(x + 1, 0))), sequence, frame);
+  REQUIRE(size.has_value());
+  for (std::size_t i = 0; i < size.value(); ++i) board.incoming.push_back(frame[i]);
+  app.poll();
+  host.take_output();
+  REQUIRE_FALSE(host.received.naks.empty());
+  CHECK(host.received.naks.back().reason == Error::QueueFull);
+  CHECK(host.received.naks.back().expected == sequence);
+  CHECK(app.controller().queued() == queued);
+}
+
+TEST_CASE("firmware: a step rate the drivers cannot follow faults with its error and axis", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  MachineConfiguration config = machine();
+  config.axes[0].steps_per_mm = q(2000);  // 100 mm/s would need 200 000 steps/s
+  connect_and_configure(host, config);
+  // The App lowered the step-rate limit until the busiest tick fits the board's 64-edge batch.
+  const auto fitted = StepConfig::create(app.controller().machine(), FakeBoard::step_timing());
+  REQUIRE(fitted.has_value());
+  CHECK(fitted.value().max_events_per_tick() <= FakeBoard::step_events_per_tick);
+  CHECK(app.controller().machine().max_step_rate_hz < 100000.0);
+  QueueSegment s = line(p(0, 0), p(50, 0));
+  s.has_feed = true;
+  s.feed_mm_per_s = q(100);
+  s.end_of_job = true;
+  queue_and_start(host, {s});
+  host.run_ticks(1000);
+  CHECK(app.state() == MachineState::Fault);
+  CHECK_FALSE(app.moving());
+  CHECK(board.fault_stops == 1);
+  REQUIRE(host.received.errors.size() == 1);
+  CHECK(host.received.errors[0].code == Error::StepRateTooHigh);
+  CHECK(host.received.errors[0].index == 0);
+  REQUIRE_FALSE(host.received.status.empty());
+  CHECK(host.received.status.back().state == MachineState::Fault);
+  CHECK(host.received.status.back().error == static_cast<std::uint8_t>(Error::StepRateTooHigh));
+  // Fault refuses new work until Abort.
+  REQUIRE(host.send(Message(Start{})));
+  host.pump();
+  REQUIRE(host.received.errors.size() == 2);
+  CHECK(host.received.errors[1].code == Error::InvalidState);
+  REQUIRE(host.send(Message(Abort{})));
+  host.pump();
+  CHECK(app.state() == MachineState::Idle);
+}
+
+TEST_CASE("firmware: a segment that does not start at the previous end is refused", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  REQUIRE(host.send(Message(line(p(0, 0), p(1, 0)))));
+  REQUIRE(host.send(Message(line(p(1, 0.5), p(2, 0)))));
+  for (int i = 0; i < 5; ++i) host.pump();
+  REQUIRE(host.received.errors.size() == 1);
+  CHECK(host.received.errors[0].code == Error::SegmentsNotConnected);
+  CHECK(host.received.errors[0].index == 1);
+  CHECK(host.received.errors[0].sequence == 2);
+  CHECK(app.controller().queued() == 1);
+}
+
+TEST_CASE("firmware: a queue underrun stops on the path, is reported, and the job goes on", "[firmware][app]") {
+  using SmallApp = App<FakeBoard, Q16_16, 16, 2>;
+  FakeBoard board;
+  SmallApp app(board);
+  Host<SmallApp> host(board, app);
+  connect_and_configure(host);
+  queue_and_start(host, {line(p(0, 0), p(2, 0)), line(p(2, 0), p(4, 0)), line(p(4, 0), p(6, 0))});
+  REQUIRE(app.moving());
+  host.run_ticks(1500);
+  CHECK(app.controller().state() == ControllerState::Starved);
+  CHECK(app.state() == MachineState::Running);
+  CHECK(app.position() == p(6, 0));
+  REQUIRE_FALSE(host.received.status.empty());
+  CHECK(host.received.status.back().error == static_cast<std::uint8_t>(Error::QueueUnderrun));
+  std::vector<QueueSegment> rest{line(p(6, 0), p(6, 2)), line(p(6, 2), p(6, 4))};
+  rest.back().end_of_job = true;
+  for (const auto& s : rest) REQUIRE(host.send(Message(s)));
+  host.run_ticks(1500);
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(app.position() == p(6, 4));
+  CHECK(board.steps == std::array<std::int64_t, 3>{steps_of(6), steps_of(4), 0});
+  CHECK(host.received.errors.empty());
+}
+
+TEST_CASE("firmware: wire values convert exactly to planner values", "[firmware][app]") {
+  CHECK(wire_to_mm(688128) == 10.5);
+  CHECK(wire_to_mm(-147456) == -2.25);
+  CHECK(wire_to_mm(1) == 1.0 / 65536.0);
+  const auto limits = to_machine_limits(machine());
+  REQUIRE(limits.has_value());
+  CHECK(limits.value().v_max_mm_per_s == 100.0);
+  CHECK(limits.value().j_max_mm_per_s3 == 10000.0);
+  CHECK(limits.value().rate_hz == 1000.0);
+  CHECK(limits.value().tolerance_mm == 655.0 / 65536.0);  // q(0.01) truncates to 655 raw
+  QueueSegment arc;
+  arc.kind = protocol::SegmentKind::Arc;
+  arc.axis_count = 2;
+  arc.points[0] = p(2, 0);
+  arc.points[1] = p(0, 2);
+  arc.points[2] = p(0, 0);
+  const auto segment = to_path_segment(arc);
+  REQUIRE(segment.has_value());
+  CHECK(segment.value().arc_radius() == 2.0);
+  CHECK(segment.value().end() == MachinePoint{{0.0, 2.0, 0.0}});
+  CHECK(segment.value().feed_mm_per_s() == 0.0);
+  QueueSegment bad = line(p(1, 1), p(1, 1));
+  CHECK(to_path_segment(bad).error() == Error::DegenerateCurve);
+  QueueSegment no_feed = line(p(0, 0), p(1, 0));
+  no_feed.has_feed = true;
+  no_feed.feed_mm_per_s = 0;
+  CHECK(to_path_segment(no_feed).error() == Error::InvalidLimit);
+}

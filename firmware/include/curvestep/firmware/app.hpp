@@ -292,8 +292,8 @@ class App {
   [[nodiscard]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
     if (moving_ || start_pending_ || held_before_start_) return fail(Error::PlannerBusy);
     if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
-    CURVESTEP_TRY(const MachineLimits limits, to_machine_limits(m));
-    CURVESTEP_TRY(const StepConfig step_config, StepConfig::create(limits, B::step_timing()));
+    CURVESTEP_TRY(MachineLimits limits, to_machine_limits(m));
+    CURVESTEP_TRY(const StepConfig step_config, fit_step_config(limits));
     if (controller_.state() != ControllerState::Idle) controller_.reset();
     CURVESTEP_CHECK(controller_.configure(limits));
     steps_ = StepGenerator(step_config);
@@ -302,6 +302,22 @@ class App {
     axis_count_ = m.axis_count;
     control_rate_hz_ = m.control_rate_hz;
     return ok();
+  }
+
+  /// The step configuration for `limits` and the board's timing, with max_step_rate_hz lowered
+  /// until the busiest possible tick fits the board's StepBatch (the planner does not use that
+  /// field, so the plan is unchanged; a faster job then faults with StepRateTooHigh instead of
+  /// overflowing the batch). BufferTooSmall if not even one step per tick fits.
+  [[nodiscard]] static Result<StepConfig> fit_step_config(MachineLimits& limits) noexcept {
+    for (int attempt = 0; attempt < 32; ++attempt) {
+      CURVESTEP_TRY(const StepConfig config, StepConfig::create(limits, B::step_timing()));
+      const std::size_t events = config.max_events_per_tick();
+      if (events <= B::step_events_per_tick) return config;
+      double scale = static_cast<double>(B::step_events_per_tick) / static_cast<double>(events);
+      if (scale > 0.9) scale = 0.9;
+      limits.max_step_rate_hz *= scale;
+    }
+    return fail(Error::BufferTooSmall, B::step_events_per_tick);
   }
 
   [[nodiscard]] Result<void> queue_segment(const protocol::QueueSegment& s) noexcept {
