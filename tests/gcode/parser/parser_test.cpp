@@ -76,7 +76,7 @@ TEST_CASE("gcode parser: a line becomes words with letters, values and columns",
 }
 
 TEST_CASE("gcode parser: blank lines, comments and the percent delimiter hold no words", "[gcode][parser]") {
-  for (const std::string_view line : {"", "   ", "(only a comment)", "; semicolon comment", "%", "  %  ", "\r"}) {
+  for (const std::string_view line : {"", "   ", "(only a comment)", "; semicolon comment", "%", "  %  ", "% (program start)", "\r"}) {
     INFO(line);
     const auto block = parse_line(line);
     REQUIRE(block);
@@ -105,11 +105,13 @@ TEST_CASE("gcode parser: errors name the column of the word at fault", "[gcode][
       {"G1 X1 X2", Error::GcodeConflictingWords, 7},  // X twice
       {"G1 X1 N5", Error::GcodeSyntax, 7},            // N not first
       {"G1 X1 (open", Error::GcodeSyntax, 7},         // unclosed comment
+      {"G1 (a (nested) one) X1", Error::GcodeSyntax, 7},
       {"G1 X1 #1=2", Error::GcodeSyntax, 7},          // parameters are not supported
-      {"G1 X", Error::GcodeBadNumber, 5},             // letter without number
+      {"G1 X", Error::GcodeBadNumber, 4},             // letter without number
       {"G1 X1.2.3", Error::GcodeSyntax, 8},           // second decimal point
-      {"G1 X12345678901234567", Error::GcodeBadNumber, 5},
+      {"G1 X12345678901234567", Error::GcodeBadNumber, 4},
       {"% G1", Error::GcodeSyntax, 3},
+      {"%(start) X1", Error::GcodeSyntax, 10},
   };
   for (const auto& c : cases) {
     INFO(c.line);

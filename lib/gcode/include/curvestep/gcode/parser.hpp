@@ -12,7 +12,8 @@
 //
 // Syntax (LinuxCNC's, the part a path needs): letters are case-insensitive; spaces and tabs may
 // stand between words and between a letter and its number; "( ... )" is a comment anywhere, ";"
-// starts a comment to the end of the line; a line holding only "%" is a program delimiter; "N"
+// starts a comment to the end of the line; "%" first on a line (at most a comment after it) is a
+// program delimiter; "N"
 // (line number) may only be the first word. Letters the interpreter does not know are rejected
 // here with GcodeUnsupportedWord, so an unsupported word is never silently ignored. A letter
 // other than G and M may appear once per line (GcodeConflictingWords otherwise).
@@ -173,25 +174,23 @@ inline constexpr std::size_t max_decimals = 22;
   return rounded;
 }
 
-/// Parses one line (without its line break) into a Block. Failures (index: 1-based column):
-/// GcodeUnsupportedWord (unknown letter or "/" block delete), GcodeBadNumber, GcodeSyntax (a
-/// character that starts no word, an unclosed comment, N not first, more than Capacity words),
+/// Parses one line (without its line break) into a Block. Failures (index: 1-based column of the
+/// word or character at fault): GcodeUnsupportedWord (unknown letter or "/" block delete),
+/// GcodeBadNumber (at the word's letter), GcodeSyntax (a
+/// character that starts no word, an unclosed or nested comment, N not first, more than Capacity
+/// words),
 /// GcodeConflictingWords (a letter other than G/M twice).
 template <std::size_t Capacity = 24>
 [[nodiscard]] constexpr Result<Block<Capacity>> parse_line(std::string_view text) noexcept {
   Block<Capacity> block;
   std::size_t position = 0;
   bool first_word = true;
-  // A program delimiter line: only "%" and blanks.
-  {
-    std::size_t p = 0;
-    while (p < text.size() && detail::is_blank(text[p])) ++p;
-    if (p < text.size() && text[p] == '%') {
-      ++p;
-      while (p < text.size() && detail::is_blank(text[p])) ++p;
-      if (p == text.size()) return block;
-      return fail(Error::GcodeSyntax, detail::column_of(p));
-    }
+  // A program delimiter: "%" first on the line, followed by nothing but blanks and comments.
+  bool delimiter = false;
+  while (position < text.size() && detail::is_blank(text[position])) ++position;
+  if (position < text.size() && text[position] == '%') {
+    delimiter = true;
+    ++position;
   }
   while (position < text.size()) {
     const char c = text[position];
@@ -202,18 +201,25 @@ template <std::size_t Capacity = 24>
     if (c == ';') break;
     if (c == '(') {
       const std::size_t open = position;
-      while (position < text.size() && text[position] != ')') ++position;
+      ++position;
+      while (position < text.size() && text[position] != ')') {
+        if (text[position] == '(') return fail(Error::GcodeSyntax, detail::column_of(position));  // nested, as LinuxCNC refuses
+        ++position;
+      }
       if (position == text.size()) return fail(Error::GcodeSyntax, detail::column_of(open));
       ++position;
       continue;
     }
     if (c == '/') return fail(Error::GcodeUnsupportedWord, detail::column_of(position));
     if (!detail::is_letter(c)) return fail(Error::GcodeSyntax, detail::column_of(position));
+    if (delimiter) return fail(Error::GcodeSyntax, detail::column_of(position));
     const char letter = detail::to_upper(c);
     const std::size_t letter_position = position;
     if (!is_supported_letter(letter)) return fail(Error::GcodeUnsupportedWord, detail::column_of(letter_position));
     ++position;
-    CURVESTEP_TRY(const double value, parse_number(text, position));
+    const auto number = parse_number(text, position);
+    if (!number) return fail(Error::GcodeBadNumber, detail::column_of(letter_position));  // name the word
+    const double value = number.value();
     Word word;
     word.letter = letter;
     word.value = value;

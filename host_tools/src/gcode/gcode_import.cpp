@@ -1,0 +1,254 @@
+// SPDX-License-Identifier: MIT
+// G-code programs -> Job: the allocation-free parser and interpreter of lib/gcode, plus file:line.
+#include <curvestep/host/gcode_import.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include <curvestep/core/bspline/bezier_extraction.hpp>
+#include <curvestep/core/error_text.hpp>
+#include <curvestep/core/fixed/fixed.hpp>
+#include <curvestep/gcode.hpp>
+#include <curvestep/host/csv.hpp>
+
+namespace curvestep::host {
+namespace {
+
+/// Control points one G5.2 block may hold.
+constexpr std::size_t max_nurbs_points = 512;
+using Interpreter = gcode::Interpreter<max_nurbs_points>;
+using RationalSpline = Nurbs<double, motion_axes, PathSegment::max_degree, max_nurbs_points>;
+constexpr double seconds_per_minute = 60.0;
+/// Quantisation moves each coordinate by at most 2^-17 mm, so a radius by at most 2^-16.5 mm.
+constexpr double quantisation_radius_slack_mm = 1.0 / 65536.0;
+
+/// The word that starts at 1-based `column` of `line` ("G5.1", "X-1.5"), or "" if none.
+std::string word_at(std::string_view line, std::size_t column) {
+  if (column == 0 || column > line.size()) return {};
+  std::size_t position = column - 1;
+  std::string word(1, gcode::detail::to_upper(line[position]));
+  ++position;
+  while (position < line.size()) {
+    const char c = line[position];
+    if (gcode::detail::is_digit(c) || c == '.' || c == '+' || c == '-') {
+      word += c;
+    } else if (!gcode::detail::is_blank(c)) {
+      break;
+    }
+    ++position;
+  }
+  return word;
+}
+
+/// What went wrong, for the word at fault (the location names the word itself).
+std::string explain(Error code, const std::string& word) {
+  const bool g5_1 = word.starts_with("G5.1");
+  const bool g5 = word.starts_with("G5") && !word.starts_with("G5.");
+  const bool arc = word.starts_with("G2") || word.starts_with("G3");
+  switch (code) {
+    case Error::GcodeUnsupportedWord:
+      if (word == "/") return "block delete is not supported";
+      if (arc) return "arcs are supported in the G17 (XY) plane only";
+      return "unsupported word";
+    case Error::GcodeBadNumber: return "malformed or out-of-range number (at most 15 digits; coordinates within +-32767 mm)";
+    case Error::GcodeMissingWord:
+      if (g5_1) return "G5.1 needs I or J";
+      if (g5) return "G5 needs P and Q, and I and J together";
+      if (arc) return "an arc needs I J (centre) or R (radius)";
+      if (word.starts_with("R")) return "the radius form cannot make a full circle: give the centre with I J";
+      if (word.starts_with("P")) return "a weight P inside a NURBS block needs X or Y";
+      return "no motion mode (G0, G1, G2, G3, G5, G5.1, G5.2) is active";
+    case Error::GcodeArcRadiusMismatch:
+      if (word.starts_with("R")) return "the radius is too small to reach the end point";
+      return "radius to end of arc differs from radius to start (allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius), "
+             "or the radius is zero";
+    case Error::GcodeSplineNotG17: return "splines (G5, G5.1, G5.2) need plane G17 (XY)";
+    case Error::GcodeSplineNoTangent: return "G5 without I J must follow a G5 whose end tangent it continues (the first of a series needs I J)";
+    case Error::GcodeSyntax: return "syntax error (unexpected character, unclosed comment, N not first, or too many words)";
+    case Error::GcodeConflictingWords: return "cannot appear with the other words of the line (or twice)";
+    case Error::GcodeNurbsBlock:
+      if (word.starts_with("G5.3")) return "G5.3 without an open G5.2 block, or with fewer control points than the order L";
+      if (word.starts_with("L")) return "the order L must be an integer from 2 to 8, given on the G5.2 line";
+      if (word.starts_with("P")) return "a NURBS weight P must be positive";
+      if (word.starts_with("M")) return "the program ends inside a G5.2 block";
+      if (word.starts_with("G")) return "only X Y P lines and G5.3 may follow G5.2";
+      return "too many control points in the G5.2 block";
+    default: return std::string(describe(code));
+  }
+}
+
+class GcodeLoader {
+ public:
+  explicit GcodeLoader(std::string name) { job_.name = std::move(name); }
+
+  Job load(std::string_view text) {
+    std::size_t line_number = 0;
+    std::size_t nurbs_line = 0;
+    std::size_t nurbs_column = 0;
+    std::size_t start = 0;
+    while (start <= text.size() && !interpreter_.ended()) {
+      std::size_t stop = text.find('\n', start);
+      if (stop == std::string_view::npos) stop = text.size();
+      std::string_view line = text.substr(start, stop - start);
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      ++line_number;
+      line_ = line;
+      line_number_ = line_number;
+      const auto block = gcode::parse_line(line);
+      if (!block) fail(block.where(), block.error());
+      const bool was_in_nurbs = interpreter_.in_nurbs_block();
+      const auto motion = interpreter_.execute(block.value());
+      if (!motion) fail(motion.where(), motion.error());
+      if (!was_in_nurbs && interpreter_.in_nurbs_block()) {
+        nurbs_line = line_number;
+        for (const auto& w : block.value().words()) {
+          if (w.letter == 'G' && w.code_tenths == 52) nurbs_column = w.column;
+        }
+      }
+      add(motion.value());
+      if (stop == text.size()) break;
+      start = stop + 1;
+    }
+    if (interpreter_.in_nurbs_block()) {
+      line_number_ = nurbs_line;
+      line_ = {};
+      throw LoadError(SourceLocation{job_.name, nurbs_line, nurbs_column, std::nullopt, {}, "G5.2"},
+                      "the NURBS block is not closed by G5.3", Error::GcodeNurbsBlock);
+    }
+    return std::move(job_);
+  }
+
+ private:
+  [[noreturn]] void fail(std::size_t column, Error code) {
+    const std::string word = word_at(line_, column);
+    throw LoadError(SourceLocation{job_.name, line_number_, column, std::nullopt, {}, word}, explain(code, word), code);
+  }
+
+  [[noreturn]] void fail_message(std::size_t column, const std::string& message, Error code) {
+    throw LoadError(SourceLocation{job_.name, line_number_, column, std::nullopt, {}, word_at(line_, column)}, message, code);
+  }
+
+  /// A point in mm on the Q16.16 grid.
+  MachinePoint grid(const MachinePoint& p, std::size_t column) {
+    MachinePoint q{};
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      const auto fixed = Q16_16::from_double(p[axis]);
+      if (!fixed) fail_message(column, "coordinate " + format_number(p[axis]) + " mm is outside the Q16.16 range", Error::FixedOverflow);
+      q[axis] = fixed.value().to_double();
+    }
+    return q;
+  }
+
+  PathSegment made(const Result<PathSegment>& segment, std::size_t column) {
+    if (!segment) fail_message(column, std::string(describe(segment.error())), segment.error());
+    return segment.value();
+  }
+
+  void add(const gcode::Motion& motion) {
+    if (motion.kind == gcode::MotionKind::None) return;
+    SourceSegment source;
+    source.line = line_number_;
+    source.feed_mm_per_s = motion.feed_mm_per_min / seconds_per_minute;
+    const std::size_t column = motion.column;
+    std::vector<PathSegment> pieces;
+    const MachinePoint start = grid(motion.start, column);
+    const MachinePoint end = grid(motion.end, column);
+    switch (motion.kind) {
+      case gcode::MotionKind::Rapid:
+      case gcode::MotionKind::Line: {
+        source.type = motion.kind == gcode::MotionKind::Rapid ? SegmentType::Rapid : SegmentType::Line;
+        source.degree = 1;
+        source.points = {start, end};
+        if (start == end) return;  // shorter than the grid: nothing moves
+        pieces.push_back(made(PathSegment::make_line(start, end), column));
+        pieces.back().set_rapid(motion.kind == gcode::MotionKind::Rapid);
+        break;
+      }
+      case gcode::MotionKind::Arc: {
+        source.type = SegmentType::Arc;
+        const MachinePoint center = grid(motion.center, column);
+        source.points = {start, end, center};
+        const double tolerance = motion.radius_difference_mm + quantisation_radius_slack_mm;
+        pieces.push_back(made(PathSegment::make_arc(start, end, center, motion.direction, motion.full_turns, tolerance), column));
+        break;
+      }
+      case gcode::MotionKind::Cubic:
+      case gcode::MotionKind::Quadratic: {
+        source.type = SegmentType::Bezier;
+        const std::size_t count = motion.kind == gcode::MotionKind::Cubic ? 4 : 3;
+        for (std::size_t i = 0; i < count; ++i) source.points.push_back(grid(motion.control[i], column));
+        source.degree = count - 1;
+        pieces.push_back(made(PathSegment::make_bezier(source.points), column));
+        break;
+      }
+      case gcode::MotionKind::Nurbs: add_nurbs(motion, source, pieces); break;
+      case gcode::MotionKind::None: return;
+    }
+    if (source.breaks.empty()) source.breaks = {0.0, 1.0};
+    const std::size_t index = job_.sources.size();
+    source.first_piece = job_.segments.size();
+    for (auto& piece : pieces) {
+      piece.set_feed_mm_per_s(source.type == SegmentType::Rapid ? 0.0 : source.feed_mm_per_s);
+      job_.segments.push_back(piece);
+      job_.source_index.push_back(index);
+    }
+    if (source.type == SegmentType::Rapid) source.feed_mm_per_s = 0;
+    job_.sources.push_back(std::move(source));
+  }
+
+  void add_nurbs(const gcode::Motion& motion, SourceSegment& source, std::vector<PathSegment>& pieces) {
+    const std::size_t column = motion.column;
+    source.type = SegmentType::Nurbs;
+    const auto points = interpreter_.nurbs_points();
+    const auto weights = interpreter_.nurbs_weights();
+    for (const auto& p : points) source.points.push_back(grid(p, column));
+    source.weights.assign(weights.begin(), weights.end());
+    const std::size_t n = points.size();
+    const std::size_t p = motion.nurbs_order - 1;
+    source.degree = p;
+    // Clamped uniform knots: p+1 zeros, 1 .. n-p-1, p+1 times n-p.
+    for (std::size_t i = 0; i <= p; ++i) source.knots.push_back(0.0);
+    for (std::size_t i = 1; i + p < n; ++i) source.knots.push_back(static_cast<double>(i));
+    for (std::size_t i = 0; i <= p; ++i) source.knots.push_back(static_cast<double>(n - p));
+    const auto nurbs = RationalSpline::create(source.points, source.weights, source.knots, p);
+    if (!nurbs) fail_message(column, "NURBS block: " + std::string(describe(nurbs.error())), Error::GcodeNurbsBlock);
+    const auto extracted = for_each_bezier(nurbs.value(), [&](const auto& piece) {
+      std::vector<MachinePoint> control;
+      std::vector<double> piece_weights;
+      for (const auto& c : piece.curve.control_points()) control.push_back(grid(c, column));
+      for (std::size_t i = 0; i <= piece.curve.degree(); ++i) piece_weights.push_back(piece.curve.weight(i));
+      const auto segment = PathSegment::make_rational_bezier(control, piece_weights);
+      if (!segment) {
+        fail_message(column, "NURBS block: the piece on knot span [" + format_number(piece.start) + ", " + format_number(piece.end) +
+                                 "]: " + std::string(describe(segment.error())),
+                     Error::GcodeNurbsBlock);
+      }
+      pieces.push_back(segment.value());
+      if (source.breaks.empty()) source.breaks.push_back(piece.start);
+      source.breaks.push_back(piece.end);
+    });
+    if (!extracted) fail_message(column, "NURBS block: " + std::string(describe(extracted.error())), Error::GcodeNurbsBlock);
+  }
+
+  Job job_;
+  Interpreter interpreter_;
+  std::string_view line_;
+  std::size_t line_number_ = 0;
+};
+
+}  // namespace
+
+Job parse_gcode_job(std::string_view text, std::string name) {
+  GcodeLoader loader(std::move(name));
+  return loader.load(text);
+}
+
+Job import_gcode(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path);
+  return parse_gcode_job(text, path.string());
+}
+
+}  // namespace curvestep::host

@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: MIT
+// G-code import: a LinuxCNC-dialect program (docs/gcode.md) -> a Job, as job files load.
+//
+// Each motion becomes one SourceSegment (G0 rapid, G1 line, G2/G3 arc with points start, end,
+// centre, G5 cubic and G5.1 quadratic bezier, G5.2…G5.3 nurbs with a clamped uniform knot
+// vector) whose `line` is the program line; coordinates are in mm, quantised to Q16.16 like job
+// files. Feeds are converted from units per minute to mm/s.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/load_error.hpp>
+
+namespace curvestep::host {
+
+/// Loads a G-code program. Throws LoadError (file:line:column, the word at fault as field, an
+/// Error code 140-148 or FixedOverflow) or std::runtime_error if the file cannot be read.
+[[nodiscard]] Job import_gcode(const std::filesystem::path& path);
+
+/// Parses G-code text; `name` is used in error messages as the file name.
+[[nodiscard]] Job parse_gcode_job(std::string_view text, std::string name);
+
+}  // namespace curvestep::host

@@ -1,0 +1,273 @@
+// SPDX-License-Identifier: MIT
+// G-code import: the conformance programs of tests/gcode/data become the expected paths, and every
+// error names file:line:column and the word. Expected geometry is computed by hand from
+// LinuxCNC's documented formulas; the NURBS block is checked against an independent Cox-de Boor
+// evaluation written here.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <curvestep/host/gcode_import.hpp>
+
+using namespace curvestep;
+using namespace curvestep::host;
+
+namespace {
+
+const std::string data = CURVESTEP_GCODE_TEST_DATA;
+/// Q16.16 quantisation moves a coordinate by at most 2^-17 mm.
+constexpr double grid_tolerance = 1.0 / 131072.0;
+
+bool near(const MachinePoint& a, const MachinePoint& b, double tolerance) {
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (!(std::fabs(a[i] - b[i]) <= tolerance)) return false;
+  }
+  return true;
+}
+
+MachinePoint pt(double x, double y, double z = 0) { return MachinePoint{{x, y, z}}; }
+
+/// The LoadError of parsing `text`.
+LoadError error_of(const std::string& text, const std::string& name = "inline.ngc") {
+  try {
+    (void)parse_gcode_job(text, name);
+  } catch (const LoadError& e) {
+    return e;
+  }
+  FAIL("no LoadError for: " << text);
+  return LoadError({}, "", Error::InvalidArgument);
+}
+
+LoadError file_error_of(const std::string& path) {
+  try {
+    (void)import_gcode(path);
+  } catch (const LoadError& e) {
+    return e;
+  }
+  FAIL("no LoadError for " << path);
+  return LoadError({}, "", Error::InvalidArgument);
+}
+
+/// Cox-de Boor basis N_{i,p}(u) on `knots` (right-open spans; the caller avoids the domain end).
+double basis(const std::vector<double>& knots, std::size_t i, std::size_t p, double u) {
+  if (p == 0) return knots[i] <= u && u < knots[i + 1] ? 1.0 : 0.0;
+  double value = 0;
+  if (knots[i + p] > knots[i]) value += (u - knots[i]) / (knots[i + p] - knots[i]) * basis(knots, i, p - 1, u);
+  if (knots[i + p + 1] > knots[i + 1]) {
+    value += (knots[i + p + 1] - u) / (knots[i + p + 1] - knots[i + 1]) * basis(knots, i + 1, p - 1, u);
+  }
+  return value;
+}
+
+}  // namespace
+
+TEST_CASE("gcode import: lines, G20 inches, G91 increments and feeds", "[gcode][import]") {
+  const Job job = import_gcode(data + "/lines_units.ngc");
+  CHECK(job.name == data + "/lines_units.ngc");
+  REQUIRE(job.sources.size() == 5);  // the line after M2 is not read
+  REQUIRE(job.segments.size() == 5);
+  CHECK(job.sources[0].type == SegmentType::Rapid);
+  CHECK(job.sources[0].line == 3);
+  CHECK(job.segments[0].rapid());
+  CHECK(job.segments[0].end() == pt(10, 5));
+  CHECK(job.sources[1].type == SegmentType::Line);
+  CHECK(job.segments[1].end() == pt(10, 5, -1));
+  CHECK(job.segments[1].feed_mm_per_s() == 10.0);  // F600 mm/min
+  CHECK(job.segments[2].end() == pt(12, 2, -1));   // G91 X2 Y-3
+  CHECK(near(job.segments[3].end(), pt(25.4, 12.7, -1), grid_tolerance));  // G20 X1 Y0.5
+  CHECK(job.segments[3].feed_mm_per_s() == Approx(254.0 / 60.0));        // F10 in/min
+  CHECK(job.sources[3].line == 6);
+  CHECK(job.segments[4].rapid());
+  CHECK(near(job.segments[4].end(), pt(25.4, 12.7, 5), grid_tolerance));
+  for (std::size_t i = 1; i < job.segments.size(); ++i) CHECK(job.segments[i].start() == job.segments[i - 1].end());
+}
+
+TEST_CASE("gcode import: arcs in centre and radius form, full circles, helices, G91.1 and G90.1", "[gcode][import]") {
+  const Job job = import_gcode(data + "/arcs.ngc");
+  REQUIRE(job.segments.size() == 7);
+  const double quarter = std::numbers::pi / 2;
+  const double r = 10;
+  const double diagonal = r * std::sqrt(0.5);
+  struct Expected {
+    MachinePoint start, end;
+    double sweep;
+    MachinePoint middle;  // point at u = 0.5
+  };
+  const std::array<Expected, 6> expected{{
+      {pt(10, 0), pt(0, 10), quarter, pt(diagonal, diagonal)},
+      {pt(0, 10), pt(-10, 0), quarter, pt(-diagonal, diagonal)},
+      {pt(-10, 0), pt(-10, 0), -4 * quarter, pt(10, 0)},
+      {pt(-10, 0), pt(-10, 0, -3), 12 * quarter, pt(10, 0, -1.5)},  // 1.5 of 3 turns, half-way down
+      {pt(-10, 0, -3), pt(0, 10, -3), -quarter, pt(-diagonal, diagonal, -3)},
+      {pt(0, 10, -3), pt(10, 0, -3), -quarter, pt(diagonal, diagonal, -3)},
+  }};
+  CHECK(job.segments[0].rapid());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    INFO("arc " << i);
+    const PathSegment& s = job.segments[i + 1];
+    REQUIRE(s.kind() == SegmentKind::Arc);
+    CHECK(job.sources[i + 1].type == SegmentType::Arc);
+    CHECK(job.sources[i + 1].line == i + 4);
+    CHECK(near(s.start(), expected[i].start, grid_tolerance));
+    CHECK(near(s.end(), expected[i].end, grid_tolerance));
+    CHECK(near(s.arc_center(), pt(0, 0, expected[i].start[2]), grid_tolerance));
+    CHECK(s.arc_radius() == Approx(r).margin(1e-5));
+    CHECK(s.arc_sweep_rad() == Approx(expected[i].sweep).margin(1e-9));
+    CHECK(near(s.point(0.5), expected[i].middle, 1e-5));
+    CHECK(s.feed_mm_per_s() == 20.0);  // F1200 mm/min
+  }
+}
+
+TEST_CASE("gcode import: G5 series with tangent continuation and G5.1", "[gcode][import][spline]") {
+  const Job job = import_gcode(data + "/g5_series.ngc");
+  REQUIRE(job.segments.size() == 4);  // G0 X0 Y0 does not move
+  const std::array<std::vector<MachinePoint>, 4> control{{
+      {pt(0, 0), pt(0, 3), pt(1, -2), pt(1, 1)},  // P0, P0+(I,J), P1+(P,Q), P1
+      {pt(1, 1), pt(1, 4), pt(2, -1), pt(2, 2)},  // I J omitted: -(P,Q) of the block before = (0,3)
+      {pt(2, 2), pt(2, 5), pt(5, 1), pt(4, 2)},   // again (0,3), although this block's P Q are (1,-1)
+      {pt(4, 2), pt(5, 4), pt(6, 2)},             // G5.1: P0, P0+(I,J), P1
+  }};
+  for (std::size_t i = 0; i < control.size(); ++i) {
+    INFO("segment " << i);
+    const PathSegment& s = job.segments[i];
+    REQUIRE(s.kind() == SegmentKind::Bezier);
+    CHECK(job.sources[i].type == SegmentType::Bezier);
+    CHECK(job.sources[i].degree == control[i].size() - 1);
+    CHECK(job.sources[i].points == control[i]);
+    const auto points = s.polynomial().control_points();
+    REQUIRE(points.size() == control[i].size());
+    for (std::size_t k = 0; k < points.size(); ++k) CHECK(points[k] == control[i][k]);
+  }
+  // The documented curve's midpoint: (P0 + 3 P1 + 3 P2 + P3) / 8 = (0.5, 0.5).
+  CHECK(near(job.segments[0].point(0.5), pt(0.5, 0.5), 1e-12));
+  // Tangent continuity at the joins: the end tangent of one equals the start tangent of the next.
+  for (std::size_t i = 0; i + 2 < control.size(); ++i) {
+    CHECK(near(job.segments[i].derivative(1, 1), job.segments[i + 1].derivative(0, 1), 1e-12));
+  }
+}
+
+TEST_CASE("gcode import: the NURBS block matches an independent Cox-de Boor evaluation", "[gcode][import][nurbs]") {
+  const Job job = import_gcode(data + "/nurbs.ngc");
+  REQUIRE(job.sources.size() == 1);
+  const SourceSegment& source = job.sources[0];
+  CHECK(source.type == SegmentType::Nurbs);
+  CHECK(source.line == 9);  // the G5.3 line
+  CHECK(source.degree == 2);
+  const std::vector<MachinePoint> points{pt(0, 0), pt(0, 1), pt(2, 2), pt(2, 0), pt(0, 0)};
+  const std::vector<double> weights{1, 1, 1, 1, 2};
+  const std::vector<double> knots{0, 0, 0, 1, 2, 3, 3, 3};
+  CHECK(source.points == points);
+  CHECK(source.weights == weights);
+  CHECK(source.knots == knots);
+  CHECK(source.piece_count() == 3);
+  CHECK(job.segments.size() == 3);
+  for (const double u : {0.0, 0.25, 0.5, 1.0, 1.5, 2.0, 2.7, 2.999}) {
+    INFO("u = " << u);
+    MachinePoint numerator{};
+    double denominator = 0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double b = basis(knots, i, 2, u) * weights[i];
+      for (std::size_t axis = 0; axis < 3; ++axis) numerator[axis] += b * points[i][axis];
+      denominator += b;
+    }
+    const MachinePoint expected = pt(numerator[0] / denominator, numerator[1] / denominator);
+    CHECK(near(evaluate_segment(job, 0, u), expected, 2e-5));
+  }
+  CHECK(job.segments.front().start() == pt(0, 0));
+  CHECK(job.segments.back().end() == pt(0, 0));
+  CHECK(job.segments.front().feed_mm_per_s() == Approx(10.0 / 60.0));
+}
+
+TEST_CASE("gcode import: the CNC example loads", "[gcode][import]") {
+  const Job job = import_gcode(std::string(CURVESTEP_GCODE_EXAMPLES) + "/cnc_pocket.ngc");
+  CHECK(job.sources.size() > 10);
+  bool arc = false;
+  bool cubic = false;
+  bool nurbs = false;
+  for (const auto& s : job.sources) {
+    arc = arc || s.type == SegmentType::Arc;
+    cubic = cubic || (s.type == SegmentType::Bezier && s.degree == 3);
+    nurbs = nurbs || s.type == SegmentType::Nurbs;
+  }
+  CHECK(arc);
+  CHECK(cubic);
+  CHECK(nurbs);
+  for (std::size_t i = 1; i < job.segments.size(); ++i) CHECK(job.segments[i].start() == job.segments[i - 1].end());
+}
+
+TEST_CASE("gcode import: error programs name file, line, column and word", "[gcode][import][errors]") {
+  struct Case {
+    const char* file;
+    std::size_t line, column;
+    const char* word;
+    Error code;
+  };
+  const Case cases[] = {
+      {"error_g5_no_tangent.ngc", 3, 3, "G5", Error::GcodeSplineNoTangent},
+      {"error_arc_radius.ngc", 2, 5, "G3", Error::GcodeArcRadiusMismatch},
+      {"error_g5_plane.ngc", 2, 1, "G5", Error::GcodeSplineNotG17},
+      {"error_unclosed_nurbs.ngc", 2, 1, "G5.2", Error::GcodeNurbsBlock},
+  };
+  for (const auto& c : cases) {
+    INFO(c.file);
+    const std::string path = data + "/" + c.file;
+    const LoadError e = file_error_of(path);
+    CHECK(e.code() == c.code);
+    CHECK(e.location().file == path);
+    CHECK(e.location().line == c.line);
+    CHECK(e.location().column == c.column);
+    CHECK(e.location().field == c.word);
+    const std::string prefix = path + ":" + std::to_string(c.line) + ":" + std::to_string(c.column) + ": " + c.word + ": ";
+    CHECK(std::string(e.what()).starts_with(prefix));
+  }
+}
+
+TEST_CASE("gcode import: every G-code error code reaches the user with its word", "[gcode][import][errors]") {
+  struct Case {
+    const char* text;
+    std::size_t line, column;
+    const char* word;
+    Error code;
+  };
+  const Case cases[] = {
+      {"G1 X1 F100\nG1 A5\n", 2, 4, "A5", Error::GcodeUnsupportedWord},
+      {"G1 X1 F100\nG2 X1 Y1 I1 S100\n", 2, 13, "S100", Error::GcodeUnsupportedWord},
+      {"G64 P0.01\n", 1, 1, "G64", Error::GcodeUnsupportedWord},
+      {"G1 X1.2345678901234567\n", 1, 4, "X1.2345678901234567", Error::GcodeBadNumber},
+      {"G1 X99999\n", 1, 4, "X99999", Error::GcodeBadNumber},
+      {"G5 I1 J1 P1 X1 Y1\n", 1, 1, "G5", Error::GcodeMissingWord},
+      {"X1\n", 1, 1, "X1", Error::GcodeMissingWord},
+      {"G0 X1\nG3 X0 Y1.1 I-1\n", 2, 1, "G3", Error::GcodeArcRadiusMismatch},
+      {"G2 X10 R2\n", 1, 8, "R2", Error::GcodeArcRadiusMismatch},
+      {"G19\nG5.1 I1 X1\n", 2, 1, "G5.1", Error::GcodeSplineNotG17},
+      {"G5 P0 Q-3 X2 Y2\n", 1, 1, "G5", Error::GcodeSplineNoTangent},
+      {"G1 X1 $\n", 1, 7, "$", Error::GcodeSyntax},
+      {"G1 X1 X2\n", 1, 7, "X2", Error::GcodeConflictingWords},
+      {"G5 I0 J3 P0 Q-3 X1 Y1 Z1\n", 1, 23, "Z1", Error::GcodeConflictingWords},
+      {"G5.2\nX1 Y1\nG5.3\n", 3, 1, "G5.3", Error::GcodeNurbsBlock},
+      {"G5.2 L3\nX1 Y1\nX2 Y0 L2\n", 3, 7, "L2", Error::GcodeNurbsBlock},
+  };
+  for (const auto& c : cases) {
+    INFO(c.text);
+    const LoadError e = error_of(c.text);
+    CHECK(e.code() == c.code);
+    CHECK(e.location().line == c.line);
+    CHECK(e.location().column == c.column);
+    CHECK(e.location().field == c.word);
+    const std::string prefix = "inline.ngc:" + std::to_string(c.line) + ":" + std::to_string(c.column) + ": " + c.word + ": ";
+    CHECK(std::string(e.what()).starts_with(prefix));
+  }
+}
+
+TEST_CASE("gcode import: CRLF line ends and a missing file", "[gcode][import]") {
+  const Job job = parse_gcode_job("G0 X1\r\nG1 Y1 F60\r\n", "crlf.ngc");
+  REQUIRE(job.segments.size() == 2);
+  CHECK(job.segments[1].end() == pt(1, 1));
+  CHECK(job.segments[1].feed_mm_per_s() == 1.0);
+  CHECK_THROWS_AS(import_gcode(data + "/does_not_exist.ngc"), std::runtime_error);
+}
