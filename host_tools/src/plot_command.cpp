@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+// `curvestep plot JOB -o out.svg [--machine MACHINE.json]`: the path as an SVG drawing, feed moves
+// coloured by planned speed (with a machine, from a simulation) or by segment (without).
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/report.hpp>
+#include <curvestep/host/simulator.hpp>
+
+#include "command_registry.hpp"
+
+namespace curvestep::host {
+namespace {
+
+struct PlotOptions {
+  std::string job;
+  std::string machine;
+  std::string output;
+};
+
+void run_plot(const PlotOptions& o) {
+  const Job job = load_job(o.job);
+  PathPlotOptions plot;
+  plot.title = job.name;
+  if (o.machine.empty()) {
+    write_path_plot(o.output, job, nullptr, plot);
+  } else {
+    const MachineLimits machine = load_machine(o.machine);
+    SimulationOptions options;
+    options.progress = make_terminal_progress();
+    const SimulationResult result = simulate(job, machine, options);
+    finish_terminal_progress();
+    write_path_plot(o.output, job, &result.setpoints, plot);
+  }
+  std::cout << "  wrote " << o.output << "\n";
+}
+
+void add_plot_command(CLI::App& app) {
+  auto options = std::make_shared<PlotOptions>();
+  auto* plot = app.add_subcommand("plot", "Draw a job's path as SVG (coloured by planned speed with --machine, else by segment)");
+  plot->add_option("job", options->job, "Job file (.json)")->required()->check(CLI::ExistingFile);
+  plot->add_option("-o,--output", options->output, "SVG file to write")->required();
+  plot->add_option("--machine,-m", options->machine, "Machine file (.json): simulate and colour by planned speed")
+      ->check(CLI::ExistingFile);
+  plot->callback([options] { run_plot(*options); });
+}
+
+const RegisterCommand registered{45, add_plot_command};
+
+}  // namespace
+}  // namespace curvestep::host
