@@ -83,7 +83,8 @@ class Scanner {
     double value = 0;
     const auto [end, error] = std::from_chars(digits_text.data(), digits_text.data() + digits_text.size(), value);
     if (error == std::errc::result_out_of_range) {
-      if (std::fabs(value) < 1) {
+      const auto exponent = token.find_first_of("eE");
+      if (exponent != std::string_view::npos && token[exponent + 1] == '-') {
         value = 0;  // underflow: a number too small to represent is zero for any drawing
       } else {
         fail("the number " + std::string(token) + " is too large");
@@ -138,12 +139,12 @@ class PathParser {
       if (scan_.at_end()) break;
       const char c = scan_.peek();
       if (std::string_view("MmLlHhVvCcSsQqTtAaZz").find(c) != std::string_view::npos) {
+        if (subpaths_.empty() && c != 'M' && c != 'm') {
+          scan_.fail(std::string("path data must begin with a moveto (M or m), got \"") + c + "\"");
+        }
         command = c;
         scan_.advance();
         scan_.skip_space();
-        if (subpaths_.empty() && command != 'M' && command != 'm') {
-          throw SyntaxError(scan_.position(), std::string("path data must begin with a moveto (M or m), got \"") + c + "\"");
-        }
       } else if (command == 0) {
         scan_.fail("path data must begin with a moveto (M or m), got " + scan_.what_is_here());
       } else if (!scan_.number_follows()) {
