@@ -17,6 +17,7 @@ void probe_motion();
 void probe_protocol();
 void probe_stepgen();
 void probe_sampling();
+void probe_firmware();
 
 /// Runs every probe (called from Reset_Handler).
 inline void run_all() {
@@ -27,6 +28,7 @@ inline void run_all() {
   probe_protocol();
   probe_stepgen();
   probe_sampling();
+  probe_firmware();
 }
 
 }  // namespace curvestep::probe
