@@ -571,3 +571,84 @@ TEST_CASE("firmware: wire values convert exactly to planner values", "[firmware]
   no_feed.feed_mm_per_s = 0;
   CHECK(to_path_segment(no_feed).error() == Error::InvalidLimit);
 }
+
+TEST_CASE("firmware: a feed hold during an underrun keeps the machine still until Resume", "[firmware][app]") {
+  using SmallApp = App<FakeBoard, Q16_16, 16, 2>;
+  FakeBoard board;
+  SmallApp app(board);
+  Host<SmallApp> host(board, app);
+  connect_and_configure(host);
+  queue_and_start(host, {line(p(0, 0), p(2, 0)), line(p(2, 0), p(4, 0)), line(p(4, 0), p(6, 0))});
+  host.run_ticks(1500);
+  REQUIRE(app.controller().state() == ControllerState::Starved);
+  REQUIRE(host.send(Message(FeedHold{})));
+  host.pump();
+  CHECK(app.state() == MachineState::Holding);
+  std::vector<QueueSegment> rest{line(p(6, 0), p(6, 2)), line(p(6, 2), p(6, 4))};
+  rest.back().end_of_job = true;
+  for (const auto& s : rest) REQUIRE(host.send(Message(s)));
+  host.run_ticks(300);
+  CHECK(app.position() == p(6, 0));  // held: the new segments wait
+  REQUIRE(host.send(Message(Resume{})));
+  host.run_ticks(1500);
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(app.position() == p(6, 4));
+  CHECK(host.received.errors.empty());
+}
+
+TEST_CASE("firmware: a new configuration is refused while segments are queued", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  REQUIRE(host.send(Message(line(p(0, 0), p(1, 0)))));
+  REQUIRE(host.send(Message(machine())));
+  for (int i = 0; i < 5; ++i) host.pump();
+  REQUIRE(host.received.errors.size() == 1);
+  CHECK(host.received.errors[0].code == Error::PlannerBusy);
+  CHECK(app.controller().queued() == 1);
+}
+
+TEST_CASE("firmware: a StatusReport follows a feed hold once the machine stands", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  QueueSegment s = line(p(0, 0), p(40, 0));
+  s.end_of_job = true;
+  queue_and_start(host, {s});
+  host.run_ticks(200);
+  REQUIRE(host.send(Message(FeedHold{})));
+  host.pump();
+  const std::size_t before = host.received.status.size();
+  host.run_ticks(500);
+  REQUIRE(app.controller().state() == ControllerState::Held);
+  REQUIRE(host.received.status.size() == before + 1);
+  CHECK(host.received.status.back().state == MachineState::Holding);
+  CHECK(host.received.status.back().position == app.position());
+  REQUIRE(host.send(Message(Resume{})));
+  host.pump();
+  CHECK(app.state() == MachineState::Running);
+}
+
+TEST_CASE("firmware: Resume while still braking continues from the stop", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  QueueSegment s = line(p(0, 0), p(40, 0));
+  s.end_of_job = true;
+  queue_and_start(host, {s});
+  host.run_ticks(200);
+  REQUIRE(host.send(Message(FeedHold{})));
+  host.pump();
+  host.run_ticks(2);
+  REQUIRE(app.controller().state() == ControllerState::Holding);
+  REQUIRE(host.send(Message(Resume{})));
+  host.pump();
+  host.run_ticks(3000);
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(app.position() == p(40, 0));
+  CHECK(board.steps == std::array<std::int64_t, 3>{steps_of(40), 0, 0});
+  CHECK(host.received.errors.empty());
+}

@@ -32,7 +32,9 @@
 //                           Flag "end of job" marks the last one.
 //   Start                -> arms the job; motion begins when the queue holds Lookahead + 1
 //                           segments or the job's last segment (the start rule, below).
-//   FeedHold / Resume    -> MotionController::hold / resume (braking along the path).
+//   FeedHold / Resume    -> MotionController::hold / resume (braking along the path); a StatusReport
+//                           follows once the machine stands; Resume while still braking continues
+//                           from the stop.
 //   Abort                -> stop at once: controller aborted and flushed, board.fault_stop().
 //   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, position).
 // Every failed command is answered with ErrorReport(code, index, the frame's sequence number).
@@ -171,6 +173,8 @@ class App {
       tick_base_ = steps_.tick();
     } else if (after == ControllerState::Starved && before == ControllerState::Running) {
       underrun_ = true;
+    } else if (after == ControllerState::Held && before == ControllerState::Holding) {
+      held_ = true;
     }
   }
 
@@ -246,7 +250,7 @@ class App {
     const protocol::Reception r = receiver_.on_frame(frame, free_segments(), now);
     send_reply(r);
     if (r.disposition == protocol::Disposition::Connect) {
-      stop_job(false);
+      stop_job(moving_);
       last_error_ = 0;
       has_last_end_ = false;
     } else if (r.disposition == protocol::Disposition::Deliver) {
@@ -290,7 +294,8 @@ class App {
   // --- commands --------------------------------------------------------------------------
 
   [[nodiscard]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
-    if (moving_ || start_pending_ || held_before_start_) return fail(Error::PlannerBusy);
+    // Queued segments were planned with the old limits: a new configuration needs an empty queue.
+    if (moving_ || start_pending_ || held_before_start_ || controller_.queued() > 0) return fail(Error::PlannerBusy);
     if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
     CURVESTEP_TRY(MachineLimits limits, to_machine_limits(m));
     CURVESTEP_TRY(const StepConfig step_config, fit_step_config(limits));
@@ -348,13 +353,19 @@ class App {
   }
 
   void feed_hold() noexcept {
+    resume_when_held_ = false;
     if (start_pending_) {
       start_pending_ = false;
       held_before_start_ = true;
       state_ = protocol::MachineState::Holding;
       return;
     }
-    if (!moving_ || controller_.state() != ControllerState::Running) return;
+    if (!moving_) return;
+    if (controller_.state() == ControllerState::Starved) {
+      state_ = protocol::MachineState::Holding;  // already stopped on the path: stay there
+      return;
+    }
+    if (controller_.state() != ControllerState::Running) return;
     controller_.hold();
     state_ = protocol::MachineState::Holding;
   }
@@ -368,6 +379,15 @@ class App {
       return ok();
     }
     if (state_ != protocol::MachineState::Holding) return fail(Error::InvalidState);
+    if (controller_.state() == ControllerState::Starved) {
+      state_ = protocol::MachineState::Running;  // continues under the start rule
+      apply_start_rule();
+      return ok();
+    }
+    if (controller_.state() == ControllerState::Holding) {
+      resume_when_held_ = true;  // still braking: continue from the stop
+      return ok();
+    }
     CURVESTEP_CHECK(controller_.resume());
     state_ = protocol::MachineState::Running;
     return ok();
@@ -386,6 +406,8 @@ class App {
     job_end_known_ = false;
     job_done_ = false;
     underrun_ = false;
+    held_ = false;
+    resume_when_held_ = false;
     fault_pending_ = false;
     job_segments_ = 0;
     has_last_end_ = false;
@@ -417,6 +439,18 @@ class App {
       job_end_known_ = false;
       job_segments_ = 0;
       state_ = protocol::MachineState::Idle;
+      send_status();
+    }
+    if (held_) {
+      held_ = false;
+      if (resume_when_held_) {
+        resume_when_held_ = false;
+        if (auto resumed = controller_.resume(); resumed) {
+          state_ = protocol::MachineState::Running;
+        } else {
+          report(resumed.failure());
+        }
+      }
       send_status();
     }
     if (underrun_) {
@@ -566,6 +600,8 @@ class App {
   bool job_end_known_ = false;
   bool job_done_ = false;
   bool underrun_ = false;
+  bool held_ = false;
+  bool resume_when_held_ = false;
   bool fault_pending_ = false;
   bool has_last_end_ = false;
   bool link_hold_latched_ = false;
