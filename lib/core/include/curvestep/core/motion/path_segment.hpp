@@ -45,19 +45,22 @@ class PathSegment {
 
   constexpr PathSegment() = default;
 
-  /// A straight line from a to b. DegenerateCurve if a == b (zero-length moves are dropped by callers).
+  /// A straight line from a to b. DegenerateCurve if a == b (zero-length moves are dropped by callers);
+  /// NotFinite for NaN/inf coordinates or b - a beyond double.
   [[nodiscard]] static Result<PathSegment> make_line(const MachinePoint& a, const MachinePoint& b) noexcept {
     if (a == b) return fail(Error::DegenerateCurve);
     PathSegment s;
     s.kind_ = SegmentKind::Line;
     CURVESTEP_TRY(s.polynomial_, Polynomial::create({a, b}));
+    CURVESTEP_CHECK(s.check_derivatives());
     return s;
   }
 
   /// An arc in the XY plane about `center` (its z ignored) from `start` to `end` in `direction`,
   /// plus `full_turns` extra whole turns; z moves linearly from start.z to end.z (a helix).
   /// start == end (in XY) with full_turns == 0 is a full circle. InvalidArgument if the radii of
-  /// start and end differ by more than `radius_tolerance_mm`; DegenerateCurve for zero radius.
+  /// start and end differ by more than `radius_tolerance_mm`; DegenerateCurve for zero radius;
+  /// NotFinite for NaN/inf in the XY radii or the height change.
   [[nodiscard]] static Result<PathSegment> make_arc(const MachinePoint& start, const MachinePoint& end, const MachinePoint& center,
                                                     ArcDirection direction, std::uint32_t full_turns,
                                                     double radius_tolerance_mm) noexcept {
@@ -67,9 +70,9 @@ class PathSegment {
     const double by = end[1] - center[1];
     const double r = std::sqrt(ax * ax + ay * ay);
     const double rb = std::sqrt(bx * bx + by * by);
-    if (!std::isfinite(r) || !std::isfinite(rb)) return fail(Error::NotFinite);
+    if (!std::isfinite(r) || !std::isfinite(rb) || !std::isfinite(end[2] - start[2])) return fail(Error::NotFinite);
     if (r == 0) return fail(Error::DegenerateCurve);
-    if (std::fabs(r - rb) > radius_tolerance_mm) return fail(Error::InvalidArgument, 1);
+    if (!(std::fabs(r - rb) <= radius_tolerance_mm)) return fail(Error::InvalidArgument, 1);  // NaN tolerance too
     double sweep = detail::atan2(ax * by - ay * bx, ax * bx + ay * by);  // (-π, π]
     const bool ccw = direction == ArcDirection::CounterClockwise;
     if (ccw && sweep <= 0) sweep += 2 * detail::pi;
@@ -87,13 +90,14 @@ class PathSegment {
     return s;
   }
 
-  /// A polynomial Bézier from 2..8 control points.
+  /// A polynomial Bézier from 2..8 control points. NotFinite for NaN/inf, or derivatives beyond double.
   [[nodiscard]] static Result<PathSegment> make_bezier(std::span<const MachinePoint> control) noexcept {
     if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
     PathSegment s;
     s.kind_ = SegmentKind::Bezier;
     CURVESTEP_TRY(s.polynomial_, Polynomial::create(control));
     if (s.is_point()) return fail(Error::DegenerateCurve);
+    CURVESTEP_CHECK(s.check_derivatives());
     return s;
   }
 
@@ -210,6 +214,13 @@ class PathSegment {
     const double ax = start_[0] - center_[0];
     const double ay = start_[1] - center_[1];
     return MachinePoint{{factor * (sc.cos * ax - sc.sin * ay), factor * (sc.cos * ay + sc.sin * ax), 0.0}};
+  }
+
+  /// NotFinite if a derivative that derivative() evaluates (orders 1..3) overflows double: the
+  /// hodographs' control points are then finite, and de Casteljau keeps their combinations finite.
+  [[nodiscard]] constexpr Result<void> check_derivatives() const noexcept {
+    if (!polynomial_.derivative(3)) return fail(Error::NotFinite);
+    return ok();
   }
 
   [[nodiscard]] constexpr bool is_point() const noexcept {
