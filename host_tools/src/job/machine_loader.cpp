@@ -38,6 +38,7 @@ std::string machine_field_name(LimitField field, std::size_t axis) {
     case LimitField::AMax: return "\"a_max\"";
     case LimitField::JMax: return "\"j_max\"";
     case LimitField::Feed: return "\"feed\"";
+    case LimitField::Rapid: return "\"rapid\"";
     case LimitField::Tolerance: return "\"tolerance\"";
     case LimitField::RateHz: return "\"rate_hz\"";
     case LimitField::JunctionDeviation: return "\"junction_deviation\"";

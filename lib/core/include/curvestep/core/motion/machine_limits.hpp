@@ -27,7 +27,7 @@ struct AxisLimits {
 
 /// Which MachineLimits field an InvalidLimit error names (the error's index).
 enum class LimitField : std::uint8_t {
-  VMax = 0, AMax = 1, JMax = 2, Feed = 3, Tolerance = 4, RateHz = 5, JunctionDeviation = 6,
+  VMax = 0, AMax = 1, JMax = 2, Feed = 3, Tolerance = 4, RateHz = 5, JunctionDeviation = 6, Rapid = 7,
   AxisStepsPerMm = 10, AxisVMax = 13, AxisAMax = 16,  ///< + axis index (0 x, 1 y, 2 z)
   MaxStepRate = 19,
 };
@@ -46,7 +46,8 @@ struct MachineLimits {
   bool jerk_limited = true;             ///< S-curve (true) or trapezoidal (false) speed profiles
   std::array<AxisLimits, motion_axes> axes{};  ///< x, y, z
 
-  /// Checks every field: InvalidLimit (index = LimitField) for non-positive or non-finite values,
+  /// Checks every field: InvalidLimit (index = LimitField) for non-positive or non-finite values
+  /// (rapid, junction deviation and the axis fields may be 0),
   /// InvalidRate for a rate outside 100 Hz .. 100 kHz.
   [[nodiscard]] constexpr Result<void> validate() const noexcept {
     auto positive = [](double v) { return std::isfinite(v) && v > 0; };
@@ -62,6 +63,7 @@ struct MachineLimits {
     if (!non_negative(junction_deviation_mm)) {
       return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::JunctionDeviation));
     }
+    if (!non_negative(rapid_mm_per_s)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::Rapid));
     if (!positive(max_step_rate_hz)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::MaxStepRate));
     for (std::size_t i = 0; i < motion_axes; ++i) {
       if (!non_negative(axes[i].steps_per_mm)) {
