@@ -16,6 +16,9 @@ namespace curvestep::stm32 {
 namespace {
 
 volatile std::uint32_t tick_count = 0;
+volatile std::uint32_t milliseconds = 0;
+std::uint32_t millisecond_fraction = 0;  // milliseconds x tick_rate not yet counted
+std::uint32_t tick_rate = 1000;
 void (*tick_callback)(void*) = nullptr;
 void* tick_context = nullptr;
 
@@ -24,6 +27,7 @@ void fault_put(char c) noexcept { curvestep_board_fault_putc(c); }
 }  // namespace
 
 std::uint32_t systick_count() noexcept { return tick_count; }
+std::uint32_t systick_milliseconds() noexcept { return milliseconds; }
 
 bool start_systick(std::uint32_t hclk_hz, std::uint32_t rate_hz, void (*callback)(void*), void* context) noexcept {
   if (rate_hz == 0) return false;
@@ -31,6 +35,8 @@ bool start_systick(std::uint32_t hclk_hz, std::uint32_t rate_hz, void (*callback
   if (reload < 2 || reload > 0x1000000u) return false;
   tick_callback = callback;
   tick_context = context;
+  tick_rate = rate_hz;
+  millisecond_fraction = 0;
   reg(scs::systick_csr) = 0;
   reg(scs::systick_rvr) = reload - 1;
   reg(scs::systick_cvr) = 0;
@@ -108,8 +114,14 @@ extern "C" {
 [[gnu::naked]] void Default_Handler() { asm volatile("b HardFault_Handler"); }
 
 void SysTick_Handler() {
-  curvestep::stm32::tick_count = curvestep::stm32::tick_count + 1;
-  if (curvestep::stm32::tick_callback != nullptr) curvestep::stm32::tick_callback(curvestep::stm32::tick_context);
+  using namespace curvestep::stm32;
+  tick_count = tick_count + 1;
+  millisecond_fraction += 1000;  // one tick is 1000 / tick_rate ms
+  while (millisecond_fraction >= tick_rate) {
+    millisecond_fraction -= tick_rate;
+    milliseconds = milliseconds + 1;
+  }
+  if (tick_callback != nullptr) tick_callback(tick_context);
 }
 
 }  // extern "C"

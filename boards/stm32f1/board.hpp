@@ -14,6 +14,7 @@
 
 #include <curvestep/boards/stm32/clocks.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
+#include <curvestep/core/motion/step_generator.hpp>
 
 namespace curvestep::boards {
 
@@ -55,6 +56,29 @@ class Stm32F1Board {
   void raise_steps(std::uint32_t mask) noexcept;
   /// Lowers the STEP lines of the axes in `mask` (one BSRR write).
   void lower_steps(std::uint32_t mask) noexcept;
+
+  // --- the firmware::Board concept (firmware/include/curvestep/firmware/board.hpp) ---
+  static constexpr std::uint8_t axis_count = 3;                 ///< driven axes
+  static constexpr std::size_t step_events_per_tick = 32;       ///< StepBatch capacity per control tick
+  static constexpr std::size_t edge_ring = 64;                  ///< timed edges waiting for TIM2 (two ticks)
+  /// 1 MHz step timer (TIM2), 2 µs pulses and gaps, 1 µs direction set-up and hold.
+  static constexpr StepTiming step_timing() noexcept { return StepTiming{1'000'000, 2000, 2000, 1000, 1000}; }
+  /// Milliseconds since init() (from SysTick, whatever its rate).
+  [[nodiscard]] std::uint32_t now_ms() const noexcept;
+  /// Received bytes into `into`; never blocks.
+  std::size_t read(std::span<std::byte> into) noexcept;
+  /// Queues what fits of `bytes` for transmission; never blocks.
+  std::size_t write(std::span<const std::byte> bytes) noexcept;
+  /// Queues a DIR edge at step-timer time `time_ticks` (played one control period later).
+  void set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive) noexcept;
+  /// Queues a STEP edge at step-timer time `time_ticks` (played one control period later).
+  void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) noexcept;
+  /// Drops every queued edge and lowers the STEP lines.
+  void fault_stop() noexcept;
+  /// Starts TIM2 for the edges of a control tick of `control_rate_hz`.
+  void start_steps(std::uint32_t control_rate_hz) noexcept;
+  /// Edges lost to a full edge ring.
+  [[nodiscard]] std::uint32_t edges_dropped() const noexcept;
 
   /// Clocks measured by init().
   [[nodiscard]] const Clocks& clocks() const noexcept { return clocks_; }

@@ -3,6 +3,7 @@
 #include <curvestep/boards/stm32/startup.hpp>
 
 extern "C" void USART1_IRQHandler();
+extern "C" void TIM2_IRQHandler();
 
 namespace {
 
@@ -11,6 +12,7 @@ constexpr std::size_t irq_count = 60;
 consteval curvestep::stm32::VectorTable<irq_count> make_table() {
   curvestep::stm32::VectorTable<irq_count> table{&_estack, CURVESTEP_STM32_SYSTEM_VECTORS, {}};
   for (auto& handler : table.interrupts) handler = Default_Handler;
+  table.interrupts[28] = TIM2_IRQHandler;
   table.interrupts[37] = USART1_IRQHandler;
   return table;
 }

@@ -4,6 +4,7 @@
 
 #include <curvestep/boards/stm32/mmio.hpp>
 #include <curvestep/boards/stm32/startup.hpp>
+#include <curvestep/boards/stm32/step_edges.hpp>
 #include <curvestep/boards/stm32/usart.hpp>
 
 namespace curvestep::boards {
@@ -27,6 +28,11 @@ constexpr Clocks hsi_clocks{16'000'000, 16'000'000, 16'000'000, false};
 
 using Console = stm32::Usart<usart1, usart1_irq, Stm32F4Board::console_buffer, Stm32F4Board::console_buffer>;
 Console console;
+
+using Edges = stm32::StepEdges<0x40000000, gpioa + gpio_bsrr, Stm32F4Board::edge_ring>;  // TIM2
+Edges edges;
+constexpr std::uint8_t step_pin_numbers[3] = {0, 1, 2};
+constexpr std::uint8_t dir_pin_numbers[3] = {3, 4, 5};
 
 constexpr std::uint32_t step_pins[3] = {0, 1, 2};  // PA0, PA1, PA2
 constexpr std::uint32_t dir_pins[3] = {3, 4, 5};   // PA3, PA4, PA5
@@ -111,6 +117,34 @@ void Stm32F4Board::lower_steps(std::uint32_t mask) noexcept {
   reg(gpioa + gpio_bsrr) = pin_bits(step_pins, mask) << 16;
 }
 
+void Stm32F4Board::start_steps(std::uint32_t control_rate_hz) noexcept {
+  reg(rcc_apb1enr) = reg(rcc_apb1enr) | 1u;  // TIM2EN
+  stm32::barrier();
+  // APB1 timers run at twice PCLK1 when the APB1 prescaler is not 1 (RCC clock tree).
+  const std::uint32_t timer_clock = clocks_.pclk1_hz == clocks_.hclk_hz ? clocks_.pclk1_hz : 2 * clocks_.pclk1_hz;
+  const std::uint32_t timer_hz = step_timing().timer_hz;
+  edges.start(timer_clock, timer_hz, control_rate_hz == 0 ? timer_hz / 1000 : timer_hz / control_rate_hz,
+              step_pin_numbers, dir_pin_numbers);
+}
+std::uint32_t Stm32F4Board::now_ms() const noexcept { return stm32::systick_milliseconds(); }
+std::size_t Stm32F4Board::read(std::span<std::byte> into) noexcept {
+  std::size_t count = 0;
+  std::uint8_t byte = 0;
+  while (count < into.size() && console.read(byte)) into[count++] = static_cast<std::byte>(byte);
+  return count;
+}
+std::size_t Stm32F4Board::write(std::span<const std::byte> bytes) noexcept {
+  return console.write(std::span(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
+}
+void Stm32F4Board::set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive) noexcept {
+  edges.push(time_ticks, axis, true, positive);
+}
+void Stm32F4Board::set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) noexcept {
+  edges.push(time_ticks, axis, false, high);
+}
+void Stm32F4Board::fault_stop() noexcept { edges.stop(); }
+std::uint32_t Stm32F4Board::edges_dropped() const noexcept { return edges.edges_dropped(); }
+
 }  // namespace curvestep::boards
 
 extern "C" {
@@ -122,4 +156,5 @@ void curvestep_board_early_init() {
 }
 void curvestep_board_fault_putc(char c) { curvestep::boards::Console::write_polled(static_cast<std::uint8_t>(c)); }
 void USART1_IRQHandler() { curvestep::boards::console.on_interrupt(); }
+void TIM2_IRQHandler() { curvestep::boards::edges.on_interrupt(); }
 }

@@ -24,8 +24,11 @@ struct VectorTable {
   Handler interrupts[IrqCount];             ///< external interrupts 0..IrqCount-1
 };
 
-/// Milliseconds-or-whatever ticks counted by the SysTick handler since start_systick().
+/// Ticks counted by the SysTick handler since start_systick().
 [[nodiscard]] std::uint32_t systick_count() noexcept;
+
+/// Milliseconds counted by the SysTick handler (exact for any tick rate: 1000/rate per tick).
+[[nodiscard]] std::uint32_t systick_milliseconds() noexcept;
 
 /// Starts SysTick on the processor clock `hclk_hz` at `rate_hz` interrupts per second; each one
 /// increments systick_count() and then calls `callback(context)` when a callback is set.

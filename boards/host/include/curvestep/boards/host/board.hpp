@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+// HostBoard: the facts of the Linux host board (serial descriptor, millisecond clock, step
+// timer rate, step/dir output) in the shape firmware::Board asks for.
+//
+// The serial line is a file descriptor in non-blocking mode (a tty or a pseudo-terminal, raw);
+// read() and write() never wait, as the Board concept requires. The step/dir edges go to an
+// Output that satisfies the core's StepOutput concept: GpiodStepOutput on a Raspberry-Pi-class
+// board, RecordingStepOutput in tests, CountingStepOutput when no pins are wired (a virtual
+// device). Choosing the output is a template parameter, so the tick path has no virtual call.
+#pragma once
+
+#include <cerrno>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <ctime>
+#include <span>
+#include <unistd.h>
+
+#include <curvestep/core/motion/step_generator.hpp>
+#include <curvestep/core/motion/step_output.hpp>
+#include <curvestep/firmware/board.hpp>
+
+namespace curvestep::boards::host {
+
+/// Clocks of the host board.
+struct SystemClock {
+  static constexpr std::uint32_t step_timer_hz = 1000000;  ///< step-timer resolution: 1 us
+};
+
+/// A StepOutput that only counts edges (a virtual device without pins).
+class CountingStepOutput {
+ public:
+  /// Counts a direction edge.
+  void set_direction(std::uint64_t, std::uint8_t, bool) noexcept { ++direction_edges_; }
+  /// Counts a step edge (rising edges are steps).
+  void set_step(std::uint64_t, std::uint8_t axis, bool high) noexcept {
+    if (high && axis < 3) ++steps_[axis];
+  }
+  /// Nothing scheduled to forget.
+  void fault_stop() noexcept {}
+  /// Rising step edges per axis.
+  [[nodiscard]] const std::uint64_t* steps() const noexcept { return steps_; }
+
+ private:
+  std::uint64_t steps_[3] = {0, 0, 0};
+  std::uint64_t direction_edges_ = 0;
+};
+
+/// The Linux board around a serial descriptor and a step/dir output.
+template <StepOutput Output>
+class HostBoard {
+ public:
+  /// Axes the board drives.
+  static constexpr std::uint8_t axis_count = 3;
+  /// Edges one control tick may produce (RAM is plentiful here).
+  static constexpr std::size_t step_events_per_tick = 4096;
+  /// Step timer and driver timing (typical stepper drivers: 2 us pulses, 1 us set-up and hold).
+  [[nodiscard]] static constexpr StepTiming step_timing() noexcept {
+    return StepTiming{SystemClock::step_timer_hz, 2000, 2000, 1000, 1000};
+  }
+
+  /// A board on the non-blocking descriptor `serial_fd` (not owned) driving `output`.
+  HostBoard(int serial_fd, Output& output) noexcept : fd_(serial_fd), output_(output) {
+    clock_gettime(CLOCK_MONOTONIC, &epoch_);
+  }
+
+  /// Milliseconds since the board was made (wraps at 2^32).
+  [[nodiscard]] std::uint32_t now_ms() const noexcept {
+    timespec now{};
+    clock_gettime(CLOCK_MONOTONIC, &now);
+    const std::int64_t ms = (now.tv_sec - epoch_.tv_sec) * 1000 + (now.tv_nsec - epoch_.tv_nsec) / 1000000;
+    return static_cast<std::uint32_t>(ms);
+  }
+  /// Bytes already received (0 if none); never waits.
+  std::size_t read(std::span<std::byte> into) noexcept {
+    const ssize_t n = ::read(fd_, into.data(), into.size());
+    if (n <= 0) return 0;
+    if (observer_ != nullptr) observer_(observer_context_, into.first(static_cast<std::size_t>(n)));
+    return static_cast<std::size_t>(n);
+  }
+  /// Writes what fits now; remembers a short write (the line is backed up).
+  std::size_t write(std::span<const std::byte> bytes) noexcept {
+    const ssize_t n = ::write(fd_, bytes.data(), bytes.size());
+    const std::size_t written = n > 0 ? static_cast<std::size_t>(n) : 0;
+    backed_up_ = written < bytes.size();
+    return written;
+  }
+  /// Forwards a direction edge to the output.
+  void set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive) noexcept {
+    output_.set_direction(time_ticks, axis, positive);
+  }
+  /// Forwards a step edge to the output.
+  void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) noexcept { output_.set_step(time_ticks, axis, high); }
+  /// Step lines low, scheduled edges forgotten.
+  void fault_stop() noexcept {
+    if constexpr (requires { output_.fault_stop(); }) output_.fault_stop();
+  }
+
+  /// True if the last write could not take every byte (the host is not reading).
+  [[nodiscard]] bool backed_up() const noexcept { return backed_up_; }
+  /// Clears the backed-up flag (after the line drained).
+  void clear_backed_up() noexcept { backed_up_ = false; }
+  /// The serial descriptor.
+  [[nodiscard]] int fd() const noexcept { return fd_; }
+  /// The output.
+  [[nodiscard]] Output& output() noexcept { return output_; }
+  /// Calls `observer(context, bytes)` with every chunk read (the run loop watches frames with it).
+  void set_read_observer(void (*observer)(void*, std::span<const std::byte>), void* context) noexcept {
+    observer_ = observer;
+    observer_context_ = context;
+  }
+
+ private:
+  int fd_;
+  Output& output_;
+  timespec epoch_{};
+  bool backed_up_ = false;
+  void (*observer_)(void*, std::span<const std::byte>) = nullptr;
+  void* observer_context_ = nullptr;
+};
+
+static_assert(firmware::Board<HostBoard<CountingStepOutput>>, "HostBoard must satisfy firmware::Board");
+
+}  // namespace curvestep::boards::host

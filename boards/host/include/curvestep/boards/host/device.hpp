@@ -1,0 +1,153 @@
+// SPDX-License-Identifier: MIT
+// run_device: the host board's main loop around firmware::App (what `curvestep device` runs).
+//
+// Real time (default): control ticks on absolute CLOCK_MONOTONIC deadlines at the configured
+// rate; between ticks the loop waits for serial input (ppoll) and then sleeps to the exact
+// deadline (clock_nanosleep, TIMER_ABSTIME). poll() and on_tick() run in this one thread, as
+// App requires.
+//
+// Fast mode (tests; DeviceOptions::fast, `curvestep device --fast`): ticks run as fast as the
+// link allows instead of on the clock. The link is the flow control:
+//   * no tick while the serial line is backed up (the host is not reading the setpoint stream),
+//     so no setpoint is ever dropped for lack of buffer;
+//   * no tick while the queue is shallower than the planner's look-ahead window needs (Lookahead
+//     + 2 entries, so the next segment is planned with a full window), unless the job's last
+//     segment has arrived (seen on the wire: QueueSegment flag end_of_job) or the controller is
+//     braking; held or starved, it waits for the host instead of spinning. A fast device thus never plans a segment with fewer segments ahead than a
+//     real-time device fed in time, and its setpoints equal `curvestep sim`'s.
+// Wall-clock time still drives the link (timeouts, heartbeats), so link loss is detected alike.
+//
+// The tick path (App::on_tick and the Output's set_step/set_direction) does not allocate, throw
+// or block, except the GPIO output's deliberate wait for each edge's time.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <poll.h>
+#include <span>
+
+#include <curvestep/boards/host/board.hpp>
+#include <curvestep/boards/host/tick_clock.hpp>
+#include <curvestep/core/error_text.hpp>
+#include <curvestep/firmware/app.hpp>
+#include <curvestep/protocol/frame_decoder.hpp>
+#include <curvestep/protocol/messages.hpp>
+
+namespace curvestep::boards::host {
+
+/// How the device runs.
+struct DeviceOptions {
+  bool fast = false;               ///< ticks as fast as the link allows (tests), not real time
+  firmware::AppSettings app{};     ///< link timeout, heartbeat, setpoint streaming
+};
+
+/// Watches the incoming frames for the end of a job (QueueSegment flag end_of_job) and new sessions.
+class EndOfJobWatch {
+ public:
+  /// Feeds received bytes.
+  void feed(std::span<const std::byte> bytes) noexcept {
+    for (const std::byte b : bytes) {
+      const auto pushed = decoder_.push(b);
+      if (!pushed || !pushed.value()) continue;
+      const protocol::Frame& frame = decoder_.frame();
+      if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::Hello)) end_seen_ = false;
+      if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::QueueSegment) && frame.payload.size() >= 2) {
+        end_seen_ = (static_cast<std::uint8_t>(frame.payload[1]) & protocol::segment_flag_end_of_job) != 0;
+      }
+    }
+  }
+  /// True if the last segment frame seen ended the job.
+  [[nodiscard]] bool end_seen() const noexcept { return end_seen_; }
+
+ private:
+  protocol::FrameDecoder<> decoder_{};
+  bool end_seen_ = false;
+};
+
+/// Name of a reported state, for the log.
+[[nodiscard]] constexpr const char* state_name(protocol::MachineState state) noexcept {
+  switch (state) {
+    case protocol::MachineState::Idle: return "idle";
+    case protocol::MachineState::Running: return "running";
+    case protocol::MachineState::Holding: return "holding";
+    case protocol::MachineState::Fault: return "fault";
+  }
+  return "unknown";
+}
+
+/// Serves the firmware on the non-blocking descriptor `fd` until `stop` is set. State changes
+/// are logged to `log` (one line each, may be null). Returns 0.
+template <StepOutput Output>
+int run_device(int fd, Output& output, const DeviceOptions& options, const std::atomic<bool>& stop, std::FILE* log) {
+  using Board = HostBoard<Output>;
+  using Application = firmware::App<Board>;
+  Board board(fd, output);
+  EndOfJobWatch watch;
+  board.set_read_observer([](void* context, std::span<const std::byte> bytes) { static_cast<EndOfJobWatch*>(context)->feed(bytes); },
+                          &watch);
+  auto app = std::make_unique<Application>(board, options.app);  // large: queue, plans, buffers
+  if constexpr (requires { output.set_epoch(TickClock::now(), options.fast); }) output.set_epoch(TickClock::now(), options.fast);
+  TickClock clock;
+  protocol::MachineState reported = app->state();
+  std::uint8_t reported_error = 0;
+  std::uint32_t last_index = 0;
+  const auto wait_for = [&](short events, int timeout_ms) {
+    pollfd p{fd, events, 0};
+    ::poll(&p, 1, timeout_ms);
+  };
+  while (!stop.load(std::memory_order_relaxed)) {
+    app->poll();
+    if (log != nullptr && (app->state() != reported || app->last_error() != reported_error)) {
+      reported = app->state();
+      reported_error = app->last_error();
+      std::fprintf(log, "curvestep device: %s at tick %u", state_name(reported), static_cast<unsigned>(last_index));
+      if (reported_error != 0) {
+        const auto code = static_cast<Error>(reported_error);
+        std::fprintf(log, " (last error: %s, %s)", describe(code).data(), error_name(code).data());
+      }
+      std::fprintf(log, "\n");
+      std::fflush(log);
+    }
+    const std::uint32_t rate = app->control_rate_hz();
+    if (!app->moving() || rate == 0) {
+      clock.stop();
+      wait_for(POLLIN, 2);
+      continue;
+    }
+    if (options.fast) {
+      if (board.backed_up()) {
+        wait_for(POLLOUT, 2);
+        board.clear_backed_up();
+        continue;
+      }
+      const auto& controller = app->controller();
+      if (controller.state() == ControllerState::Held || controller.state() == ControllerState::Starved) {
+        wait_for(POLLIN, 2);  // nothing moves until the host resumes or refills: do not spin
+        continue;
+      }
+      const bool window_full = controller.queued() >= Application::Controller::lookahead + 2;
+      const bool braking = controller.state() != ControllerState::Running;
+      if (!window_full && !watch.end_seen() && !braking) {
+        wait_for(POLLIN, 2);
+        continue;
+      }
+      app->on_tick();
+    } else {
+      if (!clock.running()) clock.start(rate);
+      const std::int64_t remaining = clock.remaining_ns();
+      if (remaining > 1500000) {
+        wait_for(POLLIN, static_cast<int>((remaining - 1000000) / 1000000));
+        continue;  // serve what arrived, then come back for the tick
+      }
+      clock.sleep_until_due();
+      app->on_tick();
+      clock.advance();
+    }
+    last_index = app->controller().tick() > 0 ? static_cast<std::uint32_t>(app->controller().tick() - 1) : 0;
+  }
+  return 0;
+}
+
+}  // namespace curvestep::boards::host

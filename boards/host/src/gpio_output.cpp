@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+#include <curvestep/boards/host/gpio_output.hpp>
+
+#include <cerrno>
+#include <cstring>
+#include <gpiod.h>
+
+namespace curvestep::boards::host {
+namespace {
+
+constexpr const char* consumer = "curvestep";
+
+}  // namespace
+
+GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz) : timer_hz_(timer_hz) {
+  if (lines.chip.empty()) throw GpioError("GPIO: no chip given (machine file: \"gpio\": {\"chip\": ...})");
+  chip_ = gpiod_chip_open_lookup(lines.chip.c_str());
+  if (chip_ == nullptr) {
+    throw GpioError("GPIO chip \"" + lines.chip + "\" not found: " + std::strerror(errno) +
+                    " (list chips with gpiodetect; this machine may have none)");
+  }
+  const auto request = [this, &lines](const std::string& name, const char* role, std::size_t axis) -> gpiod_line* {
+    if (name.empty()) return nullptr;
+    gpiod_line* line = gpiod_chip_find_line(chip_, name.c_str());
+    const char* axis_names[] = {"x", "y", "z"};
+    if (line == nullptr) {
+      throw GpioError("GPIO line \"" + name + "\" (" + axis_names[axis] + " " + role + ") not found on chip \"" +
+                      lines.chip + "\"");
+    }
+    if (gpiod_line_request_output(line, consumer, 0) != 0) {
+      throw GpioError("GPIO line \"" + name + "\" on chip \"" + lines.chip + "\" cannot be requested as an output: " +
+                      std::strerror(errno));
+    }
+    return line;
+  };
+  try {
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      step_[axis] = request(lines.step[axis], "step", axis);
+      direction_[axis] = request(lines.direction[axis], "direction", axis);
+      invert_[axis] = lines.invert_direction[axis];
+    }
+  } catch (...) {
+    gpiod_chip_close(chip_);  // also releases the lines requested so far
+    throw;
+  }
+  clock_gettime(CLOCK_MONOTONIC, &epoch_);
+}
+
+GpiodStepOutput::~GpiodStepOutput() {
+  fault_stop();
+  gpiod_chip_close(chip_);
+}
+
+void GpiodStepOutput::set_epoch(const timespec& epoch, bool fast) noexcept {
+  epoch_ = epoch;
+  fast_ = fast;
+}
+
+void GpiodStepOutput::wait_until(std::uint64_t time_ticks) const noexcept {
+  if (fast_) return;
+  const std::uint64_t ns = time_ticks * 1000000000ull / timer_hz_;
+  timespec deadline = epoch_;
+  deadline.tv_sec += static_cast<time_t>(ns / 1000000000ull);
+  deadline.tv_nsec += static_cast<long>(ns % 1000000000ull);
+  if (deadline.tv_nsec >= 1000000000L) {
+    deadline.tv_nsec -= 1000000000L;
+    ++deadline.tv_sec;
+  }
+  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
+  }
+}
+
+void GpiodStepOutput::write(gpiod_line* line, bool level) noexcept {
+  if (line == nullptr) return;
+  if (gpiod_line_set_value(line, level ? 1 : 0) != 0) ++write_errors_;
+}
+
+void GpiodStepOutput::set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive) noexcept {
+  if (axis >= 3) return;
+  wait_until(time_ticks);
+  write(direction_[axis], positive != invert_[axis]);
+}
+
+void GpiodStepOutput::set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) noexcept {
+  if (axis >= 3) return;
+  wait_until(time_ticks);
+  write(step_[axis], high);
+}
+
+void GpiodStepOutput::fault_stop() noexcept {
+  for (gpiod_line* line : step_) write(line, false);
+}
+
+}  // namespace curvestep::boards::host

@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""The App<Board> firmware image in QEMU answers the protocol handshake over -serial pty:
+Hello(version 1, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
+here independently of the C++ encoder (COBS + CRC-16/CCITT-FALSE via binascii.crc_hqx).
+Usage: firmware_test.py <stm32f1|stm32f4> <firmware.elf>"""
+import binascii
+import os
+import struct
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from qemu_board import QemuBoard  # noqa: E402
+
+MACHINES = {"stm32f1": "stm32vldiscovery", "stm32f4": "netduinoplus2"}
+
+
+def cobs_encode(data):
+    out, block = bytearray(), bytearray()
+    for byte in data:
+        if byte == 0:
+            out += bytes([len(block) + 1]) + block
+            block = bytearray()
+        else:
+            block.append(byte)
+            if len(block) == 254:
+                out += bytes([255]) + block
+                block = bytearray()
+    out += bytes([len(block) + 1]) + block
+    return bytes(out) + b"\x00"
+
+
+def cobs_decode(data):
+    out, i = bytearray(), 0
+    while i < len(data):
+        code = data[i]
+        if code == 0 or i + code > len(data) + 0:
+            raise ValueError("bad COBS")
+        out += data[i + 1:i + code]
+        i += code
+        if code != 255 and i < len(data):
+            out.append(0)
+    return bytes(out)
+
+
+def frame(message_type, sequence, payload):
+    body = bytes([message_type, sequence]) + payload
+    return cobs_encode(body + struct.pack("<H", binascii.crc_hqx(body, 0xFFFF)))
+
+
+def main():
+    board_name, elf = sys.argv[1], sys.argv[2]
+    hello = frame(0x01, 0, struct.pack("<HH", 1, 0x1234))
+    assert hello == bytes.fromhex("02010201053412 26c600".replace(" ", "")), hello.hex()  # docs/protocol.md
+    with QemuBoard(MACHINES[board_name], elf) as board:
+        deadline = time.monotonic() + 20
+        while True:
+            board.send(hello)  # QEMU drops output until it sees the pty open: repeat, as a host does
+            try:
+                match = board.expect(rb"([^\x00]+)\x00", timeout=0.5)
+            except TimeoutError:
+                if time.monotonic() > deadline:
+                    raise
+                continue
+            decoded = cobs_decode(match.group(1))
+            body, crc = decoded[:-2], struct.unpack("<H", decoded[-2:])[0]
+            if crc != binascii.crc_hqx(body, 0xFFFF):
+                print("FAIL: CRC mismatch in", decoded.hex())
+                return 1
+            if body[0] != 0x02:
+                continue  # e.g. an Ack: wait for the Capabilities
+            (version, session, max_payload, queue, credit_end, total_bits, fraction_bits, axes, degree,
+             tick_rate) = struct.unpack("<HHHHHBBBBI", body[2:20])
+            print(f"Capabilities: version={version} session={session:#x} max_payload={max_payload} queue={queue} "
+                  f"credit_end={credit_end} fixed={total_bits}/{fraction_bits} axes={axes} degree={degree} "
+                  f"tick_rate={tick_rate}")
+            ok = (version == 1 and session == 0x1234 and max_payload == 160 and total_bits == 32 and
+                  fraction_bits == 16 and axes == 3 and tick_rate == 1_000_000 and queue >= 8)
+            print("PASS" if ok else "FAIL: unexpected Capabilities")
+            return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
