@@ -85,6 +85,7 @@ enum class Error : std::uint8_t {
   QueueUnderrun = 171,     ///< planner ran out of segments while moving
   HardFault = 172,         ///< the controller faulted and reported it
   ConfigurationMissing = 173, ///< motion requested before machine configuration
+  OutsideTravel = 174,     ///< a segment leaves the configured travel range of an axis (index = axis)
 };
 
 /// The index of the offending input (control point, weight, knot, segment); `no_index` if none.

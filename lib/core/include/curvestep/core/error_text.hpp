@@ -74,6 +74,7 @@ namespace curvestep {
     case Error::QueueUnderrun: return "QueueUnderrun";
     case Error::HardFault: return "HardFault";
     case Error::ConfigurationMissing: return "ConfigurationMissing";
+    case Error::OutsideTravel: return "OutsideTravel";
   }
   return "Unknown";
 }
@@ -143,6 +144,7 @@ namespace curvestep {
     case Error::QueueUnderrun: return "planner ran out of segments while moving";
     case Error::HardFault: return "the controller faulted and reported it";
     case Error::ConfigurationMissing: return "motion requested before machine configuration";
+    case Error::OutsideTravel: return "a segment leaves the configured travel range of an axis (index = axis)";
   }
   return "unknown error";
 }
@@ -211,6 +213,7 @@ inline constexpr Error all_errors[] = {
     Error::QueueUnderrun,
     Error::HardFault,
     Error::ConfigurationMissing,
+    Error::OutsideTravel,
 };
 
 }  // namespace curvestep
