@@ -18,6 +18,7 @@ void probe_protocol();
 void probe_stepgen();
 void probe_sampling();
 void probe_firmware();
+void probe_gcode();
 
 /// Runs every probe (called from Reset_Handler).
 inline void run_all() {
@@ -29,6 +30,7 @@ inline void run_all() {
   probe_stepgen();
   probe_sampling();
   probe_firmware();
+  probe_gcode();
 }
 
 }  // namespace curvestep::probe
