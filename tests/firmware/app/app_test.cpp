@@ -652,3 +652,54 @@ TEST_CASE("firmware: Resume while still braking continues from the stop", "[firm
   CHECK(board.steps == std::array<std::int64_t, 3>{steps_of(40), 0, 0});
   CHECK(host.received.errors.empty());
 }
+
+TEST_CASE("firmware: segments that leave the travel range are refused with the axis", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);  // travel -100 .. 100 mm on every axis
+  REQUIRE(host.send(Message(line(p(0, 0), p(150, 0)))));
+  for (int i = 0; i < 3; ++i) host.pump();
+  REQUIRE(host.received.errors.size() == 1);
+  CHECK(host.received.errors[0].code == Error::OutsideTravel);
+  CHECK(host.received.errors[0].index == 0);
+  // A counter-clockwise half circle about (0, 96) of radius 5 from (5, 96) passes (0, 101) ...
+  QueueSegment arc;
+  arc.kind = protocol::SegmentKind::Arc;
+  arc.axis_count = 3;
+  arc.points[0] = p(5, 96);
+  arc.points[1] = p(-5, 96);
+  arc.points[2] = p(0, 96);
+  arc.direction = ArcDirection::CounterClockwise;
+  REQUIRE(host.send(Message(arc)));
+  for (int i = 0; i < 3; ++i) host.pump();
+  REQUIRE(host.received.errors.size() == 2);
+  CHECK(host.received.errors[1].code == Error::OutsideTravel);
+  CHECK(host.received.errors[1].index == 1);
+  // ... the clockwise one passes (0, 91) and stays inside: accepted.
+  arc.direction = ArcDirection::Clockwise;
+  REQUIRE(host.send(Message(arc)));
+  for (int i = 0; i < 3; ++i) host.pump();
+  CHECK(host.received.errors.size() == 2);
+  CHECK(app.controller().queued() == 1);
+  // A reversed travel range is refused at configuration (index: byte offset of axis 1's minimum).
+  MachineConfiguration reversed = machine();
+  reversed.axes[1].min_position_mm = q(10);
+  reversed.axes[1].max_position_mm = q(-10);
+  CHECK(to_travel_limits(reversed).error() == Error::InvalidArgument);
+  CHECK(to_travel_limits(reversed).where() == 53);
+}
+
+TEST_CASE("firmware: a travel range of zero to zero leaves the axis unlimited", "[firmware][app]") {
+  MachineConfiguration config = machine();
+  config.axes[0].min_position_mm = 0;
+  config.axes[0].max_position_mm = 0;
+  const auto travel = to_travel_limits(config);
+  REQUIRE(travel.has_value());
+  const auto far = to_path_segment(line(p(0, 0), p(1000, 0)));
+  REQUIRE(far.has_value());
+  CHECK(check_travel(far.value(), travel.value()).has_value());
+  const auto bounds = segment_bounds(far.value());
+  CHECK(bounds.high[0] == 1000.0);
+  CHECK(bounds.low[0] == 0.0);
+}

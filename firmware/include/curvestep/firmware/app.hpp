@@ -26,7 +26,7 @@
 //   MachineConfiguration -> to_machine_limits, MotionController::configure, StepConfig from the
 //                           board's StepTiming (InvalidRate if the timer is no multiple of the rate).
 //   QueueSegment         -> continuity with the previous segment (SegmentsNotConnected), to_path_segment,
-//                           try_push. The credit granted to the host counts whole wire segments of
+//                           travel range (OutsideTravel, index = axis), try_push. The credit granted to the host counts whole wire segments of
 //                           the worst case: a Bézier may be split at up to 6 cusps into 7 queue
 //                           slots, so free credit = free slots / 7 and an accepted segment always fits.
 //                           Flag "end of job" marks the last one.
@@ -298,10 +298,12 @@ class App {
     if (moving_ || start_pending_ || held_before_start_ || controller_.queued() > 0) return fail(Error::PlannerBusy);
     if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
     CURVESTEP_TRY(MachineLimits limits, to_machine_limits(m));
+    CURVESTEP_TRY(const TravelLimits travel, to_travel_limits(m));
     CURVESTEP_TRY(const StepConfig step_config, fit_step_config(limits));
     if (controller_.state() != ControllerState::Idle) controller_.reset();
     CURVESTEP_CHECK(controller_.configure(limits));
     steps_ = StepGenerator(step_config);
+    travel_ = travel;
     first_tick_ = true;
     configured_ = true;
     axis_count_ = m.axis_count;
@@ -332,6 +334,7 @@ class App {
     const protocol::WirePoint start = segment_start(s);
     if (has_last_end_ && start != last_end_) return fail(Error::SegmentsNotConnected, job_segments_);
     CURVESTEP_TRY(const PathSegment segment, to_path_segment(s));
+    CURVESTEP_CHECK(check_travel(segment, travel_));
     CURVESTEP_CHECK(controller_.try_push(segment, job_segments_));
     last_end_ = segment_end(s);
     has_last_end_ = true;
@@ -583,6 +586,7 @@ class App {
   AppStatistics statistics_{};
   protocol::WirePoint position_{};
   protocol::WirePoint last_end_{};
+  TravelLimits travel_{};
   Failure fault_{Error::InvalidState, no_index};
   std::uint64_t tick_base_ = 0;
   std::uint32_t control_rate_hz_ = 0;

@@ -9,9 +9,11 @@
 
 #include <array>
 #include <cstddef>
+#include <cmath>
 #include <cstdint>
 #include <span>
 
+#include <curvestep/core/motion/deterministic_math.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
 #include <curvestep/core/result.hpp>
@@ -98,6 +100,89 @@ inline constexpr double arc_radius_tolerance_mm = 0.002;
     segment.set_feed_mm_per_s(wire_to_mm(s.feed_mm_per_s));
   }
   return segment;
+}
+
+/// Travel range of one axis in mm; min == max == 0 means the axis is not limited.
+struct TravelRange {
+  double min_mm = 0;  ///< lowest position
+  double max_mm = 0;  ///< highest position
+
+  /// False for the "not limited" range (0, 0).
+  [[nodiscard]] constexpr bool limited() const noexcept { return !(min_mm == 0 && max_mm == 0); }
+};
+
+/// Travel ranges of x, y, z (axes beyond the configuration's axis count are not limited).
+using TravelLimits = std::array<TravelRange, motion_axes>;
+
+/// The travel ranges of a MachineConfiguration; InvalidArgument (index = byte offset of the axis'
+/// min_position_mm field) if min > max.
+[[nodiscard]] constexpr Result<TravelLimits> to_travel_limits(const protocol::MachineConfiguration& c) noexcept {
+  TravelLimits travel{};
+  for (std::size_t a = 0; a < c.axis_count && a < motion_axes; ++a) {
+    if (c.axes[a].min_position_mm > c.axes[a].max_position_mm) return fail(Error::InvalidArgument, 33 + 20 * a);
+    travel[a] = TravelRange{wire_to_mm(c.axes[a].min_position_mm), wire_to_mm(c.axes[a].max_position_mm)};
+  }
+  return travel;
+}
+
+/// Smallest and largest coordinates a segment can reach.
+struct SegmentBounds {
+  MachinePoint low{};   ///< per-axis minimum
+  MachinePoint high{};  ///< per-axis maximum
+};
+
+/// Bounds of a segment: Bézier kinds by their control points (the curve lies in their convex hull,
+/// for rational ones too since the weights are positive: conservative); arcs exactly, from the end
+/// points and the extreme points of the circle (at the larger of the two radii) that the sweep passes.
+[[nodiscard]] inline SegmentBounds segment_bounds(const PathSegment& s) noexcept {
+  SegmentBounds b;
+  const auto include = [&b](const MachinePoint& p) {
+    for (std::size_t a = 0; a < motion_axes; ++a) {
+      if (p[a] < b.low[a]) b.low[a] = p[a];
+      if (p[a] > b.high[a]) b.high[a] = p[a];
+    }
+  };
+  b.low = s.start();
+  b.high = s.start();
+  include(s.end());
+  if (s.kind() == SegmentKind::Line || s.kind() == SegmentKind::Bezier) {
+    for (const auto& p : s.polynomial().control_points()) include(p);
+  } else if (s.kind() == SegmentKind::RationalBezier) {
+    for (const auto& p : s.rational().control_points()) include(p);
+  } else {
+    const MachinePoint c = s.arc_center();
+    const MachinePoint a = s.start();
+    const MachinePoint e = s.end();
+    const double end_radius = std::sqrt((e[0] - c[0]) * (e[0] - c[0]) + (e[1] - c[1]) * (e[1] - c[1]));
+    const double r = end_radius > s.arc_radius() ? end_radius : s.arc_radius();
+    const double start_angle = detail::atan2(a[1] - c[1], a[0] - c[0]);
+    const double sweep = s.arc_sweep_rad();
+    for (int k = 0; k < 4; ++k) {
+      const double direction = k * (detail::pi / 2);
+      double delta = sweep >= 0 ? direction - start_angle : start_angle - direction;
+      while (delta < 0) delta += 2 * detail::pi;
+      while (delta >= 2 * detail::pi) delta -= 2 * detail::pi;
+      if (delta > (sweep >= 0 ? sweep : -sweep)) continue;
+      MachinePoint extreme = c;
+      extreme[2] = a[2];
+      if (k == 0) extreme[0] += r;
+      if (k == 1) extreme[1] += r;
+      if (k == 2) extreme[0] -= r;
+      if (k == 3) extreme[1] -= r;
+      include(extreme);
+    }
+  }
+  return b;
+}
+
+/// OutsideTravel (index = axis) if the segment's bounds leave a limited axis' travel range.
+[[nodiscard]] inline Result<void> check_travel(const PathSegment& s, const TravelLimits& travel) noexcept {
+  const SegmentBounds b = segment_bounds(s);
+  for (std::size_t a = 0; a < motion_axes; ++a) {
+    if (!travel[a].limited()) continue;
+    if (b.low[a] < travel[a].min_mm || b.high[a] > travel[a].max_mm) return fail(Error::OutsideTravel, a);
+  }
+  return ok();
 }
 
 }  // namespace curvestep::firmware
