@@ -9,9 +9,10 @@
 // edge (one BSRR write each) and sets CCR1 to the next one. Registers: RM0008 §15.4 (F1),
 // RM0090 §18.4 (F4), identical for CR1, DIER, SR, CNT, PSC, ARR, CCR1.
 //
-// QEMU 7.2: the F100 model has no TIM2 (reads 0, no interrupt), the F405 model raises only the
-// update interrupt; edges are then played late (F4) or not at all (F1) and edges_dropped()
-// counts the ones that found the ring full. The setpoint stream is unaffected.
+// QEMU 7.2: the F100 model has no TIM2 (an unimplemented device: reads 0, no interrupt), so edges
+// are not played there and edges_dropped() counts the ones that find the ring full; the F405
+// model has a stm32f2xx_timer whose compare timing was not verified. The setpoint stream does not
+// depend on it.
 #pragma once
 
 #include <cstddef>
