@@ -703,3 +703,24 @@ TEST_CASE("firmware: a travel range of zero to zero leaves the axis unlimited", 
   CHECK(bounds.high[0] == 1000.0);
   CHECK(bounds.low[0] == 0.0);
 }
+
+TEST_CASE("firmware: the next job's first segment is accepted in the poll right after a job ends",
+          "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  QueueSegment first = line(p(0, 0), p(2, 0));
+  first.end_of_job = true;
+  queue_and_start(host, {first});
+  REQUIRE(app.moving());
+  for (int t = 0; t < 5000 && app.moving(); ++t) app.on_tick();  // no poll in between
+  REQUIRE_FALSE(app.moving());
+  QueueSegment second = line(p(2, 0), p(2, 2));
+  second.end_of_job = true;
+  REQUIRE(host.sender().submit(Message(second)).has_value());
+  host.pump();
+  CHECK(host.received.errors.empty());
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(app.controller().queued() == 1);
+}

@@ -37,7 +37,9 @@
 //                           from the stop.
 //   Abort                -> stop at once: controller aborted and flushed, board.fault_stop().
 //   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, position).
-// Every failed command is answered with ErrorReport(code, index, the frame's sequence number).
+// Every failed command is answered with ErrorReport(code, index, the frame's sequence number); a
+// fault met while running carries the sequence number of the last frame received. The segments of
+// the next job are accepted once the previous job has finished (state Idle again).
 //
 // The start rule (bit-identical streams). The planner's exit speed for a segment comes from a
 // window of the next Lookahead segments that always ends at rest, so a segment's plan equals the
@@ -126,6 +128,7 @@ class App {
   /// Main-loop work: reads serial bytes, runs the link and the commands, reports, writes bytes.
   void poll() noexcept {
     const std::uint32_t now = board_.now_ms();
+    service_tick_events();  // first, so commands see the state the ticks left (a finished job is Idle)
     receive(now);
     service_tick_events();
     apply_start_rule();
