@@ -724,3 +724,51 @@ TEST_CASE("firmware: the next job's first segment is accepted in the poll right 
   CHECK(app.state() == MachineState::Idle);
   CHECK(app.controller().queued() == 1);
 }
+
+TEST_CASE("firmware: a Bézier with a cusp takes two queue slots and stays bit-identical", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  // B'(1/2) = 3 (1/4 (1, 1) + 1/2 (-1, 0) + 1/4 (1, -1)) = 0: a cusp in the middle.
+  QueueSegment cusp;
+  cusp.kind = protocol::SegmentKind::Bezier;
+  cusp.axis_count = 2;
+  cusp.degree = 3;
+  cusp.points[0] = p(0, 0);
+  cusp.points[1] = p(1, 1);
+  cusp.points[2] = p(0, 1);
+  cusp.points[3] = p(1, 0);
+  QueueSegment last = line(p(1, 0), p(3, 0), 2);
+  last.end_of_job = true;
+  REQUIRE(host.send(Message(cusp)));
+  for (int i = 0; i < 3; ++i) host.pump();
+  CHECK(app.controller().queued() == 2);
+  host.received = {};
+  const std::vector<QueueSegment> job{cusp, last};
+  stream_job(host, app, board, std::vector<QueueSegment>{last});
+  const auto expected = reference(machine(), job);
+  const auto got = host.setpoints();
+  REQUIRE(host.received.errors.empty());
+  REQUIRE(got.size() == expected.size());
+  CHECK(got == expected);
+}
+
+TEST_CASE("firmware: a malformed payload is answered with BadPayload at its byte offset", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  const std::array<std::byte, 2> payload{std::byte{4}, std::byte{0}};  // segment kind 4 does not exist
+  std::array<std::byte, max_encoded_frame_size> frame{};
+  const auto size = encode_frame(static_cast<std::uint8_t>(MessageType::QueueSegment), 1, payload, frame);
+  REQUIRE(size.has_value());
+  for (std::size_t i = 0; i < size.value(); ++i) board.incoming.push_back(frame[i]);
+  app.poll();
+  host.take_output();
+  REQUIRE(host.received.errors.size() == 1);
+  CHECK(host.received.errors[0].code == Error::BadPayload);
+  CHECK(host.received.errors[0].index == 0);
+  CHECK(host.received.errors[0].sequence == 1);
+  CHECK(app.controller().queued() == 0);
+}
