@@ -75,8 +75,20 @@ template <ParametricCurve C>
   constexpr std::size_t stack_capacity = 48;
   std::array<Interval, stack_capacity> stack{};
   std::size_t size = 0;
-  CURVESTEP_TRY(const S whole, detail::gauss_legendre_speed(curve, t0, t1));
-  stack[size++] = Interval{t0, t1, whole, tolerance};
+  // Start from four equal pieces, not one: on a single interval the 5-point rule and the sum over
+  // its halves can agree by coincidence while both are off by far more than the tolerance (a
+  // 93 mm cubic whose speed varies from 40 to 400 came out 0.18 long with tolerance 0.01).
+  constexpr int pieces = 4;
+  const S quarter = (t1 - t0) / from_int<S>(pieces);
+  S piece_tolerance = tolerance / from_int<S>(pieces);
+  if (!(S{} < piece_tolerance)) piece_tolerance = tolerance;
+  for (int k = pieces; k-- > 0;) {
+    const S a = k == 0 ? t0 : t0 + quarter * from_int<S>(k);
+    const S b = k == pieces - 1 ? t1 : t0 + quarter * from_int<S>(k + 1);
+    if (!(a < b)) continue;  // below the parameter resolution
+    CURVESTEP_TRY(const S whole, detail::gauss_legendre_speed(curve, a, b));
+    stack[size++] = Interval{a, b, whole, piece_tolerance};
+  }
   S total{};
   std::size_t evaluations = 0;
   constexpr std::size_t evaluation_limit = 4096;
@@ -88,7 +100,9 @@ template <ParametricCurve C>
     evaluations += 2;
     const S refined = left + right;
     const bool resolution_reached = !(iv.a < middle) || !(middle < iv.b);
-    if (abs(refined - iv.whole) <= iv.tolerance || resolution_reached) {
+    // Accept with a safety factor of 4: the difference estimates the error of the coarse rule
+    // only asymptotically (a 175 mm cubic came out 0.0101 short with tolerance 0.01 without it).
+    if (abs(refined - iv.whole) * from_int<S>(4) <= iv.tolerance || resolution_reached) {
       total = total + refined;
       continue;
     }
