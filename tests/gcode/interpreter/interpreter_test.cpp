@@ -267,6 +267,9 @@ TEST_CASE("gcode interpreter: malformed NURBS blocks are GcodeNurbsBlock", "[gco
   CHECK(f.code == Error::GcodeConflictingWords);
   f = run_failing({"G18 G5.2"});
   CHECK(f.code == Error::GcodeSplineNotG17);
+  f = run_failing({"G5.2", "X1 Y1", "X2 Y0", "G5.3", "X3 Y3"});  // no motion mode after G5.3
+  CHECK(f.code == Error::GcodeMissingWord);
+  CHECK(f.index == 1);
 }
 
 TEST_CASE("gcode interpreter: a NURBS block longer than the capacity is refused", "[gcode][interpreter][nurbs]") {

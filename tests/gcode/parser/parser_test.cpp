@@ -3,9 +3,13 @@
 #include <catch2/catch.hpp>
 
 #include <cstddef>
+#include <random>
+#include <string>
 #include <string_view>
 
-#include <curvestep/gcode/parser.hpp>
+#include <curvestep/gcode.hpp>
+
+#include "support/numeric.hpp"
 
 using namespace curvestep;
 using namespace curvestep::gcode;
@@ -127,4 +131,37 @@ TEST_CASE("gcode parser: a line with more words than the capacity is refused, no
   REQUIRE_FALSE(block);
   CHECK(block.error() == Error::GcodeSyntax);
   CHECK(block.where() == 7);
+}
+
+TEST_CASE("gcode parser: random lines never crash and every failure points inside the line", "[gcode][parser][property]") {
+  // Lines drawn from G-code's own characters plus a few strangers; the parser and the interpreter
+  // must either accept a line or name a column of it (1 .. size).
+  std::mt19937 random(curvestep::testing::test_seed());
+  constexpr std::string_view alphabet = "GMXYZIJKRPQLFN0123456789.-+ ()%;/#$abxyzgTS\t";
+  std::uniform_int_distribution<std::size_t> pick(0, alphabet.size() - 1);
+  std::uniform_int_distribution<std::size_t> length(0, 40);
+  Interpreter<8> machine;
+  const int count = curvestep::testing::test_count(20000);
+  int accepted = 0;
+  for (int n = 0; n < count; ++n) {
+    std::string line;
+    const std::size_t size = length(random);
+    for (std::size_t i = 0; i < size; ++i) line += alphabet[pick(random)];
+    INFO(line);
+    const auto block = parse_line(line);
+    if (!block) {
+      REQUIRE(block.where() >= 1);
+      REQUIRE(block.where() <= line.size());
+      continue;
+    }
+    const auto motion = machine.execute(block.value());
+    if (!motion) {
+      REQUIRE(motion.where() >= 1);
+      REQUIRE(motion.where() <= line.size());
+      if (machine.in_nurbs_block() && motion.error() == Error::GcodeNurbsBlock) machine = Interpreter<8>{};
+      continue;
+    }
+    ++accepted;
+  }
+  CHECK(accepted > 0);
 }

@@ -230,6 +230,7 @@ class Interpreter {
     if (motion_word != nullptr) {  // G5.3
       CURVESTEP_CHECK(only(block, "", Error::GcodeNurbsBlock));
       in_nurbs_ = false;
+      mode_ = -1;  // G5.3 leaves no motion mode: axis words after it need a G code
       if (nurbs_count_ < nurbs_order_) return fail(Error::GcodeNurbsBlock, motion_word->column);
       motion.kind = MotionKind::Nurbs;
       motion.nurbs_order = nurbs_order_;
