@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+// `curvestep device [--port PATH] [--machine MACHINE.json --gpio] [--fast]`: runs the firmware as a
+// Linux process (boards/host). Without --port it creates a pseudo-terminal and prints its path as
+// the first line on standard output, then serves until stopped (SIGINT, SIGTERM).
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <fcntl.h>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include <curvestep/boards/host/device.hpp>
+#include <curvestep/boards/host/gpio_output.hpp>
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/link/transport.hpp>
+
+#include "command_registry.hpp"
+
+namespace curvestep::host {
+namespace {
+
+std::atomic<bool> stop_requested{false};
+
+extern "C" void on_stop_signal(int) { stop_requested.store(true); }
+
+struct DeviceCommandOptions {
+  std::string port;
+  int baud = 115200;
+  std::string machine;
+  bool gpio = false;
+  bool fast = false;
+  unsigned link_timeout_ms = 1000;
+};
+
+/// The "gpio" section of a machine file: {"chip": "gpiochip0", "x": {"step": "...", "dir": "...",
+/// "invert_dir": false}, "y": {...}, "z": {...}}.
+boards::host::GpioLines read_gpio_lines(const std::string& path) {
+  const nlohmann::json root = nlohmann::json::parse(read_text_file(path), nullptr, true, true);
+  if (!root.contains("gpio")) throw std::runtime_error(path + ": no \"gpio\" section (chip and line names) for --gpio");
+  const auto& gpio = root.at("gpio");
+  boards::host::GpioLines lines;
+  if (!gpio.contains("chip") || !gpio.at("chip").is_string()) throw std::runtime_error(path + ": gpio.chip must be a string");
+  lines.chip = gpio.at("chip").get<std::string>();
+  const char* axes[] = {"x", "y", "z"};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!gpio.contains(axes[a])) continue;
+    const auto& axis = gpio.at(axes[a]);
+    lines.step[a] = axis.value("step", std::string());
+    lines.direction[a] = axis.value("dir", std::string());
+    lines.invert_direction[a] = axis.value("invert_dir", false);
+  }
+  return lines;
+}
+
+template <class Output>
+int serve(int fd, Output& output, const DeviceCommandOptions& o) {
+  boards::host::DeviceOptions options;
+  options.fast = o.fast;
+  options.app.link_timeout_ms = o.link_timeout_ms;
+  return boards::host::run_device(fd, output, options, stop_requested, stderr);
+}
+
+int run_device_command(const DeviceCommandOptions& o) {
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  std::signal(SIGPIPE, SIG_IGN);
+  std::unique_ptr<boards::host::GpiodStepOutput> gpio;
+  if (o.gpio) {
+    if (o.machine.empty()) throw std::runtime_error("--gpio needs --machine with a \"gpio\" section");
+    gpio = std::make_unique<boards::host::GpiodStepOutput>(read_gpio_lines(o.machine),
+                                                          boards::host::SystemClock::step_timer_hz);
+  }
+  std::unique_ptr<link::PseudoTerminal> pty;
+  std::unique_ptr<link::FdTransport> line;
+  int fd = -1;
+  if (o.port.empty()) {
+    pty = std::make_unique<link::PseudoTerminal>();
+    fd = pty->master_fd();
+    std::cout << pty->slave_path() << std::endl;  // first line: where to connect
+  } else {
+    line = link::open_terminal(o.port, o.baud);
+    fd = line->fd();
+    std::cout << o.port << std::endl;
+  }
+  if (gpio) return serve(fd, *gpio, o);
+  boards::host::CountingStepOutput counting;
+  return serve(fd, counting, o);
+}
+
+void add_device_command(CLI::App& app) {
+  auto options = std::make_shared<DeviceCommandOptions>();
+  auto* device = app.add_subcommand("device", "Run the controller firmware as a Linux process on a pseudo-terminal or a serial port");
+  device->add_option("--port", options->port, "Serve on this tty instead of creating a pseudo-terminal");
+  device->add_option("--baud", options->baud, "Baud rate of --port");
+  device->add_option("--machine,-m", options->machine, "Machine file with a \"gpio\" section (for --gpio)")->check(CLI::ExistingFile);
+  device->add_flag("--gpio", options->gpio, "Drive step/dir lines through libgpiod (chip and line names from --machine)");
+  device->add_flag("--fast", options->fast,
+                   "Tests: run ticks as fast as the link allows (flow-controlled), not in real time");
+  device->add_option("--link-timeout-ms", options->link_timeout_ms, "Feed hold after this long without a frame (0: never)");
+  device->callback([options] {
+    const int status = run_device_command(*options);
+    if (status != 0) throw CLI::RuntimeError(status);
+  });
+}
+
+const RegisterCommand registered{60, add_device_command};
+
+}  // namespace
+}  // namespace curvestep::host

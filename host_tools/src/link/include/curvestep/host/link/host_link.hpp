@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+// HostLink: the host's end of the link over a Transport: lib/protocol's LinkSender (handshake,
+// window, credit, retransmission) plus a FrameDecoder for the controller's frames.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include <curvestep/core/error.hpp>
+#include <curvestep/host/link/transport.hpp>
+#include <curvestep/protocol/frame_decoder.hpp>
+#include <curvestep/protocol/link_sender.hpp>
+#include <curvestep/protocol/messages.hpp>
+
+namespace curvestep::host::link {
+
+/// The link failed: `code` is the protocol's reason (LinkTimeout, RetransmitLimit, ...).
+class LinkError : public std::runtime_error {
+ public:
+  /// An error with a one-line message.
+  LinkError(Error code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  /// The protocol's error code.
+  [[nodiscard]] Error code() const noexcept { return code_; }
+
+ private:
+  Error code_;
+};
+
+/// Counters for reports and tests.
+struct LinkStatistics {
+  std::size_t frames_received = 0;   ///< good frames from the controller
+  std::size_t frames_rejected = 0;   ///< damaged frames (CRC, framing, length, payload)
+  std::size_t bytes_sent = 0;        ///< bytes written, retransmissions included
+};
+
+/// Host end of the link on one transport.
+class HostLink {
+ public:
+  /// Window of unacknowledged frames.
+  static constexpr std::size_t window = 8;
+  /// Called for every message that is not Capabilities, Ack or Nak.
+  using Handler = std::function<void(const protocol::Message&)>;
+
+  /// A link over `transport` (not owned) with the sender's timing.
+  HostLink(Transport& transport, protocol::SenderSettings settings);
+
+  /// Handshake: sends Hello until Capabilities arrives. Throws LinkError (LinkTimeout,
+  /// VersionMismatch) or TransportError.
+  void connect(const Handler& handler);
+  /// True if `type` may be submitted now (window and credit).
+  [[nodiscard]] bool can_submit(protocol::MessageType type) const noexcept { return sender_.can_submit(type); }
+  /// Queues a host command. Throws LinkError if the sender refuses it.
+  void submit(const protocol::Message& message);
+  /// Sends what is due, waits up to wait_ms for bytes, and decodes them, calling `handler` for
+  /// application messages. Throws LinkError if the link gives up, TransportError if the line closes.
+  void pump(int wait_ms, const Handler& handler);
+  /// The controller's limits (after connect).
+  [[nodiscard]] const protocol::Capabilities& capabilities() const noexcept { return sender_.capabilities(); }
+  /// True if every submitted frame was acknowledged.
+  [[nodiscard]] bool idle() const noexcept { return sender_.idle(); }
+  /// Counters.
+  [[nodiscard]] const LinkStatistics& statistics() const noexcept { return statistics_; }
+  /// Milliseconds since this link was made (wrapping, the sender's clock).
+  [[nodiscard]] std::uint32_t now_ms() const noexcept;
+
+ private:
+  void transmit_due();
+  [[noreturn]] void raise(const Failure& failure) const;
+
+  Transport& transport_;
+  protocol::LinkSender<window> sender_;
+  protocol::FrameDecoder<> decoder_;
+  std::chrono::steady_clock::time_point epoch_;
+  LinkStatistics statistics_;
+};
+
+/// One line naming the error code and its meaning ("link timeout (LinkTimeout)").
+[[nodiscard]] std::string describe_error(Error code);
+
+}  // namespace curvestep::host::link

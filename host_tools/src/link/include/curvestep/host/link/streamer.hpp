@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// stream_job: connect, send the machine configuration, upload a job under the controller's flow
+// control, start it, and collect the controller's setpoint stream until the job ends.
+//
+// Sequence: Hello/Capabilities (the controller's limits are read, never assumed), then
+// MachineConfiguration and Start, then QueueSegments while the credit allows, the last one
+// flagged end_of_job. The controller arms on Start and begins moving by itself once its
+// look-ahead window is full or the job's end has arrived (firmware/app.hpp, "the start rule"),
+// so its plan equals `curvestep sim`'s. The job is over when a StatusReport says Idle after the controller
+// reported Running, every segment was sent and acknowledged, and no setpoint is missing; a
+// Fault state or an ErrorReport ends it with the controller's cause.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <curvestep/core/error.hpp>
+#include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/link/transport.hpp>
+#include <curvestep/host/simulator.hpp>
+#include <curvestep/protocol/link_sender.hpp>
+
+namespace curvestep::host::link {
+
+/// Where an upload is.
+struct StreamProgress {
+  std::size_t segments_sent = 0;       ///< queue segments submitted
+  std::size_t segments_total = 0;      ///< queue segments in the job
+  std::size_t setpoints_received = 0;  ///< setpoints captured so far
+  double elapsed_s = 0;                ///< since connect
+  double eta_s = -1;                   ///< estimated seconds left (-1: not known yet)
+};
+
+/// Options of one upload.
+struct StreamOptions {
+  protocol::SenderSettings link{100, 20, 3000};          ///< retransmission and link timeout
+  std::function<void(const StreamProgress&)> progress;  ///< called about 10 times a second (may be empty)
+  std::function<void(const std::string&)> warn;         ///< called for each value the wire cannot carry exactly
+  double status_interval_s = 0.2;                       ///< StatusRequest period while running
+};
+
+/// The controller stopped the job or the link died: a one-line cause naming what failed.
+class StreamError : public std::runtime_error {
+ public:
+  /// An error with its code.
+  StreamError(Error code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  /// The controller's or the link's error code.
+  [[nodiscard]] Error code() const noexcept { return code_; }
+
+ private:
+  Error code_;
+};
+
+/// What a finished upload produced.
+struct StreamResult {
+  std::vector<SetpointRecord> setpoints;  ///< the controller's setpoints, index order (time = index / rate)
+  std::size_t missing_setpoints = 0;      ///< setpoints lost on the link (batches are not retransmitted)
+  std::size_t frames_rejected = 0;        ///< damaged frames from the controller
+  std::size_t bytes_sent = 0;             ///< bytes written, retransmissions included
+};
+
+/// Runs `job` on the controller behind `transport`. Throws StreamError (controller error, link
+/// failure), TransportError (line closed) or std::runtime_error (job cannot be sent).
+[[nodiscard]] StreamResult stream_job(Transport& transport, const Job& job, const MachineLimits& machine,
+                                      const StreamOptions& options = {});
+
+}  // namespace curvestep::host::link

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: MIT
+// Jobs and machines as wire messages: PathSegments -> QueueSegments, MachineLimits ->
+// MachineConfiguration, with a note for every value the wire cannot carry exactly.
+//
+// Coordinates of a loaded job are already Q16.16 (job.hpp quantises them), so they travel
+// exactly. Weights, feeds and machine limits may not be representable (0.01 mm is not a
+// Q16.16 value; accelerations travel as whole numbers), and the wire has no field for the
+// rapid speed, the profile kind or extra full turns of an arc. Every such loss is listed in
+// `notes`, because a device then plans with different numbers than `curvestep sim` does.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/host/job.hpp>
+#include <curvestep/protocol/messages.hpp>
+
+namespace curvestep::host::link {
+
+/// A machine as a MachineConfiguration, and what did not travel exactly.
+struct WireMachine {
+  protocol::MachineConfiguration configuration;  ///< the message
+  std::vector<std::string> notes;                ///< one line per value changed or dropped
+};
+
+/// `machine` for a controller with `axis_count` axes (2 or 3).
+[[nodiscard]] WireMachine to_wire(const MachineLimits& machine, std::size_t axis_count);
+
+/// A job as queue segments, and what did not travel exactly.
+struct WireJob {
+  std::vector<protocol::QueueSegment> segments;  ///< one per PathSegment of the job, in order
+  std::vector<std::string> notes;                ///< one line per value changed
+};
+
+/// The job's PathSegments for a controller with `axis_count` axes. Throws std::runtime_error
+/// naming the job file and segment for what the wire cannot express (an arc of more than one
+/// turn, a Z move on a 2-axis controller, a coordinate outside Q16.16).
+[[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count);
+
+/// `value` in Q16.16 raw units, rounded to nearest; sets `exact` false if rounding changed it.
+/// Throws std::out_of_range outside the Q16.16 range.
+[[nodiscard]] std::int32_t to_q16(double value, bool& exact);
+
+}  // namespace curvestep::host::link

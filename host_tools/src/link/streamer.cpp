@@ -1,0 +1,230 @@
+// SPDX-License-Identifier: MIT
+#include <curvestep/host/link/streamer.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <map>
+
+#include <curvestep/host/link/host_link.hpp>
+#include <curvestep/host/link/wire.hpp>
+
+namespace curvestep::host::link {
+namespace {
+
+const char* state_name(protocol::MachineState state) {
+  switch (state) {
+    case protocol::MachineState::Idle: return "idle";
+    case protocol::MachineState::Running: return "running";
+    case protocol::MachineState::Holding: return "holding";
+    case protocol::MachineState::Fault: return "fault";
+  }
+  return "unknown";
+}
+
+class Upload {
+ public:
+  Upload(Transport& transport, const Job& job, const MachineLimits& machine, const StreamOptions& options)
+      : transport_(transport), job_(job), machine_(machine), options_(options), link_(transport, options.link) {}
+
+  StreamResult run() {
+    const auto handler = [this](const protocol::Message& m) { on_message(m); };
+    try {
+      link_.connect(handler);
+      const std::size_t axes = link_.capabilities().axis_count;
+      WireMachine wire_machine = to_wire(machine_, axes);
+      for (const auto& note : wire_machine.notes) warn("machine: " + note);
+      wire_job_ = to_wire(job_, axes);
+      for (const auto& note : wire_job_.notes) warn(note);
+      rate_hz_ = wire_machine.configuration.control_rate_hz;
+      if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
+      link_.submit(protocol::Message(wire_machine.configuration));
+      // Start at once: the controller arms the job and begins by itself when its look-ahead
+      // window is full or the job's last segment (flag end_of_job) has arrived.
+      link_.submit(protocol::Message(protocol::Start{}));
+      started_ = true;
+      start_ms_ = link_.now_ms();
+      last_status_ms_ = start_ms_;
+      while (!finished()) {
+        submit_segments();
+        link_.pump(5, handler);
+        request_status();
+        report_progress(false);
+      }
+    } catch (const LinkError& e) {
+      throw StreamError(e.code(), std::string(e.what()) + last_state_text());
+    }
+    report_progress(true);
+    return collect();
+  }
+
+ private:
+  void warn(const std::string& text) const {
+    if (options_.warn) options_.warn(text);
+  }
+
+  std::string last_state_text() const {
+    if (!have_status_) return "";
+    return "; last controller state: " + std::string(state_name(last_status_.state)) + " at setpoint " +
+           std::to_string(last_status_.setpoint_index);
+  }
+
+  std::string segment_text(std::uint8_t sequence) const {
+    const auto found = sequence_to_segment_.find(sequence);
+    if (found == sequence_to_segment_.end()) return "";
+    if (found->second == configuration_marker) return " in the machine configuration";
+    if (found->second == start_marker) return " in the Start command";
+    const std::size_t piece = found->second;
+    const std::size_t file_index = job_.source_index.empty() ? piece : job_.source_index[piece];
+    return " in " + job_.name + " segment " + std::to_string(file_index);
+  }
+
+  void submit_segments() {
+    while (next_ < wire_job_.segments.size() && link_.can_submit(protocol::MessageType::QueueSegment)) {
+      link_.submit(protocol::Message(wire_job_.segments[next_]));
+      sequence_to_segment_[sequence_] = next_;
+      ++sequence_;
+      ++next_;
+    }
+  }
+
+  void request_status() {
+    if (!started_) return;
+    const std::uint32_t now = link_.now_ms();
+    const auto interval = static_cast<std::uint32_t>(options_.status_interval_s * 1000);
+    if (now - last_status_ms_ < interval || !link_.can_submit(protocol::MessageType::StatusRequest)) return;
+    link_.submit(protocol::Message(protocol::StatusRequest{}));
+    sequence_to_segment_.erase(sequence_);
+    ++sequence_;
+    last_status_ms_ = now;
+  }
+
+  void on_message(const protocol::Message& m) {
+    switch (m.type()) {
+      case protocol::MessageType::SetpointBatch: {
+        const auto& batch = m.get<protocol::SetpointBatch>();
+        for (std::uint32_t k = 0; k < batch.count; ++k) setpoints_[batch.first_index + k] = batch.setpoints[k];
+        break;
+      }
+      case protocol::MessageType::StatusReport: {
+        last_status_ = m.get<protocol::StatusReport>();
+        have_status_ = true;
+        if (last_status_.state == protocol::MachineState::Running || last_status_.setpoint_index > 0) seen_running_ = true;
+        if (last_status_.state == protocol::MachineState::Fault) {
+          const auto code = static_cast<Error>(last_status_.error);
+          throw StreamError(code, transport_.name() + ": the controller stopped with a fault: " + describe_error(code) +
+                                      " at setpoint " + std::to_string(last_status_.setpoint_index));
+        }
+        break;
+      }
+      case protocol::MessageType::ErrorReport: {
+        const auto& report = m.get<protocol::ErrorReport>();
+        std::string text = transport_.name() + ": the controller reported " + describe_error(report.code) + segment_text(report.sequence);
+        if (report.index != no_index) text += " (index " + std::to_string(report.index) + ")";
+        throw StreamError(report.code, text);
+      }
+      default: break;
+    }
+  }
+
+  [[nodiscard]] bool finished() {
+    if (!started_ || next_ < wire_job_.segments.size() || !link_.idle() || !have_status_ || !seen_running_) return false;
+    if (last_status_.state != protocol::MachineState::Idle || last_status_.queue_depth != 0) {
+      idle_seen_ = false;
+      return false;
+    }
+    // Idle: done once the last setpoint arrived (its batch may follow the report), or after a
+    // grace period if it was lost on the link.
+    const std::uint32_t now = link_.now_ms();
+    if (!idle_seen_) {
+      idle_seen_ = true;
+      idle_since_ms_ = now;
+    }
+    if (!setpoints_.empty() && setpoints_.rbegin()->first >= last_status_.setpoint_index) return true;
+    return now - idle_since_ms_ > 1000;
+  }
+
+  void report_progress(bool final_call) {
+    if (!options_.progress) return;
+    const std::uint32_t now = link_.now_ms();
+    if (!final_call && now - last_progress_ms_ < 100) return;
+    last_progress_ms_ = now;
+    StreamProgress p;
+    p.segments_sent = next_;
+    p.segments_total = wire_job_.segments.size();
+    p.setpoints_received = setpoints_.size();
+    p.elapsed_s = now / 1000.0;
+    if (started_ && next_ > 0 && have_status_) {
+      // Segments done = sent - still queued; the rest take as long, per segment, as those did.
+      const double done = static_cast<double>(next_) - last_status_.queue_depth;
+      const double running_s = (now - start_ms_) / 1000.0;
+      if (done > 0) p.eta_s = running_s / done * (static_cast<double>(p.segments_total) - done);
+    }
+    if (final_call) p.eta_s = 0;
+    options_.progress(p);
+  }
+
+  StreamResult collect() const {
+    StreamResult result;
+    const double dt = 1.0 / rate_hz_;
+    std::uint32_t expected = setpoints_.empty() ? 0 : setpoints_.begin()->first;
+    const protocol::WirePoint* previous = nullptr;
+    for (const auto& [index, point] : setpoints_) {
+      if (index != expected) {
+        result.missing_setpoints += index - expected;
+        previous = nullptr;
+      }
+      SetpointRecord r;
+      r.time_s = static_cast<double>(index) * dt;
+      double d2 = 0;
+      for (std::size_t a = 0; a < 3; ++a) {
+        r.raw_q16[a] = point[a];
+        r.position_mm[a] = static_cast<double>(point[a]) / 65536.0;
+        if (previous != nullptr) {
+          const double d = static_cast<double>(point[a] - (*previous)[a]) / 65536.0;
+          d2 += d * d;
+        }
+      }
+      r.speed_mm_per_s = std::sqrt(d2) / dt;
+      result.setpoints.push_back(r);
+      previous = &point;
+      expected = index + 1;
+    }
+    if (last_status_.setpoint_index > expected) result.missing_setpoints += last_status_.setpoint_index - expected;
+    result.frames_rejected = link_.statistics().frames_rejected;
+    result.bytes_sent = link_.statistics().bytes_sent;
+    return result;
+  }
+
+  static constexpr std::size_t configuration_marker = static_cast<std::size_t>(-1);
+  static constexpr std::size_t start_marker = static_cast<std::size_t>(-2);
+
+  Transport& transport_;
+  const Job& job_;
+  const MachineLimits& machine_;
+  const StreamOptions& options_;
+  HostLink link_;
+  WireJob wire_job_;
+  std::map<std::uint32_t, protocol::WirePoint> setpoints_;
+  std::map<std::uint8_t, std::size_t> sequence_to_segment_{{0, configuration_marker}, {1, start_marker}};
+  protocol::StatusReport last_status_{};
+  double rate_hz_ = 1000;
+  std::size_t next_ = 0;
+  std::uint8_t sequence_ = 2;  // the configuration is sequence 0, Start 1
+  std::uint32_t idle_since_ms_ = 0;
+  bool idle_seen_ = false;
+  std::uint32_t last_status_ms_ = 0;
+  std::uint32_t last_progress_ms_ = 0;
+  std::uint32_t start_ms_ = 0;
+  bool started_ = false;
+  bool have_status_ = false;
+  bool seen_running_ = false;
+};
+
+}  // namespace
+
+StreamResult stream_job(Transport& transport, const Job& job, const MachineLimits& machine, const StreamOptions& options) {
+  Upload upload(transport, job, machine, options);
+  return upload.run();
+}
+
+}  // namespace curvestep::host::link

@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: MIT
+#include <curvestep/host/link/wire.hpp>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <curvestep/host/csv.hpp>
+
+namespace curvestep::host::link {
+namespace {
+
+constexpr double two_pi = 6.283185307179586476925286766559;
+
+std::uint32_t to_whole(double value, bool& exact) {
+  const double rounded = std::nearbyint(value);
+  if (!(rounded >= 0 && rounded <= 4294967295.0)) throw std::out_of_range("value outside 0 .. 2^32-1");
+  if (rounded != value) exact = false;
+  return static_cast<std::uint32_t>(rounded);
+}
+
+}  // namespace
+
+std::int32_t to_q16(double value, bool& exact) {
+  const double scaled = value * 65536.0;
+  const double rounded = std::nearbyint(scaled);
+  if (!(rounded >= static_cast<double>(std::numeric_limits<std::int32_t>::min()) &&
+        rounded <= static_cast<double>(std::numeric_limits<std::int32_t>::max()))) {
+    throw std::out_of_range("value " + format_number(value) + " outside the Q16.16 range");
+  }
+  if (rounded != scaled) exact = false;
+  return static_cast<std::int32_t>(rounded);
+}
+
+WireMachine to_wire(const MachineLimits& m, std::size_t axis_count) {
+  WireMachine out;
+  auto& c = out.configuration;
+  const auto q16 = [&out](double value, const char* field) {
+    bool exact = true;
+    const std::int32_t raw = to_q16(value, exact);
+    if (!exact) {
+      out.notes.push_back(std::string(field) + " " + format_number(value) + " travels as " +
+                          format_number(static_cast<double>(raw) / 65536.0) + " (Q16.16)");
+    }
+    return raw;
+  };
+  const auto whole = [&out](double value, const char* field) {
+    bool exact = true;
+    const std::uint32_t v = to_whole(value, exact);
+    if (!exact) out.notes.push_back(std::string(field) + " " + format_number(value) + " travels as " + std::to_string(v));
+    return v;
+  };
+  c.axis_count = static_cast<std::uint8_t>(axis_count);
+  c.max_velocity_mm_per_s = q16(m.v_max_mm_per_s, "v_max");
+  c.max_acceleration_mm_per_s2 = whole(m.a_max_mm_per_s2, "a_max");
+  c.max_jerk_mm_per_s3 = whole(m.j_max_mm_per_s3, "j_max");
+  c.default_feed_mm_per_s = q16(m.feed_mm_per_s, "feed");
+  c.tolerance_mm = q16(m.tolerance_mm, "tolerance");
+  c.junction_deviation_mm = q16(m.junction_deviation_mm, "junction_deviation");
+  c.control_rate_hz = whole(m.rate_hz, "rate_hz");
+  const char* names[] = {"axes.x", "axes.y", "axes.z"};
+  for (std::size_t a = 0; a < axis_count && a < motion_axes; ++a) {
+    const std::string prefix = names[a];
+    auto& axis = c.axes[a];
+    axis.steps_per_mm = q16(m.axes[a].steps_per_mm, (prefix + ".steps_per_mm").c_str());
+    axis.min_position_mm = std::numeric_limits<std::int32_t>::min();
+    axis.max_position_mm = std::numeric_limits<std::int32_t>::max();
+    axis.max_velocity_mm_per_s = q16(m.axes[a].v_max_mm_per_s, (prefix + ".v_max").c_str());
+    axis.max_acceleration_mm_per_s2 = whole(m.axes[a].a_max_mm_per_s2, (prefix + ".a_max").c_str());
+  }
+  if (m.rapid_mm_per_s != 0 && m.rapid_mm_per_s != m.v_max_mm_per_s) {
+    out.notes.push_back("rapid " + format_number(m.rapid_mm_per_s) + " is not sent (the protocol has no field): the device runs rapids at v_max");
+  }
+  if (!m.jerk_limited) out.notes.push_back("profile \"trapezoid\" is not sent (the protocol has no field): the device decides the profile");
+  return out;
+}
+
+WireJob to_wire(const Job& job, std::size_t axis_count) {
+  WireJob out;
+  out.segments.reserve(job.segments.size());
+  for (std::size_t i = 0; i < job.segments.size(); ++i) {
+    const PathSegment& s = job.segments[i];
+    const std::size_t file_index = job.source_index.empty() ? i : job.source_index[i];
+    const std::string where = job.name + ": segment " + std::to_string(file_index) + ": ";
+    protocol::QueueSegment q;
+    q.axis_count = static_cast<std::uint8_t>(axis_count);
+    q.rapid = s.rapid();
+    bool exact = true;
+    const auto coordinate = [&](double value) {
+      try {
+        return to_q16(value, exact);
+      } catch (const std::out_of_range& e) {
+        throw std::runtime_error(where + e.what());
+      }
+    };
+    const auto put = [&](std::size_t slot, const MachinePoint& p, std::size_t axes) {
+      for (std::size_t a = 0; a < axes; ++a) q.points[slot][a] = coordinate(p[a]);
+      if (axes < 3 && p[2] != 0) throw std::runtime_error(where + "moves Z, but the controller has 2 axes");
+    };
+    if (s.feed_mm_per_s() != 0) {
+      q.has_feed = true;
+      bool feed_exact = true;
+      q.feed_mm_per_s = to_q16(s.feed_mm_per_s(), feed_exact);
+      if (!feed_exact) out.notes.push_back(where + "feed " + format_number(s.feed_mm_per_s()) + " rounded to Q16.16");
+    }
+    switch (s.kind()) {
+      case SegmentKind::Line:
+      case SegmentKind::Bezier: {
+        const auto points = s.polynomial().control_points();
+        q.kind = s.kind() == SegmentKind::Line ? protocol::SegmentKind::Line : protocol::SegmentKind::Bezier;
+        q.degree = static_cast<std::uint8_t>(points.size() - 1);
+        for (std::size_t k = 0; k < points.size(); ++k) put(k, points[k], axis_count);
+        break;
+      }
+      case SegmentKind::RationalBezier: {
+        const auto points = s.rational().control_points();
+        q.kind = protocol::SegmentKind::RationalBezier;
+        q.degree = static_cast<std::uint8_t>(points.size() - 1);
+        bool weights_exact = true;
+        for (std::size_t k = 0; k < points.size(); ++k) {
+          put(k, points[k], axis_count);
+          q.weights[k] = to_q16(s.rational().weight(k), weights_exact);
+        }
+        if (!weights_exact) out.notes.push_back(where + "weights rounded to Q16.16");
+        break;
+      }
+      case SegmentKind::Arc: {
+        if (std::fabs(s.arc_sweep_rad()) > two_pi) {
+          throw std::runtime_error(where + "an arc of more than one turn cannot be sent (the protocol has no turns field)");
+        }
+        q.kind = protocol::SegmentKind::Arc;
+        q.degree = 2;
+        q.direction = s.arc_sweep_rad() > 0 ? ArcDirection::CounterClockwise : ArcDirection::Clockwise;
+        put(0, s.start(), axis_count);
+        put(1, s.end(), axis_count);
+        q.points[2][0] = coordinate(s.arc_center()[0]);
+        q.points[2][1] = coordinate(s.arc_center()[1]);
+        break;
+      }
+    }
+    if (!exact) throw std::runtime_error(where + "a coordinate is not a Q16.16 value (load the job with load_job)");
+    out.segments.push_back(q);
+  }
+  return out;
+}
+
+}  // namespace curvestep::host::link

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+// `curvestep stream JOB --machine MACHINE.json --port PORT [--baud N] [--capture setpoints.csv]`:
+// uploads a job to a controller with flow control, shows progress on a terminal, captures the
+// controller's setpoint stream (the CSV of `curvestep sim -o`) and reports its errors.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/link/host_link.hpp>
+#include <curvestep/host/link/streamer.hpp>
+#include <curvestep/host/link/transport.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/simulator.hpp>
+
+#include "command_registry.hpp"
+
+namespace curvestep::host {
+namespace {
+
+struct StreamCommandOptions {
+  std::string job;
+  std::string machine;
+  std::string port;
+  int baud = 115200;
+  std::string capture;
+  unsigned link_timeout_ms = 3000;
+};
+
+/// Exit status when the controller or the link failed.
+constexpr int exit_device_error = 4;
+
+/// The machine file without its "gpio" section (the device's wiring, not planning data).
+MachineLimits load_machine_for_stream(const std::string& path) {
+  const std::string text = read_text_file(path);
+  const auto root = nlohmann::json::parse(text, nullptr, false, true);
+  if (root.is_object() && root.contains("gpio")) {
+    auto planning = root;
+    planning.erase("gpio");
+    return parse_machine(planning.dump(2), path);
+  }
+  return load_machine(path);
+}
+
+std::string format_seconds(double s) {
+  if (s < 0) return "--:--";
+  const long total = static_cast<long>(s + 0.5);
+  char text[32];
+  std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
+  return text;
+}
+
+int run_stream(const StreamCommandOptions& o) {
+  const Job job = load_job(o.job);
+  const MachineLimits machine = load_machine_for_stream(o.machine);
+  auto transport = link::open_port(o.port, o.baud);
+  link::StreamOptions options;
+  options.link.link_timeout_ms = o.link_timeout_ms;
+  options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  if (terminal) {
+    options.progress = [](const link::StreamProgress& p) {
+      std::cerr << "\r  segments " << p.segments_sent << "/" << p.segments_total << "  setpoints " << p.setpoints_received
+                << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s) << "   " << std::flush;
+    };
+  }
+  link::StreamResult result;
+  try {
+    result = link::stream_job(*transport, job, machine, options);
+  } catch (const link::StreamError& e) {
+    if (terminal) std::cerr << "\n";
+    std::cerr << "curvestep stream: " << e.what() << "\n";
+    return exit_device_error;
+  } catch (const link::TransportError& e) {
+    if (terminal) std::cerr << "\n";
+    std::cerr << "curvestep stream: " << e.what() << "\n";
+    return exit_device_error;
+  }
+  if (terminal) std::cerr << "\n";
+  if (!o.capture.empty()) {
+    std::ofstream out(o.capture);
+    if (!out) throw std::runtime_error("cannot write " + o.capture);
+    write_setpoints_csv(out, result.setpoints);
+    if (!out) throw std::runtime_error("error writing " + o.capture);
+  }
+  std::cout << "curvestep stream " << o.job << " -> " << o.port << "\n"
+            << "  setpoints received:  " << result.setpoints.size() << "\n"
+            << "  setpoints missing:   " << result.missing_setpoints << "\n"
+            << "  damaged frames:      " << result.frames_rejected << "\n"
+            << "  bytes sent:          " << result.bytes_sent << "\n";
+  if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
+  if (result.missing_setpoints != 0) {
+    std::cerr << "curvestep stream: " << result.missing_setpoints
+              << " setpoints were lost on the link (setpoint batches are not retransmitted)\n";
+    return exit_device_error;
+  }
+  return 0;
+}
+
+void add_stream_command(CLI::App& app) {
+  auto options = std::make_shared<StreamCommandOptions>();
+  auto* stream = app.add_subcommand("stream", "Upload a job to a controller and capture its setpoint stream");
+  stream->add_option("job", options->job, "Job file (.json)")->required()->check(CLI::ExistingFile);
+  stream->add_option("--machine,-m", options->machine, "Machine file (.json), sent to the controller at connect")
+      ->required()
+      ->check(CLI::ExistingFile);
+  stream->add_option("--port,-p", options->port, "Serial port or pseudo-terminal (/dev/ttyUSB0, /dev/pts/3)")->required();
+  stream->add_option("--baud", options->baud, "Baud rate (real ports)");
+  stream->add_option("--capture", options->capture, "Write the controller's setpoints as CSV (t,x,y,z,v)");
+  stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
+  stream->callback([options] {
+    const int status = run_stream(*options);
+    if (status != 0) throw CLI::RuntimeError(status);
+  });
+}
+
+const RegisterCommand registered{50, add_stream_command};
+
+}  // namespace
+}  // namespace curvestep::host
