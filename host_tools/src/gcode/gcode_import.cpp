@@ -22,8 +22,10 @@ constexpr std::size_t max_nurbs_points = 512;
 using Interpreter = gcode::Interpreter<max_nurbs_points>;
 using RationalSpline = Nurbs<double, motion_axes, PathSegment::max_degree, max_nurbs_points>;
 constexpr double seconds_per_minute = 60.0;
-/// Quantisation moves each coordinate by at most 2^-17 mm, so a radius by at most 2^-16.5 mm.
-constexpr double quantisation_radius_slack_mm = 1.0 / 65536.0;
+/// The interpreter checked the radii before quantisation; quantising start, end and centre (each
+/// coordinate by at most 2^-17 mm) changes each radius by at most 2·√2·2^-17 mm, so their difference
+/// by at most 4.4e-5 mm. make_arc gets that much slack on top of the checked difference.
+constexpr double quantisation_radius_slack_mm = 1e-4;
 
 /// The word that starts at 1-based `column` of `line` ("G5.1", "X-1.5"), or "" if none.
 std::string word_at(std::string_view line, std::size_t column) {

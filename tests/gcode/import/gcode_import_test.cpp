@@ -8,11 +8,16 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <iomanip>
 #include <numbers>
+#include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <curvestep/host/gcode_import.hpp>
+
+#include "support/numeric.hpp"
 
 using namespace curvestep;
 using namespace curvestep::host;
@@ -270,4 +275,36 @@ TEST_CASE("gcode import: CRLF line ends and a missing file", "[gcode][import]") 
   CHECK(job.segments[1].end() == pt(1, 1));
   CHECK(job.segments[1].feed_mm_per_s() == 1.0);
   CHECK_THROWS_AS(import_gcode(data + "/does_not_exist.ngc"), std::runtime_error);
+}
+
+TEST_CASE("gcode import: random arcs with three-decimal coordinates all load and end where programmed", "[gcode][import][property]") {
+  // Points on a circle rounded to 0.001 mm: radii differ by well under LinuxCNC's 0.005 mm, and
+  // quantisation to Q16.16 must not turn an accepted arc into a rejected one.
+  std::mt19937 random(curvestep::testing::test_seed());
+  std::uniform_real_distribution<double> coordinate(-500.0, 500.0);
+  std::uniform_real_distribution<double> radius(0.5, 300.0);
+  std::uniform_real_distribution<double> angle(0.0, 2 * std::numbers::pi);
+  auto three_decimals = [](double v) { return std::round(v * 1000.0) / 1000.0; };
+  const int count = curvestep::testing::test_count(300);
+  for (int n = 0; n < count; ++n) {
+    const double cx = three_decimals(coordinate(random));
+    const double cy = three_decimals(coordinate(random));
+    const double r = radius(random);
+    const double a0 = angle(random);
+    const double a1 = angle(random);
+    const double x0 = three_decimals(cx + r * std::cos(a0));
+    const double y0 = three_decimals(cy + r * std::sin(a0));
+    const double x1 = three_decimals(cx + r * std::cos(a1));
+    const double y1 = three_decimals(cy + r * std::sin(a1));
+    std::ostringstream program;
+    program << std::fixed << std::setprecision(3);
+    program << "G0 X" << x0 << " Y" << y0 << "\n"
+            << (n % 2 == 0 ? "G2" : "G3") << " X" << x1 << " Y" << y1 << " I" << three_decimals(cx - x0) << " J"
+            << three_decimals(cy - y0) << " F100\n";
+    INFO(program.str());
+    const Job job = parse_gcode_job(program.str(), "random.ngc");
+    REQUIRE(job.segments.size() == 2);
+    CHECK(job.segments[1].kind() == SegmentKind::Arc);
+    CHECK(near(job.segments[1].end(), pt(x1, y1), grid_tolerance));
+  }
 }
