@@ -2,6 +2,7 @@
 // App<FakeBoard>: handshake, configuration, every segment kind, bit-identical setpoints, safety.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -771,4 +772,46 @@ TEST_CASE("firmware: a malformed payload is answered with BadPayload at its byte
   CHECK(host.received.errors[0].index == 0);
   CHECK(host.received.errors[0].sequence == 1);
   CHECK(app.controller().queued() == 0);
+}
+
+TEST_CASE("firmware: a slow transmitter gets every frame in order, later", "[firmware][app]") {
+  FakeBoard board;
+  board.write_limit = 24;  // bytes accepted per write: 24 kB/s at one poll per millisecond
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  REQUIRE(host.connect());
+  REQUIRE(host.send(Message(machine())));
+  const auto job = mixed_job();
+  stream_job(host, app, board, job);
+  for (int i = 0; i < 50; ++i) host.pump();
+  const auto expected = reference(machine(), job);
+  CHECK(host.setpoints() == expected);
+  CHECK(app.statistics().dropped_frames == 0);
+  CHECK(app.statistics().dropped_setpoints == 0);
+}
+
+TEST_CASE("firmware: with float setpoints the job runs to its exact end point", "[firmware][app]") {
+  using FloatApp = App<FakeBoard, float>;
+  FakeBoard board;
+  FloatApp app(board);
+  Host<FloatApp> host(board, app);
+  REQUIRE(host.connect());
+  REQUIRE(host.send(Message(machine())));
+  const auto job = mixed_job();
+  stream_job(host, app, board, job);
+  const auto got = host.setpoints();
+  const auto expected = reference(machine(), job);
+  REQUIRE(host.received.errors.empty());
+  REQUIRE(got.size() == expected.size());
+  CHECK(got.back().second == p(0, 0, 0));
+  // Below 8 mm a float's spacing is under 1e-6 mm (0.07 raw units), so after rounding to Q16.16
+  // both scalars agree within one raw unit (15 nm).
+  std::int32_t worst = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      const std::int32_t d = got[i].second[a] - expected[i].second[a];
+      worst = std::max(worst, d < 0 ? -d : d);
+    }
+  }
+  CHECK(worst <= 1);
 }
