@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <curvestep/host/flatten.hpp>
 #include <curvestep/host/gcode_import.hpp>
 
 #include "support/numeric.hpp"
@@ -307,4 +308,12 @@ TEST_CASE("gcode import: random arcs with three-decimal coordinates all load and
     CHECK(job.segments[1].kind() == SegmentKind::Arc);
     CHECK(near(job.segments[1].end(), pt(x1, y1), grid_tolerance));
   }
+}
+
+TEST_CASE("gcode import: the example's path flattens within tolerance like any job", "[gcode][import]") {
+  const Job job = import_gcode(std::string(CURVESTEP_GCODE_EXAMPLES) + "/cnc_pocket.ngc");
+  const auto polyline = flatten_path(job.segments, 0.01);
+  REQUIRE(polyline.size() > job.segments.size());
+  CHECK(polyline.front() == job.segments.front().start());
+  CHECK(polyline.back() == job.segments.back().end());
 }

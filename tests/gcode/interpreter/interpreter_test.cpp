@@ -326,3 +326,22 @@ TEST_CASE("gcode interpreter: M2 and M30 end the program", "[gcode][interpreter]
   Machine n;
   CHECK(run(n, {"M30"}).program_end);
 }
+
+TEST_CASE("gcode interpreter: splines in G91 and G20 use incremental ends and scaled offsets", "[gcode][interpreter][spline]") {
+  Machine m;
+  auto motion = run(m, {"G0 X1 Y1", "G91 G5 I0 J1 P0 Q-1 X2 Y0"});
+  REQUIRE(motion.kind == MotionKind::Cubic);
+  CHECK(motion.control[0] == pt(1, 1));
+  CHECK(motion.control[1] == pt(1, 2));
+  CHECK(motion.control[2] == pt(3, 0));
+  CHECK(motion.control[3] == pt(3, 1));
+  Machine n;
+  motion = run(n, {"G20 G5.1 I1 J2 X4 Y0"});
+  REQUIRE(motion.kind == MotionKind::Quadratic);
+  CHECK(motion.control[1] == pt(25.4, 50.8));
+  CHECK(motion.control[2] == pt(101.6, 0));
+  // The continuation offsets were stored in mm: a G21 block continues with -(P,Q) in mm.
+  Machine k;
+  motion = run(k, {"G20 G5 I0 J1 P0 Q-1 X1 Y1", "G21 G5 P0 Q0 X30 Y30"});
+  CHECK(motion.control[1] == pt(25.4, 25.4 + 25.4));
+}
