@@ -102,8 +102,12 @@ class GcodeLoader {
       const auto block = gcode::parse_line(line);
       if (!block) fail(block.where(), block.error());
       const bool was_in_nurbs = interpreter_.in_nurbs_block();
+      const MachinePoint before = interpreter_.position();
       const auto motion = interpreter_.execute(block.value());
-      if (!motion) fail(motion.where(), motion.error());
+      if (!motion) {
+        if (motion.error() == Error::GcodeArcRadiusMismatch) fail_radii(block.value(), before, motion.where());
+        fail(motion.where(), motion.error());
+      }
       if (!was_in_nurbs && interpreter_.in_nurbs_block()) {
         nurbs_line = line_number;
         for (const auto& w : block.value().words()) {
@@ -127,6 +131,32 @@ class GcodeLoader {
   [[noreturn]] void fail(std::size_t column, Error code) {
     const std::string word = word_at(line_, column);
     throw LoadError(SourceLocation{job_.name, line_number_, column, std::nullopt, {}, word}, explain(code, word), code);
+  }
+
+  /// GcodeArcRadiusMismatch of a centre-form arc, with both radii as LinuxCNC reports them. The
+  /// interpreter has already applied the block's modal settings (units, distance modes).
+  template <std::size_t Capacity>
+  [[noreturn]] void fail_radii(const gcode::Block<Capacity>& block, const MachinePoint& start, std::size_t column) {
+    const gcode::Word* i = block.find('I');
+    const gcode::Word* j = block.find('J');
+    if (block.find('R') != nullptr || (i == nullptr && j == nullptr)) fail(column, Error::GcodeArcRadiusMismatch);
+    const double scale = interpreter_.units() == gcode::Units::Inches ? gcode::millimetres_per_inch : 1.0;
+    MachinePoint end = start;
+    for (std::size_t axis = 0; axis < 2; ++axis) {
+      if (const gcode::Word* w = block.find(axis == 0 ? 'X' : 'Y')) end[axis] = w->value * scale + (interpreter_.incremental() ? start[axis] : 0.0);
+    }
+    const double ci = i != nullptr ? i->value * scale : 0.0;
+    const double cj = j != nullptr ? j->value * scale : 0.0;
+    const double cx = interpreter_.arc_centers_absolute() ? ci : start[0] + ci;
+    const double cy = interpreter_.arc_centers_absolute() ? cj : start[1] + cj;
+    const double r0 = std::hypot(start[0] - cx, start[1] - cy);
+    const double r1 = std::hypot(end[0] - cx, end[1] - cy);
+    fail_message(column,
+                 r0 == 0 ? std::string("zero radius: the centre is the start point")
+                         : "radius to end of arc differs from radius to start: start radius " + format_number(r0) +
+                               " mm, end radius " + format_number(r1) + " mm, difference " + format_number(std::fabs(r1 - r0)) +
+                               " mm (allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius)",
+                 Error::GcodeArcRadiusMismatch);
   }
 
   [[noreturn]] void fail_message(std::size_t column, const std::string& message, Error code) {

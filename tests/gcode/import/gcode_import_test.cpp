@@ -233,6 +233,15 @@ TEST_CASE("gcode import: error programs name file, line, column and word", "[gco
   }
 }
 
+TEST_CASE("gcode import: a radius mismatch reports both radii", "[gcode][import][errors]") {
+  const LoadError e = file_error_of(data + "/error_arc_radius.ngc");
+  // start (10,0), centre (0,0), end (0,10.02): radii 10 and 10.02.
+  CHECK_THAT(e.what(), Catch::Contains("start radius 10 mm, end radius 10.02 mm"));
+  const LoadError zero = error_of("G2 X1 Y1 I0 J0\n");
+  CHECK(zero.code() == Error::GcodeArcRadiusMismatch);
+  CHECK_THAT(zero.what(), Catch::Contains("zero radius"));
+}
+
 TEST_CASE("gcode import: every G-code error code reaches the user with its word", "[gcode][import][errors]") {
   struct Case {
     const char* text;
