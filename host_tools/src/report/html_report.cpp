@@ -49,14 +49,14 @@ std::string chart_svg(const Chart& chart, const std::vector<double>& time) {
   out << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   out << "<text x=\"" << left << "\" y=\"18\" font-size=\"14\" font-weight=\"bold\">" << escape(chart.title) << " ("
       << escape(chart.unit) << ")</text>";
-  out << "<text x=\"" << width - right << "\" y=\"18\" text-anchor=\"end\" fill=\"#555\">peak " << figure(peak)
-      << (chart.limit > 0 ? ", limit " + figure(chart.limit) : std::string()) << escape(chart.limit_note) << "</text>\n";
+  out << "<text x=\"" << width - right << "\" y=\"18\" text-anchor=\"end\" fill=\"#555\">peak " << figure(peak, 5)
+      << (chart.limit > 0 ? ", limit " + figure(chart.limit, 6) : std::string()) << escape(chart.limit_note) << "</text>\n";
   // Grid and ticks.
   const double y_step = report_detail::nice_step_below(y_max / 4);
   for (double y = 0; y <= y_max + 1e-12 * y_max; y += y_step) {
     out << "<line x1=\"" << left << "\" x2=\"" << width - right << "\" y1=\"" << pixel(sy(y)) << "\" y2=\"" << pixel(sy(y))
         << "\" stroke=\"#e4e4e4\"/><text x=\"" << left - 6 << "\" y=\"" << pixel(sy(y) + 4) << "\" text-anchor=\"end\">"
-        << figure(y) << "</text>\n";
+        << figure(y, 6) << "</text>\n";
   }
   const double t_step = report_detail::nice_step_below((t1 - t0) / 6);
   for (double t = std::ceil(t0 / t_step) * t_step; t <= t1 + 1e-12 * t1; t += t_step) {
@@ -87,7 +87,7 @@ std::string chart_svg(const Chart& chart, const std::vector<double>& time) {
     out << "<line class=\"limit\" x1=\"" << left << "\" x2=\"" << width - right << "\" y1=\"" << pixel(sy(chart.limit)) << "\" y2=\""
         << pixel(sy(chart.limit)) << "\" stroke=\"#d62728\" stroke-width=\"1.5\" stroke-dasharray=\"8 4\"/>"
         << "<text x=\"" << width - right - 4 << "\" y=\"" << pixel(sy(chart.limit) - 5) << "\" text-anchor=\"end\" fill=\"#d62728\">limit "
-        << figure(chart.limit) << "</text>\n";
+        << figure(chart.limit, 6) << "</text>\n";
   }
   out << "</svg>\n";
   return out.str();
