@@ -165,3 +165,8 @@ TEST_CASE("gcode parser: random lines never crash and every failure points insid
   }
   CHECK(accepted > 0);
 }
+
+// The parser is constexpr: a line can be checked at compile time.
+static_assert(parse_line("N5 G1 X1.5 (c) Y-2").value().size() == 3);
+static_assert(parse_line("G5.2 P1 L3").value().words()[0].code_tenths == 52);
+static_assert(!parse_line("G1 A1"));
