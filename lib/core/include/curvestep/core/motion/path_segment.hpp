@@ -101,7 +101,8 @@ class PathSegment {
     return s;
   }
 
-  /// A rational Bézier from 2..8 control points and positive weights.
+  /// A rational Bézier from 2..8 control points and positive weights. NotFinite for NaN/inf, or
+  /// weights and points so extreme that the derivatives could overflow (check_rational_derivatives).
   [[nodiscard]] static Result<PathSegment> make_rational_bezier(std::span<const MachinePoint> control,
                                                                 std::span<const double> weights) noexcept {
     if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
@@ -109,6 +110,7 @@ class PathSegment {
     s.kind_ = SegmentKind::RationalBezier;
     CURVESTEP_TRY(s.rational_, Rational::create(control, weights));
     if (s.is_point()) return fail(Error::DegenerateCurve);
+    CURVESTEP_CHECK(s.check_rational_derivatives());
     return s;
   }
 
@@ -220,6 +222,28 @@ class PathSegment {
   /// hodographs' control points are then finite, and de Casteljau keeps their combinations finite.
   [[nodiscard]] constexpr Result<void> check_derivatives() const noexcept {
     if (!polynomial_.derivative(3)) return fail(Error::NotFinite);
+    return ok();
+  }
+
+  /// NotFinite if the derivatives of orders 1..3 of the rational curve might overflow double.
+  /// r = A / w with A = Σ w_i b_i B_i (relative to b_0): by the quotient rule and the hodograph
+  /// bounds, |r^(k)| <= c_k ρ^k M and every intermediate term is below c_k w_max ρ^(k-1) M, where
+  /// ρ = max w / min w, M = max |b_i - b_0| and c_3 < 1e11 for degree <= 7. Requiring
+  /// 1e12 ρ³ M max(1, w_max) to be finite keeps them all finite; it refuses only weight ratios or
+  /// sizes far outside any machine (a weight ratio of 1e6 on a 1e5 mm curve passes easily).
+  [[nodiscard]] Result<void> check_rational_derivatives() const noexcept {
+    double w_min = rational_.weight(0);
+    double w_max = w_min;
+    double extent = 0;
+    const auto pts = rational_.control_points();
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      w_min = std::fmin(w_min, rational_.weight(i));
+      w_max = std::fmax(w_max, rational_.weight(i));
+      for (std::size_t axis = 0; axis < motion_axes; ++axis) extent = std::fmax(extent, std::fabs(pts[i][axis] - pts[0][axis]));
+    }
+    const double ratio = w_max / w_min;
+    const double bound = 1e12 * ratio * ratio * ratio * extent * std::fmax(1.0, w_max);
+    if (!std::isfinite(bound)) return fail(Error::NotFinite);
     return ok();
   }
 
