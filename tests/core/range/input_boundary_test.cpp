@@ -189,3 +189,26 @@ TEST_CASE("range: segments whose derivatives overflow double are refused with No
   // Large but harmless: 1e150 mm segments are accepted (a Q16.16 controller then faults on output).
   CHECK(PathSegment::make_line(mp(-1e150, 0), mp(1e150, 0)).has_value());
 }
+
+TEST_CASE("range: rational segments whose weight ratio makes derivatives overflow are refused with NotFinite",
+          "[core][range]") {
+  // Found by the planner fuzz harness: a degree-7 rational Bézier with w_0 = 2e-321 (a denormal)
+  // and w_1 = 4e-20. r''(0) grows like (w_1 / w_0)^2 ~ 1e603: PathSegment::derivative trapped
+  // inside the planner. Now make_rational_bezier refuses it.
+  const std::array<MachinePoint, 8> control{mp(-29.7, -20.7), mp(-30.0, -34.8, 1.1), mp(-40.8, 29.0), mp(-44.8, -43.0),
+                                            mp(7.2, -3.4),    mp(0.0, -41.3, -49.8), mp(0.0, -41.3, -49.8), mp(-22.1, 10.6, -17.3)};
+  const std::array<double, 8> weights{2.005906522115461e-321, 3.9175360785733789e-20, 15.4, 19.9, 1.9, 12.9, 1.1, 17.2};
+  CHECK(PathSegment::make_rational_bezier(control, weights).error() == Error::NotFinite);
+  // A weight ratio of 1e6 on a 1e4 mm curve is an ordinary (if extreme) conic: accepted, and every
+  // derivative the planner evaluates is finite.
+  const std::array<MachinePoint, 3> conic{mp(0, 0), mp(5000, 10000), mp(10000, 0)};
+  const std::array<double, 3> conic_weights{1, 1e6, 1};
+  const auto accepted = PathSegment::make_rational_bezier(conic, conic_weights);
+  REQUIRE(accepted.has_value());
+  for (int k = 0; k <= 64; ++k) {
+    for (std::size_t order = 1; order <= 3; ++order) {
+      const auto d = accepted.value().derivative(k / 64.0, order);
+      for (std::size_t axis = 0; axis < 3; ++axis) REQUIRE(std::isfinite(d[axis]));
+    }
+  }
+}
