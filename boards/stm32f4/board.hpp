@@ -59,8 +59,8 @@ class Stm32F4Board {
 
   // --- the firmware::Board concept (firmware/include/curvestep/firmware/board.hpp) ---
   static constexpr std::uint8_t axis_count = 3;                 ///< driven axes
-  static constexpr std::size_t step_events_per_tick = 32;       ///< StepBatch capacity per control tick
-  static constexpr std::size_t edge_ring = 64;                  ///< timed edges waiting for TIM2 (two ticks)
+  static constexpr std::size_t step_events_per_tick = 128;      ///< StepBatch capacity per control tick
+  static constexpr std::size_t edge_ring = 256;                 ///< timed edges waiting for TIM2 (two ticks)
   /// 1 MHz step timer (TIM2), 2 µs pulses and gaps, 1 µs direction set-up and hold.
   static constexpr StepTiming step_timing() noexcept { return StepTiming{1'000'000, 2000, 2000, 1000, 1000}; }
   /// Milliseconds since init() (from SysTick, whatever its rate).

@@ -17,8 +17,9 @@ import tty
 class QemuBoard:
     """One emulated board. Use as a context manager; QEMU is always killed on exit."""
 
-    def __init__(self, machine, elf, extra=(), log=None, wall_limit=60.0):
+    def __init__(self, machine, elf, extra=(), log=None, wall_limit=60.0, open_pty=True):
         self.machine, self.elf, self.extra, self.log, self.wall_limit = machine, elf, list(extra), log, wall_limit
+        self.open_pty = open_pty  # False: leave the pty to another program (a HIL host)
         self.process = None
         self.fd = None
         self.received = b""
@@ -44,6 +45,8 @@ class QemuBoard:
             if match:
                 self.pty = match.group(1).decode()
                 break
+        if not self.open_pty:
+            return self
         self.fd = os.open(self.pty, os.O_RDWR | os.O_NOCTTY)
         tty.setraw(self.fd)
         attributes = termios.tcgetattr(self.fd)
@@ -100,7 +103,7 @@ class QemuBoard:
 
 
 if __name__ == "__main__":
-    with QemuBoard(sys.argv[1], sys.argv[2], wall_limit=1e9) as board:
+    with QemuBoard(sys.argv[1], sys.argv[2], wall_limit=1e9, open_pty=False) as board:
         print(board.pty, flush=True)
         try:
             board.process.wait()
