@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <random>
 #include <utility>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/segment_curves.hpp>
+
+#include <support/numeric.hpp>
 
 #include "fake_board.hpp"
 
@@ -814,4 +817,33 @@ TEST_CASE("firmware: with float setpoints the job runs to its exact end point", 
     }
   }
   CHECK(worst <= 1);
+}
+
+TEST_CASE("firmware: random line noise never queues anything and the link recovers", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  std::mt19937 random(curvestep::testing::test_seed());
+  std::uniform_int_distribution<int> byte(0, 255);
+  const int count = curvestep::testing::test_count(20000);
+  for (int i = 0; i < count; ++i) {
+    board.incoming.push_back(static_cast<std::byte>(byte(random)));
+    if (i % 64 == 63) {
+      app.poll();
+      host.take_output();
+    }
+  }
+  board.incoming.push_back(std::byte{0});  // end whatever partial frame the noise left
+  app.poll();
+  host.take_output();
+  CHECK(app.controller().queued() == 0);
+  CHECK(app.state() == MachineState::Idle);
+  // The host's next segment still arrives (resent if a Nak or the timer asks for it).
+  REQUIRE(host.send(Message(line(p(0, 0), p(1, 0)))));
+  for (int i = 0; i < 400 && app.controller().queued() == 0; ++i) {
+    ++board.clock_ms;
+    host.pump();
+  }
+  CHECK(app.controller().queued() == 1);
 }
