@@ -2,11 +2,14 @@
 // SVG path data, transform lists and number lists (SVG 1.1 grammar), and elliptical arcs as conics.
 #include "svg_geometry.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
 #include <numbers>
 #include <system_error>
+
+#include <curvestep/host/csv.hpp>
 
 namespace curvestep::host::svg {
 namespace {
@@ -276,7 +279,11 @@ class PathParser {
         const bool sweep = scan_.flag("sweep flag");
         scan_.skip_separator();
         const Point2 to = pair(relative);
-        append_elliptical_arc(drawing(), current_, rx, ry, rotation, large, sweep, to);
+        try {
+          append_elliptical_arc(drawing(), current_, rx, ry, rotation, large, sweep, to);
+        } catch (const std::overflow_error& error) {
+          scan_.fail(error.what());
+        }
         current_ = to;
         break;
       }
@@ -363,16 +370,21 @@ void append_elliptical_arc(Subpath& subpath, Point2 from, double rx, double ry, 
     rx *= grow;
     ry *= grow;
   }
-  // Step 2: the centre in the ellipse's axes.
-  const double rx2 = rx * rx;
-  const double ry2 = ry * ry;
-  const double denominator = rx2 * y1 * y1 + ry2 * x1 * x1;
-  double numerator = rx2 * ry2 - denominator;
-  if (numerator < 0) numerator = 0;
-  double factor = std::sqrt(numerator / denominator);
+  // Step 2: the centre in the ellipse's axes. F.6.5.2 divided through by rx² ry² (X = x1'/rx,
+  // Y = y1'/ry), so that large radii do not overflow: c' = ±sqrt((1 - X² - Y²)/(X² + Y²)) (rx Y, -ry X).
+  const double x_unit = x1 / rx;
+  const double y_unit = y1 / ry;
+  const double chord_squared = x_unit * x_unit + y_unit * y_unit;
+  if (!(chord_squared > 0)) {  // radii so large against the chord that the small arc is its chord
+    if (!large_arc) {
+      append_line(subpath, to);
+      return;
+    }
+  }
+  double factor = std::sqrt(std::max(0.0, 1 - chord_squared) / chord_squared);
   if (large_arc == sweep) factor = -factor;
-  const double cx1 = factor * rx * y1 / ry;
-  const double cy1 = -factor * ry * x1 / rx;
+  const double cx1 = factor * rx * y_unit;
+  const double cy1 = -factor * ry * x_unit;
   // Step 3: the centre in user space.
   const Point2 center{cos_phi * cx1 - sin_phi * cy1 + (from.x + to.x) / 2, sin_phi * cx1 + cos_phi * cy1 + (from.y + to.y) / 2};
   // Step 4: start angle and sweep.
@@ -382,10 +394,14 @@ void append_elliptical_arc(Subpath& subpath, Point2 from, double rx, double ry, 
   double delta = angle_between(u, v);
   if (!sweep && delta > 0) delta -= 2 * std::numbers::pi;
   if (sweep && delta < 0) delta += 2 * std::numbers::pi;
+  if (!std::isfinite(cx1) || !std::isfinite(cy1) || !std::isfinite(delta)) {
+    throw std::overflow_error("the arc's ellipse is too large to compute (radii " + format_number(rx) + " and " +
+                              format_number(ry) + " for a chord of " + format_number(2 * std::hypot(hx, hy)) + ")");
+  }
   // The ellipse as the affine image of the unit circle.
   const Affine ellipse{cos_phi * rx, sin_phi * rx, -sin_phi * ry, cos_phi * ry, center.x, center.y};
   const auto pieces = static_cast<std::size_t>(std::ceil(std::fabs(delta) / half_pi - 1e-9));
-  const std::size_t count = pieces == 0 ? 1 : pieces;
+  const std::size_t count = std::clamp<std::size_t>(pieces, 1, 4);
   const double step = delta / static_cast<double>(count);
   const double weight = std::cos(step / 2);
   Point2 start = end_point(subpath);

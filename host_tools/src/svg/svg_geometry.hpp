@@ -85,7 +85,7 @@ struct Length {
 [[nodiscard]] Length parse_length(std::string_view text);
 
 /// Appends the SVG arc from `from` (the subpath's current point) to `to` as conics (or a line if
-/// a radius is zero); nothing if from == to.
+/// a radius is zero); nothing if from == to. std::overflow_error if the centre cannot be computed.
 void append_elliptical_arc(Subpath& subpath, Point2 from, double rx, double ry, double rotation_deg, bool large_arc,
                            bool sweep, Point2 to);
 

@@ -448,6 +448,12 @@ class SvgReader {
     const double values[2] = {mm.x, mm.y};
     for (std::size_t axis = 0; axis < 2; ++axis) {
       const auto q = Q16_16::from_double(values[axis]);
+      if (!std::isfinite(values[axis])) {
+        fail(element, "",
+             "the point (" + format_number(user.x) + ", " + format_number(user.y) +
+                 ") in user units has no finite image (an arc or a transform too large for double precision)",
+             Error::NotFinite);
+      }
       if (!q) {
         fail(element, "",
              "the point (" + format_number(user.x) + ", " + format_number(user.y) + ") in user units lands at (" +

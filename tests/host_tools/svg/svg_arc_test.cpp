@@ -135,3 +135,16 @@ TEST_CASE("svg: arcs with a zero radius are lines and negative radii are their a
   REQUIRE(positive.size() == negative.size());
   for (std::size_t i = 0; i < positive.size(); ++i) check_points(negative[i], positive[i].points);
 }
+
+TEST_CASE("svg: the small arc of an enormous ellipse is its chord", "[host_tools][svg]") {
+  // Radius 1e300 over a 10 mm chord: the sagitta 100 / (8e300) is far below the Q16.16 grid.
+  const auto pieces = drawn(import_page("<path d=\"M 0 0 A 1e300 1e300 0 0 1 10 0\"/>").job);
+  REQUIRE(pieces.size() == 1);
+  check_points(pieces[0], {on_page(0, 0), on_page(10, 0)});
+  // Radius 1e6: still a rational arc, whose middle bulges by 12.5e-6 mm (below one grid step).
+  const Job job = import_page("<path d=\"M 0 0 A 1e6 1e6 0 0 1 10 0\"/>").job;
+  const auto arc = drawn(job);
+  REQUIRE(arc.size() == 1);
+  CHECK(arc[0].type == SegmentType::RationalBezier);
+  CHECK(near(job.segments.back().point(0.5), on_page(5, 0), 2 * grid_mm));
+}

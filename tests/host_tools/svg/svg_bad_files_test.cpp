@@ -44,6 +44,7 @@ TEST_CASE("svg: each malformed file names the file, line, element and what is wr
       {"bad_path_huge_number.svg", 3, "<path> \"d\"", Error::InvalidJob, "the number 1e400 is too large"},
       {"bad_out_of_range.svg", 4, "<circle id=\"sun\">", Error::FixedOverflow, "outside the Q16.16 range"},
       {"bad_huge_scale.svg", 4, "<path>", Error::FixedOverflow, "lands at (1e+06, -999900) mm, outside the Q16.16 range"},
+      {"bad_arc_huge.svg", 3, "<path> \"d\"", Error::InvalidJob, "at character 31: the arc's ellipse is too large to compute (radii 1e+300 and 1e+300 for a chord of 10)"},
       {"bad_transform.svg", 3, "<g> \"transform\"", Error::InvalidJob, "rotate takes 1 or 3 numbers, got 2"},
       {"bad_transform_name.svg", 3, "<path> \"transform\"", Error::InvalidJob, "at character 1: unknown transform \"spin\""},
       {"bad_unit.svg", 1, "<svg> \"width\"", Error::InvalidJob, "unsupported unit \"em\""},

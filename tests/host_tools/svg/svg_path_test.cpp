@@ -101,6 +101,10 @@ TEST_CASE("svg: implicit repetition, packed numbers and exponents", "[host_tools
   const auto exponents = pieces_of("M 1e1 2E+1 L +3.0e-0 .4e2");
   REQUIRE(exponents.size() == 1);
   check_points(exponents[0], {on_page(10, 20), on_page(3, 40)});
+  // A number too small for a double is zero.
+  const auto tiny = pieces_of("M 0 0 L 1e-400 10");
+  REQUIRE(tiny.size() == 1);
+  check_points(tiny[0], {on_page(0, 0), on_page(0, 10)});
   // Repeated curve arguments make several curves.
   const auto curves = pieces_of("M0 0 q 5 5 10 0 5 5 10 0");
   REQUIRE(curves.size() == 2);
