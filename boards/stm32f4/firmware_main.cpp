@@ -4,6 +4,8 @@
 #include <curvestep/boards/stm32/startup.hpp>
 #include <curvestep/firmware/app.hpp>
 
+#include <type_traits>
+
 #include "board.hpp"
 
 #ifndef CURVESTEP_QUEUE_SEGMENTS
@@ -13,9 +15,15 @@
 #define CURVESTEP_LOOKAHEAD_SEGMENTS 16
 #endif
 
+// Float setpoints on the Cortex-M4F; Q16.16 when built for a Cortex-M3 STM32F2 (CMakeLists.txt).
+#ifndef CURVESTEP_FIXED_POINT_SETPOINTS
+#define CURVESTEP_FIXED_POINT_SETPOINTS 0
+#endif
+
 namespace {
 using Board = curvestep::boards::Stm32F4Board;
-using App = curvestep::firmware::App<Board, float, CURVESTEP_QUEUE_SEGMENTS, CURVESTEP_LOOKAHEAD_SEGMENTS>;
+using Scalar = std::conditional_t<CURVESTEP_FIXED_POINT_SETPOINTS != 0, curvestep::Q16_16, float>;
+using App = curvestep::firmware::App<Board, Scalar, CURVESTEP_QUEUE_SEGMENTS, CURVESTEP_LOOKAHEAD_SEGMENTS>;
 }  // namespace
 
 extern "C" [[noreturn]] void curvestep_main() {

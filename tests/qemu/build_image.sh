@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # Cross-builds the images of one STM32 board for the QEMU tests (the stm32f1/stm32f4 preset's settings).
-# Usage: build_image.sh <stm32f1|stm32f4> <source-dir> <build-dir> <target>...
+# Usage: build_image.sh <stm32f1|stm32f4|stm32f2-m3> <source-dir> <build-dir> <target>...
+# stm32f2-m3: the stm32f4 board code for a Cortex-M3 STM32F2 with Q16.16 setpoints (QEMU netduino2).
 set -euo pipefail
 board=$1 source_dir=$2 build_dir=$3
 shift 3
 case $board in
   stm32f1) cpu=cortex-m3 ;;
   stm32f4) cpu=cortex-m4f ;;
+  stm32f2-m3) cpu=cortex-m3 board=stm32f4 ;;
   *) echo "unknown board $board"; exit 2 ;;
 esac
 cmake -S "$source_dir" -B "$build_dir" -DCMAKE_TOOLCHAIN_FILE="$source_dir/cmake/toolchains/arm-none-eabi-gcc.cmake" \

@@ -13,7 +13,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from qemu_board import QemuBoard  # noqa: E402
 
-MACHINES = {"stm32f1": "stm32vldiscovery", "stm32f4": "netduinoplus2"}
+MACHINES = {"stm32f1": "stm32vldiscovery", "stm32f4": "netduinoplus2", "stm32f2-m3": "netduino2"}
 
 
 def cobs_encode(data):

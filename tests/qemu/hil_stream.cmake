@@ -2,7 +2,8 @@
 # firmware in QEMU receives a job from `curvestep stream` over -serial pty; its setpoint stream must
 # match `curvestep sim` within 1 µm (float firmware). Skipped (77) while curvestep has no `stream`.
 # The STM32F1 (Q16.16, bit-identical) variant cannot run: its firmware needs more SRAM than QEMU's
-# STM32F100 has (docs/boards.md).
+# STM32F100 has (docs/boards.md). In its place the same Cortex-M3 + Q16.16 firmware runs on QEMU's
+# netduino2 (STM32F205: Cortex-M3, F2/F4 peripheral map) and must match sim bit for bit.
 if(TARGET curvestep)
   # machine_rapid_at_vmax.json = examples/jobs/machine.json with rapid = v_max: the protocol has no
   # rapid field, the device runs rapids at v_max, so sim must too for the streams to be comparable.
@@ -20,5 +21,21 @@ if(TARGET curvestep)
                      ${PROJECT_SOURCE_DIR}/examples/jobs/${job}.json ${machine} --tolerance 0.001)
     set_tests_properties("${name}" PROPERTIES LABELS "qemu;integration" TIMEOUT 240 SKIP_RETURN_CODE 77
                          FIXTURES_REQUIRED qemu_stm32f4_images)
+  endforeach()
+
+  add_test(NAME "qemu: stm32f2-m3 images cross-build (Cortex-M3, Q16.16 firmware)"
+           COMMAND ${qemu_dir}/build_image.sh stm32f2-m3 ${PROJECT_SOURCE_DIR} ${PROJECT_BINARY_DIR}/qemu-stm32f2-m3
+                   curvestep_stm32f4_firmware)
+  set_tests_properties("qemu: stm32f2-m3 images cross-build (Cortex-M3, Q16.16 firmware)" PROPERTIES
+                       LABELS qemu TIMEOUT 900 FIXTURES_SETUP qemu_stm32f2-m3_images)
+  foreach(job seed_cubic inch_square)
+    set(name "qemu: Cortex-M3 Q16.16 firmware streams ${job} bit-identical to curvestep sim")
+    add_test(NAME "${name}"
+             COMMAND ${Python3_EXECUTABLE} ${qemu_dir}/hil_stream_test.py stm32f2-m3
+                     ${PROJECT_BINARY_DIR}/qemu-stm32f2-m3/bin/curvestep_stm32f4_firmware.elf $<TARGET_FILE:curvestep>
+                     ${PROJECT_SOURCE_DIR}/examples/jobs/${job}.json ${PROJECT_SOURCE_DIR}/examples/jobs/machine.json
+                     --exact)
+    set_tests_properties("${name}" PROPERTIES LABELS "qemu;integration" TIMEOUT 240 SKIP_RETURN_CODE 77
+                         FIXTURES_REQUIRED qemu_stm32f2-m3_images)
   endforeach()
 endif()
