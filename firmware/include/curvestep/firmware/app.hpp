@@ -13,6 +13,8 @@
 //     bool moving();      // on_tick() produces setpoints
 //     const Controller& controller();   // the MotionController, for reports and tests
 //     const AppStatistics& statistics(); // dropped frames and setpoints
+//     std::uint8_t last_error();  const protocol::WirePoint& position();  // as in StatusReport
+//     std::uint16_t free_segments();     // the credit offered to the host, in whole segments
 //   };
 //
 // poll() and on_tick() must not run concurrently: call both from one context (the main loop,
@@ -25,10 +27,11 @@
 //                           a new session stops and clears any job.
 //   MachineConfiguration -> to_machine_limits, MotionController::configure, StepConfig from the
 //                           board's StepTiming (InvalidRate if the timer is no multiple of the rate).
-//   QueueSegment         -> continuity with the previous segment (SegmentsNotConnected), to_path_segment,
-//                           travel range (OutsideTravel, index = axis), try_push. The credit granted to the host counts whole wire segments of
-//                           the worst case: a Bézier may be split at up to 6 cusps into 7 queue
-//                           slots, so free credit = free slots / 7 and an accepted segment always fits.
+//   QueueSegment         -> continuity with the previous segment (SegmentsNotConnected),
+//                           to_path_segment, travel range (OutsideTravel, index = axis), try_push.
+//                           The credit granted to the host counts whole wire segments of the worst
+//                           case: a Bézier may be split at up to 6 cusps into 7 queue slots, so the
+//                           credit is free slots / 7 and an accepted segment always fits.
 //                           Flag "end of job" marks the last one.
 //   Start                -> arms the job; motion begins when the queue holds Lookahead + 1
 //                           segments or the job's last segment (the start rule, below).
@@ -66,7 +69,9 @@
 // Time budget of on_tick(): one MotionController::next_setpoint (a profile evaluation, a table
 // search, one de Casteljau evaluation in double) plus StepGenerator::advance (see its header:
 // ~800 to ~3500 Cortex-M3 instructions) plus one copy into the setpoint ring; it never waits.
-// The planning work (try_push, segment starts) runs in poll() or at segment boundaries.
+// The tick that crosses into a new segment also plans it (arc-length table and speed profile,
+// MotionController::begin_segment): that is the worst-case tick. Segment analysis (try_push:
+// cusps, caps, junction speed) runs in poll().
 // Nothing allocates; all buffers are members sized at compile time (see docs/firmware.md).
 #pragma once
 
