@@ -383,6 +383,12 @@ TEST_CASE("firmware: abort stops at once, flushes the queue and allows a new job
   host.run_ticks(50);
   CHECK(app.position() == stopped_at);
   CHECK(board.steps == steps);
+  // A job from elsewhere is refused: the machine stands where the abort left it.
+  REQUIRE(host.send(Message(line(p(0, 0), p(1, 0)))));
+  host.pump();
+  REQUIRE(host.received.errors.size() == 1);
+  CHECK(host.received.errors[0].code == Error::SegmentsNotConnected);
+  host.received.errors.clear();
   // A new job from where the machine stopped runs to its end.
   QueueSegment back = line(stopped_at, p(0, 0));
   back.end_of_job = true;
@@ -846,4 +852,27 @@ TEST_CASE("firmware: random line noise never queues anything and the link recove
     host.pump();
   }
   CHECK(app.controller().queued() == 1);
+}
+
+TEST_CASE("firmware: a new session declares the position afresh with its first job", "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  QueueSegment first = line(p(0, 0), p(2, 0));
+  first.end_of_job = true;
+  queue_and_start(host, {first});
+  host.run_ticks(1000);
+  REQUIRE(app.state() == MachineState::Idle);
+  REQUIRE(app.position() == p(2, 0));
+  Host<TestApp> second_host(board, app);
+  REQUIRE(second_host.connect(0x4321));
+  QueueSegment elsewhere = line(p(10, 10), p(12, 10));
+  elsewhere.end_of_job = true;
+  queue_and_start(second_host, {elsewhere});
+  second_host.run_ticks(1000);
+  CHECK(second_host.received.errors.empty());
+  CHECK(app.position() == p(12, 10));
+  // The steps moved by the second job only: the first job's 2 mm and then 2 mm more.
+  CHECK(board.steps == std::array<std::int64_t, 3>{steps_of(4), 0, 0});
 }

@@ -38,7 +38,8 @@
 //   FeedHold / Resume    -> MotionController::hold / resume (braking along the path); a StatusReport
 //                           follows once the machine stands; Resume while still braking continues
 //                           from the stop.
-//   Abort                -> stop at once: controller aborted and flushed, board.fault_stop().
+//   Abort                -> stop at once: controller aborted and flushed, board.fault_stop(); the
+//                           next job must start where the machine stopped (StatusReport position).
 //   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, position).
 // Every failed command is answered with ErrorReport(code, index, the frame's sequence number); a
 // fault met while running carries the sequence number of the last frame received. The segments of
@@ -154,16 +155,18 @@ class App {
     }
     Setpoint<S> setpoint = next.value();
     const std::uint64_t job_tick = setpoint.tick;
-    setpoint.tick = tick_base_ + job_tick;
     protocol::WirePoint wire{};
     for (std::size_t axis = 0; axis < protocol::max_axes; ++axis) {
       auto raw = to_raw(setpoint.position[axis]);
       if (!raw) return raise_fault(fail(raw.error(), setpoint.segment));
       wire[axis] = raw.value();
     }
-    if (first_tick_) {
+    if (!positioned_) {
+      // The first setpoint after power-up, a new session or a new configuration declares where
+      // the machine is; every later one moves the steps from there.
+      setpoint.tick = steps_.tick();
       if (auto reset = steps_.reset(setpoint); !reset) return raise_fault(reset.failure());
-      first_tick_ = false;
+      positioned_ = true;
     } else {
       if (auto advanced = steps_.advance(setpoint, batch_); !advanced) return raise_fault(advanced.failure());
       play(batch_, board_);
@@ -178,7 +181,6 @@ class App {
     if (after == ControllerState::Finished) {
       moving_ = false;
       job_done_ = true;
-      tick_base_ = steps_.tick();
     } else if (after == ControllerState::Starved && before == ControllerState::Running) {
       underrun_ = true;
     } else if (after == ControllerState::Held && before == ControllerState::Holding) {
@@ -261,6 +263,7 @@ class App {
       stop_job(moving_);
       last_error_ = 0;
       has_last_end_ = false;
+      positioned_ = false;
     } else if (r.disposition == protocol::Disposition::Deliver) {
       sequence_ = frame.sequence;
       dispatch(frame);
@@ -312,7 +315,8 @@ class App {
     CURVESTEP_CHECK(controller_.configure(limits));
     steps_ = StepGenerator(step_config);
     travel_ = travel;
-    first_tick_ = true;
+    positioned_ = false;
+    has_last_end_ = false;
     configured_ = true;
     axis_count_ = m.axis_count;
     control_rate_hz_ = m.control_rate_hz;
@@ -409,8 +413,6 @@ class App {
     if (outputs) board_.fault_stop();
     controller_.abort();
     controller_.reset();
-    if (!first_tick_) tick_base_ = steps_.tick();
-    first_tick_ = true;
     moving_ = false;
     start_pending_ = false;
     held_before_start_ = false;
@@ -421,7 +423,9 @@ class App {
     resume_when_held_ = false;
     fault_pending_ = false;
     job_segments_ = 0;
-    has_last_end_ = false;
+    // The next job starts where the machine stands.
+    has_last_end_ = positioned_;
+    last_end_ = position_;
     state_ = protocol::MachineState::Idle;
   }
 
@@ -446,7 +450,6 @@ class App {
     if (job_done_) {
       job_done_ = false;
       controller_.reset();
-      first_tick_ = true;
       job_end_known_ = false;
       job_segments_ = 0;
       state_ = protocol::MachineState::Idle;
@@ -596,7 +599,6 @@ class App {
   protocol::WirePoint last_end_{};
   TravelLimits travel_{};
   Failure fault_{Error::InvalidState, no_index};
-  std::uint64_t tick_base_ = 0;
   std::uint32_t control_rate_hz_ = 0;
   std::uint32_t setpoint_index_ = 0;
   std::uint32_t job_segments_ = 0;
@@ -606,7 +608,7 @@ class App {
   std::uint8_t sequence_ = 0;
   bool configured_ = false;
   bool moving_ = false;
-  bool first_tick_ = true;
+  bool positioned_ = false;
   bool start_pending_ = false;
   bool held_before_start_ = false;
   bool job_end_known_ = false;
