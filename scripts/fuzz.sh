@@ -2,7 +2,7 @@
 # The longer fuzz run (docs/robustness.md): builds the libFuzzer harnesses with clang and runs each
 # one for a while, then prints libFuzzer's coverage and speed per harness.
 # Usage: scripts/fuzz.sh [seconds per harness, default 300] [harness ...]
-#   harnesses: message link job machine planner (default: all)
+#   harnesses: message link job machine planner gcode svg (default: all)
 #   FUZZ_BUILD_DIR  build directory (default build/fuzz)
 #   FUZZ_MERGE=1    afterwards, merge the new inputs that add coverage into tests/fuzz/corpus/<harness>
 # Crashing inputs are saved as $FUZZ_BUILD_DIR/artifacts/<harness>-crash-*: add each to
@@ -13,7 +13,7 @@ root=$(pwd)
 seconds=${1:-300}
 shift || true
 harnesses=("$@")
-[ ${#harnesses[@]} -eq 0 ] && harnesses=(message link job machine planner)
+[ ${#harnesses[@]} -eq 0 ] && harnesses=(message link job machine planner gcode svg)
 build=${FUZZ_BUILD_DIR:-$root/build/fuzz}
 
 tests/fuzz/build_harnesses.sh "$root" "$build" >/dev/null
