@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: MIT
+// HIL test helpers: wire-exact job and machine files, and raw Q16.16 setpoints read from CSV.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "process.hpp"
+
+namespace curvestep::test {
+
+/// A machine whose every value travels exactly on the wire (Q16.16 or whole numbers), with no
+/// rapid speed and the S-curve profile, which the protocol does not carry: the device and
+/// `curvestep sim` then plan from identical numbers.
+inline std::filesystem::path wire_exact_machine() {
+  const auto path = scratch_dir() / "machine.json";
+  std::ofstream(path) << R"({
+  "version": 1, "v_max": 200, "a_max": 2000, "j_max": 50000, "feed": 50,
+  "tolerance": 0.0078125, "rate_hz": 1000, "junction_deviation": 0.015625,
+  "max_step_rate": 100000, "profile": "scurve",
+  "axes": {
+    "x": {"steps_per_mm": 80, "v_max": 200, "a_max": 2000},
+    "y": {"steps_per_mm": 80, "v_max": 200, "a_max": 2000},
+    "z": {"steps_per_mm": 400, "v_max": 20, "a_max": 500}
+  }
+})";
+  return path;
+}
+
+/// A copy of `job` with every weight rounded to Q16.16 (the wire's format), so the file means
+/// the same to the simulator and to the device.
+inline std::filesystem::path wire_exact_job(const std::filesystem::path& job) {
+  std::ifstream in(job);
+  nlohmann::json root = nlohmann::json::parse(in, nullptr, true, true);
+  for (auto& segment : root.at("segments")) {
+    if (!segment.contains("weights")) continue;
+    for (auto& w : segment.at("weights")) w = std::nearbyint(w.get<double>() * 65536.0) / 65536.0;
+  }
+  const auto path = scratch_dir() / ("exact_" + job.filename().string());
+  std::ofstream(path) << root.dump(2);
+  return path;
+}
+
+/// A long 2D job: `count` lines zig-zagging along X (about 10 mm each).
+inline std::filesystem::path zigzag_job(int count) {
+  nlohmann::json segments = nlohmann::json::array();
+  for (int i = 0; i < count; ++i) {
+    const double x0 = 4.0 * i;
+    const double y0 = (i % 2 == 0) ? 0.0 : 10.0;
+    segments.push_back({{"type", "line"}, {"points", {{x0, y0}, {x0 + 4.0, 10.0 - y0}}}});
+  }
+  const nlohmann::json root = {{"version", 1}, {"units", "mm"}, {"segments", segments}};
+  const auto path = scratch_dir() / ("zigzag_" + std::to_string(count) + ".json");
+  std::ofstream(path) << root.dump(1);
+  return path;
+}
+
+/// One setpoint as raw Q16.16 (t as an index-scaled double is compared too).
+struct RawSetpoint {
+  double t = 0;
+  std::array<std::int64_t, 3> raw{};
+  friend bool operator==(const RawSetpoint&, const RawSetpoint&) = default;
+};
+
+/// Reads `t,x,y,z,v` CSV; each coordinate must be an exact Q16.16 value.
+inline std::vector<RawSetpoint> read_raw_setpoints(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  if (!in) throw std::runtime_error("cannot read " + csv.string());
+  std::string line;
+  std::getline(in, line);
+  if (line != "t,x,y,z,v") throw std::runtime_error(csv.string() + ": unexpected header " + line);
+  std::vector<RawSetpoint> out;
+  while (std::getline(in, line)) {
+    std::stringstream s(line);
+    std::string field;
+    RawSetpoint r;
+    std::getline(s, field, ',');
+    r.t = std::stod(field);
+    for (auto& axis : r.raw) {
+      std::getline(s, field, ',');
+      const double scaled = std::stod(field) * 65536.0;
+      if (scaled != std::nearbyint(scaled)) throw std::runtime_error(csv.string() + ": not a Q16.16 value: " + field);
+      axis = static_cast<std::int64_t>(scaled);
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+/// Index of the first differing setpoint, or -1 if equal (sizes included).
+inline long first_difference(const std::vector<RawSetpoint>& a, const std::vector<RawSetpoint>& b) {
+  const std::size_t n = std::min(a.size(), b.size());
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(a[i] == b[i])) return static_cast<long>(i);
+  }
+  return a.size() == b.size() ? -1 : static_cast<long>(n);
+}
+
+}  // namespace curvestep::test
