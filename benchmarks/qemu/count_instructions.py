@@ -93,20 +93,26 @@ def main():
         label, index = match.group(1), int(match.group(2))
         steps, steady, interval = int(match.group(3)), int(match.group(4)), int(match.group(5))
         fd_checksum, points, dc_checksum = int(match.group(6)), int(match.group(7)), int(match.group(8))
-        first = 8 * (index - 1)  # eight marks per scalar type, in order
-        if len(entries) < first + 8:
-            raise SystemExit(f"found {len(entries)} mark entries, expected at least {first + 8}")
-        e = entries[first:first + 8]
+        first = 12 * (index - 1)  # twelve marks per scalar type, in order
+        if len(entries) < first + 12:
+            raise SystemExit(f"found {len(entries)} mark entries, expected at least {first + 12}")
+        e = entries[first:first + 12]
         overhead = e[1] - e[0]
         fd_steady = e[3] - e[2] - overhead
         fd = fd_steady + e[5] - e[4] - overhead
         dc = e[7] - e[6] - overhead
+        step_only = e[9] - e[8] - overhead
+        step_point = e[11] - e[10] - overhead
         results.append({
             "scalar": label,
             "forward_difference": {"setpoints": steps, "reseed_interval": interval, "instructions": fd,
                                    "instructions_per_setpoint": round(fd / steps, 2),
                                    "steady_setpoints": steady,
                                    "steady_instructions_per_setpoint": round(fd_steady / steady, 2)
+                                   if steady < interval else None,
+                                   "steady_step_only_per_setpoint": round(step_only / steady, 2)
+                                   if steady < interval else None,
+                                   "steady_step_and_point_per_setpoint": round(step_point / steady, 2)
                                    if steady < interval else None,
                                    "checksum": fd_checksum},
             "de_casteljau": {"setpoints": points, "instructions": dc,
