@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 #include <optional>
 #include <utility>
 
@@ -126,6 +127,7 @@ class SvgReader {
     const tinyxml2::XMLElement* root = document_.RootElement();
     if (root == nullptr) fail_at(1, "", "invalid XML: no root element");
     if (local_name(*root) != "svg") fail(*root, "", "the root element is <" + std::string(root->Name()) + ">, expected <svg>");
+    index_ids(*root);
     const Affine root_map = root_viewport(*root);
     visit_children(*root, root_map);
     if (drawn_.empty()) fail(*root, "", "the drawing has no paths or shapes to draw");
@@ -351,15 +353,53 @@ class SvgReader {
       subpaths.push_back(line);
     } else if (name == "polyline" || name == "polygon") {
       subpaths = poly(element, name == "polygon");
-    } else if (name == "text" || name == "image" || name == "use" || name == "foreignObject") {
-      warn(element, name == "text" ? "is not drawn (convert text to paths first)"
-                                   : name == "use" ? "is not drawn (unlink clones first)" : "is not drawn");
+    } else if (name == "use") {
+      use(element, map);
+      return;
+    } else if (name == "text" || name == "image" || name == "foreignObject") {
+      warn(element, name == "text" ? "is not drawn (convert text to paths first)" : "is not drawn");
       return;
     } else {
       warn(element, "is not drawn (unknown element)");
       return;
     }
     add(element, map, subpaths);
+  }
+
+  void index_ids(const tinyxml2::XMLElement& element) {
+    if (const char* id = element.Attribute("id")) ids_.emplace(id, &element);
+    for (const auto* child = element.FirstChildElement(); child != nullptr; child = child->NextSiblingElement()) index_ids(*child);
+  }
+
+  /// <use>: the referenced element (or a symbol's children) drawn at x, y under the use's transform.
+  void use(const tinyxml2::XMLElement& element, const Affine& map) {
+    const char* attribute = element.Attribute("href") != nullptr ? "href" : "xlink:href";
+    const char* raw = element.Attribute(attribute);
+    if (raw == nullptr) return;  // nothing referenced: nothing drawn
+    const std::string reference = trim(raw);
+    if (reference.empty() || reference.front() != '#') {
+      fail(element, attribute, "only references into the same file (\"#id\") are supported, got \"" + reference + "\"");
+    }
+    const auto found = ids_.find(reference.substr(1));
+    if (found == ids_.end()) fail(element, attribute, "no element has id \"" + reference.substr(1) + "\"");
+    const tinyxml2::XMLElement& target = *found->second;
+    if (std::find(active_uses_.begin(), active_uses_.end(), &element) != active_uses_.end() || active_uses_.size() > 64) {
+      fail(element, attribute, "the reference \"" + reference + "\" refers back to itself");
+    }
+    active_uses_.push_back(&element);
+    const Affine placed = map * Affine{1, 0, 0, 1, length(element, "x", 0), length(element, "y", 0)};
+    if (local_name(target) == "symbol") {
+      Affine inner = with_transform(target, placed);
+      if (const auto box = view_box(target)) {
+        const auto width = size(element, "width");
+        const auto height = size(element, "height");
+        inner = inner * viewbox_map(target, *box, width.value_or((*box)[2]), height.value_or((*box)[3]));
+      }
+      visit_children(target, inner);
+    } else {
+      visit(target, placed);
+    }
+    active_uses_.pop_back();
   }
 
   std::vector<Subpath> rect(const tinyxml2::XMLElement& element) const {
@@ -606,6 +646,8 @@ class SvgReader {
   tinyxml2::XMLDocument document_;
   std::vector<DrawnSubpath> drawn_;
   std::vector<std::string> warnings_;
+  std::map<std::string, const tinyxml2::XMLElement*> ids_;
+  std::vector<const tinyxml2::XMLElement*> active_uses_;
 };
 
 }  // namespace

@@ -118,11 +118,32 @@ TEST_CASE("svg: zero-size shapes, hidden elements and definitions are not drawn"
   const auto result = import_page(
       "<rect width=\"0\" height=\"5\"/><circle r=\"0\"/><ellipse rx=\"3\" ry=\"0\"/>"
       "<g style=\"display:none\"><line x2=\"5\"/></g><line display=\"none\" x2=\"6\"/>"
-      "<defs><line x2=\"7\"/></defs><text x=\"1\">hi</text>"
+      "<defs><line x2=\"7\"/></defs><text x=\"1\">hi</text><image href=\"a.png\"/>"
       "<line x1=\"1\" x2=\"8\"/>");
   const auto pieces = drawn(result.job);
   REQUIRE(pieces.size() == 1);
   check_points(pieces[0], {on_page(1, 0), on_page(8, 0)});
-  REQUIRE(result.warnings.size() == 1);
+  REQUIRE(result.warnings.size() == 2);
   CHECK(result.warnings[0] == "test.svg:2: <text> is not drawn (convert text to paths first)");
+  CHECK(result.warnings[1] == "test.svg:2: <image> is not drawn");
+}
+
+TEST_CASE("svg: use draws the referenced element or symbol at x, y under its transform", "[host_tools][svg]") {
+  const auto pieces = drawn(import_page(
+                                "<defs><line id=\"dash\" x1=\"0\" y1=\"0\" x2=\"5\" y2=\"0\"/>"
+                                "<symbol id=\"tick\" viewBox=\"0 0 1 1\"><line x2=\"1\" y2=\"1\"/></symbol></defs>"
+                                "<use href=\"#dash\" x=\"10\" y=\"20\"/>"
+                                "<use xlink:href=\"#dash\" transform=\"scale(2)\" y=\"5\"/>"
+                                "<use href=\"#tick\" x=\"50\" y=\"50\" width=\"10\" height=\"10\"/>")
+                                .job);
+  REQUIRE(pieces.size() == 3);
+  check_points(pieces[0], {on_page(10, 20), on_page(15, 20)});
+  check_points(pieces[1], {on_page(0, 10), on_page(10, 10)});
+  check_points(pieces[2], {on_page(50, 50), on_page(60, 60)});
+}
+
+TEST_CASE("svg: a use that refers to itself or to nothing is an error", "[host_tools][svg]") {
+  CHECK_THROWS_WITH(import_page("<g id=\"loop\"><use href=\"#loop\"/></g>"),
+                    Catch::Contains("test.svg:2: <use> \"href\": the reference \"#loop\" refers back to itself"));
+  CHECK_THROWS_WITH(import_page("<use href=\"#missing\"/>"), Catch::Contains("<use> \"href\": no element has id \"missing\""));
 }
