@@ -36,6 +36,9 @@ constexpr std::uint32_t dir_pins[3] = {3, 4, 5};   // PA3, PA4, PA5
 
 /// HSE 8 MHz -> PLL x9 = 72 MHz; AHB /1, APB1 /2 (36 MHz max), APB2 /1; flash 2 wait states.
 Clocks setup_clocks() noexcept {
+  // RCC_CR resets to HSION | HSIRDY on silicon; all zero means an emulator without RCC, whose core
+  // clock is fixed (QEMU's stm32vldiscovery clocks its STM32F100 at 24 MHz): SysTick and the millisecond clock must use that.
+  if (reg(rcc_cr) == 0) return {24'000'000, 24'000'000, 24'000'000, false, true};
   reg(rcc_cr) = reg(rcc_cr) | cr_hseon;
   if (!stm32::wait_for_bits(rcc_cr, cr_hserdy, cr_hserdy, wait_attempts)) {
     reg(rcc_cr) = reg(rcc_cr) & ~cr_hseon;

@@ -5,7 +5,7 @@
 // DIR X/Y/Z = PA3/PA4/PA5 (push-pull outputs). Registers from RM0008 (STM32F101/F103 reference
 // manual); no vendor SDK. The same image runs on QEMU's stm32vldiscovery (STM32F100): QEMU 7.2
 // models the USART and the Cortex-M core but not RCC, flash interface or GPIO (reads as 0, writes
-// ignored), so the clock set-up times out waiting for HSERDY and stays on the 8 MHz HSI.
+// ignored); RCC_CR = 0 is impossible on silicon, so the board then assumes QEMU's 24 MHz core clock.
 #pragma once
 
 #include <cstddef>

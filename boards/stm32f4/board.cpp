@@ -40,6 +40,9 @@ constexpr std::uint32_t dir_pins[3] = {3, 4, 5};   // PA3, PA4, PA5
 /// HSE 25 MHz / M 25 * N 336 / P 2 = 168 MHz (Q 7: 48 MHz); AHB /1, APB1 /4 (42 MHz), APB2 /2 (84 MHz);
 /// voltage scale 1, flash 5 wait states with prefetch and caches.
 Clocks setup_clocks() noexcept {
+  // RCC_CR resets to HSION | HSIRDY on silicon; all zero means an emulator without RCC, whose core
+  // clock is fixed (QEMU's netduinoplus2 clocks its STM32F405 at 168 MHz): SysTick and the millisecond clock must use that.
+  if (reg(rcc_cr) == 0) return {168'000'000, 42'000'000, 84'000'000, false, true};
   reg(rcc_apb1enr) = reg(rcc_apb1enr) | (1u << 28);  // PWREN
   reg(pwr_cr) = reg(pwr_cr) | (1u << 14);             // VOS: scale 1 (168 MHz)
   reg(rcc_cr) = reg(rcc_cr) | cr_hseon;

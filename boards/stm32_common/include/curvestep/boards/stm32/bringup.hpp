@@ -2,7 +2,7 @@
 // Board bring-up console: a line-based monitor on the console UART that exercises every driver.
 //
 // Commands (one per line, answers end in "\r\n"):
-//   hello        -> "hello from <board> hclk=<Hz> clock=<hse-pll|hsi>"
+//   hello        -> "hello from <board> hclk=<Hz> clock=<hse-pll|hsi|emulator>"
 //   echo <text>  -> "<text>"
 //   tick         -> waits for 20 control ticks: "tick ok <first> <last>"
 //   gpio         -> sets DIR X/Z, pulses STEP X/Y/Z: "gpio ok"
@@ -63,7 +63,8 @@ class BringUp {
       say(Board::name);
       say(" hclk=");
       number(board_.clocks().hclk_hz);
-      say(board_.clocks().external ? " clock=hse-pll\r\n" : " clock=hsi\r\n");
+      say(board_.clocks().emulated ? " clock=emulator\r\n"
+                                   : (board_.clocks().external ? " clock=hse-pll\r\n" : " clock=hsi\r\n"));
     } else if (command.starts_with("echo ")) {
       say(std::string_view(command.data() + 5, command.size() - 5));  // substr() could throw
       say("\r\n");

@@ -12,6 +12,7 @@ struct Clocks {
   std::uint32_t pclk1_hz;  ///< APB1 peripheral clock
   std::uint32_t pclk2_hz;  ///< APB2 peripheral clock (USART1)
   bool external;           ///< true when running from the crystal through the PLL, false on HSI
+  bool emulated = false;   ///< RCC absent (RCC_CR reads 0, impossible on silicon): an emulator's fixed clock
 };
 
 }  // namespace curvestep::stm32
