@@ -212,3 +212,57 @@ TEST_CASE("range: rational segments whose weight ratio makes derivatives overflo
     }
   }
 }
+
+TEST_CASE("range: machine limits at the ends of the double range give finite setpoints or an error", "[core][range]") {
+  // Every limit 1e300 (squares overflow double): the controller either refuses the limits, or runs
+  // the job to its end point with finite setpoints, or stops with a Result error. Never NaN output.
+  for (const double huge : {1e150, 1e300, std::numeric_limits<double>::max()}) {
+    MachineLimits m = test_machine();
+    m.v_max_mm_per_s = huge;
+    m.feed_mm_per_s = huge;
+    m.a_max_mm_per_s2 = huge;
+    m.j_max_mm_per_s3 = huge;
+    m.rapid_mm_per_s = huge;
+    MotionController<double, 8, 4> controller;
+    if (!controller.configure(m)) continue;
+    const auto pushed = controller.try_push(PathSegment::make_line(mp(0, 0), mp(10, 5)).value(), 0);
+    if (!pushed) continue;
+    controller.end_of_job();
+    REQUIRE(controller.start().has_value());
+    Setpoint<double> last{};
+    bool errored = false;
+    for (int tick = 0; tick < 10000 && !controller.finished(); ++tick) {
+      const auto sp = controller.next_setpoint();
+      if (!sp) {
+        errored = true;
+        CHECK(controller.state() == ControllerState::Fault);
+        break;
+      }
+      last = sp.value();
+      for (std::size_t a = 0; a < 3; ++a) REQUIRE(std::isfinite(last.position[a]));
+      REQUIRE(std::isfinite(last.speed_mm_per_s));
+    }
+    if (!errored) {
+      REQUIRE(controller.finished());
+      CHECK(last.position[0] == 10.0);
+      CHECK(last.position[1] == 5.0);
+    }
+  }
+  // Tiny limits: a crawl, but every setpoint is finite and on the line.
+  MachineLimits slow = test_machine();
+  slow.v_max_mm_per_s = 1e-300;
+  slow.feed_mm_per_s = 1e-300;
+  slow.a_max_mm_per_s2 = 1e-300;
+  slow.j_max_mm_per_s3 = 1e-300;
+  MotionController<double, 8, 4> controller;
+  REQUIRE(controller.configure(slow).has_value());
+  REQUIRE(controller.try_push(PathSegment::make_line(mp(0, 0), mp(10, 5)).value(), 0).has_value());
+  controller.end_of_job();
+  REQUIRE(controller.start().has_value());
+  for (int tick = 0; tick < 1000; ++tick) {
+    const auto sp = controller.next_setpoint();
+    REQUIRE(sp.has_value());
+    REQUIRE(std::isfinite(sp.value().position[0]));
+    CHECK(sp.value().position[1] == Approx(sp.value().position[0] / 2).margin(1e-12));
+  }
+}
