@@ -8,6 +8,7 @@ Usage: hil_stream_test.py <stm32f1|stm32f4> <firmware.elf> <curvestep> <job.json
                           (--exact | --tolerance MM)"""
 import argparse
 import csv
+import json
 import os
 import subprocess
 import sys
@@ -31,6 +32,9 @@ def main():
     group = parser.add_mutually_exclusive_group(required=True)
     group.add_argument("--exact", action="store_true")
     group.add_argument("--tolerance", type=float)
+    parser.add_argument("--round-weights", action="store_true",
+                        help="send a copy of the job with its weights rounded to Q16.16 (the wire's format), "
+                             "so that it means the same to sim and to the device")
     args = parser.parse_args()
     probe = subprocess.run([args.curvestep, "stream", "--help"], capture_output=True, text=True)
     if probe.returncode != 0:
@@ -38,6 +42,15 @@ def main():
         return 77
     with tempfile.TemporaryDirectory(prefix="curvestep-hil-") as work:
         capture, simulated = os.path.join(work, "device.csv"), os.path.join(work, "sim.csv")
+        if args.round_weights:
+            with open(args.job, encoding="utf-8") as handle:
+                job = json.load(handle)
+            for segment in job["segments"]:
+                if "weights" in segment:
+                    segment["weights"] = [round(w * 65536.0) / 65536.0 for w in segment["weights"]]
+            args.job = os.path.join(work, "wire_exact_job.json")
+            with open(args.job, "w", encoding="utf-8") as handle:
+                json.dump(job, handle)
         with QemuBoard(MACHINES[args.board], args.elf, open_pty=False, wall_limit=120) as board:
             stream = subprocess.run([args.curvestep, "stream", args.job, "--machine", args.machine, "--port", board.pty,
                                      "--capture", capture], capture_output=True, text=True, timeout=100)
