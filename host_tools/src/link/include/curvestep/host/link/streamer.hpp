@@ -38,7 +38,10 @@ struct StreamProgress {
 
 /// Options of one upload.
 struct StreamOptions {
-  protocol::SenderSettings link{100, 20, 3000};          ///< retransmission and link timeout
+  /// Retransmission and link timeout. A noisy line (1 % of bytes damaged each way) loses most
+  /// 100-byte frames several times in a row, so go-backs are allowed generously; a dead line
+  /// is caught by the link timeout (the controller's heartbeat stops) long before.
+  protocol::SenderSettings link{100, 100, 3000};
   std::function<void(const StreamProgress&)> progress;  ///< called about 10 times a second (may be empty)
   std::function<void(const std::string&)> warn;         ///< called for each value the wire cannot carry exactly
   double status_interval_s = 0.2;                       ///< StatusRequest period while running
