@@ -6,6 +6,7 @@ set(_curvestep_libraries)
 foreach(layer core protocol gcode)
   if(TARGET curvestep_${layer})
     list(APPEND _curvestep_libraries curvestep_${layer})
+    set_target_properties(curvestep_${layer} PROPERTIES EXPORT_NAME ${layer})  # curvestep::core, not curvestep::curvestep_core
     install(DIRECTORY ${PROJECT_SOURCE_DIR}/lib/${layer}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
   endif()
 endforeach()

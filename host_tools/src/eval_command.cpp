@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <curvestep/host/job_file.hpp>
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/job.hpp>
 
@@ -21,20 +22,16 @@ struct EvalOptions {
   long long segment = 0;
   std::vector<double> parameters;
   std::string out;
+  bool optimize = false;
 };
 
 void run_eval(const EvalOptions& options) {
-  const Job job = load_job(options.job);
+  std::vector<std::string> notes;
+  const Job job = load_job_file(options.job, JobFileOptions{options.optimize}, &notes);
+  for (const auto& note : notes) std::cerr << "curvestep: " << note << "\n";
   std::vector<MachinePoint> points;
   for (const double u : options.parameters) points.push_back(evaluate_segment(job, static_cast<std::size_t>(options.segment), u));
-  if (options.out.empty()) {
-    write_points_csv(std::cout, points);
-    return;
-  }
-  std::ofstream file(options.out);
-  if (!file) throw std::runtime_error(options.out + ": cannot open for writing");
-  write_points_csv(file, points);
-  if (!file) throw std::runtime_error(options.out + ": write failed");
+  write_output(options.out, [&](std::ostream& out) { write_points_csv(out, points); });
 }
 
 }  // namespace
@@ -44,7 +41,7 @@ namespace {
 void add_eval_command(CLI::App& app) {
   auto options = std::make_shared<EvalOptions>();
   auto* eval = app.add_subcommand("eval", "Write the exact points of one segment of a job at its own parameter values (CSV x,y,z)");
-  eval->add_option("job", options->job, "Job file (JSON, see docs/job_format.md)")->required();
+  eval->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required();
   eval->add_option("--segment", options->segment, "Segment index in the file, counted from 0")
       ->required()
       ->check(CLI::Range(0LL, 1000000000LL));
@@ -52,6 +49,7 @@ void add_eval_command(CLI::App& app) {
       ->required()
       ->delimiter(',');
   eval->add_option("-o,--output", options->out, "Output CSV file (default: standard output)");
+  eval->add_flag("--optimize", options->optimize, "SVG: order subpaths to shorten pen-up travel and report the saving");
   eval->callback([options] { run_eval(*options); });
 }
 

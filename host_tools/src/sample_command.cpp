@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 // `curvestep sample JOB --tolerance MM`: the job flattened into a polyline within the tolerance.
+#include <vector>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
+#include <curvestep/host/job_file.hpp>
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/flatten.hpp>
 #include <curvestep/host/job.hpp>
@@ -19,20 +21,16 @@ struct SampleOptions {
   std::string job;
   double tolerance_mm = 0;
   std::string out;
+  bool optimize = false;
 };
 
 void run_sample(const SampleOptions& options) {
   if (!(options.tolerance_mm >= 1e-6)) throw std::invalid_argument("--tolerance must be at least 1e-6 mm");
-  const Job job = load_job(options.job);
+  std::vector<std::string> notes;
+  const Job job = load_job_file(options.job, JobFileOptions{options.optimize}, &notes);
+  for (const auto& note : notes) std::cerr << "curvestep: " << note << "\n";
   const auto points = flatten_path(job.segments, options.tolerance_mm);
-  if (options.out.empty()) {
-    write_points_csv(std::cout, points);
-    return;
-  }
-  std::ofstream file(options.out);
-  if (!file) throw std::runtime_error(options.out + ": cannot open for writing");
-  write_points_csv(file, points);
-  if (!file) throw std::runtime_error(options.out + ": write failed");
+  write_output(options.out, [&](std::ostream& out) { write_points_csv(out, points); });
 }
 
 }  // namespace
@@ -42,9 +40,10 @@ namespace {
 void add_sample_command(CLI::App& app) {
   auto options = std::make_shared<SampleOptions>();
   auto* sample = app.add_subcommand("sample", "Flatten a job into a polyline within a tolerance (CSV x,y,z)");
-  sample->add_option("job", options->job, "Job file (JSON, see docs/job_format.md)")->required();
+  sample->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required();
   sample->add_option("--tolerance", options->tolerance_mm, "Largest distance from the true path, mm")->required();
   sample->add_option("-o,--output", options->out, "Output CSV file (default: standard output)");
+  sample->add_flag("--optimize", options->optimize, "SVG: order subpaths to shorten pen-up travel and report the saving");
   sample->callback([options] { run_sample(*options); });
 }
 

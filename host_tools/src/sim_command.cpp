@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `curvestep sim JOB --machine MACHINE.json [--rate HZ] [-o setpoints.csv]`: replays a job through
+// `curvestep sim JOB --machine MACHINE.json [--rate HZ] [-o setpoints.csv] [--report report.html]`: replays a job through
 // the firmware's motion code and prints what the machine would do.
 #include <fstream>
 #include <iostream>
@@ -8,8 +8,11 @@
 #include <string>
 #include <unistd.h>
 
+#include <curvestep/host/job_file.hpp>
+#include <curvestep/host/csv.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/report.hpp>
 #include <curvestep/host/simulator.hpp>
 
 #include "command_registry.hpp"
@@ -22,6 +25,7 @@ struct SimOptions {
   std::string machine;
   double rate_hz = 0;
   std::string output;
+  std::string report;
   bool double_precision = false;
 };
 
@@ -29,7 +33,7 @@ struct SimOptions {
 constexpr int exit_limits_exceeded = 3;
 
 int run_sim(const SimOptions& o) {
-  const Job job = load_job(o.job);
+  const Job job = load_job_file(o.job);
   MachineLimits machine = load_machine(o.machine);
   if (o.rate_hz > 0) {
     machine.rate_hz = o.rate_hz;
@@ -37,26 +41,23 @@ int run_sim(const SimOptions& o) {
   }
   SimulationOptions options;
   options.fixed_point = !o.double_precision;
-  const bool terminal = isatty(STDERR_FILENO) != 0;
-  if (terminal) {
-    options.progress = [](double fraction) {
-      const int width = 40;
-      const int filled = static_cast<int>(fraction * width);
-      std::cerr << "\r  [" << std::string(static_cast<std::size_t>(filled), '#') << std::string(static_cast<std::size_t>(width - filled), ' ')
-                << "] " << static_cast<int>(fraction * 100) << "%" << std::flush;
-    };
-  }
+  options.progress = make_terminal_progress();  // a bar with ETA on a terminal, quiet otherwise
   const SimulationResult result = simulate(job, machine, options);
-  if (terminal) std::cerr << "\r" << std::string(60, ' ') << "\r";
-  if (!o.output.empty()) {
-    std::ofstream out(o.output);
-    if (!out) throw std::runtime_error("cannot write " + o.output);
-    write_setpoints_csv(out, result.setpoints);
-    if (!out) throw std::runtime_error("error writing " + o.output);
+  finish_terminal_progress();
+  if (!o.output.empty()) write_output(o.output, [&](std::ostream& out) { write_setpoints_csv(out, result.setpoints); });
+  if (!o.report.empty()) {
+    ReportInput report;
+    report.job = &job;
+    report.machine = &machine;
+    report.result = &result;
+    report.fixed_point = !o.double_precision;
+    report.title = o.job;
+    write_html_report(o.report, report);
   }
   std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16") << ")\n"
             << format_summary(result.summary, machine);
   if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
+  if (!o.report.empty()) std::cout << "  wrote " << o.report << "\n";
   return result.summary.violations.empty() ? 0 : exit_limits_exceeded;
 }
 
@@ -67,10 +68,11 @@ namespace {
 void add_sim_command(CLI::App& app) {
   auto options = std::make_shared<SimOptions>();
   auto* sim = app.add_subcommand("sim", "Replay a job exactly as the firmware would run it and report the motion");
-  sim->add_option("job", options->job, "Job file (.json)")->required()->check(CLI::ExistingFile);
+  sim->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required()->check(CLI::ExistingFile);
   sim->add_option("--machine,-m", options->machine, "Machine file (.json)")->required()->check(CLI::ExistingFile);
   sim->add_option("--rate", options->rate_hz, "Setpoint rate in Hz (100..100000), overriding the machine file");
   sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v)");
+  sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary)");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
   sim->callback([options] {
     const int status = run_sim(*options);

@@ -3,6 +3,9 @@
 #include <curvestep/host/csv.hpp>
 
 #include <array>
+#include <fstream>
+#include <iostream>
+#include <stdexcept>
 #include <charconv>
 #include <system_error>
 
@@ -21,6 +24,19 @@ void write_points_csv(std::ostream& out, std::span<const MachinePoint> points) {
   for (const auto& p : points) {
     out << format_number(p[0]) << ',' << format_number(p[1]) << ',' << format_number(p[2]) << '\n';
   }
+}
+
+void write_output(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  if (path.empty()) {
+    write(std::cout);
+    std::cout.flush();
+    return;
+  }
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error(path + ": cannot open for writing");
+  write(file);
+  file.flush();
+  if (!file) throw std::runtime_error(path + ": write failed");
 }
 
 }  // namespace curvestep::host

@@ -2,6 +2,7 @@
 // CSV output of points: shortest round-trip number text, header x,y,z.
 #pragma once
 
+#include <functional>
 #include <ostream>
 #include <span>
 #include <string>
@@ -15,5 +16,9 @@ namespace curvestep::host {
 
 /// Writes "x,y,z" and one line per point.
 void write_points_csv(std::ostream& out, std::span<const MachinePoint> points);
+
+/// Runs `write` on the file `path`, or on standard output when `path` is empty. Throws
+/// std::runtime_error naming the file if it cannot be opened or written.
+void write_output(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace curvestep::host

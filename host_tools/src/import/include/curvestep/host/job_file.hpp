@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: MIT
+// load_job_file: a job from JSON (.json), G-code (.ngc, .nc, .gcode, .tap) or SVG (.svg), by extension.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <curvestep/host/job.hpp>
+
+namespace curvestep::host {
+
+/// How to read a job file.
+struct JobFileOptions {
+  bool optimize = false;  ///< SVG: order subpaths to shorten pen-up travel (greedy nearest neighbour)
+};
+
+/// Loads the job in `path`, choosing the format by its extension (case-insensitive). Lines worth
+/// telling the user (SVG warnings, travel saved by --optimize) are appended to `notes`. Throws
+/// LoadError for a malformed file (naming file, line and what is wrong) and std::runtime_error for
+/// an unreadable file or an unknown extension (naming the extensions understood).
+[[nodiscard]] Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options = {},
+                                std::vector<std::string>* notes = nullptr);
+
+}  // namespace curvestep::host

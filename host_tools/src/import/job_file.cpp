@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: MIT
+#include <curvestep/host/job_file.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <curvestep/host/gcode_import.hpp>
+#include <curvestep/host/svg_import.hpp>
+
+namespace curvestep::host {
+
+Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".json") return load_job(path);
+  if (extension == ".ngc" || extension == ".nc" || extension == ".gcode" || extension == ".tap") return import_gcode(path);
+  if (extension == ".svg") {
+    SvgOptions svg;
+    svg.optimize = options.optimize;
+    SvgImport imported = load_svg(path, svg);
+    if (notes != nullptr) {
+      for (const auto& warning : imported.warnings) notes->push_back(path.string() + ": " + warning);
+      if (options.optimize) {
+        std::ostringstream line;
+        line << "optimised pen-up travel: " << imported.travel_document_mm << " mm -> " << imported.travel_mm << " mm (saved "
+             << imported.travel_saved_mm() << " mm, " << imported.reversed_count << " subpaths reversed)";
+        notes->push_back(line.str());
+      }
+    }
+    return std::move(imported.job);
+  }
+  throw std::runtime_error(path.string() + ": unknown job format '" + extension +
+                           "' (understood: .json, .ngc, .nc, .gcode, .tap, .svg)");
+}
+
+}  // namespace curvestep::host
