@@ -6,6 +6,7 @@
 #include <string>
 
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/job_file.hpp>
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/report.hpp>
 #include <curvestep/host/simulator.hpp>
@@ -22,7 +23,7 @@ struct PlotOptions {
 };
 
 void run_plot(const PlotOptions& o) {
-  const Job job = load_job(o.job);
+  const Job job = load_job_file(o.job);  // .json, G-code or SVG by extension, as sim
   PathPlotOptions plot;
   plot.title = job.name;
   if (o.machine.empty()) {
@@ -41,7 +42,7 @@ void run_plot(const PlotOptions& o) {
 void add_plot_command(CLI::App& app) {
   auto options = std::make_shared<PlotOptions>();
   auto* plot = app.add_subcommand("plot", "Draw a job's path as SVG (coloured by planned speed with --machine, else by segment)");
-  plot->add_option("job", options->job, "Job file (.json)")->required()->check(CLI::ExistingFile);
+  plot->add_option("job", options->job, "Job file (.json, G-code or .svg)")->required()->check(CLI::ExistingFile);
   plot->add_option("-o,--output", options->output, "SVG file to write")->required();
   plot->add_option("--machine,-m", options->machine, "Machine file (.json): simulate and colour by planned speed")
       ->check(CLI::ExistingFile);
