@@ -1,115 +1,183 @@
 // SPDX-License-Identifier: MIT
-// `curvestep demo`: builds a bundled path of cubic Béziers and exact arcs, samples it in Q16.16
-// and in double, and writes the points (CSV) and a plot (SVG) to the output folder.
-#include <array>
+// `curvestep demo`: the whole product end to end with nothing attached. For a bundled drawing (SVG)
+// and a bundled CNC program (G-code) it starts the firmware as a virtual device on a pseudo-terminal,
+// streams the job over the real protocol, captures the device's setpoints, checks them bit for bit
+// against the simulator, and writes plots, the setpoints and an HTML report.
+//
+// The simulator is given what the device receives: the job and the machine after a round trip
+// through the wire format and the firmware's own conversions, so a value the wire rounds (a weight,
+// a tolerance) cannot make the comparison fail, and a real difference still does.
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
-#include <curvestep/core.hpp>
+#include <curvestep/boards/host/board.hpp>
+#include <curvestep/boards/host/device.hpp>
 #include <curvestep/core/error_text.hpp>
+#include <curvestep/firmware/conversions.hpp>
+#include <curvestep/host/csv.hpp>
+#include <curvestep/host/job_file.hpp>
+#include <curvestep/host/link/streamer.hpp>
+#include <curvestep/host/link/transport.hpp>
+#include <curvestep/host/link/wire.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/report.hpp>
+#include <curvestep/host/simulator.hpp>
 
 #include "command_registry.hpp"
-#include "svg_plot.hpp"
 
 namespace curvestep::host {
 namespace {
 
-using Point = std::array<double, 2>;
-
 struct DemoOptions {
   std::string out = "build/demo";
-  int samples_per_segment = 64;
+  std::string examples = CURVESTEP_EXAMPLES_DIR;
 };
 
-// A plotter-style drawing: a wave of C1-joined cubics closed by a semicircle.
-std::vector<std::array<Point, 4>> demo_cubics() {
-  return {{{{0, 0}, {20, 40}, {40, -40}, {60, 0}}},
-          {{{60, 0}, {80, 40}, {100, -40}, {120, 0}}},
-          {{{120, 0}, {140, 40}, {160, 40}, {160, 60}}}};
+/// What one demo job produced.
+struct DemoRun {
+  std::string name;
+  double duration_s = 0;
+  double distance_mm = 0;
+  double max_deviation_mm = 0;
+  std::size_t setpoints = 0;   ///< captured from the device
+  std::size_t expected = 0;    ///< produced by the simulator
+  std::size_t lost = 0;        ///< setpoints the device sent that never arrived (batches are not retransmitted)
+  bool identical = false;      ///< every captured setpoint equals the simulator's at the same tick
+  std::string difference;  ///< where the streams first differ, if they do
+};
+
+/// The job and machine exactly as the device will plan them (after the wire and the firmware's conversions).
+std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
+  const auto wire_machine = link::to_wire(machine, motion_axes);
+  auto limits = firmware::to_machine_limits(wire_machine.configuration);
+  if (!limits) throw std::runtime_error("machine: " + std::string(describe(limits.error())));
+  const auto wire_job = link::to_wire(job, motion_axes);
+  Job seen = job;
+  seen.segments.clear();
+  for (std::size_t i = 0; i < wire_job.segments.size(); ++i) {
+    auto segment = firmware::to_path_segment(wire_job.segments[i]);
+    if (!segment) throw std::runtime_error(job.name + ": segment " + std::to_string(i) + ": " + std::string(describe(segment.error())));
+    seen.segments.push_back(segment.value());
+  }
+  return {seen, limits.value()};
 }
 
-template <Scalar S>
-std::vector<Point> sample_path(int samples_per_segment, double& max_difference_to_double) {
-  std::vector<Point> points;
-  max_difference_to_double = 0;
-  auto convert = [](const Point& p) {
-    const auto v = vec_from_doubles<S, 2>(p);
-    if (!v) throw std::runtime_error(std::string("demo point out of range: ") + std::string(error_name(v.error())));
-    return v.value();
-  };
-  for (const auto& cubic : demo_cubics()) {
-    std::array<Vec2<S>, 4> control{};
-    std::array<Vec2<double>, 4> reference{};
-    for (std::size_t i = 0; i < 4; ++i) {
-      control[i] = convert(cubic[i]);
-      reference[i] = Vec2<double>{{cubic[i][0], cubic[i][1]}};
-    }
-    const auto curve = Bezier<S, 2, 7>::create(control).value();
-    const auto exact = Bezier<double, 2, 7>::create(reference).value();
-    for (int k = points.empty() ? 0 : 1; k <= samples_per_segment; ++k) {
-      const double t = static_cast<double>(k) / samples_per_segment;
-      const auto p = to_doubles(curve.point_at(convert({t, 0})[0]));
-      const auto q = exact.point_at(t);
-      max_difference_to_double = std::fmax(max_difference_to_double, std::hypot(p[0] - q[0], p[1] - q[1]));
-      points.push_back(p);
+/// Runs the firmware on a fresh pseudo-terminal in a thread until `stop` is set.
+class VirtualDevice {
+ public:
+  VirtualDevice() : thread_([this] { serve(); }) {}
+  VirtualDevice(const VirtualDevice&) = delete;
+  VirtualDevice& operator=(const VirtualDevice&) = delete;
+  ~VirtualDevice() {
+    stop_.store(true);
+    thread_.join();
+  }
+  [[nodiscard]] std::string port() const { return pty_.slave_path(); }
+
+ private:
+  void serve() {
+    boards::host::DeviceOptions options;
+    options.fast = true;  // flow-controlled by the link: no wall-clock wait, same setpoints
+    boards::host::CountingStepOutput output;
+    (void)boards::host::run_device(pty_.master_fd(), output, options, stop_, nullptr);
+  }
+
+  link::PseudoTerminal pty_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine, const std::string& out) {
+  DemoRun run;
+  run.name = file.filename().string();
+  std::vector<std::string> notes;
+  const Job job = load_job_file(file, JobFileOptions{true}, &notes);
+  const auto [device_job, device_machine] = as_device_sees(job, machine);
+  const SimulationResult sim = simulate(device_job, device_machine);
+
+  link::StreamResult streamed;
+  {
+    VirtualDevice device;
+    auto transport = link::open_port(device.port(), 115200);
+    streamed = link::stream_job(*transport, job, machine);
+  }
+  run.setpoints = streamed.setpoints.size();
+  run.expected = sim.setpoints.size();
+  run.lost = run.expected > run.setpoints ? run.expected - run.setpoints : 0;
+  run.duration_s = sim.summary.duration_s;
+  run.distance_mm = sim.summary.distance_mm;
+  run.max_deviation_mm = sim.summary.max_quantisation_mm + sim.summary.max_chord_deviation_mm;
+  run.identical = !streamed.setpoints.empty();
+  for (const auto& got : streamed.setpoints) {
+    const auto tick = static_cast<std::size_t>(std::llround(got.time_s * device_machine.rate_hz));
+    if (tick >= sim.setpoints.size() || got.raw_q16 != sim.setpoints[tick].raw_q16) {
+      run.identical = false;
+      run.difference = "first difference at setpoint " + std::to_string(tick);
+      break;
     }
   }
-  // Close with an exact semicircle (rational cubic) from (160,60) back towards (0,60).
-  const auto arc = circular_arc<double>(Vec2<double>{{80, 60}}, Vec2<double>{{160, 60}}, Vec2<double>{{0, 60}},
-                                        ArcDirection::CounterClockwise, 1e-9);
-  if (!arc) throw std::runtime_error(std::string("demo arc: ") + std::string(describe(arc.error())));
-  for (int k = 1; k <= samples_per_segment * 2; ++k) {
-    const auto p = arc.value().point_at(static_cast<double>(k) / (samples_per_segment * 2));
-    points.push_back({p[0], p[1]});
+  if (run.identical && streamed.setpoints.back().raw_q16 != sim.setpoints.back().raw_q16) {
+    run.identical = false;
+    run.difference = "the device did not end where the simulator did";
   }
-  return points;
+
+  const std::string stem = out + "/" + file.stem().string();
+  write_output(stem + "_device.csv", [&](std::ostream& s) { write_setpoints_csv(s, streamed.setpoints); });
+  write_output(stem + "_sim.csv", [&](std::ostream& s) { write_setpoints_csv(s, sim.setpoints); });
+  write_path_plot(stem + "_path.svg", device_job, &sim.setpoints, PathPlotOptions{});
+  ReportInput report;
+  report.job = &device_job;
+  report.machine = &device_machine;
+  report.result = &sim;
+  report.fixed_point = true;
+  report.title = run.name;
+  write_html_report(stem + "_report.html", report);
+  return run;
 }
 
 void run_demo(const DemoOptions& options) {
   std::filesystem::create_directories(options.out);
-  double fixed_difference = 0;
-  double double_difference = 0;
-  const auto fixed_points = sample_path<Q16_16>(options.samples_per_segment, fixed_difference);
-  const auto double_points = sample_path<double>(options.samples_per_segment, double_difference);
-
-  const std::string csv_path = options.out + "/demo_points.csv";
-  std::ofstream csv(csv_path);
-  if (!csv) throw std::runtime_error("cannot write " + csv_path);
-  csv << "x,y\n";
-  csv.precision(10);
-  for (const auto& p : fixed_points) csv << p[0] << "," << p[1] << "\n";
-
-  const std::string svg_path = options.out + "/demo_path.svg";
-  write_svg_plot(svg_path, {PlotPolyline{fixed_points, "#1f77b4", false}}, "curvestep demo: cubic Beziers + exact arc (Q16.16)");
-
-  std::cout << "curvestep demo\n"
-            << "  segments:            3 cubic Bezier + 1 rational arc\n"
-            << "  points (Q16.16):     " << fixed_points.size() << "\n"
-            << "  max |Q16.16-double|: " << fixed_difference * 1000.0 << " um\n"
-            << "  wrote " << csv_path << "\n"
-            << "  wrote " << svg_path << "\n";
+  const std::filesystem::path examples(options.examples);
+  const MachineLimits machine = load_machine(examples / "jobs" / "machine.json");
+  const std::vector<std::filesystem::path> jobs{examples / "svg" / "curvestep_demo.svg", examples / "gcode" / "cnc_pocket.ngc"};
+  std::cout << "curvestep demo: virtual device on a pseudo-terminal, real protocol, simulator check\n";
+  bool all_identical = true;
+  for (const auto& file : jobs) {
+    const DemoRun run = run_one(file, machine, options.out);
+    all_identical = all_identical && run.identical;
+    std::cout << "  " << run.name << "\n"
+              << "    duration:             " << run.duration_s << " s\n"
+              << "    distance:             " << run.distance_mm << " mm\n"
+              << "    max deviation:        " << run.max_deviation_mm * 1000 << " um\n"
+              << "    setpoints:            " << run.setpoints << " captured of " << run.expected << "\n"
+              << "    setpoints identical:  " << (run.identical ? "yes" : "no (" + run.difference + ")") << "\n";
+    if (run.lost > 0) {
+      std::cout << "    warning:              " << run.lost
+                << " setpoints were lost on the link (setpoint batches are not retransmitted yet)\n";
+    }
+  }
+  std::cout << "  outputs (plots, setpoints, reports) in " << options.out << "\n";
+  if (!all_identical) throw std::runtime_error("the device's setpoints differ from the simulator's");
 }
-
-}  // namespace
-
-namespace {
 
 void add_demo_command(CLI::App& app) {
   auto options = std::make_shared<DemoOptions>();
-  auto* demo = app.add_subcommand("demo", "Run the bundled demo end to end and write its outputs");
+  auto* demo = app.add_subcommand("demo", "Stream the bundled SVG and G-code examples to a virtual device and check them against the simulator");
   demo->add_option("--out", options->out, "Output folder")->capture_default_str();
-  demo->add_option("--samples", options->samples_per_segment, "Samples per segment")->check(CLI::Range(2, 100000))->capture_default_str();
+  demo->add_option("--examples", options->examples, "Folder with the bundled examples")->capture_default_str();
   demo->callback([options] { run_demo(*options); });
 }
 
 const RegisterCommand registered{90, add_demo_command};
 
 }  // namespace
-
 }  // namespace curvestep::host

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/job_file.hpp>
 #include <curvestep/host/link/host_link.hpp>
 #include <curvestep/host/link/streamer.hpp>
 #include <curvestep/host/link/transport.hpp>
@@ -57,7 +58,7 @@ std::string format_seconds(double s) {
 }
 
 int run_stream(const StreamCommandOptions& o) {
-  const Job job = load_job(o.job);
+  const Job job = load_job_file(o.job);
   const MachineLimits machine = load_machine_for_stream(o.machine);
   auto transport = link::open_port(o.port, o.baud);
   link::StreamOptions options;
