@@ -206,6 +206,29 @@ TEST_CASE("gcode import: the CNC example loads", "[gcode][import]") {
   for (std::size_t i = 1; i < job.segments.size(); ++i) CHECK(job.segments[i].start() == job.segments[i - 1].end());
 }
 
+TEST_CASE("gcode import: the fuzz regressions load as connected jobs", "[gcode][import][fuzz]") {
+  // disconnected_after_g5_1_comment.ngc: line 13, "N100 G5.1 I-10 J0 X0(...)", starts at the end of
+  // line 12's G5, (10, 40, -1); its control points are P0 = (10, 40, -1), P0 + (-10, 0) = (0, 40, -1)
+  // and P1 = (0, 40, -1). It was dropped as "does not move", so line 14 started 10 mm away.
+  const Job job = import_gcode(std::string(CURVESTEP_GCODE_FUZZ_REGRESSIONS) + "/disconnected_after_g5_1_comment.ngc");
+  REQUIRE(!job.segments.empty());
+  for (std::size_t i = 1; i < job.segments.size(); ++i) {
+    INFO("segment " << i);
+    CHECK(job.segments[i].start() == job.segments[i - 1].end());
+  }
+  const SourceSegment* quadratic = nullptr;
+  for (const auto& s : job.sources) {
+    if (s.line == 13) quadratic = &s;
+  }
+  REQUIRE(quadratic != nullptr);
+  CHECK(quadratic->type == SegmentType::Bezier);
+  REQUIRE(quadratic->points.size() == 3);
+  CHECK(quadratic->points[0] == pt(10, 40, -1));
+  CHECK(quadratic->points[1] == pt(0, 40, -1));
+  CHECK(quadratic->points[2] == pt(0, 40, -1));
+  CHECK(job.segments.back().end() == pt(6, 2, -1));  // "G5.1 I1 J2 X6 Y2", then M2 ends the program
+}
+
 TEST_CASE("gcode import: error programs name file, line, column and word", "[gcode][import][errors]") {
   struct Case {
     const char* file;
