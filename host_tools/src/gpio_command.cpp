@@ -43,6 +43,7 @@
 #include <curvestep/host/simulator.hpp>
 
 #include "command_registry.hpp"
+#include "gpio_command_output.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -67,43 +68,6 @@ constexpr const char* axis_names[] = {"x", "y", "z"};
 
 std::atomic<bool> interrupted{false};
 extern "C" void on_interrupt(int) { interrupted.store(true); }
-
-/// A StepOutput that counts steps per axis, signed by the direction level, and passes every edge
-/// on to `Inner` (or nowhere). The host board's epoch and fault stop reach the inner output.
-template <class Inner>
-class CountingOutput {
- public:
-  explicit CountingOutput(Inner* inner) noexcept : inner_(inner) {}
-  void set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive) noexcept {
-    if (axis < motion_axes) positive_[axis] = positive;
-    if (inner_ != nullptr) inner_->set_direction(time_ticks, axis, positive);
-  }
-  void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) noexcept {
-    if (high && axis < motion_axes) {
-      ++steps_[axis];
-      net_[axis] += positive_[axis] ? 1 : -1;
-    }
-    if (inner_ != nullptr) inner_->set_step(time_ticks, axis, high);
-  }
-  void fault_stop() noexcept {
-    if (inner_ != nullptr) inner_->fault_stop();
-  }
-  void set_epoch(const timespec& epoch, bool fast) noexcept {
-    if constexpr (requires(Inner& i) { i.set_epoch(epoch, fast); }) {
-      if (inner_ != nullptr) inner_->set_epoch(epoch, fast);
-    }
-  }
-  /// Rising step edges per axis.
-  [[nodiscard]] const std::array<std::uint64_t, motion_axes>& steps() const noexcept { return steps_; }
-  /// Steps per axis, positive minus negative: the position in steps.
-  [[nodiscard]] const std::array<std::int64_t, motion_axes>& net_steps() const noexcept { return net_; }
-
- private:
-  Inner* inner_;
-  std::array<bool, motion_axes> positive_{true, true, true};
-  std::array<std::uint64_t, motion_axes> steps_{};
-  std::array<std::int64_t, motion_axes> net_{};
-};
 
 /// The job and machine as the device will plan them: after the wire format and the firmware's
 /// conversions (weights, tolerance and feeds as Q16.16; rapids at v_max, the protocol has no rapid).
@@ -226,7 +190,7 @@ std::string join_steps(const auto& values) {
 template <class Inner>
 int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimits& machine, const Plan& plan, Inner* inner,
                  const std::string& where) {
-  CountingOutput<Inner> output(inner);
+  CountingOutput<Inner> output(inner, boards::host::SystemClock::step_timer_hz, machine.rate_hz);
   link::StreamOptions options;
   options.link.link_timeout_ms = o.link_timeout_ms;
   options.warn = [](const std::string& text) { std::cerr << "curvestep gpio: warning: " << text << "\n"; };
@@ -258,7 +222,10 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
             << "  net steps:           " << join_steps(output.net_steps()) << " (planned " << join_steps(plan.moved_steps)
             << ": end minus start position in steps)\n";
   if constexpr (requires(Inner& i) { i.write_errors(); }) {
-    if (inner != nullptr) std::cout << "  GPIO write errors:   " << inner->write_errors() << "\n";
+    if (inner != nullptr) {
+      std::cout << "  GPIO write errors:   " << inner->write_errors() << "\n"
+                << "  edge clock restarts: " << output.rebases() << " (1: at the start; more: the loop fell behind)\n";
+    }
   }
   if (!failure.empty()) {
     std::cerr << "curvestep gpio: " << failure << "\n";
