@@ -193,7 +193,12 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
   CountingOutput<Inner> output(inner, boards::host::SystemClock::step_timer_hz, machine.rate_hz);
   link::StreamOptions options;
   options.link.link_timeout_ms = o.link_timeout_ms;
-  options.warn = [](const std::string& text) { std::cerr << "curvestep gpio: warning: " << text << "\n"; };
+  // What the wire rounds: the first few lines, then a count (an SVG's arcs can give dozens).
+  auto warnings = std::make_shared<std::size_t>(0);
+  options.warn = [warnings](const std::string& text) {
+    constexpr std::size_t shown = 5;
+    if (++*warnings <= shown) std::cerr << "curvestep gpio: warning: " << text << "\n";
+  };
   link::StreamResult result;
   const auto started = std::chrono::steady_clock::now();
   std::string failure;
@@ -209,6 +214,7 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
     }
   }  // the board thread stops here; the output's lines go low
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (*warnings > 5) std::cerr << "curvestep gpio: warning: " << *warnings - 5 << " more values rounded for the wire\n";
   if (interrupted.load()) failure = "interrupted" + (failure.empty() ? std::string() : " (" + failure + ")");
 
   std::cout << "curvestep gpio " << o.job << " -> " << where << "\n"
