@@ -103,8 +103,12 @@ Plan check_before_moving(const Job& job, const MachineLimits& machine, int& stat
   plan.summary = sim.summary;
   const auto config = StepConfig::create(device_machine, boards::host::HostBoard<boards::host::CountingStepOutput>::step_timing());
   if (!config) {
-    throw std::runtime_error("machine: the host board cannot step with it: " + std::string(describe(config.error())) +
-                             " (rate_hz must divide the 1 MHz step timer)");
+    if (config.error() == Error::InvalidRate) {
+      throw std::runtime_error("rate " + format_number(device_machine.rate_hz) +
+                               " Hz: the host board's 1 MHz step timer needs a whole number of microseconds per control tick "
+                               "(e.g. 250, 500, 1000, 2000 Hz)");
+    }
+    throw std::runtime_error("machine: the host board cannot step with it: " + std::string(describe(config.error())));
   }
   // setpoints[0] is where the machine starts: the firmware's first setpoint declares the position
   // (StepGenerator::reset, no edges); every later one moves the steps from there.

@@ -122,6 +122,20 @@ TEST_CASE("gpio: a job faster than max_step_rate is refused before anything move
   CHECK(r.out.find("steps taken") == std::string::npos);
 }
 
+TEST_CASE("gpio: --rate must give whole microseconds per tick on the host board's 1 MHz step timer", "[host_tools][gpio]") {
+  const std::string m = machine("machine_rate.json", gpio_section);
+  // 1 MHz / 300 Hz = 3333.3 us per tick: refused; 1 MHz / 2000 Hz = 500 us: runs.
+  Run r = run("gpio " + source("examples/jobs/seed_cubic.json") + " --machine " + m + " --dry-run --rate 300");
+  INFO(r.out << r.err);
+  CHECK(r.status != 0);
+  CHECK(r.err.find("rate 300 Hz") != std::string::npos);
+  CHECK(r.err.find("whole number of microseconds") != std::string::npos);
+  r = run("gpio " + source("examples/jobs/seed_cubic.json") + " --machine " + m + " --dry-run --rate 2000");
+  CHECK(r.status == 0);
+  CHECK(r.out.find("at 2000 Hz") != std::string::npos);
+  CHECK(net_steps(r.out) == std::array<long, 3>{4 * 80, 0, 0});
+}
+
 TEST_CASE("gpio: a dry run takes the steps from the job's start to its end on every axis", "[host_tools][gpio]") {
   const std::string m = machine("machine_dry.json", gpio_section);
   SECTION("every_type.json: from (0, 0, 0) to the final rapid's (20, 0, 0)") {
