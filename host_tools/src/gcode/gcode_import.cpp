@@ -174,6 +174,26 @@ class GcodeLoader {
     return q;
   }
 
+  /// A weight or a feed on the Q16.16 grid, as the wire carries it (the job loader does the same).
+  double wire_value(double value, const char* what, std::size_t column) {
+    const auto fixed = Q16_16::from_double(value);
+    if (!fixed) fail_message(column, std::string(what) + " " + format_number(value) + " is outside the Q16.16 range", Error::FixedOverflow);
+    if (value > 0 && fixed.value().raw() <= 0) {
+      fail_message(column, std::string(what) + " " + format_number(value) + " rounds to 0 in Q16.16 (the smallest positive value is 2^-16)",
+                   Error::InvalidArgument);
+    }
+    return fixed.value().to_double();
+  }
+
+  /// The column of the block's F word, or `fallback`.
+  std::size_t feed_column(std::size_t fallback) const {
+    const auto block = gcode::parse_line(line_);
+    if (block) {
+      if (const gcode::Word* f = block.value().find('F')) return f->column;
+    }
+    return fallback;
+  }
+
   PathSegment made(const Result<PathSegment>& segment, std::size_t column) {
     if (!segment) fail_message(column, std::string(describe(segment.error())), segment.error());
     return segment.value();
@@ -183,8 +203,10 @@ class GcodeLoader {
     if (motion.kind == gcode::MotionKind::None) return;
     SourceSegment source;
     source.line = line_number_;
-    source.feed_mm_per_s = motion.feed_mm_per_min / seconds_per_minute;
     const std::size_t column = motion.column;
+    source.feed_mm_per_s = motion.kind == gcode::MotionKind::Rapid
+                               ? 0.0
+                               : wire_value(motion.feed_mm_per_min / seconds_per_minute, "feed (mm/s)", feed_column(column));
     std::vector<PathSegment> pieces;
     const MachinePoint start = grid(motion.start, column);
     const MachinePoint end = grid(motion.end, column);
@@ -237,7 +259,7 @@ class GcodeLoader {
     const auto points = interpreter_.nurbs_points();
     const auto weights = interpreter_.nurbs_weights();
     for (const auto& p : points) source.points.push_back(grid(p, column));
-    source.weights.assign(weights.begin(), weights.end());
+    for (const double w : weights) source.weights.push_back(wire_value(w, "weight", column));
     const std::size_t n = points.size();
     const std::size_t p = motion.nurbs_order - 1;
     source.degree = p;
@@ -251,7 +273,7 @@ class GcodeLoader {
       std::vector<MachinePoint> control;
       std::vector<double> piece_weights;
       for (const auto& c : piece.curve.control_points()) control.push_back(grid(c, column));
-      for (std::size_t i = 0; i <= piece.curve.degree(); ++i) piece_weights.push_back(piece.curve.weight(i));
+      for (std::size_t i = 0; i <= piece.curve.degree(); ++i) piece_weights.push_back(wire_value(piece.curve.weight(i), "weight", column));
       const auto segment = PathSegment::make_rational_bezier(control, piece_weights);
       if (!segment) {
         fail_message(column, "NURBS block: the piece on knot span [" + format_number(piece.start) + ", " + format_number(piece.end) +

@@ -124,9 +124,28 @@ class JobParser {
   std::vector<double> weights(const Node& segment, std::size_t count) {
     std::vector<double> result;
     for (const auto& entry : reader_.array(reader_.require(segment, "weights"), count, count)) {
-      result.push_back(reader_.positive(entry));
+      result.push_back(wire_positive(entry, "weight"));
     }
     return result;
+  }
+
+  /// A weight or feed: a finite number > 0, rounded to the nearest Q16.16 value as the wire
+  /// carries it (so the simulator sees what a device receives). Out of range, or rounding to 0, is
+  /// an error naming the value.
+  double wire_positive(const Node& node, const std::string& what) {
+    const double value = reader_.positive(node);
+    const auto q = quantise(value);
+    if (!q) {
+      reader_.fail(node, what + " " + format_number(value) + " is outside the Q16.16 range (at most 32767.99998)",
+                   Error::FixedOverflow);
+    }
+    if (*q == 0) {
+      reader_.fail(node,
+                   what + " " + format_number(value) +
+                       " rounds to 0 in Q16.16 (the smallest positive value is 2^-16 = 1.52588e-05)",
+                   what == "weight" ? Error::NonPositiveWeight : Error::InvalidArgument);
+    }
+    return *q;
   }
 
   /// Fails with the core's description of `failure`, at `node`.
@@ -198,7 +217,7 @@ class JobParser {
     }
     if (source.breaks.empty() && !pieces.empty()) source.breaks = {0.0, 1.0};
     if (const auto feed = reader_.optional(segment, "feed")) {
-      source.feed_mm_per_s = reader_.positive(*feed);
+      source.feed_mm_per_s = wire_positive(*feed, "feed");
       for (auto& piece : pieces) piece.set_feed_mm_per_s(source.feed_mm_per_s);
     }
 
@@ -416,8 +435,18 @@ class JobParser {
       const auto nurbs = RationalSpline::create(source.points, source.weights, source.knots, p);
       if (!nurbs) fail_spline(nurbs.failure());
       const auto extracted = for_each_bezier(nurbs.value(), [&](const auto& piece) {
+        // The pieces' weights travel as Q16.16 too: round them as the control points are.
         std::vector<double> piece_weights;
-        for (std::size_t i = 0; i <= piece.curve.degree(); ++i) piece_weights.push_back(piece.curve.weight(i));
+        for (std::size_t i = 0; i <= piece.curve.degree(); ++i) {
+          const auto w = quantise(piece.curve.weight(i));
+          if (!w || !(*w > 0)) {
+            reader_.fail(segment.member("weights"),
+                         "the piece on knot span [" + format_number(piece.start) + ", " + format_number(piece.end) + "] has weight " +
+                             format_number(piece.curve.weight(i)) + ", which Q16.16 cannot carry",
+                         Error::FixedOverflow);
+          }
+          piece_weights.push_back(*w);
+        }
         add_piece(PathSegment::make_rational_bezier(grid(piece.curve.control_points()), piece_weights), piece.start, piece.end);
       });
       if (!extracted) fail_core(segment, extracted.failure());

@@ -350,4 +350,9 @@ std::string Reader::string(const Node& node) const {
   return node.json->get<std::string>();
 }
 
+bool Reader::boolean(const Node& node) const {
+  if (node.json == nullptr || !node.json->is_boolean()) fail(node, "expected true or false, got " + type_name(node.json));
+  return node.json->get<bool>();
+}
+
 }  // namespace curvestep::host::detail

@@ -82,6 +82,8 @@ class Reader {
   /// An integer in [min, max].
   [[nodiscard]] std::int64_t integer(const Node& node, std::int64_t min, std::int64_t max) const;
   [[nodiscard]] std::string string(const Node& node) const;
+  /// true or false.
+  [[nodiscard]] bool boolean(const Node& node) const;
 
  private:
   const JsonDocument* document_;

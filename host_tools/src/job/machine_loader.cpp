@@ -3,6 +3,7 @@
 #include <curvestep/host/machine_file.hpp>
 
 #include <array>
+#include <map>
 #include <string>
 
 #include <curvestep/core/error_text.hpp>
@@ -29,6 +30,41 @@ Node limit_node(const Node& root, LimitField field, std::size_t axis) {
   }
 }
 
+/// The "gpio" section: {"chip": NAME, "x": {"step": LINE, "dir": LINE, "invert_dir": BOOL}, "y": ..., "z": ...}.
+GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
+  reader.check_keys(gpio, {"chip", "x", "y", "z"});
+  GpioWiring wiring;
+  const Node chip = reader.require(gpio, "chip");
+  wiring.chip = reader.string(chip);
+  if (wiring.chip.empty()) reader.fail(chip, "the chip name must not be empty (e.g. \"gpiochip0\"; gpiodetect lists them)");
+  std::map<std::string, std::string> used;  // line name -> the key that uses it
+  bool any = false;
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    const auto entry = reader.optional(gpio, axis_names[axis]);
+    if (!entry) continue;
+    reader.check_keys(*entry, {"step", "dir", "invert_dir"});
+    GpioAxisWiring lines;
+    const auto line = [&](const char* key) {
+      const Node node = reader.require(*entry, key);
+      std::string name = reader.string(node);
+      if (name.empty()) reader.fail(node, "the line name must not be empty (gpioinfo lists the names)");
+      const std::string here = std::string("\"gpio\".\"") + axis_names[axis] + "\".\"" + key + "\"";
+      if (const auto twice = used.find(name); twice != used.end()) {
+        reader.fail(node, "line \"" + name + "\" is already used by " + twice->second);
+      }
+      used.emplace(name, here);
+      return name;
+    };
+    lines.step = line("step");
+    lines.dir = line("dir");
+    if (const auto invert = reader.optional(*entry, "invert_dir")) lines.invert_dir = reader.boolean(*invert);
+    wiring.axes[axis] = lines;
+    any = true;
+  }
+  if (!any) reader.fail(gpio, "wires no axis (expected at least one of \"x\", \"y\", \"z\" with \"step\" and \"dir\")");
+  return wiring;
+}
+
 }  // namespace
 
 std::string machine_field_name(LimitField field, std::size_t axis) {
@@ -50,17 +86,18 @@ std::string machine_field_name(LimitField field, std::size_t axis) {
   return "\"?\"";
 }
 
-MachineLimits parse_machine(std::string_view text, std::string name) {
+MachineFile parse_machine_file(std::string_view text, std::string name) {
   const detail::JsonDocument document(text, std::move(name), Error::InvalidMachine);
   const Reader reader(document, Error::InvalidMachine);
   const Node root = reader.root();
   reader.check_keys(root, {"version", "v_max", "a_max", "j_max", "feed", "rapid", "tolerance", "rate_hz",
-                           "junction_deviation", "max_step_rate", "profile", "axes"});
+                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio"});
+  MachineFile file;
   if (const auto version = reader.optional(root, "version")) {
     const auto value = reader.integer(*version, 0, 1000000);
     if (value != 1) reader.fail(*version, "unsupported version " + std::to_string(value) + " (this program reads version 1)");
   }
-  MachineLimits limits;
+  MachineLimits& limits = file.limits;
   // Required keys are read as plain numbers; validate() below judges their values, so a zero or
   // negative limit is reported with the same wording as the core uses.
   limits.v_max_mm_per_s = reader.number(reader.require(root, "v_max"));
@@ -121,9 +158,14 @@ MachineLimits parse_machine(std::string_view text, std::string name) {
     }
     reader.fail(at, message, valid.error());
   }
-  return limits;
+  if (const auto gpio = reader.optional(root, "gpio")) file.gpio = parse_gpio(reader, *gpio);
+  return file;
 }
 
-MachineLimits load_machine(const std::filesystem::path& path) { return parse_machine(read_text_file(path), path.string()); }
+MachineLimits parse_machine(std::string_view text, std::string name) { return parse_machine_file(text, std::move(name)).limits; }
+
+MachineFile load_machine_file(const std::filesystem::path& path) { return parse_machine_file(read_text_file(path), path.string()); }
+
+MachineLimits load_machine(const std::filesystem::path& path) { return load_machine_file(path).limits; }
 
 }  // namespace curvestep::host

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <curvestep/host/position_differences.hpp>
 #include <curvestep/host/report.hpp>
 
 namespace curvestep::host {
@@ -24,27 +25,16 @@ MotionProfile motion_profile(const std::vector<SetpointRecord>& setpoints, const
   const std::size_t k = profile.stride;
   const double h = static_cast<double>(k) * dt;
   const std::size_t n = setpoints.size();
+  const PositionDifferences d = position_differences(n, [&](std::size_t i) { return setpoints[i].position_mm; }, k);
   profile.time_s.resize(n);
   profile.speed_mm_per_s.resize(n);
-  profile.acceleration_mm_per_s2.assign(n, 0.0);
-  profile.jerk_mm_per_s3.assign(n, 0.0);
+  profile.acceleration_mm_per_s2.resize(n);
+  profile.jerk_mm_per_s3.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     profile.time_s[i] = setpoints[i].time_s;
     profile.speed_mm_per_s[i] = setpoints[i].speed_mm_per_s;
-    double a2 = 0, j2 = 0;
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      const auto p = [&](std::size_t back) { return setpoints[i - back * k].position_mm[axis]; };
-      if (i >= 2 * k) {
-        const double d2 = p(0) - 2 * p(1) + p(2);
-        a2 += d2 * d2;
-      }
-      if (i >= 3 * k) {
-        const double d3 = p(0) - 3 * p(1) + 3 * p(2) - p(3);
-        j2 += d3 * d3;
-      }
-    }
-    profile.acceleration_mm_per_s2[i] = std::sqrt(a2) / (h * h);
-    profile.jerk_mm_per_s3[i] = std::sqrt(j2) / (h * h * h);
+    profile.acceleration_mm_per_s2[i] = d.second[i] / (h * h);
+    profile.jerk_mm_per_s3[i] = d.third[i] / (h * h * h);
   }
   return profile;
 }

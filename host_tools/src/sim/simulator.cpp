@@ -9,7 +9,9 @@
 
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
+#include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/position_differences.hpp>
 
 namespace curvestep::host {
 namespace {
@@ -54,7 +56,6 @@ class LockstepRun {
   }
 
   [[nodiscard]] bool finished() const { return exact_.finished(); }
-  [[nodiscard]] double progress() const { return static_cast<double>(next_) / static_cast<double>(job_.segments.size()); }
 
   /// One tick of both; returns the exact and the fixed setpoint.
   std::pair<Setpoint<double>, Setpoint<Q16_16>> step() {
@@ -83,6 +84,30 @@ class LockstepRun {
   MotionController<Q16_16, queue_capacity, lookahead> fixed_;
 };
 
+/// A path length for progress: arcs exactly (helix: √((r·sweep)² + Δz²)), curves by the chords of
+/// 16 samples (a slight underestimate). Only the fraction shown to the user depends on it.
+double approximate_length(const Job& job) {
+  double total = 0;
+  for (const PathSegment& segment : job.segments) {
+    if (segment.kind() == SegmentKind::Arc) {
+      const double along = segment.arc_radius() * segment.arc_sweep_rad();
+      const double rise = segment.end()[2] - segment.start()[2];
+      total += std::sqrt(along * along + rise * rise);
+      continue;
+    }
+    constexpr int samples = 16;
+    MachinePoint previous = segment.start();
+    for (int k = 1; k <= samples; ++k) {
+      const MachinePoint next = segment.point(static_cast<double>(k) / samples);
+      double d2 = 0;
+      for (std::size_t axis = 0; axis < motion_axes; ++axis) d2 += (next[axis] - previous[axis]) * (next[axis] - previous[axis]);
+      total += std::sqrt(d2);
+      previous = next;
+    }
+  }
+  return total;
+}
+
 void note_violation(SimulationSummary& s, const char* what, double measured, double limit, const char* unit) {
   if (limit > 0 && measured > limit * 1.01) {
     std::ostringstream line;
@@ -105,6 +130,10 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
   const double dt = 1.0 / machine.rate_hz;
   std::vector<std::array<double, 3>> exact_positions;
   std::size_t reported = 0;
+  // Progress is the distance travelled over the path's length (segments queued over the total
+  // would say "done" at once for a job that fits the queue).
+  const double total_length = options.progress ? approximate_length(job) : 0.0;
+  double travelled = 0;
   while (!run.finished()) {
     run.fill();
     const auto [exact, fixed] = run.step();
@@ -120,11 +149,19 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
       quantisation += d * d;
     }
     if (options.fixed_point) result.summary.max_quantisation_mm = std::fmax(result.summary.max_quantisation_mm, std::sqrt(quantisation));
+    if (options.progress && !exact_positions.empty()) {
+      double d2 = 0;
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        const double d = exact.position[axis] - exact_positions.back()[axis];
+        d2 += d * d;
+      }
+      travelled += std::sqrt(d2);
+    }
     exact_positions.push_back({exact.position[0], exact.position[1], exact.position[2]});
     result.setpoints.push_back(r);
     if (options.progress && result.setpoints.size() - reported >= 20000) {
       reported = result.setpoints.size();
-      options.progress(run.progress());
+      options.progress(total_length > 0 ? std::fmin(travelled / total_length, 0.999) : 0.0);
     }
   }
   if (options.progress) options.progress(1.0);
@@ -132,44 +169,41 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
   SimulationSummary& s = result.summary;
   s.setpoints = result.setpoints.size();
   s.duration_s = result.setpoints.back().time_s;
+  // Peaks from the exact (double) positions, one setpoint apart (position_differences.hpp, the
+  // implementation the report's motion profile uses too).
+  const PositionDifferences d = position_differences(exact_positions.size(), [&](std::size_t i) { return exact_positions[i]; }, 1);
   for (std::size_t i = 1; i < exact_positions.size(); ++i) {
-    double v2 = 0, a2 = 0, j2 = 0;
-    std::array<double, 3> axis_speed{};
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      const auto p = [&](std::size_t k) { return exact_positions[k][axis]; };
-      const double d1 = p(i) - p(i - 1);
-      v2 += d1 * d1;
-      axis_speed[axis] = std::fabs(d1) / dt;
-      if (i >= 2) {
-        const double d2 = p(i) - 2 * p(i - 1) + p(i - 2);
-        a2 += d2 * d2;
-      }
-      if (i >= 3) {
-        const double d3 = p(i) - 3 * p(i - 1) + 3 * p(i - 2) - p(i - 3);
-        j2 += d3 * d3;
-      }
-    }
-    s.distance_mm += std::sqrt(v2);
-    s.peak_speed_mm_per_s = std::fmax(s.peak_speed_mm_per_s, std::sqrt(v2) / dt);
-    s.peak_acceleration_mm_per_s2 = std::fmax(s.peak_acceleration_mm_per_s2, std::sqrt(a2) / (dt * dt));
-    s.peak_jerk_mm_per_s3 = std::fmax(s.peak_jerk_mm_per_s3, std::sqrt(j2) / (dt * dt * dt));
-    s.max_chord_deviation_mm = std::fmax(s.max_chord_deviation_mm, std::sqrt(a2) / 8);
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      s.peak_step_rate_hz[axis] = std::fmax(s.peak_step_rate_hz[axis], axis_speed[axis] * machine.axes[axis].steps_per_mm);
-    }
+    s.distance_mm += d.first[i];
+    s.peak_speed_mm_per_s = std::fmax(s.peak_speed_mm_per_s, d.first[i] / dt);
+    s.peak_acceleration_mm_per_s2 = std::fmax(s.peak_acceleration_mm_per_s2, d.second[i] / (dt * dt));
+    s.peak_jerk_mm_per_s3 = std::fmax(s.peak_jerk_mm_per_s3, d.third[i] / (dt * dt * dt));
+    s.max_chord_deviation_mm = std::fmax(s.max_chord_deviation_mm, d.second[i] / 8);
+  }
+  std::array<double, motion_axes> peak_axis_speed{};
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    peak_axis_speed[axis] = d.peak_axis_first[axis] / dt;
+    s.peak_step_rate_hz[axis] = peak_axis_speed[axis] * machine.axes[axis].steps_per_mm;
   }
   note_violation(s, "peak speed", s.peak_speed_mm_per_s, machine.v_max_mm_per_s, "mm/s");
   note_violation(s, "peak acceleration", s.peak_acceleration_mm_per_s2, machine.a_max_mm_per_s2, "mm/s^2");
   if (machine.jerk_limited) note_violation(s, "peak jerk", s.peak_jerk_mm_per_s3, machine.j_max_mm_per_s3, "mm/s^3");
   note_violation(s, "chord deviation", s.max_chord_deviation_mm, machine.tolerance_mm, "mm");
+  // The driver limit, judged by the core's rule (step_generator.hpp: |v_axis| × steps/mm above
+  // max_step_rate_hz). It names the first axis over the limit; the next call looks past it.
   const char* axis_names[] = {"x", "y", "z"};
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    if (s.peak_step_rate_hz[axis] > machine.max_step_rate_hz) {
-      std::ostringstream line;
+  std::array<double, motion_axes> unchecked = peak_axis_speed;
+  for (auto verdict = check_step_rate(unchecked, machine); !verdict && verdict.where() < motion_axes;
+       verdict = check_step_rate(unchecked, machine)) {
+    const std::size_t axis = verdict.where();
+    std::ostringstream line;
+    if (verdict.error() == Error::StepRateTooHigh) {
       line << "axis " << axis_names[axis] << " needs " << s.peak_step_rate_hz[axis] << " steps/s, more than max_step_rate "
            << machine.max_step_rate_hz;
-      s.violations.push_back(line.str());
+    } else {
+      line << "axis " << axis_names[axis] << ": " << describe(verdict.error());
     }
+    s.violations.push_back(line.str());
+    unchecked[axis] = 0;
   }
   return result;
 }

@@ -86,7 +86,7 @@ TEST_CASE("gcode import: lines, G20 inches, G91 increments and feeds", "[gcode][
   CHECK(job.segments[1].feed_mm_per_s() == 10.0);  // F600 mm/min
   CHECK(job.segments[2].end() == pt(12, 2, -1));   // G91 X2 Y-3
   CHECK(near(job.segments[3].end(), pt(25.4, 12.7, -1), grid_tolerance));  // G20 X1 Y0.5
-  CHECK(job.segments[3].feed_mm_per_s() == Approx(254.0 / 60.0));        // F10 in/min
+  CHECK(job.segments[3].feed_mm_per_s() == 277436.0 / 65536.0);  // F10 in/min = 4.2333 mm/s: round(277435.73) / 65536
   CHECK(job.sources[3].line == 6);
   CHECK(job.segments[4].rapid());
   CHECK(near(job.segments[4].end(), pt(25.4, 12.7, 5), grid_tolerance));
@@ -186,7 +186,8 @@ TEST_CASE("gcode import: the NURBS block matches an independent Cox-de Boor eval
   }
   CHECK(job.segments.front().start() == pt(0, 0));
   CHECK(job.segments.back().end() == pt(0, 0));
-  CHECK(job.segments.front().feed_mm_per_s() == Approx(10.0 / 60.0));
+  // F10 mm/min = 0.16667 mm/s, on the Q16.16 grid: round(10922.67) = 10923 / 65536.
+  CHECK(job.segments.front().feed_mm_per_s() == 10923.0 / 65536.0);
 }
 
 TEST_CASE("gcode import: the CNC example loads", "[gcode][import]") {
@@ -204,6 +205,29 @@ TEST_CASE("gcode import: the CNC example loads", "[gcode][import]") {
   CHECK(cubic);
   CHECK(nurbs);
   for (std::size_t i = 1; i < job.segments.size(); ++i) CHECK(job.segments[i].start() == job.segments[i - 1].end());
+}
+
+TEST_CASE("gcode import: the fuzz regressions load as connected jobs", "[gcode][import][fuzz]") {
+  // disconnected_after_g5_1_comment.ngc: line 13, "N100 G5.1 I-10 J0 X0(...)", starts at the end of
+  // line 12's G5, (10, 40, -1); its control points are P0 = (10, 40, -1), P0 + (-10, 0) = (0, 40, -1)
+  // and P1 = (0, 40, -1). It was dropped as "does not move", so line 14 started 10 mm away.
+  const Job job = import_gcode(std::string(CURVESTEP_GCODE_FUZZ_REGRESSIONS) + "/disconnected_after_g5_1_comment.ngc");
+  REQUIRE(!job.segments.empty());
+  for (std::size_t i = 1; i < job.segments.size(); ++i) {
+    INFO("segment " << i);
+    CHECK(job.segments[i].start() == job.segments[i - 1].end());
+  }
+  const SourceSegment* quadratic = nullptr;
+  for (const auto& s : job.sources) {
+    if (s.line == 13) quadratic = &s;
+  }
+  REQUIRE(quadratic != nullptr);
+  CHECK(quadratic->type == SegmentType::Bezier);
+  REQUIRE(quadratic->points.size() == 3);
+  CHECK(quadratic->points[0] == pt(10, 40, -1));
+  CHECK(quadratic->points[1] == pt(0, 40, -1));
+  CHECK(quadratic->points[2] == pt(0, 40, -1));
+  CHECK(job.segments.back().end() == pt(6, 2, -1));  // "G5.1 I1 J2 X6 Y2", then M2 ends the program
 }
 
 TEST_CASE("gcode import: error programs name file, line, column and word", "[gcode][import][errors]") {
@@ -277,6 +301,26 @@ TEST_CASE("gcode import: every G-code error code reaches the user with its word"
     const std::string prefix = "inline.ngc:" + std::to_string(c.line) + ":" + std::to_string(c.column) + ": " + c.word + ": ";
     CHECK(std::string(e.what()).starts_with(prefix));
   }
+}
+
+TEST_CASE("gcode import: feeds and NURBS weights are rounded to Q16.16 as the wire carries them", "[gcode][import]") {
+  // F100 mm/min = 1.66667 mm/s: round(1.66667 · 65536 = 109226.67) = 109227.
+  Job job = parse_gcode_job("G1 X1 F100\n", "feed.ngc");
+  REQUIRE(job.segments.size() == 1);
+  CHECK(job.segments[0].feed_mm_per_s() == 109227.0 / 65536.0);
+  CHECK(job.sources[0].feed_mm_per_s == 109227.0 / 65536.0);
+  // Weight P0.3: round(19660.8) = 19661. Clamped uniform knots 0 0 0 1 1 1 (three points, order 3):
+  // one piece whose weights are the rounded file weights.
+  job = parse_gcode_job("G5.2 P1 L3\nX1 Y1 P0.3\nX2 Y0\nG5.3\n", "weight.ngc");
+  REQUIRE(job.sources.size() == 1);
+  CHECK(job.sources[0].weights == std::vector<double>{1.0, 19661.0 / 65536.0, 1.0});
+  REQUIRE(job.segments.size() == 1);
+  CHECK(job.segments[0].rational().weight(1) == 19661.0 / 65536.0);
+  // A feed too small for Q16.16 (0.0001 mm/min = 1.7e-6 mm/s) is an error at its F word.
+  const LoadError e = error_of("G1 X1 F0.0001\n", "tiny.ngc");
+  CHECK(e.location().line == 1);
+  CHECK(e.location().column == 7);
+  CHECK(std::string(e.what()).find("rounds to 0 in Q16.16") != std::string::npos);
 }
 
 TEST_CASE("gcode import: CRLF line ends and a missing file", "[gcode][import]") {

@@ -209,6 +209,36 @@ TEST_CASE("gcode interpreter: G5.1 is the quadratic P0, P0 plus IJ, P1", "[gcode
   CHECK(f.index == 5);
 }
 
+TEST_CASE("gcode interpreter: a spline whose middle control points sit on its end still moves (fuzz finding)", "[gcode][interpreter][spline]") {
+  // Regression of tests/fuzz/regressions/gcode/disconnected_after_g5_1_comment.ngc: from (10, 40),
+  // "G5.1 I-10 J0 X0" has P0 = (10, 40), P1 = P0 + (-10, 0) = (0, 40) = P2. The curve runs from
+  // (10, 40) to (0, 40), so it is a motion; it used to be reported as None (nothing moves) while the
+  // position still advanced, and the importer dropped it, leaving a gap in the job.
+  Machine m;
+  auto motion = run(m, {"G0 X10 Y40", "G5.1 I-10 J0 X0"});
+  REQUIRE(motion.kind == MotionKind::Quadratic);
+  CHECK(motion.start == pt(10, 40));
+  CHECK(motion.end == pt(0, 40));
+  CHECK(motion.control[0] == pt(10, 40));
+  CHECK(motion.control[1] == pt(0, 40));
+  CHECK(motion.control[2] == pt(0, 40));
+  CHECK(m.position() == pt(0, 40));
+  // The same for a cubic: P0 = (10, 40), P0 + (I, J) = (0, 40), P1 + (P, Q) = (0, 40), P1 = (0, 40).
+  Machine c;
+  motion = run(c, {"G0 X10 Y40", "G5 I-10 J0 P0 Q0 X0"});
+  REQUIRE(motion.kind == MotionKind::Cubic);
+  CHECK(motion.control[0] == pt(10, 40));
+  CHECK(motion.control[1] == pt(0, 40));
+  CHECK(motion.control[2] == pt(0, 40));
+  CHECK(motion.control[3] == pt(0, 40));
+  // Only a spline whose every control point is the start moves nothing.
+  Machine n;
+  motion = run(n, {"G0 X10 Y40", "G5.1 I0 J0 X10 Y40"});
+  CHECK(motion.kind == MotionKind::None);
+  motion = run(n, {"G5 I0 J0 P0 Q0 X10 Y40"});
+  CHECK(motion.kind == MotionKind::None);
+}
+
 TEST_CASE("gcode interpreter: a G5.2 G5.3 block collects weighted control points", "[gcode][interpreter][nurbs]") {
   Machine m;
   for (const auto line : {"G0 X0 Y0", "F10", "G5.2 P1 L3", "X0 Y1 P1", "X2 Y2 P1", "X2 Y0 P1"}) {

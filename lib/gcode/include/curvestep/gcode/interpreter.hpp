@@ -329,7 +329,7 @@ class Interpreter {
       }
       motion.full_turns = static_cast<std::uint32_t>(p->value) - 1;
     }
-    const Point& s = position_;
+    const Point s = position_;
     const Point& e = motion.end;
     double cx = 0;
     double cy = 0;
@@ -389,7 +389,8 @@ class Interpreter {
     CURVESTEP_TRY(const double p, offset(block, 'P'));
     CURVESTEP_TRY(const double q, offset(block, 'Q'));
     CURVESTEP_TRY(motion.end, end_point(block));
-    const Point& s = position_;
+    // A copy, not a reference: position_ becomes the end below, and `moves` compares with the start.
+    const Point s = position_;
     const Point& e = motion.end;
     motion.control = {s, Point{{s[0] + i, s[1] + j, s[2]}}, Point{{e[0] + p, e[1] + q, e[2]}}, e};
     for (const Point& c : motion.control) {
@@ -413,7 +414,8 @@ class Interpreter {
     CURVESTEP_TRY(const double i, offset(block, 'I'));
     CURVESTEP_TRY(const double j, offset(block, 'J'));
     CURVESTEP_TRY(motion.end, end_point(block));
-    const Point& s = position_;
+    // A copy, not a reference: position_ becomes the end below, and `moves` compares with the start.
+    const Point s = position_;
     motion.control = {s, Point{{s[0] + i, s[1] + j, s[2]}}, motion.end, Point{}};
     if (!(std::fabs(motion.control[1][0]) <= max_coordinate_mm && std::fabs(motion.control[1][1]) <= max_coordinate_mm)) {
       return fail(Error::GcodeBadNumber, column);

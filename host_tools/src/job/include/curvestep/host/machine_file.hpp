@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
-// Machine files (JSON, docs/job_format.md): limits, rates and axes, mapped onto MachineLimits.
+// Machine files (JSON, docs/job_format.md): limits, rates and axes, mapped onto MachineLimits, and
+// the optional "gpio" section (which Linux GPIO lines drive the axes, for boards/host).
 #pragma once
 
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -10,6 +13,31 @@
 #include <curvestep/host/load_error.hpp>
 
 namespace curvestep::host {
+
+/// One axis's wiring in the "gpio" section: {"step": "GPIO17", "dir": "GPIO27", "invert_dir": false}.
+struct GpioAxisWiring {
+  std::string step;         ///< name of the step line (as gpioinfo lists it)
+  std::string dir;          ///< name of the direction line
+  bool invert_dir = false;  ///< the positive direction is the low level of the direction line
+};
+
+/// The "gpio" section: a chip and, per axis, its step and direction lines (no entry: not wired).
+struct GpioWiring {
+  std::string chip;                                              ///< "gpiochip0", "/dev/gpiochip0" or "0"
+  std::array<std::optional<GpioAxisWiring>, motion_axes> axes{};  ///< x, y, z
+};
+
+/// Everything a machine file holds.
+struct MachineFile {
+  MachineLimits limits;            ///< planning and stepping limits, validated
+  std::optional<GpioWiring> gpio;  ///< the "gpio" section, if present (validated)
+};
+
+/// Loads a machine file with its optional "gpio" section; throws as load_machine.
+[[nodiscard]] MachineFile load_machine_file(const std::filesystem::path& path);
+
+/// Parses machine text with its optional "gpio" section; `name` is the file name in errors.
+[[nodiscard]] MachineFile parse_machine_file(std::string_view text, std::string name);
 
 /// Loads a machine file and validates it (MachineLimits::validate). Throws LoadError naming the
 /// file, line and field, or std::runtime_error if the file cannot be read.

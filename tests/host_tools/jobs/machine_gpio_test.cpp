@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+// The machine file's optional "gpio" section (issue 6): parsed into GpioWiring, validated, with
+// errors naming the file, line and key; unknown keys stay errors.
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include <curvestep/core/error.hpp>
+#include <curvestep/host/machine_file.hpp>
+
+using namespace curvestep;
+using namespace curvestep::host;
+
+namespace {
+
+/// A valid machine file (lines 1..8) followed by `extra` members of the root object.
+std::string machine_with(const std::string& extra) {
+  return "{\n"
+         "  \"version\": 1,\n"
+         "  \"v_max\": 200, \"a_max\": 2000, \"j_max\": 50000,\n"
+         "  \"feed\": 50, \"tolerance\": 0.01, \"rate_hz\": 1000,\n"
+         "  \"max_step_rate\": 40000, \"rapid\": 150, \"profile\": \"trapezoid\",\n"
+         "  \"axes\": {\"x\": {\"steps_per_mm\": 80}, \"y\": {\"steps_per_mm\": 80}}" +
+         std::string(extra.empty() ? "" : ",\n  " + extra) + "\n}\n";
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+LoadError error_of(const std::string& text) {
+  try {
+    (void)parse_machine_file(text, "gpio_machine.json");
+  } catch (const LoadError& e) {
+    return e;
+  }
+  FAIL("the machine file loaded:\n" << text);
+  return LoadError({}, "", Error::InvalidArgument);
+}
+
+}  // namespace
+
+TEST_CASE("machine gpio: the section maps onto GpioWiring; the other keys are still read", "[host_tools][jobs][gpio]") {
+  const MachineFile file = parse_machine_file(machine_with(R"("gpio": {"chip": "gpiochip0",
+           "x": {"step": "GPIO17", "dir": "GPIO27"},
+           "y": {"step": "GPIO22", "dir": "GPIO23", "invert_dir": true}})"),
+                                              "m.json");
+  REQUIRE(file.gpio.has_value());
+  CHECK(file.gpio->chip == "gpiochip0");
+  REQUIRE(file.gpio->axes[0].has_value());
+  CHECK(file.gpio->axes[0]->step == "GPIO17");
+  CHECK(file.gpio->axes[0]->dir == "GPIO27");
+  CHECK_FALSE(file.gpio->axes[0]->invert_dir);
+  REQUIRE(file.gpio->axes[1].has_value());
+  CHECK(file.gpio->axes[1]->step == "GPIO22");
+  CHECK(file.gpio->axes[1]->dir == "GPIO23");
+  CHECK(file.gpio->axes[1]->invert_dir);
+  CHECK_FALSE(file.gpio->axes[2].has_value());
+  CHECK(file.limits.max_step_rate_hz == 40000);
+  CHECK(file.limits.rapid_mm_per_s == 150);
+  CHECK_FALSE(file.limits.jerk_limited);
+  CHECK(file.limits.axes[0].steps_per_mm == 80);
+  // load_machine / parse_machine accept (and validate) the section too; without it there is none.
+  CHECK(parse_machine(machine_with(R"("gpio": {"chip": "0", "z": {"step": "a", "dir": "b"}})"), "m.json").v_max_mm_per_s == 200);
+  CHECK_FALSE(parse_machine_file(machine_with(""), "m.json").gpio.has_value());
+}
+
+TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools][jobs][gpio]") {
+  struct Case {
+    std::string gpio;
+    std::size_t line;
+    std::string field;
+    std::string cause;
+  };
+  const Case cases[] = {
+      {R"("gpio": {"x": {"step": "A", "dir": "B"}})", 7, "\"gpio\".\"chip\"", "missing required key"},
+      {R"("gpio": {"chip": "", "x": {"step": "A", "dir": "B"}})", 7, "\"gpio\".\"chip\"", "must not be empty"},
+      {R"("gpio": {"chip": 0, "x": {"step": "A", "dir": "B"}})", 7, "\"gpio\".\"chip\"", "expected a string, got a number"},
+      {R"("gpio": {"chip": "c"})", 7, "\"gpio\"", "wires no axis"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"dir\": \"B\"}}", 8, "\"gpio\".\"x\".\"step\"", "missing required key"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"\"}}", 8, "\"gpio\".\"x\".\"dir\"", "must not be empty"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"y\": {\"step\": \"C\", \"dir\": \"A\"}}", 9,
+       "\"gpio\".\"y\".\"dir\"", "line \"A\" is already used by \"gpio\".\"x\".\"step\""},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"invert_dir\": 1}}", 8,
+       "\"gpio\".\"x\".\"invert_dir\"", "expected true or false"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"pulse_us\": 5}}", 8,
+       "\"gpio\".\"x\".\"pulse_us\"", "unknown key (expected one of: step, dir, invert_dir, comment)"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"w\": {\"step\": \"A\", \"dir\": \"B\"}}", 8, "\"gpio\".\"w\"",
+       "unknown key (expected one of: chip, x, y, z, comment)"},
+      {R"("gpio": "gpiochip0")", 7, "\"gpio\"", "expected an object"},
+      {R"("gpoi": {"chip": "c"})", 7, "\"gpoi\"", "unknown key"},
+  };
+  for (const auto& c : cases) {
+    const LoadError e = error_of(machine_with(c.gpio));
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(e.code() == Error::InvalidMachine);
+    CHECK(e.location().file == "gpio_machine.json");
+    CHECK(e.location().line == c.line);
+    CHECK(e.location().field == c.field);
+    CHECK(what.rfind("gpio_machine.json:" + std::to_string(c.line) + ": " + c.field + ": ", 0) == 0);
+    CHECK(contains(what, c.cause));
+  }
+}
