@@ -141,6 +141,7 @@ class PathParser {
       scan_.skip_space();
       if (scan_.at_end()) break;
       const char c = scan_.peek();
+      const std::size_t position = scan_.position() + 1;  // the command letter, or the first number of a repetition
       if (std::string_view("MmLlHhVvCcSsQqTtAaZz").find(c) != std::string_view::npos) {
         if (subpaths_.empty() && c != 'M' && c != 'm') {
           scan_.fail(std::string("path data must begin with a moveto (M or m), got \"") + c + "\"");
@@ -155,7 +156,10 @@ class PathParser {
       } else if (command == 'Z' || command == 'z') {
         scan_.fail("closepath (Z) takes no numbers, got " + scan_.what_is_here());
       }
+      const std::size_t subpaths_before = subpaths_.size();
+      const std::size_t pieces_before = subpaths_.empty() ? 0 : subpaths_.back().pieces.size();
       execute(command);
+      mark_new_pieces(subpaths_before, pieces_before, position);
       // Further argument sets repeat the command; after a moveto they are linetos.
       if (command == 'M') command = 'L';
       if (command == 'm') command = 'l';
@@ -170,6 +174,15 @@ class PathParser {
   }
 
  private:
+  /// Records `position` in the pieces added since there were `subpaths_before` subpaths and the
+  /// last one had `pieces_before` pieces.
+  void mark_new_pieces(std::size_t subpaths_before, std::size_t pieces_before, std::size_t position) {
+    for (std::size_t s = subpaths_before == 0 ? 0 : subpaths_before - 1; s < subpaths_.size(); ++s) {
+      auto& pieces = subpaths_[s].pieces;
+      for (std::size_t i = s + 1 == subpaths_before ? pieces_before : 0; i < pieces.size(); ++i) pieces[i].position = position;
+    }
+  }
+
   Point2 pair(bool relative) {
     const double x = scan_.number("a coordinate");
     scan_.skip_separator();

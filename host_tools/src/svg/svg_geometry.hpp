@@ -46,6 +46,7 @@ struct Piece {
   std::array<Point2, 4> points{};     ///< control points, `count` of them
   std::size_t count = 2;              ///< number of control points
   double weight = 1;                  ///< middle weight of a conic (end weights are 1)
+  std::size_t position = 0;           ///< 1-based character of the path command that made it (0: not from path data)
 };
 
 /// A subpath: connected pieces from `start`.

@@ -7,6 +7,12 @@
 // page height in mm (y_machine = -y_mm when the page has no height), so the page's bottom-left
 // corner is the machine origin. Each element's affine map is that root map ∘ the transforms of its
 // ancestors and its own; pieces are mapped point by point (exact for Béziers and rational Béziers).
+//
+// Wire grid: the wire carries coordinates, weights and feeds as Q16.16, so all three are rounded
+// to the nearest Q16.16 value here, by the same Q16_16::from_double the job loader and the G-code
+// importer use (docs/job_format.md, "Weights and feeds"): the simulator then sees the job exactly
+// as a device receives it. An arc's middle weight is cos(δ/2) with δ ≤ 90°, so it lies in
+// [√2/2, 1] and rounds by at most 2^-17; the weight √2/2 of quarter arcs becomes 46341/65536.
 #include <curvestep/host/svg_import.hpp>
 
 #include <algorithm>
@@ -363,7 +369,7 @@ class SvgReader {
       warn(element, "is not drawn (unknown element)");
       return;
     }
-    add(element, map, subpaths);
+    add(element, name == "path" ? "d" : "", map, subpaths);
   }
 
   void index_ids(const tinyxml2::XMLElement& element) {
@@ -505,7 +511,34 @@ class SvgReader {
     return p;
   }
 
-  void add(const tinyxml2::XMLElement& element, const Affine& map, const std::vector<Subpath>& subpaths) {
+  /// A conic's middle weight on the Q16.16 grid, as the wire carries it; the job loader's errors
+  /// for a weight out of range or rounding to 0, at the element (and the path command) of the piece.
+  double wire_weight(const tinyxml2::XMLElement& element, const char* attribute, const Piece& piece) const {
+    const double weight = piece.weight;
+    const auto q = Q16_16::from_double(weight);
+    std::string cause;
+    Error code = Error::NonPositiveWeight;
+    if (!(weight > 0) || !std::isfinite(weight)) {
+      cause = "weight " + format_number(weight) + " is not a finite positive number";
+      if (!std::isfinite(weight)) code = Error::NotFinite;
+    } else if (!q) {
+      cause = "weight " + format_number(weight) + " is outside the Q16.16 range (at most 32767.99998)";
+      code = Error::FixedOverflow;
+    } else if (q.value().raw() == 0) {
+      cause = "weight " + format_number(weight) + " rounds to 0 in Q16.16 (the smallest positive value is 2^-16 = 1.52588e-05)";
+    } else {
+      return q.value().to_double();
+    }
+    const Point2 from = piece.points[0];
+    const Point2 to = piece.points[piece.count - 1];
+    const std::string where = piece.position > 0 ? "at character " + std::to_string(piece.position) + ": " : "";
+    fail(element, attribute,
+         where + "the arc from (" + format_number(from.x) + ", " + format_number(from.y) + ") to (" + format_number(to.x) + ", " +
+             format_number(to.y) + ") in user units: " + cause,
+         code);
+  }
+
+  void add(const tinyxml2::XMLElement& element, const char* attribute, const Affine& map, const std::vector<Subpath>& subpaths) {
     for (const auto& subpath : subpaths) {
       DrawnSubpath drawn;
       drawn.line = static_cast<std::size_t>(element.GetLineNum());
@@ -521,7 +554,7 @@ class SvgReader {
           case PieceKind::Cubic: out.type = SegmentType::Bezier; break;
           case PieceKind::Conic:
             out.type = SegmentType::RationalBezier;
-            out.weights = {1.0, piece.weight, 1.0};
+            out.weights = {1.0, wire_weight(element, attribute, piece), 1.0};
             break;
         }
         drawn.pieces.push_back(std::move(out));
@@ -589,6 +622,24 @@ class SvgReader {
     job.sources.push_back(std::move(source));
   }
 
+  /// The feed option on the Q16.16 grid (0: the machine default), with the job loader's errors.
+  double wire_feed() const {
+    const double feed = options_.feed_mm_per_s;
+    if (feed == 0) return 0;
+    const SourceLocation location{name_, 0, 0, std::nullopt, "", "feed"};
+    if (!(feed > 0) || !std::isfinite(feed)) {
+      throw LoadError(location, "feed " + format_number(feed) + " must be a finite number > 0 (or 0 for the machine default)",
+                      Error::InvalidArgument);
+    }
+    const auto q = Q16_16::from_double(feed);
+    if (!q) throw LoadError(location, "feed " + format_number(feed) + " is outside the Q16.16 range (at most 32767.99998)", Error::FixedOverflow);
+    if (q.value().raw() == 0) {
+      throw LoadError(location, "feed " + format_number(feed) + " rounds to 0 in Q16.16 (the smallest positive value is 2^-16 = 1.52588e-05)",
+                      Error::InvalidArgument);
+    }
+    return q.value().to_double();
+  }
+
   SvgImport build() {
     SvgImport result;
     MachinePoint start{};
@@ -597,6 +648,7 @@ class SvgReader {
       if (!q) throw LoadError(SourceLocation{name_, 0, 0, std::nullopt, "", "start"}, "the start point is outside the Q16.16 range", Error::FixedOverflow);
       start[axis] = q.value().to_double();
     }
+    const double feed = wire_feed();
     result.travel_document_mm = travel(start, drawn_);
     if (options_.optimize) result.reversed_count = optimise(start);
     result.travel_mm = travel(start, drawn_);
@@ -625,14 +677,14 @@ class SvgReader {
         if (!made) {
           fail_at(subpath.line, "", "a piece of this element cannot be used: " + std::string(describe(made.error())), made.error());
         }
-        if (options_.feed_mm_per_s > 0) made.value().set_feed_mm_per_s(options_.feed_mm_per_s);
+        made.value().set_feed_mm_per_s(feed);
         SourceSegment source;
         source.type = piece.type;
         source.line = subpath.line;
         source.points = piece.points;
         source.weights = piece.weights;
         source.degree = piece.points.size() - 1;
-        source.feed_mm_per_s = options_.feed_mm_per_s;
+        source.feed_mm_per_s = feed;
         push(job, std::move(source), made.value());
       }
       at = subpath.end();

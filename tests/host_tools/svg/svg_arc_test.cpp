@@ -55,9 +55,13 @@ void check_arc(const Job& job, const Ellipse& e, double theta1, double delta) {
   const auto expected_pieces = static_cast<std::size_t>(std::ceil(std::fabs(delta) / (pi / 2)));
   const auto pieces = drawn(job);
   REQUIRE(pieces.size() == expected_pieces);
+  // The middle weight cos(δ/2) of each piece, δ = delta / pieces, travels as Q16.16: on the grid
+  // and within half a step (2^-17) of the exact value (1e-12 for the two computations of δ).
+  const double exact_weight = std::cos(delta / static_cast<double>(2 * expected_pieces));
   for (const auto& p : pieces) {
     REQUIRE(p.type == SegmentType::RationalBezier);
-    CHECK(p.weights[1] == Approx(std::cos(delta / static_cast<double>(2 * expected_pieces))).margin(1e-12));
+    CHECK(on_q16_grid(p.weights[1]));
+    CHECK(std::fabs(p.weights[1] - exact_weight) <= 0x1p-17 + 1e-12);
   }
   const double direction = delta > 0 ? 1 : -1;
   double progress_before = -1e-6;
@@ -66,6 +70,12 @@ void check_arc(const Job& job, const Ellipse& e, double theta1, double delta) {
     for (int k = 0; k <= 24; ++k) {
       const auto p = job.segments[i].point(k / 24.0);
       const auto [equation, angle] = e.locate(p[0], 100 - p[1]);
+      // Two roundings move the curve off the ellipse. The control points move by at most 2^-17 mm
+      // per axis (2^-17·√2 = 1.08e-5 mm), and so does the curve (a convex combination of them):
+      // at most 1.08e-5 / 3 = 3.6e-6 in the unit frame (radii >= 3 mm), so u² + v² by at most
+      // 2·3.6e-6 + 3.6e-6² = 7.2e-6. The rounded weight adds at most
+      // (1 - c²)|w² - c²| / (c² (1 + w)²) <= (1/2)(2^-17 · 2) / ((1/2)(1 + √2/2)²) = 5.3e-6
+      // (c² >= 1/2, |w - c| <= 2^-17, w + c <= 2; svg_test_support.hpp). Sum 1.25e-5 < 2e-5.
       CHECK(equation == Approx(1).margin(2e-5));
       // Progress along the sweep direction from theta1, in [-slack, 2π - slack): the slack covers
       // the Q16.16 rounding of the points (at most 2^-17 mm on radii of at least 3 mm).
@@ -125,6 +135,33 @@ TEST_CASE("svg: radii too small for the chord are scaled up until they just reac
   check_arc(rotated, Ellipse{50, 50, 80, 20, 90}, pi / 2, pi);
 }
 
+TEST_CASE("svg: an arc's weight travels as the nearest Q16.16 value", "[host_tools][svg]") {
+  // A 60° arc of radius 10 about (50,50) from angle 0 to 60° (sweep 1): one piece, middle weight
+  // cos(30°) = √3/2 = 0.8660254; √3/2 · 65536 = 56755.84 rounds to 56756.
+  const Job job = import_page("<path d=\"M 60 50 A 10 10 0 0 1 55 58.660254037844386\"/>").job;
+  const auto pieces = drawn(job);
+  REQUIRE(pieces.size() == 1);
+  REQUIRE(pieces[0].weights.size() == 3);
+  CHECK(pieces[0].weights[0] == 1.0);
+  CHECK(pieces[0].weights[1] == 56756.0 / 65536.0);
+  CHECK(pieces[0].weights[2] == 1.0);
+  REQUIRE(job.segments.back().kind() == SegmentKind::RationalBezier);
+  CHECK(job.segments.back().rational().weight(1) == 56756.0 / 65536.0);
+  // Off the circle: with the exact points, |P|²/r² - 1 is at most eta = (1 - 3/4)|w² - 3/4| /
+  // ((3/4)(1 + w)²) for w = 56756/65536 (svg_test_support.hpp); rounding the points moves the
+  // curve by at most e = 2^-17·√2 mm, 1.08e-6 of r = 10. So |P|/r <= sqrt(1 + eta) + e/r.
+  const double w = 56756.0 / 65536.0;
+  const double eta = conic_off_circle_bound(std::sqrt(3.0) / 2, w);
+  const double e = 0x1p-17 * std::sqrt(2.0) / 10;
+  const double bound = (std::sqrt(1 + eta) + e) * (std::sqrt(1 + eta) + e) - 1 + 1e-12;
+  for (int k = 0; k <= 16; ++k) {
+    const auto p = job.segments.back().point(k / 16.0);
+    const double x = p[0] - 50;
+    const double y = (100 - p[1]) - 50;
+    CHECK((x * x + y * y) / 100 == Approx(1).margin(bound));
+  }
+}
+
 TEST_CASE("svg: arcs with a zero radius are lines and negative radii are their absolute values", "[host_tools][svg]") {
   const auto line = drawn(import_page("<path d=\"M 10 10 A 0 5 0 0 1 20 20\"/>").job);
   REQUIRE(line.size() == 1);
@@ -146,5 +183,7 @@ TEST_CASE("svg: the small arc of an enormous ellipse is its chord", "[host_tools
   const auto arc = drawn(job);
   REQUIRE(arc.size() == 1);
   CHECK(arc[0].type == SegmentType::RationalBezier);
+  // Its weight cos(5e-6) = 1 - 1.25e-11 rounds to 1 on the Q16.16 grid.
+  CHECK(arc[0].weights[1] == 1.0);
   CHECK(near(job.segments.back().point(0.5), on_page(5, 0), 2 * grid_mm));
 }

@@ -16,19 +16,24 @@ namespace {
 
 const double half_root_two = std::sqrt(2.0) / 2;
 
+/// Quarter arcs carry the weight √2/2 rounded to Q16.16, as the wire does.
 void check_quarter_weights(const std::vector<SourceSegment>& pieces) {
   for (const auto& p : pieces) {
     CHECK(p.type == SegmentType::RationalBezier);
     REQUIRE(p.weights.size() == 3);
     CHECK(p.weights[0] == 1);
-    CHECK(p.weights[1] == Approx(half_root_two).margin(1e-15));
+    CHECK(p.weights[1] == quarter_weight);
     CHECK(p.weights[2] == 1);
   }
 }
 
+/// The rounded quarter weight keeps |P|² within this of r² in the unit frame (svg_test_support.hpp),
+/// plus 1e-12 for evaluating the curve in double.
+const double quarter_bound = conic_off_circle_bound(half_root_two, quarter_weight) + 1e-12;
+
 }  // namespace
 
-TEST_CASE("svg: a 10 mm circle at (20,30) is four quarter arcs with weights sqrt(2)/2", "[host_tools][svg]") {
+TEST_CASE("svg: a 10 mm circle at (20,30) is four quarter arcs with weights sqrt(2)/2 rounded to Q16.16", "[host_tools][svg]") {
   const auto result = import_page("<circle cx=\"20\" cy=\"30\" r=\"10\"/>");
   check_connected(result.job);
   const auto pieces = drawn(result.job);
@@ -39,13 +44,22 @@ TEST_CASE("svg: a 10 mm circle at (20,30) is four quarter arcs with weights sqrt
   check_points(pieces[1], {{{20, 60, 0}}, {{10, 60, 0}}, {{10, 70, 0}}});
   check_points(pieces[2], {{{10, 70, 0}}, {{10, 80, 0}}, {{20, 80, 0}}});
   check_points(pieces[3], {{{20, 80, 0}}, {{30, 80, 0}}, {{30, 70, 0}}});
-  // Every point of every piece is 10 mm from the centre.
+  // Every point of every piece is 10 mm from the centre, up to the weight's rounding: the control
+  // points are on the grid exactly, and |P|/r lies in [sqrt(1 - bound), sqrt(1 + bound)], so
+  // |P| is within r (1 - sqrt(1 - bound)) = 1.85e-6 mm of r = 10.
+  const double radius_margin = 10 * (1 - std::sqrt(1 - quarter_bound));
+  CHECK(radius_margin < 1.9e-6);  // the documented 1.9e-7 r
   for (std::size_t i = 1; i < result.job.segments.size(); ++i) {
     for (int k = 0; k <= 32; ++k) {
       const auto p = result.job.segments[i].point(k / 32.0);
-      CHECK(std::hypot(p[0] - 20, p[1] - 70) == Approx(10).margin(1e-9));
+      CHECK(std::hypot(p[0] - 20, p[1] - 70) == Approx(10).margin(radius_margin));
     }
   }
+  // The weight rounding is visible: the middle of a quarter lies off the circle, at
+  // r sqrt(2) (1 + 2w) / (2 (1 + w)) for weight w (the conic at t = 1/2), not at r.
+  const auto middle = result.job.segments[1].point(0.5);
+  const double w = quarter_weight;
+  CHECK(std::hypot(middle[0] - 20, middle[1] - 70) == Approx(10 * std::sqrt(2.0) * (1 + 2 * w) / (2 * (1 + w))).margin(1e-12));
 }
 
 TEST_CASE("svg: an ellipse is four quarters whose points satisfy the ellipse equation", "[host_tools][svg]") {
@@ -60,7 +74,8 @@ TEST_CASE("svg: an ellipse is four quarters whose points satisfy the ellipse equ
       const auto p = result.job.segments[i].point(k / 32.0);
       const double u = (p[0] - 50) / 30;
       const double v = (p[1] - 60) / 12.5;
-      CHECK(u * u + v * v == Approx(1).margin(1e-9));
+      // The control points are on the grid exactly; the rounded weight bounds the equation.
+      CHECK(u * u + v * v == Approx(1).margin(quarter_bound));
     }
   }
   // ry omitted: the same as rx (a circle).
@@ -80,7 +95,7 @@ TEST_CASE("svg: a rect with rounded corners is four lines and four quarter arcs"
   check_points(pieces[5], {on_page(15, 30), on_page(10, 30), on_page(10, 25)});
   check_points(pieces[6], {on_page(10, 25), on_page(10, 15)});
   check_points(pieces[7], {on_page(10, 15), on_page(10, 10), on_page(15, 10)});
-  for (std::size_t i = 1; i < 8; i += 2) CHECK(pieces[i].weights[1] == Approx(half_root_two).margin(1e-15));
+  for (std::size_t i = 1; i < 8; i += 2) CHECK(pieces[i].weights[1] == quarter_weight);
   // Radii larger than half the size are clamped (rx 30 -> 20, ry given 4): the horizontal sides
   // vanish, leaving four arcs and the two vertical sides.
   const auto clamped = drawn(import_page("<rect x=\"10\" y=\"10\" width=\"40\" height=\"20\" rx=\"30\" ry=\"4\"/>").job);

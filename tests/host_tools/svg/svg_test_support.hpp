@@ -17,6 +17,29 @@ namespace curvestep::testing {
 /// One Q16.16 step: imported points lie within half of it of the exact value.
 inline constexpr double grid_mm = 1.0 / 65536.0;
 
+/// True if `value` is finite and on the Q16.16 grid (value · 65536 is an integer).
+inline bool on_q16_grid(double value) { return std::isfinite(value) && value * 65536.0 == std::round(value * 65536.0); }
+
+/// The middle weight of the quarter arcs of circles, ellipses and rounded corners as the wire
+/// carries it: √2/2 · 65536 = 46340.950 rounds to 46341 (worked out by hand, not by the importer).
+inline constexpr double quarter_weight = 46341.0 / 65536.0;
+
+/// How far off its ellipse a conic arc with a rounded middle weight can be, in the ellipse's unit
+/// frame (where the ellipse is the unit circle; rational Béziers are affine invariant, so an
+/// ellipse piece is the affine image of a unit-circle piece with the same weights).
+///
+/// The unit-circle piece of sweep δ has P0, P2 on the circle and P1 = (the middle direction) / c,
+/// c = cos(δ/2), so |P1|² = 1/c², P0·P1 = P2·P1 = 1 and P0·P2 = 2c² − 1. With weight w instead of c,
+/// b0 = (1 − t)², b1 = 2t(1 − t), b2 = t², s = t(1 − t) and D = b0 + w b1 + b2 = 1 − 2(1 − w)s,
+/// expanding |b0 P0 + w b1 P1 + b2 P2|² − D² gives exactly
+///     |P(t)|² − 1 = 4 s² (1 − c²)(w² − c²) / (c² D²),
+/// which is 0 for w = c. For w ≤ 1, s/D grows with s, so 4s²/D² is largest at s = 1/4, where it is
+/// 1/(1 + w)²: ||P|² − 1| ≤ (1 − c²)|w² − c²| / (c² (1 + w)²). For the quarter (c² = 1/2) and
+/// w = 46341/65536 that is 3.70e-7, i.e. |P| within 1.85e-7 of 1: the documented 1.9e-7·r.
+inline double conic_off_circle_bound(double c, double w) {
+  return (1 - c * c) * std::fabs(w * w - c * c) / (c * c * (1 + w) * (1 + w));
+}
+
 inline std::filesystem::path svg_data(const std::string& name) { return std::filesystem::path(CURVESTEP_SVG_TEST_DATA) / name; }
 inline std::filesystem::path svg_example(const std::string& name) { return std::filesystem::path(CURVESTEP_SVG_EXAMPLES) / name; }
 

@@ -5,8 +5,9 @@
 // groups with transforms are mapped through one affine map per element onto machine millimetres
 // (docs/svg_import.md): lines stay lines, quadratic and cubic Béziers keep their control points
 // (Béziers are affine invariant), and elliptical arcs become rational quadratic Béziers of at most
-// 90° of the underlying circle each, which represent an ellipse exactly. Control points are
-// quantised to Q16.16 like job files. Subpaths are joined by rapid moves.
+// 90° of the underlying circle each, which represent an ellipse exactly. Control points, weights
+// and the feed are rounded to the nearest Q16.16 value like job files (the wire's format, so the
+// simulator sees what a device receives). Subpaths are joined by rapid moves.
 #pragma once
 
 #include <cstddef>
@@ -25,7 +26,7 @@ namespace curvestep::host {
 struct SvgOptions {
   bool optimize = false;             ///< reorder subpaths (greedy nearest neighbour, open ones may be reversed)
   MachinePoint start{};              ///< where the machine stands before the job, mm (the first rapid starts here)
-  double feed_mm_per_s = 0;          ///< feed of the drawing segments, 0 for the machine default
+  double feed_mm_per_s = 0;          ///< feed of the drawing segments (rounded to Q16.16), 0 for the machine default
 };
 
 /// A job made from a drawing, with what the import did.
