@@ -4,8 +4,9 @@
 // LoadError and the other std::exception types are the loader's documented way to refuse a file,
 // so they are caught. Anything else (a crash, a sanitizer report, a contract violation, another
 // exception) is a finding. For a file that loads, the promises of job.hpp are checked: every
-// PathSegment's ends are finite and inside the Q16.16 range, consecutive segments connect, and
-// every file segment evaluates at both ends of its domain.
+// PathSegment's ends are finite and inside the Q16.16 range, consecutive segments connect, every
+// coordinate, weight and feed (of the PathSegments and of the file's segments) is finite and on the
+// Q16.16 grid the wire carries, and every file segment evaluates at both ends of its domain.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -24,6 +25,49 @@ bool in_q16_range(const curvestep::MachinePoint& p) {
     if (!std::isfinite(p[a]) || p[a] < -32768.0 || p[a] >= 32768.0) return false;
   }
   return true;
+}
+
+/// Finite and on the Q16.16 grid (value · 65536, exact in double, is an integer): a number the
+/// wire carries without rounding.
+bool on_wire_grid(double value) { return std::isfinite(value) && value * 65536.0 == std::nearbyint(value * 65536.0); }
+
+bool on_wire_grid(const curvestep::MachinePoint& p) {
+  for (std::size_t a = 0; a < curvestep::motion_axes; ++a) {
+    if (!on_wire_grid(p[a])) return false;
+  }
+  return true;
+}
+
+/// Every number of `s` that the wire carries (host_tools/src/link/wire.cpp): control points (the
+/// end points and the XY centre of an arc), weights and the feed.
+bool wire_exact(const curvestep::PathSegment& s) {
+  if (!on_wire_grid(s.start()) || !on_wire_grid(s.end()) || !on_wire_grid(s.feed_mm_per_s())) return false;
+  switch (s.kind()) {
+    case curvestep::SegmentKind::Line:
+    case curvestep::SegmentKind::Bezier:
+      for (const auto& p : s.polynomial().control_points()) {
+        if (!on_wire_grid(p)) return false;
+      }
+      return true;
+    case curvestep::SegmentKind::RationalBezier:
+      for (std::size_t k = 0; k <= s.rational().degree(); ++k) {
+        if (!on_wire_grid(s.rational().control_points()[k]) || !on_wire_grid(s.rational().weight(k))) return false;
+      }
+      return true;
+    case curvestep::SegmentKind::Arc: return on_wire_grid(s.arc_center()[0]) && on_wire_grid(s.arc_center()[1]);
+  }
+  return false;
+}
+
+/// The file's segments as loaded: points, weights and feed on the grid (knots never travel).
+bool wire_exact(const curvestep::host::SourceSegment& source) {
+  for (const auto& p : source.points) {
+    if (!on_wire_grid(p)) return false;
+  }
+  for (const double w : source.weights) {
+    if (!on_wire_grid(w)) return false;
+  }
+  return on_wire_grid(source.feed_mm_per_s);
 }
 
 }  // namespace
@@ -47,6 +91,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (std::size_t a = 0; a < curvestep::motion_axes; ++a) CURVESTEP_FUZZ_ASSERT(std::fabs(gap[a]) <= 1.0 / 65536);
     }
   }
+  // Coordinates, weights and feeds are rounded to Q16.16 on loading (the wire's format), so the
+  // simulator and a device see the same numbers.
+  for (const auto& s : job.segments) CURVESTEP_FUZZ_ASSERT(wire_exact(s));
+  for (const auto& source : job.sources) CURVESTEP_FUZZ_ASSERT(wire_exact(source));
   for (std::size_t i = 0; i < job.sources.size(); ++i) {
     const auto [lo, hi] = job.sources[i].domain();
     // Both ends of the domain are inside it: evaluate_segment must not refuse them.
