@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <curvestep/host/link/wire.hpp>
 #include <curvestep/host/svg_import.hpp>
 
 #include "svg_test_support.hpp"
@@ -126,4 +127,27 @@ TEST_CASE("svg: every coordinate, weight and feed imported from the example and 
   }
   CHECK(imported >= 3);    // the demo, the Inkscape and the Illustrator files at least
   CHECK(rational >= 2 * 40);  // the demo alone has 40 arc pieces
+}
+
+TEST_CASE("svg: the demo drawing goes over the wire without a rounding note", "[host_tools][svg][wire]") {
+  // Before weights were rounded on import, the wire conversion rounded the 40 arc pieces' weights
+  // and said so in 40 "weights rounded to Q16.16" notes: the simulator and the device then ran
+  // slightly different curves.
+  SvgOptions options;
+  options.feed_mm_per_s = 12.345;
+  const Job job = load_svg(svg_example("curvestep_demo.svg"), options).job;
+  const auto wire = link::to_wire(job, motion_axes);
+  for (const auto& note : wire.notes) UNSCOPED_INFO(note);
+  CHECK(wire.notes.empty());
+  REQUIRE(wire.segments.size() == job.segments.size());
+  std::size_t weights = 0;
+  for (std::size_t i = 0; i < job.segments.size(); ++i) {
+    if (job.segments[i].kind() != SegmentKind::RationalBezier) continue;
+    for (std::size_t k = 0; k <= job.segments[i].rational().degree(); ++k) {
+      // The raw Q16.16 weight sent is the imported weight · 65536, exactly.
+      CHECK(static_cast<double>(wire.segments[i].weights[k]) == job.segments[i].rational().weight(k) * 65536.0);
+      ++weights;
+    }
+  }
+  CHECK(weights == 40 * 3);
 }
