@@ -96,7 +96,7 @@ TEST_CASE("jobs: a rational quadratic with weights 1, sqrt(2)/2, 1 is a quarter 
     const double b2 = t * t;
     const double d = b0 + b1 + b2;
     CHECK(distance(p, xyz((10 * b0 + 10 * b1) / d, (10 * b1 + 10 * b2) / d)) < 1e-12);
-    // Rounding √2/2 by 4.6e-7 moves the conic off the circle by at most 1.9e-7 of the radius.
+    // Rounding √2/2 to 46341/65536 (by 7.6e-7) moves the conic off the circle by at most 1.9e-7 of the radius.
     CHECK(std::hypot(p[0], p[1]) == Approx(10).margin(2e-6));
     CHECK(p[0] >= 0);
     CHECK(p[1] >= 0);
