@@ -36,10 +36,28 @@ enum class SegmentKind : std::uint8_t {
 /// A point in machine space (mm).
 using MachinePoint = Vec<double, motion_axes>;
 
+/// A PathSegment as the motion queue keeps it (MotionController): only the numbers that define
+/// the segment (control points, weights or arc data, one array for every kind) instead of the
+/// full PathSegment with its polynomial, rational and arc members side by side (272 bytes
+/// against 776 on Cortex-M). PathSegment::compact() copies the doubles and PathSegment::expand()
+/// rebuilds the segment from them, so an expanded segment evaluates bit for bit like the original.
+///   Line, Bezier     values[3i + axis] = control point i (degree + 1 points)
+///   RationalBezier   the same, and values[24 + i] = weight i
+///   Arc              start 0..2, end 3..5, centre 6..8, radius 9, sweep 10, Δz 11, end radius scale 12
+struct CompactSegment {
+  static constexpr std::size_t value_count = 32;  ///< (max degree 7 + 1) × (3 axes + a weight)
+  std::array<double, value_count> values{};       ///< the kind's numbers (above)
+  double feed_mm_per_s = 0;                        ///< programmed feed (0: the machine's default)
+  SegmentKind kind = SegmentKind::Line;            ///< what the values mean
+  std::uint8_t degree = 1;                         ///< Bézier degree (Line: 1, Arc: unused)
+  bool rapid = false;                              ///< rapid move
+};
+
 /// One segment of a path; construct with the make_* functions, which validate.
 class PathSegment {
  public:
   static constexpr std::size_t max_degree = 7;
+  static constexpr std::size_t capacity = max_degree + 1;  ///< control points at most
   using Polynomial = curvestep::Bezier<double, motion_axes, max_degree>;
   using Rational = curvestep::RationalBezier<double, motion_axes, max_degree>;
 
@@ -183,26 +201,107 @@ class PathSegment {
     }
   }
 
+  /// The segment's defining numbers (exact copies), for the motion queue.
+  [[nodiscard]] constexpr CompactSegment compact() const noexcept {
+    CompactSegment c;
+    c.kind = kind_;
+    c.rapid = rapid_;
+    c.feed_mm_per_s = feed_;
+    const auto store = [&c](std::size_t first, const MachinePoint& p) {
+      for (std::size_t axis = 0; axis < motion_axes; ++axis) c.values[first + axis] = p[axis];
+    };
+    switch (kind_) {
+      case SegmentKind::Arc:
+        store(0, start_);
+        store(3, end_);
+        store(6, center_);
+        c.values[9] = radius_;
+        c.values[10] = sweep_;
+        c.values[11] = dz_;
+        c.values[12] = end_radius_scale_;
+        break;
+      case SegmentKind::RationalBezier: {
+        const auto points = rational_.control_points();
+        c.degree = static_cast<std::uint8_t>(rational_.degree());
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          store(3 * i, points[i]);
+          c.values[3 * capacity + i] = rational_.weight(i);
+        }
+        break;
+      }
+      default: {
+        const auto points = polynomial_.control_points();
+        c.degree = static_cast<std::uint8_t>(polynomial_.degree());
+        for (std::size_t i = 0; i < points.size(); ++i) store(3 * i, points[i]);
+        break;
+      }
+    }
+    return c;
+  }
+
+  /// The segment whose compact() gave `c`: the same control points, weights and arc data, so it
+  /// evaluates, differentiates and splits bit for bit like the original. NotFinite and the other
+  /// errors of Bezier::create / RationalBezier::create for numbers no PathSegment holds.
+  [[nodiscard]] static Result<PathSegment> expand(const CompactSegment& c) noexcept {
+    PathSegment s;
+    s.kind_ = c.kind;
+    s.rapid_ = c.rapid;
+    s.feed_ = c.feed_mm_per_s;
+    const auto load = [&c](std::size_t first) {
+      return MachinePoint{{c.values[first], c.values[first + 1], c.values[first + 2]}};
+    };
+    if (c.kind == SegmentKind::Arc) {
+      s.start_ = load(0);
+      s.end_ = load(3);
+      s.center_ = load(6);
+      s.radius_ = c.values[9];
+      s.sweep_ = c.values[10];
+      s.dz_ = c.values[11];
+      s.end_radius_scale_ = c.values[12];
+      return s;
+    }
+    if (c.degree > max_degree) return fail(Error::DegreeAboveCapacity, c.degree);
+    const std::size_t count = static_cast<std::size_t>(c.degree) + 1;
+    std::array<MachinePoint, capacity> points{};
+    for (std::size_t i = 0; i < count; ++i) points[i] = load(3 * i);
+    const std::span<const MachinePoint> control(points.data(), count);
+    if (c.kind == SegmentKind::RationalBezier) {
+      CURVESTEP_TRY(s.rational_, Rational::create(control, std::span<const double>(c.values.data() + 3 * capacity, count)));
+    } else {
+      CURVESTEP_TRY(s.polynomial_, Polynomial::create(control));
+    }
+    return s;
+  }
+
   /// The two pieces on [0,u] and [u,1] (Bézier kinds only; lines and arcs have no cusps to split at).
   /// InvalidArgument for other kinds or u outside (0,1); DegenerateCurve if a piece collapses.
   [[nodiscard]] Result<SplitCurves<PathSegment>> split(double u) const noexcept {
-    if (!(u > 0 && u < 1)) return fail(Error::InvalidArgument);
     SplitCurves<PathSegment> pieces;
-    pieces.left = *this;
     pieces.right = *this;
+    CURVESTEP_CHECK(pieces.right.split_off(u, pieces.left));
+    return pieces;
+  }
+
+  /// split(u) in place, with less memory: `left` becomes the piece on [0,u] and this segment the
+  /// piece on [u,1] (the same pieces, bit for bit). On an error both are left unchanged.
+  [[nodiscard]] Result<void> split_off(double u, PathSegment& left) noexcept {
+    if (!(u > 0 && u < 1)) return fail(Error::InvalidArgument);
     if (kind_ == SegmentKind::Bezier) {
       CURVESTEP_TRY(const auto halves, polynomial_.split(u));
-      pieces.left.polynomial_ = halves.left;
-      pieces.right.polynomial_ = halves.right;
+      if (is_point(halves.left.control_points()) || is_point(halves.right.control_points())) return fail(Error::DegenerateCurve);
+      left = *this;
+      left.polynomial_ = halves.left;
+      polynomial_ = halves.right;
     } else if (kind_ == SegmentKind::RationalBezier) {
       CURVESTEP_TRY(const auto halves, rational_.split(u));
-      pieces.left.rational_ = halves.left;
-      pieces.right.rational_ = halves.right;
+      if (is_point(halves.left.control_points()) || is_point(halves.right.control_points())) return fail(Error::DegenerateCurve);
+      left = *this;
+      left.rational_ = halves.left;
+      rational_ = halves.right;
     } else {
       return fail(Error::InvalidArgument);
     }
-    if (pieces.left.is_point() || pieces.right.is_point()) return fail(Error::DegenerateCurve);
-    return pieces;
+    return ok();
   }
 
  private:
@@ -248,12 +347,16 @@ class PathSegment {
   }
 
   [[nodiscard]] constexpr bool is_point() const noexcept {
-    const auto pts = kind_ == SegmentKind::RationalBezier ? rational_.control_points() : polynomial_.control_points();
+    return is_point(kind_ == SegmentKind::RationalBezier ? rational_.control_points() : polynomial_.control_points());
+  }
+  [[nodiscard]] static constexpr bool is_point(std::span<const MachinePoint> pts) noexcept {
     for (const auto& p : pts) {
       if (!(p == pts[0])) return false;
     }
     return true;
   }
+
+  static_assert(CompactSegment::value_count == 4 * capacity, "compact(): 3 coordinates and a weight per control point");
 
   SegmentKind kind_ = SegmentKind::Line;
   bool rapid_ = false;
