@@ -89,7 +89,8 @@ cat > "$json" <<JSON
  "ram_with_worst_case_stack_bytes": $ram_needed,
  "stack_fits": $stack_ok,
  "stack_policy": "$stack_policy",
- "goal": $goal_json
+ "goal": $goal_json,
+ "stack_analysis": $([ -s "$stack_json" ] && cat "$stack_json" || echo null)
 }
 JSON
 [ "$status" -eq 0 ] && echo "PASS: $name is free of malloc/free/operator new/delete/exceptions and within budget"

@@ -87,8 +87,9 @@ def analyse(files, fpu):
         for callee in calls.get(title, []):
             target = resolve(callee)
             if target is None:
-                unknown.add(display.get(callee, callee))
-                candidate = (UNKNOWN_BYTES, [display.get(callee, callee) + " (assumed %d)" % UNKNOWN_BYTES])
+                name = display.get(callee, bare(callee))
+                unknown.add(name)
+                candidate = (UNKNOWN_BYTES, [name + " (assumed %d)" % UNKNOWN_BYTES])
             else:
                 candidate = depth(target)
             if candidate[0] > best[0]:
