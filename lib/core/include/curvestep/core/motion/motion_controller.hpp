@@ -221,19 +221,27 @@ class MotionController {
   /// Plans one piece after `previous` (updated) and, if `commit`, queues it (room checked by try_push).
   [[nodiscard]] Result<void> push_piece(const PathSegment& piece, std::uint32_t job_index, SegmentPlan& previous,
                                         bool& has_previous, bool commit) noexcept {
+    CURVESTEP_TRY(const SegmentPlan plan, plan_piece(piece, job_index));
+    if (commit) enqueue(piece, plan, has_previous ? junction_speed(previous, plan, machine_) : 0, job_index);
+    previous = plan;
+    has_previous = true;
+    return ok();
+  }
+
+  /// Queues a planned piece (its own frame: the entry is not on the stack while planning).
+  [[gnu::noinline]] void enqueue(const PathSegment& piece, const SegmentPlan& plan, double junction, std::uint32_t job_index) noexcept {
+    const Entry entry{piece.compact(), QueuedPlan{plan.length_mm, plan.limits}, junction, job_index, ++pushed_serial_};
+    [[maybe_unused]] const bool pushed = queue_.try_push(entry);
+  }
+
+  /// The plan of one piece; its path-length table (1 KiB) lives only while this runs, not while
+  /// the queue entry is built.
+  [[nodiscard]] Result<SegmentPlan> plan_piece(const PathSegment& piece, std::uint32_t job_index) const noexcept {
     const auto table = PathLengthTable<TableIntervals>::build(piece);
     if (!table) return table.failure();
     auto plan = plan_segment(piece, table.value(), machine_);
     if (!plan) return fail(plan.error(), job_index);
-    if (commit) {
-      const double junction = has_previous ? junction_speed(previous, plan.value(), machine_) : 0;
-      const Entry entry{piece.compact(), QueuedPlan{plan.value().length_mm, plan.value().limits}, junction, job_index,
-                        ++pushed_serial_};
-      [[maybe_unused]] const bool pushed = queue_.try_push(entry);
-    }
-    previous = plan.value();
-    has_previous = true;
-    return ok();
+    return plan;
   }
 
   [[nodiscard]] bool stopped() const noexcept {
