@@ -93,5 +93,11 @@ cat > "$json" <<JSON
  "stack_analysis": $([ -s "$stack_json" ] && cat "$stack_json" || echo null)
 }
 JSON
-[ "$status" -eq 0 ] && echo "PASS: $name is free of malloc/free/operator new/delete/exceptions and within budget"
+if [ "$status" -eq 0 ]; then
+  if [ "$stack_ok" = true ]; then
+    echo "PASS: $name is free of malloc/free/operator new/delete/exceptions and within budget"
+  else
+    echo "PASS: $name is free of malloc/free/operator new/delete/exceptions and within its flash/RAM limits (stack: see the warning)"
+  fi
+fi
 exit $status
