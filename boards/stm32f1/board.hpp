@@ -10,81 +10,36 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <span>
 
-#include <curvestep/boards/stm32/clocks.hpp>
+#include <curvestep/boards/stm32/board.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
-#include <curvestep/core/motion/step_generator.hpp>
 
 namespace curvestep::boards {
 
 using stm32::Clocks;  ///< clock frequencies after init()
 
-/// The STM32F103C8 board ("blue pill" class, 8 MHz crystal).
-class Stm32F1Board {
- public:
-  using Scalar = Q16_16;                                 ///< no FPU: fixed point
-  static constexpr const char* name = "stm32f1";        ///< board name in reports
-  static constexpr std::size_t axes = 3;                 ///< step/dir channels
-  static constexpr std::uint32_t baud = 115200;          ///< console baud rate
-  static constexpr std::size_t console_buffer = 256;     ///< bytes in each console ring
-  static constexpr std::uint32_t hse_hz = 8'000'000;     ///< crystal
+/// What is particular to the STM32F103C8 (RM0008); the rest is stm32::Board.
+struct Stm32F1Chip {
+  using Scalar = Q16_16;                                       ///< no FPU: fixed point
+  static constexpr const char* name = "stm32f1";              ///< board name in reports
+  static constexpr std::uint32_t hse_hz = 8'000'000;           ///< crystal
   static constexpr std::uint32_t target_hclk_hz = 72'000'000;  ///< PLL x9 from the crystal
+  static constexpr std::uintptr_t usart1 = 0x40013800;         ///< USART1 (APB2)
+  static constexpr unsigned usart1_irq = 37;                   ///< its interrupt number
+  static constexpr std::uintptr_t gpioa_bsrr = 0x40010800 + 0x10;  ///< GPIOA bit set/reset register
+  static constexpr std::size_t step_events_per_tick = 32;      ///< StepBatch capacity per control tick
+  static constexpr std::size_t edge_ring = 64;                 ///< timed edges waiting for TIM2 (two ticks)
+  static constexpr Clocks fallback_clocks{8'000'000, 8'000'000, 8'000'000, false};  ///< HSI 8 MHz
 
-  /// Clocks (HSE -> PLL 72 MHz, or HSI 8 MHz fallback), GPIO and USART1 with its interrupt.
-  Clocks init() noexcept;
-
-  /// Queues console bytes; returns how many fitted in the transmit ring.
-  std::size_t write(std::span<const std::uint8_t> bytes) noexcept;
-  /// Queues every byte, waiting for room.
-  void write_all(std::span<const std::uint8_t> bytes) noexcept;
-  /// Takes one received console byte; false when none.
-  bool read(std::uint8_t& byte) noexcept;
-  /// Room in the transmit ring.
-  [[nodiscard]] std::size_t writable() const noexcept;
-  /// Received bytes lost to a full ring or a hardware overrun.
-  [[nodiscard]] std::uint32_t receive_overruns() const noexcept;
-
-  /// Starts the control tick: `callback(context)` from the SysTick interrupt `rate_hz` times a second.
-  bool start_tick(std::uint32_t rate_hz, void (*callback)(void*), void* context) noexcept;
-  /// Ticks since start_tick().
-  [[nodiscard]] std::uint32_t ticks() const noexcept;
-
-  /// Drives the DIR lines: bit a of `positive_mask` set = axis a moves in the positive direction.
-  void set_directions(std::uint32_t positive_mask) noexcept;
-  /// Raises the STEP lines of the axes in `mask` (one BSRR write).
-  void raise_steps(std::uint32_t mask) noexcept;
-  /// Lowers the STEP lines of the axes in `mask` (one BSRR write).
-  void lower_steps(std::uint32_t mask) noexcept;
-
-  // --- the firmware::Board concept (firmware/include/curvestep/firmware/board.hpp) ---
-  static constexpr std::uint8_t axis_count = 3;                 ///< driven axes
-  static constexpr std::size_t step_events_per_tick = 32;       ///< StepBatch capacity per control tick
-  static constexpr std::size_t edge_ring = 64;                  ///< timed edges waiting for TIM2 (two ticks)
-  /// 1 MHz step timer (TIM2), 2 µs pulses and gaps, 1 µs direction set-up and hold.
-  static constexpr StepTiming step_timing() noexcept { return StepTiming{1'000'000, 2000, 2000, 1000, 1000}; }
-  /// Milliseconds since init() (from SysTick, whatever its rate).
-  [[nodiscard]] std::uint32_t now_ms() const noexcept;
-  /// Received bytes into `into`; never blocks.
-  std::size_t read(std::span<std::byte> into) noexcept;
-  /// Queues what fits of `bytes` for transmission; never blocks.
-  std::size_t write(std::span<const std::byte> bytes) noexcept;
-  /// Queues a DIR edge at step-timer time `time_ticks` (played one control period later).
-  void set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive) noexcept;
-  /// Queues a STEP edge at step-timer time `time_ticks` (played one control period later).
-  void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) noexcept;
-  /// Drops every queued edge and lowers the STEP lines.
-  void fault_stop() noexcept;
-  /// Starts TIM2 for the edges of a control tick of `control_rate_hz`.
-  void start_steps(std::uint32_t control_rate_hz) noexcept;
-  /// Edges lost to a full edge ring.
-  [[nodiscard]] std::uint32_t edges_dropped() const noexcept;
-
-  /// Clocks measured by init().
-  [[nodiscard]] const Clocks& clocks() const noexcept { return clocks_; }
-
- private:
-  Clocks clocks_{8'000'000, 8'000'000, 8'000'000, false};
+  /// HSE 8 MHz -> PLL 72 MHz, or HSI 8 MHz if a ready flag does not come; QEMU: 24 MHz.
+  static Clocks setup_clocks() noexcept;
+  /// GPIOA, AFIO and USART1 clocks; PA0..PA5 outputs, PA9 TX, PA10 RX.
+  static void setup_gpio() noexcept;
+  /// TIM2 clock on (APB1).
+  static void enable_step_timer() noexcept;
 };
+
+/// The STM32F103C8 board ("blue pill" class, 8 MHz crystal).
+using Stm32F1Board = stm32::Board<Stm32F1Chip>;
 
 }  // namespace curvestep::boards

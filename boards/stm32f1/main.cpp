@@ -1,19 +1,7 @@
 // SPDX-License-Identifier: MIT
 // STM32F1 bring-up image: clocks, console, 1 kHz tick, then the line monitor (bringup.hpp).
 #include <curvestep/boards/stm32/bringup.hpp>
-#include <curvestep/boards/stm32/mmio.hpp>
-#include <curvestep/boards/stm32/startup.hpp>
 
 #include "board.hpp"
 
-extern "C" [[noreturn]] void curvestep_main() {
-  static curvestep::boards::Stm32F1Board board;
-  board.init();
-  board.start_tick(1000, nullptr, nullptr);
-  static curvestep::stm32::BringUp<curvestep::boards::Stm32F1Board> monitor(board);
-  monitor.banner();
-  for (;;) {
-    monitor.poll();
-    curvestep::stm32::wait_for_interrupt();
-  }
-}
+extern "C" [[noreturn]] void curvestep_main() { curvestep::stm32::run_bringup<curvestep::boards::Stm32F1Board>(); }

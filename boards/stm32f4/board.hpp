@@ -10,81 +10,35 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <span>
 
-#include <curvestep/boards/stm32/clocks.hpp>
-#include <curvestep/core/fixed/fixed.hpp>
-#include <curvestep/core/motion/step_generator.hpp>
+#include <curvestep/boards/stm32/board.hpp>
 
 namespace curvestep::boards {
 
 using stm32::Clocks;  ///< clock frequencies after init()
 
-/// The STM32F405 board (Netduino Plus 2 class, 25 MHz crystal).
-class Stm32F4Board {
- public:
-  using Scalar = float;                                  ///< FPv4-SP: float (Q16_16 also builds)
-  static constexpr const char* name = "stm32f4";        ///< board name in reports
-  static constexpr std::size_t axes = 3;                 ///< step/dir channels
-  static constexpr std::uint32_t baud = 115200;          ///< console baud rate
-  static constexpr std::size_t console_buffer = 256;     ///< bytes in each console ring
-  static constexpr std::uint32_t hse_hz = 25'000'000;    ///< crystal
+/// What is particular to the STM32F405 (RM0090); the rest is stm32::Board.
+struct Stm32F4Chip {
+  using Scalar = float;                                         ///< FPv4-SP: float (Q16_16 also builds)
+  static constexpr const char* name = "stm32f4";               ///< board name in reports
+  static constexpr std::uint32_t hse_hz = 25'000'000;           ///< crystal
   static constexpr std::uint32_t target_hclk_hz = 168'000'000;  ///< PLL from the crystal
-
-  /// Clocks (HSE -> PLL 168 MHz, or HSI 16 MHz fallback), GPIO and USART1 with its interrupt.
-  Clocks init() noexcept;
-
-  /// Queues console bytes; returns how many fitted in the transmit ring.
-  std::size_t write(std::span<const std::uint8_t> bytes) noexcept;
-  /// Queues every byte, waiting for room.
-  void write_all(std::span<const std::uint8_t> bytes) noexcept;
-  /// Takes one received console byte; false when none.
-  bool read(std::uint8_t& byte) noexcept;
-  /// Room in the transmit ring.
-  [[nodiscard]] std::size_t writable() const noexcept;
-  /// Received bytes lost to a full ring or a hardware overrun.
-  [[nodiscard]] std::uint32_t receive_overruns() const noexcept;
-
-  /// Starts the control tick: `callback(context)` from the SysTick interrupt `rate_hz` times a second.
-  bool start_tick(std::uint32_t rate_hz, void (*callback)(void*), void* context) noexcept;
-  /// Ticks since start_tick().
-  [[nodiscard]] std::uint32_t ticks() const noexcept;
-
-  /// Drives the DIR lines: bit a of `positive_mask` set = axis a moves in the positive direction.
-  void set_directions(std::uint32_t positive_mask) noexcept;
-  /// Raises the STEP lines of the axes in `mask` (one BSRR write).
-  void raise_steps(std::uint32_t mask) noexcept;
-  /// Lowers the STEP lines of the axes in `mask` (one BSRR write).
-  void lower_steps(std::uint32_t mask) noexcept;
-
-  // --- the firmware::Board concept (firmware/include/curvestep/firmware/board.hpp) ---
-  static constexpr std::uint8_t axis_count = 3;                 ///< driven axes
+  static constexpr std::uintptr_t usart1 = 0x40011000;          ///< USART1 (APB2)
+  static constexpr unsigned usart1_irq = 37;                    ///< its interrupt number
+  static constexpr std::uintptr_t gpioa_bsrr = 0x40020000 + 0x18;  ///< GPIOA bit set/reset register
   static constexpr std::size_t step_events_per_tick = 128;      ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = 256;                 ///< timed edges waiting for TIM2 (two ticks)
-  /// 1 MHz step timer (TIM2), 2 µs pulses and gaps, 1 µs direction set-up and hold.
-  static constexpr StepTiming step_timing() noexcept { return StepTiming{1'000'000, 2000, 2000, 1000, 1000}; }
-  /// Milliseconds since init() (from SysTick, whatever its rate).
-  [[nodiscard]] std::uint32_t now_ms() const noexcept;
-  /// Received bytes into `into`; never blocks.
-  std::size_t read(std::span<std::byte> into) noexcept;
-  /// Queues what fits of `bytes` for transmission; never blocks.
-  std::size_t write(std::span<const std::byte> bytes) noexcept;
-  /// Queues a DIR edge at step-timer time `time_ticks` (played one control period later).
-  void set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive) noexcept;
-  /// Queues a STEP edge at step-timer time `time_ticks` (played one control period later).
-  void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) noexcept;
-  /// Drops every queued edge and lowers the STEP lines.
-  void fault_stop() noexcept;
-  /// Starts TIM2 for the edges of a control tick of `control_rate_hz`.
-  void start_steps(std::uint32_t control_rate_hz) noexcept;
-  /// Edges lost to a full edge ring.
-  [[nodiscard]] std::uint32_t edges_dropped() const noexcept;
+  static constexpr Clocks fallback_clocks{16'000'000, 16'000'000, 16'000'000, false};  ///< HSI 16 MHz
 
-  /// Clocks measured by init().
-  [[nodiscard]] const Clocks& clocks() const noexcept { return clocks_; }
-
- private:
-  Clocks clocks_{16'000'000, 16'000'000, 16'000'000, false};
+  /// HSE 25 MHz -> PLL 168 MHz, or HSI 16 MHz if a ready flag does not come; QEMU: 168 MHz.
+  static Clocks setup_clocks() noexcept;
+  /// GPIOA and USART1 clocks; PA0..PA5 outputs, PA9/PA10 AF7 (USART1).
+  static void setup_gpio() noexcept;
+  /// TIM2 clock on (APB1).
+  static void enable_step_timer() noexcept;
 };
+
+/// The STM32F405 board (Netduino Plus 2 class, 25 MHz crystal).
+using Stm32F4Board = stm32::Board<Stm32F4Chip>;
 
 }  // namespace curvestep::boards

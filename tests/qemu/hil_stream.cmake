@@ -1,8 +1,8 @@
 # HIL streams against the emulated STM32F4 (included by tests/qemu/CMakeLists.txt): the App<Board>
 # firmware in QEMU receives a job from `curvestep stream` over -serial pty; its setpoint stream must
 # match `curvestep sim` within 1 µm (float firmware). Skipped (77) while curvestep has no `stream`.
-# The STM32F1 (Q16.16, bit-identical) variant cannot run: its firmware needs more SRAM than QEMU's
-# STM32F100 has (docs/boards.md). In its place the same Cortex-M3 + Q16.16 firmware runs on QEMU's
+# The STM32F1 (Q16.16, bit-identical) variant cannot run: its firmware needs 20 KiB of SRAM with its
+# worst-case stack, QEMU's STM32F100 has 8 KiB (docs/boards.md, "Footprint"). In its place the same Cortex-M3 + Q16.16 firmware runs on QEMU's
 # netduino2 (STM32F205: Cortex-M3, F2/F4 peripheral map) and must match sim bit for bit.
 if(TARGET curvestep)
   # wire_exact_machine.json: the example machine with no rapid field (the protocol has none: the

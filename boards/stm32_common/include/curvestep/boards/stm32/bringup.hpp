@@ -102,4 +102,18 @@ class BringUp {
   std::size_t length_ = 0;
 };
 
+/// The bring-up image's main loop: clocks, console, a 1 kHz tick, then the monitor.
+template <class Board>
+[[noreturn]] void run_bringup() {
+  static Board board;
+  board.init();
+  board.start_tick(1000, nullptr, nullptr);
+  static BringUp<Board> monitor(board);
+  monitor.banner();
+  for (;;) {
+    monitor.poll();
+    wait_for_interrupt();
+  }
+}
+
 }  // namespace curvestep::stm32

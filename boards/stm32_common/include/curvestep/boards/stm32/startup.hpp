@@ -69,3 +69,23 @@ extern std::uint32_t _estack;
         nullptr, nullptr, nullptr, nullptr, Default_Handler, Default_Handler, nullptr, Default_Handler,         \
         SysTick_Handler                                                                                          \
   }
+
+extern "C" void TIM2_IRQHandler();    ///< the board's step-timer handler (board.cpp)
+extern "C" void USART1_IRQHandler();  ///< the board's console handler (board.cpp)
+
+namespace curvestep::stm32 {
+
+/// The vector table of an STM32 board with IrqCount interrupts: the shared system handlers, TIM2
+/// (IRQ 28) and USART1 (IRQ 37), whose numbers are the same on the F1, F2 and F4 (RM0008 §10.1.2,
+/// RM0090 §12.2), and Default_Handler for every other interrupt.
+template <std::size_t IrqCount>
+consteval VectorTable<IrqCount> board_vector_table() {
+  static_assert(IrqCount > 37, "TIM2 and USART1 must be in the table");
+  VectorTable<IrqCount> table{&_estack, CURVESTEP_STM32_SYSTEM_VECTORS, {}};
+  for (auto& handler : table.interrupts) handler = Default_Handler;
+  table.interrupts[28] = TIM2_IRQHandler;
+  table.interrupts[37] = USART1_IRQHandler;
+  return table;
+}
+
+}  // namespace curvestep::stm32

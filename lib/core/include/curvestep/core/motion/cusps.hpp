@@ -32,15 +32,24 @@ template <std::size_t MaxCusps = 6>
   CuspList<MaxCusps> cusps;
   if (segment.kind() == SegmentKind::Line || segment.kind() == SegmentKind::Arc) return cusps;
   constexpr std::size_t samples = 256;
-  std::array<double, samples + 1> speed{};
+  // Two passes over the samples instead of a table of 257 speeds (2 KiB of stack on a
+  // microcontroller): the largest speed first, then the local minima from a sliding window of
+  // three. The speeds are recomputed identically (a pure function of the segment).
+  const auto speed_at = [&segment](std::size_t k) { return norm(segment.derivative(static_cast<double>(k) / samples, 1)); };
   double largest = 0;
   for (std::size_t k = 0; k <= samples; ++k) {
-    speed[k] = norm(segment.derivative(static_cast<double>(k) / samples, 1));
-    if (speed[k] > largest) largest = speed[k];
+    const double speed = speed_at(k);
+    if (speed > largest) largest = speed;
   }
   if (!(largest > 0)) return cusps;
+  double before = speed_at(0);
+  double here = speed_at(1);
   for (std::size_t k = 1; k < samples && cusps.count < MaxCusps; ++k) {
-    if (!(speed[k] <= speed[k - 1] && speed[k] <= speed[k + 1]) || speed[k] > 1e-3 * largest) continue;
+    const double after = speed_at(k + 1);
+    const bool minimum_here = here <= before && here <= after && !(here > 1e-3 * largest);
+    before = here;
+    here = after;
+    if (!minimum_here) continue;
     // golden-section search for the minimum of |p'| on [u_{k-1}, u_{k+1}]
     const auto minimum = detail::golden_section_minimum([&](double x) { return norm(segment.derivative(x, 1)); },
                                                         static_cast<double>(k - 1) / samples, static_cast<double>(k + 1) / samples, 80);

@@ -75,34 +75,11 @@ class MotionController {
     if (end_of_job_ || state_ == ControllerState::Aborted || state_ == ControllerState::Fault) return fail(Error::InvalidState);
     const auto cusps = find_cusps(segment);
     if (queue_.available() < cusps.count + 1) return fail(Error::QueueFull);
-    std::array<PathSegment, decltype(cusps)::capacity + 1> pieces{};
-    std::size_t count = 0;
-    PathSegment rest = segment;
-    double consumed = 0;  // the parameter of `rest`'s start on the original segment
-    for (std::size_t i = 0; i < cusps.count; ++i) {
-      const double u = (cusps.parameters[i] - consumed) / (1 - consumed);
-      CURVESTEP_TRY(const auto halves, rest.split(u));
-      pieces[count++] = halves.left;
-      rest = halves.right;
-      consumed = cusps.parameters[i];
-    }
-    pieces[count++] = rest;
-    std::array<Entry, decltype(cusps)::capacity + 1> entries{};
-    SegmentPlan previous = previous_plan_;
-    bool has_previous = has_previous_;
-    for (std::size_t i = 0; i < count; ++i) {
-      CURVESTEP_TRY(const auto table, PathLengthTable<TableIntervals>::build(pieces[i]));
-      auto plan = plan_segment(pieces[i], table, machine_);
-      if (!plan) return fail(plan.error(), job_index);
-      entries[i] = Entry{pieces[i], plan.value(), has_previous ? junction_speed(previous, plan.value(), machine_) : 0, job_index};
-      previous = plan.value();
-      has_previous = true;
-    }
-    for (std::size_t i = 0; i < count; ++i) {
-      [[maybe_unused]] const bool pushed = queue_.try_push(entries[i]);
-    }
-    previous_plan_ = previous;
-    has_previous_ = true;
+    // Split in place, piece by piece (no array of pieces on the stack). With cusps, a first pass
+    // plans every piece without queueing, so that an error leaves the queue as it was; the
+    // second pass computes the same pieces and plans again (deterministic) and queues them.
+    if (cusps.count > 0) CURVESTEP_CHECK(push_pieces(segment, cusps, job_index, false));
+    CURVESTEP_CHECK(push_pieces(segment, cusps, job_index, true));
     if (state_ == ControllerState::Finished) state_ = ControllerState::Idle;
     return ok();
   }
@@ -190,18 +167,95 @@ class MotionController {
   [[nodiscard]] const VelocityProfile& current_profile() const noexcept { return profile_; }
 
  private:
+  /// What the queue keeps of a SegmentPlan (the end tangents and curvatures are needed only for
+  /// the junction with the next pushed segment: previous_plan_).
+  struct QueuedPlan {
+    double length_mm = 0;   ///< arc length
+    ProfileLimits limits{};  ///< caps for the segment's speed profile
+  };
+
+  /// A queue slot: the segment in compact form (PathSegment::compact; front() expands it).
   struct Entry {
-    PathSegment segment{};
-    SegmentPlan plan{};
+    CompactSegment segment{};
+    QueuedPlan plan{};
     double junction_in = 0;       ///< speed cap at the joint into this segment
     std::uint32_t job_index = 0;  ///< the segment's index in the job
+    std::uint32_t serial = 0;     ///< push count, identifies the slot's content for front()
   };
+
+  /// The front entry, its segment expanded to a PathSegment (once per entry, cached in current_).
+  struct Front {
+    const PathSegment& segment;
+    const QueuedPlan& plan;
+    double junction_in;
+    std::uint32_t job_index;
+  };
+
+  /// Plans the pieces of `segment` between its cusps (split in place) and, if `commit`, queues
+  /// them. The pieces and plans are those of splitting at each cusp in turn.
+  template <class Cusps>
+  [[nodiscard]] Result<void> push_pieces(const PathSegment& segment, const Cusps& cusps, std::uint32_t job_index,
+                                         bool commit) noexcept {
+    SegmentPlan previous = previous_plan_;
+    bool has_previous = has_previous_;
+    if (cusps.count == 0) {
+      CURVESTEP_CHECK(push_piece(segment, job_index, previous, has_previous, commit));
+    } else {
+      PathSegment rest = segment;
+      PathSegment piece;
+      double consumed = 0;  // the parameter of `rest`'s start on the original segment
+      for (std::size_t i = 0; i < cusps.count; ++i) {
+        CURVESTEP_CHECK(rest.split_off((cusps.parameters[i] - consumed) / (1 - consumed), piece));
+        CURVESTEP_CHECK(push_piece(piece, job_index, previous, has_previous, commit));
+        consumed = cusps.parameters[i];
+      }
+      CURVESTEP_CHECK(push_piece(rest, job_index, previous, has_previous, commit));
+    }
+    if (commit) {
+      previous_plan_ = previous;
+      has_previous_ = true;
+    }
+    return ok();
+  }
+
+  /// Plans one piece after `previous` (updated) and, if `commit`, queues it (room checked by try_push).
+  [[nodiscard]] Result<void> push_piece(const PathSegment& piece, std::uint32_t job_index, SegmentPlan& previous,
+                                        bool& has_previous, bool commit) noexcept {
+    CURVESTEP_TRY(const SegmentPlan plan, plan_piece(piece, job_index));
+    if (commit) enqueue(piece, plan, has_previous ? junction_speed(previous, plan, machine_) : 0, job_index);
+    previous = plan;
+    has_previous = true;
+    return ok();
+  }
+
+  /// Queues a planned piece (its own frame: the entry is not on the stack while planning).
+  [[gnu::noinline]] void enqueue(const PathSegment& piece, const SegmentPlan& plan, double junction, std::uint32_t job_index) noexcept {
+    const Entry entry{piece.compact(), QueuedPlan{plan.length_mm, plan.limits}, junction, job_index, ++pushed_serial_};
+    [[maybe_unused]] const bool pushed = queue_.try_push(entry);
+  }
+
+  /// The plan of one piece; its path-length table (1 KiB) lives only while this runs, not while
+  /// the queue entry is built.
+  [[nodiscard]] Result<SegmentPlan> plan_piece(const PathSegment& piece, std::uint32_t job_index) const noexcept {
+    const auto table = PathLengthTable<TableIntervals>::build(piece);
+    if (!table) return table.failure();
+    auto plan = plan_segment(piece, table.value(), machine_);
+    if (!plan) return fail(plan.error(), job_index);
+    return plan;
+  }
 
   [[nodiscard]] bool stopped() const noexcept {
     return state_ == ControllerState::Idle || state_ == ControllerState::Finished || state_ == ControllerState::Aborted ||
            state_ == ControllerState::Fault;
   }
-  [[nodiscard]] const Entry& front() const { return queue_.front(); }
+  [[nodiscard]] Front front() const {
+    const Entry& e = queue_.front();
+    if (e.serial != expanded_serial_) {
+      current_ = PathSegment::expand(e.segment).value();  // compact() of a valid PathSegment: cannot fail
+      expanded_serial_ = e.serial;
+    }
+    return Front{current_, e.plan, e.junction_in, e.job_index};
+  }
   [[nodiscard]] double time_now() const noexcept { return static_cast<double>(tick_) / machine_.rate_hz; }
 
   /// The highest exit speed of the front segment when entered at v0: a backward pass over the
@@ -312,6 +366,9 @@ class MotionController {
   ControllerState state_ = ControllerState::Idle;
   Failure fault_{Error::InvalidState, no_index};
   RingBuffer<Entry, QueueCapacity> queue_{};
+  std::uint32_t pushed_serial_ = 0;          ///< serial of the last queued entry
+  mutable std::uint32_t expanded_serial_ = 0;  ///< serial of the entry expanded in current_ (0: none)
+  mutable PathSegment current_{};            ///< the front entry's segment, expanded
   SegmentPlan previous_plan_{};
   bool has_previous_ = false;
   PathLengthTable<TableIntervals> table_{};

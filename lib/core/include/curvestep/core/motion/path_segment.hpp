@@ -36,10 +36,28 @@ enum class SegmentKind : std::uint8_t {
 /// A point in machine space (mm).
 using MachinePoint = Vec<double, motion_axes>;
 
+/// A PathSegment as the motion queue keeps it (MotionController): only the numbers that define
+/// the segment (control points, weights or arc data, one array for every kind) instead of the
+/// full PathSegment with its polynomial, rational and arc members side by side (272 bytes
+/// against 776 on Cortex-M). PathSegment::compact() copies the doubles and PathSegment::expand()
+/// rebuilds the segment from them, so an expanded segment evaluates bit for bit like the original.
+///   Line, Bezier     values[3i + axis] = control point i (degree + 1 points)
+///   RationalBezier   the same, and values[24 + i] = weight i
+///   Arc              start 0..2, end 3..5, centre 6..8, radius 9, sweep 10, Δz 11, end radius scale 12
+struct CompactSegment {
+  static constexpr std::size_t value_count = 32;  ///< (max degree 7 + 1) × (3 axes + a weight)
+  std::array<double, value_count> values{};       ///< the kind's numbers (above)
+  double feed_mm_per_s = 0;                        ///< programmed feed (0: the machine's default)
+  SegmentKind kind = SegmentKind::Line;            ///< what the values mean
+  std::uint8_t degree = 1;                         ///< Bézier degree (Line: 1, Arc: unused)
+  bool rapid = false;                              ///< rapid move
+};
+
 /// One segment of a path; construct with the make_* functions, which validate.
 class PathSegment {
  public:
   static constexpr std::size_t max_degree = 7;
+  static constexpr std::size_t capacity = max_degree + 1;  ///< control points at most
   using Polynomial = curvestep::Bezier<double, motion_axes, max_degree>;
   using Rational = curvestep::RationalBezier<double, motion_axes, max_degree>;
 
@@ -51,7 +69,7 @@ class PathSegment {
     if (a == b) return fail(Error::DegenerateCurve);
     PathSegment s;
     s.kind_ = SegmentKind::Line;
-    CURVESTEP_TRY(s.polynomial_, Polynomial::create({a, b}));
+    CURVESTEP_TRY(s.geometry_.polynomial, Polynomial::create({a, b}));
     CURVESTEP_CHECK(s.check_derivatives());
     return s;
   }
@@ -80,13 +98,7 @@ class PathSegment {
     sweep += (ccw ? 2 : -2) * detail::pi * static_cast<double>(full_turns);
     PathSegment s;
     s.kind_ = SegmentKind::Arc;
-    s.start_ = start;
-    s.end_ = end;
-    s.center_ = MachinePoint{{center[0], center[1], start[2]}};
-    s.radius_ = r;
-    s.sweep_ = sweep;
-    s.dz_ = end[2] - start[2];
-    s.end_radius_scale_ = rb / r;
+    s.geometry_.arc = ArcData{start, end, MachinePoint{{center[0], center[1], start[2]}}, r, sweep, end[2] - start[2], rb / r};
     return s;
   }
 
@@ -95,7 +107,7 @@ class PathSegment {
     if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
     PathSegment s;
     s.kind_ = SegmentKind::Bezier;
-    CURVESTEP_TRY(s.polynomial_, Polynomial::create(control));
+    CURVESTEP_TRY(s.geometry_.polynomial, Polynomial::create(control));
     if (s.is_point()) return fail(Error::DegenerateCurve);
     CURVESTEP_CHECK(s.check_derivatives());
     return s;
@@ -108,7 +120,7 @@ class PathSegment {
     if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
     PathSegment s;
     s.kind_ = SegmentKind::RationalBezier;
-    CURVESTEP_TRY(s.rational_, Rational::create(control, weights));
+    CURVESTEP_TRY(s.geometry_.rational, Rational::create(control, weights));
     if (s.is_point()) return fail(Error::DegenerateCurve);
     CURVESTEP_CHECK(s.check_rational_derivatives());
     return s;
@@ -123,27 +135,31 @@ class PathSegment {
   constexpr void set_feed_mm_per_s(double feed) noexcept { feed_ = feed; }
 
   /// Arc data (meaningful for SegmentKind::Arc).
-  [[nodiscard]] constexpr const MachinePoint& arc_center() const noexcept { return center_; }
-  [[nodiscard]] constexpr double arc_radius() const noexcept { return radius_; }
-  [[nodiscard]] constexpr double arc_sweep_rad() const noexcept { return sweep_; }
-  /// Bézier data (meaningful for Line and Bezier).
-  [[nodiscard]] constexpr const Polynomial& polynomial() const noexcept { return polynomial_; }
-  /// Rational data (meaningful for RationalBezier).
-  [[nodiscard]] constexpr const Rational& rational() const noexcept { return rational_; }
+  [[nodiscard]] constexpr const MachinePoint& arc_center() const noexcept { return is_arc() ? geometry_.arc.center : no_point; }
+  [[nodiscard]] constexpr double arc_radius() const noexcept { return is_arc() ? geometry_.arc.radius : 0.0; }
+  [[nodiscard]] constexpr double arc_sweep_rad() const noexcept { return is_arc() ? geometry_.arc.sweep : 0.0; }
+  /// Bézier data (meaningful for Line and Bezier; an empty curve for the other kinds).
+  [[nodiscard]] constexpr const Polynomial& polynomial() const noexcept {
+    return kind_ == SegmentKind::Line || kind_ == SegmentKind::Bezier ? geometry_.polynomial : no_polynomial;
+  }
+  /// Rational data (meaningful for RationalBezier; an empty curve for the other kinds).
+  [[nodiscard]] constexpr const Rational& rational() const noexcept {
+    return kind_ == SegmentKind::RationalBezier ? geometry_.rational : no_rational;
+  }
 
   /// Start and end points (exact: the values the segment was built from).
   [[nodiscard]] constexpr MachinePoint start() const noexcept {
     switch (kind_) {
-      case SegmentKind::Arc: return start_;
-      case SegmentKind::RationalBezier: return rational_.front();
-      default: return polynomial_.front();
+      case SegmentKind::Arc: return geometry_.arc.start;
+      case SegmentKind::RationalBezier: return geometry_.rational.front();
+      default: return geometry_.polynomial.front();
     }
   }
   [[nodiscard]] constexpr MachinePoint end() const noexcept {
     switch (kind_) {
-      case SegmentKind::Arc: return end_;
-      case SegmentKind::RationalBezier: return rational_.back();
-      default: return polynomial_.back();
+      case SegmentKind::Arc: return geometry_.arc.end;
+      case SegmentKind::RationalBezier: return geometry_.rational.back();
+      default: return geometry_.polynomial.back();
     }
   }
 
@@ -154,9 +170,9 @@ class PathSegment {
     if (u == 1) return end();
     switch (kind_) {
       case SegmentKind::Arc:
-        return rotated_radius(u * sweep_, radius_scale(u)) + MachinePoint{{center_[0], center_[1], start_[2] + u * dz_}};
-      case SegmentKind::RationalBezier: return rational_.point_at(u);
-      default: return polynomial_.point_at(u);
+        return rotated_radius(u * geometry_.arc.sweep, radius_scale(u)) + MachinePoint{{geometry_.arc.center[0], geometry_.arc.center[1], geometry_.arc.start[2] + u * geometry_.arc.dz}};
+      case SegmentKind::RationalBezier: return geometry_.rational.point_at(u);
+      default: return geometry_.polynomial.point_at(u);
     }
   }
 
@@ -164,64 +180,145 @@ class PathSegment {
   [[nodiscard]] MachinePoint derivative(double u, std::size_t order) const {
     CURVESTEP_EXPECTS(u >= 0 && u <= 1 && order >= 1);
     switch (kind_) {
-      case SegmentKind::Arc: {
-        // p(u) = c + ρ(u) R(uθ) a with ρ linear (ρ(0) = 1, ρ(1) = r_end / r_start) and
-        // d^k/du^k R(uθ) a = |θ|^k R(uθ + k sign(θ) π/2) a, so by Leibniz
-        // p^(k) = ρ |θ|^k R(uθ + k s π/2) a + k ρ' |θ|^(k-1) R(uθ + (k-1) s π/2) a.
-        const double sign = sweep_ >= 0 ? 1.0 : -1.0;
-        const double quarter = sign * detail::pi / 2;
-        double power = 1;  // |θ|^(k-1)
-        for (std::size_t k = 1; k < order; ++k) power *= std::fabs(sweep_);
-        const double k = static_cast<double>(order);
-        auto d = rotated_radius(u * sweep_ + k * quarter, radius_scale(u) * power * std::fabs(sweep_)) +
-                 rotated_radius(u * sweep_ + (k - 1) * quarter, k * (end_radius_scale_ - 1) * power);
-        d[2] = order == 1 ? dz_ : 0.0;
-        return d;
-      }
-      case SegmentKind::RationalBezier: return rational_.derivative_at(u, order).value();
-      default: return polynomial_.derivative_at(u, order).value();
+      case SegmentKind::Arc: return arc_derivative(u, order);
+      case SegmentKind::RationalBezier: return geometry_.rational.derivative_at(u, order).value();
+      default: return geometry_.polynomial.derivative_at(u, order).value();
     }
+  }
+
+  /// The segment's defining numbers (exact copies), for the motion queue.
+  [[nodiscard]] constexpr CompactSegment compact() const noexcept {
+    CompactSegment c;
+    c.kind = kind_;
+    c.rapid = rapid_;
+    c.feed_mm_per_s = feed_;
+    const auto store = [&c](std::size_t first, const MachinePoint& p) {
+      for (std::size_t axis = 0; axis < motion_axes; ++axis) c.values[first + axis] = p[axis];
+    };
+    switch (kind_) {
+      case SegmentKind::Arc:
+        store(0, geometry_.arc.start);
+        store(3, geometry_.arc.end);
+        store(6, geometry_.arc.center);
+        c.values[9] = geometry_.arc.radius;
+        c.values[10] = geometry_.arc.sweep;
+        c.values[11] = geometry_.arc.dz;
+        c.values[12] = geometry_.arc.end_radius_scale;
+        break;
+      case SegmentKind::RationalBezier: {
+        const auto points = geometry_.rational.control_points();
+        c.degree = static_cast<std::uint8_t>(geometry_.rational.degree());
+        for (std::size_t i = 0; i < points.size(); ++i) {
+          store(3 * i, points[i]);
+          c.values[3 * capacity + i] = geometry_.rational.weight(i);
+        }
+        break;
+      }
+      default: {
+        const auto points = geometry_.polynomial.control_points();
+        c.degree = static_cast<std::uint8_t>(geometry_.polynomial.degree());
+        for (std::size_t i = 0; i < points.size(); ++i) store(3 * i, points[i]);
+        break;
+      }
+    }
+    return c;
+  }
+
+  /// The segment whose compact() gave `c`: the same control points, weights and arc data, so it
+  /// evaluates, differentiates and splits bit for bit like the original. NotFinite and the other
+  /// errors of Bezier::create / RationalBezier::create for numbers no PathSegment holds.
+  [[nodiscard]] static Result<PathSegment> expand(const CompactSegment& c) noexcept {
+    PathSegment s;
+    s.kind_ = c.kind;
+    s.rapid_ = c.rapid;
+    s.feed_ = c.feed_mm_per_s;
+    const auto load = [&c](std::size_t first) {
+      return MachinePoint{{c.values[first], c.values[first + 1], c.values[first + 2]}};
+    };
+    if (c.kind == SegmentKind::Arc) {
+      s.geometry_.arc = ArcData{load(0), load(3), load(6), c.values[9], c.values[10], c.values[11], c.values[12]};
+      return s;
+    }
+    if (c.degree > max_degree) return fail(Error::DegreeAboveCapacity, c.degree);
+    const std::size_t count = static_cast<std::size_t>(c.degree) + 1;
+    std::array<MachinePoint, capacity> points{};
+    for (std::size_t i = 0; i < count; ++i) points[i] = load(3 * i);
+    const std::span<const MachinePoint> control(points.data(), count);
+    if (c.kind == SegmentKind::RationalBezier) {
+      CURVESTEP_TRY(s.geometry_.rational, Rational::create(control, std::span<const double>(c.values.data() + 3 * capacity, count)));
+    } else {
+      CURVESTEP_TRY(s.geometry_.polynomial, Polynomial::create(control));
+    }
+    return s;
   }
 
   /// The two pieces on [0,u] and [u,1] (Bézier kinds only; lines and arcs have no cusps to split at).
   /// InvalidArgument for other kinds or u outside (0,1); DegenerateCurve if a piece collapses.
   [[nodiscard]] Result<SplitCurves<PathSegment>> split(double u) const noexcept {
-    if (!(u > 0 && u < 1)) return fail(Error::InvalidArgument);
     SplitCurves<PathSegment> pieces;
-    pieces.left = *this;
     pieces.right = *this;
-    if (kind_ == SegmentKind::Bezier) {
-      CURVESTEP_TRY(const auto halves, polynomial_.split(u));
-      pieces.left.polynomial_ = halves.left;
-      pieces.right.polynomial_ = halves.right;
-    } else if (kind_ == SegmentKind::RationalBezier) {
-      CURVESTEP_TRY(const auto halves, rational_.split(u));
-      pieces.left.rational_ = halves.left;
-      pieces.right.rational_ = halves.right;
-    } else {
-      return fail(Error::InvalidArgument);
-    }
-    if (pieces.left.is_point() || pieces.right.is_point()) return fail(Error::DegenerateCurve);
+    CURVESTEP_CHECK(pieces.right.split_off(u, pieces.left));
     return pieces;
   }
 
+  /// split(u) in place, with less memory: `left` becomes the piece on [0,u] and this segment the
+  /// piece on [u,1] (the same pieces, bit for bit). On an error both are left unchanged.
+  [[nodiscard]] Result<void> split_off(double u, PathSegment& left) noexcept {
+    if (!(u > 0 && u < 1)) return fail(Error::InvalidArgument);
+    if (kind_ == SegmentKind::Bezier) return split_off_curve(geometry_.polynomial, u, left, left.geometry_.polynomial);
+    if (kind_ == SegmentKind::RationalBezier) return split_off_curve(geometry_.rational, u, left, left.geometry_.rational);
+    return fail(Error::InvalidArgument);
+  }
+
  private:
+  [[nodiscard]] constexpr bool is_arc() const noexcept { return kind_ == SegmentKind::Arc; }
+
+  /// split_off() for one curve kind (one frame per kind: the rational halves alone take 0.9 KiB).
+  template <class Curve>
+  [[nodiscard, gnu::noinline]] Result<void> split_off_curve(Curve& curve, double u, PathSegment& left, Curve& left_curve) noexcept {
+    const auto halves = curve.split(u);  // (not CURVESTEP_TRY: that would copy the halves once more)
+    if (!halves) return halves.failure();
+    const auto& pieces = halves.value();
+    if (is_point(pieces.left.control_points()) || is_point(pieces.right.control_points())) return fail(Error::DegenerateCurve);
+    left = *this;
+    left_curve = pieces.left;
+    curve = pieces.right;
+    return ok();
+  }
+
+  /// derivative() of an arc, kept out of derivative() so that the Bézier kinds' calls do not carry
+  /// its frame (the sines and cosines) on a microcontroller's stack.
+  [[nodiscard, gnu::noinline]] MachinePoint arc_derivative(double u, std::size_t order) const noexcept {
+    // p(u) = c + ρ(u) R(uθ) a with ρ linear (ρ(0) = 1, ρ(1) = r_end / r_start) and
+    // d^k/du^k R(uθ) a = |θ|^k R(uθ + k sign(θ) π/2) a, so by Leibniz
+    // p^(k) = ρ |θ|^k R(uθ + k s π/2) a + k ρ' |θ|^(k-1) R(uθ + (k-1) s π/2) a.
+    const double sign = geometry_.arc.sweep >= 0 ? 1.0 : -1.0;
+    const double quarter = sign * detail::pi / 2;
+    double power = 1;  // |θ|^(k-1)
+    for (std::size_t k = 1; k < order; ++k) power *= std::fabs(geometry_.arc.sweep);
+    const double k = static_cast<double>(order);
+    auto d = rotated_radius(u * geometry_.arc.sweep + k * quarter, radius_scale(u) * power * std::fabs(geometry_.arc.sweep)) +
+             rotated_radius(u * geometry_.arc.sweep + (k - 1) * quarter, k * (geometry_.arc.end_radius_scale - 1) * power);
+    d[2] = order == 1 ? geometry_.arc.dz : 0.0;
+    return d;
+  }
+
   /// ρ(u): the radius relative to the start radius, linear from 1 to r_end / r_start, so that an
   /// arc whose end radius differs slightly (within the tolerance) still ends exactly at its end.
-  [[nodiscard]] constexpr double radius_scale(double u) const noexcept { return 1 + u * (end_radius_scale_ - 1); }
+  [[nodiscard]] constexpr double radius_scale(double u) const noexcept { return 1 + u * (geometry_.arc.end_radius_scale - 1); }
 
   /// factor * R(angle) (start - center) in XY, z = 0.
   [[nodiscard]] MachinePoint rotated_radius(double angle, double factor) const noexcept {
     const auto sc = detail::sin_cos(angle);
-    const double ax = start_[0] - center_[0];
-    const double ay = start_[1] - center_[1];
+    const double ax = geometry_.arc.start[0] - geometry_.arc.center[0];
+    const double ay = geometry_.arc.start[1] - geometry_.arc.center[1];
     return MachinePoint{{factor * (sc.cos * ax - sc.sin * ay), factor * (sc.cos * ay + sc.sin * ax), 0.0}};
   }
 
   /// NotFinite if a derivative that derivative() evaluates (orders 1..3) overflows double: the
   /// hodographs' control points are then finite, and de Casteljau keeps their combinations finite.
   [[nodiscard]] constexpr Result<void> check_derivatives() const noexcept {
-    if (!polynomial_.derivative(3)) return fail(Error::NotFinite);
+    if (!geometry_.polynomial.derivative(3)) return fail(Error::NotFinite);
     return ok();
   }
 
@@ -232,13 +329,13 @@ class PathSegment {
   /// 1e12 ρ³ M max(1, w_max) to be finite keeps them all finite; it refuses only weight ratios or
   /// sizes far outside any machine (a weight ratio of 1e6 on a 1e5 mm curve passes easily).
   [[nodiscard]] Result<void> check_rational_derivatives() const noexcept {
-    double w_min = rational_.weight(0);
+    double w_min = geometry_.rational.weight(0);
     double w_max = w_min;
     double extent = 0;
-    const auto pts = rational_.control_points();
+    const auto pts = geometry_.rational.control_points();
     for (std::size_t i = 0; i < pts.size(); ++i) {
-      w_min = std::fmin(w_min, rational_.weight(i));
-      w_max = std::fmax(w_max, rational_.weight(i));
+      w_min = std::fmin(w_min, geometry_.rational.weight(i));
+      w_max = std::fmax(w_max, geometry_.rational.weight(i));
       for (std::size_t axis = 0; axis < motion_axes; ++axis) extent = std::fmax(extent, std::fabs(pts[i][axis] - pts[0][axis]));
     }
     const double ratio = w_max / w_min;
@@ -248,23 +345,43 @@ class PathSegment {
   }
 
   [[nodiscard]] constexpr bool is_point() const noexcept {
-    const auto pts = kind_ == SegmentKind::RationalBezier ? rational_.control_points() : polynomial_.control_points();
+    return is_point(kind_ == SegmentKind::RationalBezier ? geometry_.rational.control_points() : geometry_.polynomial.control_points());
+  }
+  [[nodiscard]] static constexpr bool is_point(std::span<const MachinePoint> pts) noexcept {
     for (const auto& p : pts) {
       if (!(p == pts[0])) return false;
     }
     return true;
   }
 
+  static_assert(CompactSegment::value_count == 4 * capacity, "compact(): 3 coordinates and a weight per control point");
+
+  /// What an arc needs (SegmentKind::Arc).
+  struct ArcData {
+    MachinePoint start{}, end{}, center{};  ///< centre z = start z
+    double radius = 0;                      ///< start radius
+    double sweep = 0;                       ///< signed sweep angle (rad)
+    double dz = 0;                          ///< height change
+    double end_radius_scale = 1;            ///< end radius / start radius
+  };
+
+  static constexpr Polynomial no_polynomial{};  ///< what polynomial() returns for other kinds
+  static constexpr Rational no_rational{};      ///< what rational() returns for other kinds
+  static constexpr MachinePoint no_point{};     ///< what arc_center() returns for other kinds
+
   SegmentKind kind_ = SegmentKind::Line;
   bool rapid_ = false;
   double feed_ = 0;
-  Polynomial polynomial_{};
-  Rational rational_{};
-  MachinePoint start_{}, end_{}, center_{};
-  double radius_ = 0;
-  double sweep_ = 0;
-  double dz_ = 0;
-  double end_radius_scale_ = 1;
+  // One kind's geometry at a time (the active member follows kind_: Line and Bezier polynomial,
+  // RationalBezier rational, Arc arc), which keeps a PathSegment at 472 bytes instead of 776 on
+  // Cortex-M (every copy on a microcontroller's stack counts). Each member is trivially copyable
+  // and is assigned whole when a make_* function or expand() sets the kind.
+  union Geometry {
+    constexpr Geometry() noexcept : polynomial{} {}
+    Polynomial polynomial;
+    Rational rational;
+    ArcData arc;
+  } geometry_{};
 };
 
 }  // namespace curvestep

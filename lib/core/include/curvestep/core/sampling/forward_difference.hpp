@@ -44,7 +44,8 @@
 // one rounding u|p|, the double seed 3^n 4n u_double max|b|: in all about 1 ulp.
 //
 // ISR budget. step() is n additions per axis plus one compare; point() one rounding shift per
-// axis; a re-seed (every K steps) about 4n² multiply-divides per axis. A 3-axis cubic in
+// axis (for G >= 32, i.e. coordinates within ±2^30 raw, a 64-bit addition and a 32-bit shift of
+// the high word: high_rounded()); a re-seed (every K steps) about 4n² multiply-divides per axis. A 3-axis cubic in
 // Q16.16 on a Cortex-M3 at 72 MHz: 9 64-bit additions and 3 shifts, estimated at ~40 cycles
 // per step plus ~1 cycle of amortised re-seed, far inside a 100 kHz tick (720 cycles). On the
 // host it is 68 instructions per 3-axis point against 703 for Q16.16 de Casteljau (callgrind,
@@ -119,6 +120,7 @@ class ForwardDifference {
       if (fraction > 48) fraction = 48;
       stepper.extra_bits_ = extra;
       stepper.fraction_bits_ = fraction;
+      stepper.half_ = fraction >= 1 ? std::int64_t{1} << (fraction - 1) : 0;
       for (std::size_t i = 0; i <= n; ++i) {
         for (std::size_t axis = 0; axis < Dim; ++axis) {
           stepper.control_[axis][i] = static_cast<std::int64_t>(curve[i][axis].raw()) * (std::int64_t{1} << extra);
@@ -163,8 +165,15 @@ class ForwardDifference {
   }
 
   /// The current point p(index()/steps()), within error_bound() per coordinate.
-  [[nodiscard]] constexpr Point point() const noexcept {
+  [[nodiscard, gnu::always_inline]] constexpr Point point() const noexcept {
     Point p;
+    if constexpr (FixedPoint<S>) {
+      if (fraction_bits_ >= 32) {  // every curve within ±2^30 raw (Q16.16: ±16384 mm): the cheap rounding
+#pragma GCC unroll 4
+        for (std::size_t axis = 0; axis < Dim; ++axis) p[axis] = S::from_raw(static_cast<typename S::rep>(high_rounded(axis)));
+        return p;
+      }
+    }
 #pragma GCC unroll 4
     for (std::size_t axis = 0; axis < Dim; ++axis) p[axis] = coordinate(axis);
     return p;
@@ -173,6 +182,7 @@ class ForwardDifference {
   /// One coordinate of point().
   [[nodiscard]] constexpr S coordinate(std::size_t axis) const noexcept {
     if constexpr (FixedPoint<S>) {
+      if (fraction_bits_ >= 32) return S::from_raw(static_cast<typename S::rep>(high_rounded(axis)));
       const auto wide = static_cast<std::int64_t>(table_[axis][0]);
       return S::from_raw(static_cast<typename S::rep>(detail::round_shift_right(wide, fraction_bits_)));
     } else {
@@ -233,6 +243,19 @@ class ForwardDifference {
  private:
   using Accumulator = std::conditional_t<FixedPoint<S>, std::uint64_t, S>;
   using Control = std::conditional_t<FixedPoint<S>, std::int64_t, double>;
+
+  /// round_shift_right(accumulator, G) for G >= 32, with one 64-bit addition and a 32-bit shift
+  /// instead of a 64-bit shift by a run-time amount (about 20 Thumb-2 instructions per axis on a
+  /// Cortex-M3). With v the accumulator, c = 2^(G-1) (v >= 0) or 2^(G-1) - 1 (v < 0) and s = G - 32:
+  /// floor((v + c) / 2^G) = floor(floor((v + c) / 2^32) / 2^s), the same value; |v + c| < 2^62 + 2^47
+  /// (the accumulator bound of create()), so the high word fits 32 bits.
+  [[nodiscard, gnu::always_inline]] constexpr std::int32_t high_rounded(std::size_t axis) const noexcept
+    requires FixedPoint<S>
+  {
+    const auto wide = static_cast<std::int64_t>(table_[axis][0]);
+    const std::int64_t rounded = wide + (half_ + (wide >> 63));  // wide >> 63: -1 if negative, else 0
+    return static_cast<std::int32_t>(rounded >> 32) >> (fraction_bits_ - 32);
+  }
 
   /// Σ_{j=1..n} (n-j+1) C(K,j), saturating at 2^64-1.
   static constexpr std::uint64_t fixed_stepping_sum(std::uint64_t interval, std::size_t n) noexcept {
@@ -367,6 +390,7 @@ class ForwardDifference {
   std::size_t degree_ = 0;
   int extra_bits_ = 0;     ///< E
   int fraction_bits_ = 0;  ///< G
+  std::int64_t half_ = 0;  ///< fixed point: 2^(G-1), the rounding addend of point()
   double bound_ = 0;
 };
 
