@@ -26,6 +26,7 @@
 #include <cstdint>
 
 #include <curvestep/core/container/ring_buffer.hpp>
+#include <curvestep/core/motion/hermite_chunk.hpp>
 #include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/cusps.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
@@ -132,6 +133,7 @@ class MotionController {
     hold_profile_ = VelocityProfile::stop(now.speed_mm_per_s, now.acceleration_mm_per_s2, limits);
     hold_base_mm_ = offset_mm_ + now.distance_mm;
     origin_s_ = time_now();
+    chunk_end_tick_ = no_chunk;
     state_ = ControllerState::Holding;
   }
 
@@ -163,6 +165,10 @@ class MotionController {
     end_of_job_ = false;
     has_previous_ = false;
     tick_ = 0;
+    chunk_end_tick_ = no_chunk;
+    retry_tick_ = 0;
+    backoff_ticks_ = 1;
+    stats_ = InterpolatorStats{};
   }
 
   /// The next setpoint (one tick). InvalidState when idle, finished, aborted or faulted.
@@ -188,6 +194,27 @@ class MotionController {
   [[nodiscard]] const MachineLimits& machine() const noexcept { return machine_; }
   /// The profile of the segment being followed (for reports and tests).
   [[nodiscard]] const VelocityProfile& current_profile() const noexcept { return profile_; }
+
+  /// Work of the interpolator so far (for tests and benchmarks; reset() clears it).
+  struct InterpolatorStats {
+    std::uint64_t exact_evaluations = 0;  ///< exact path evaluations (exact ticks, chunk ends and checks)
+    std::uint64_t stepped_ticks = 0;      ///< setpoints produced by forward differencing
+    std::uint64_t chunks = 0;             ///< chunks of >= 2 ticks accepted
+    std::uint64_t rejected_chunks = 0;    ///< chunk halvings because the midpoint check failed
+  };
+  [[nodiscard]] const InterpolatorStats& interpolator_stats() const noexcept { return stats_; }
+
+  /// Longest chunk in ticks (a power of two, 1..HermiteChunk::max_ticks; default 64). 1 evaluates
+  /// the path exactly at every tick (the reference the stepped stream is tested against).
+  /// InvalidArgument otherwise; InvalidState while moving.
+  [[nodiscard]] Result<void> set_max_chunk_ticks(std::uint32_t ticks) noexcept {
+    if (!stopped()) return fail(Error::InvalidState);
+    if (ticks == 0 || ticks > HermiteChunk::max_ticks || (ticks & (ticks - 1)) != 0) return fail(Error::InvalidArgument);
+    max_chunk_ticks_ = ticks;
+    preferred_chunk_ticks_ = ticks;
+    return ok();
+  }
+  [[nodiscard]] std::uint32_t max_chunk_ticks() const noexcept { return max_chunk_ticks_; }
 
  private:
   struct Entry {
@@ -222,6 +249,7 @@ class MotionController {
   /// Starts following the front segment from arc length `offset` at speed v0 at time `origin`.
   [[nodiscard]] Result<void> begin_segment(double offset, double v0, double origin) noexcept {
     CURVESTEP_TRY(table_, PathLengthTable<TableIntervals>::build(front().segment));
+    chunk_end_tick_ = no_chunk;
     offset_mm_ = offset;
     origin_s_ = origin;
     const double remaining = table_.length() - offset;
@@ -237,6 +265,18 @@ class MotionController {
   }
 
   [[nodiscard]] Result<Setpoint<S>> running_tick() noexcept {
+    if (chunk_end_tick_ != no_chunk) {
+      // Inside a chunk: no segment or phase boundary until its end (plan_chunk made sure).
+      const double tau = time_now() - origin_s_;
+      if (tick_ < chunk_end_tick_) {
+        ++stats_.stepped_ticks;
+        return emit(chunk_.next(), profile_.state_in(chunk_span_, tau).speed_mm_per_s, front().job_index);
+      }
+      chunk_end_tick_ = no_chunk;
+      PathTickState end = chunk_end_state_;  // evaluated exactly when the chunk was planned
+      plan_chunk(tau, end);
+      return emit(end.position, end.speed_mm_per_s, front().job_index);
+    }
     const double t = time_now();
     double tau = t - origin_s_;
     while (tau >= profile_.duration_s()) {
@@ -260,9 +300,122 @@ class MotionController {
       }
       return emit(end, 0, last_segment_);
     }
+    PathTickState now = exact_state(tau);
+    plan_chunk(tau, now);
+    return emit(now.position, now.speed_mm_per_s, front().job_index);
+  }
+
+  /// The exact path at segment time tau: profile → arc-length table → curve (the position is what
+  /// the per-tick exact evaluation gives, bit for bit); velocity and acceleration are added by
+  /// add_derivatives() when a chunk needs them.
+  [[nodiscard]] PathTickState exact_state(double tau) noexcept {
+    ++stats_.exact_evaluations;
     const MotionState m = profile_.at(tau);
-    const double u = table_.parameter_at(offset_mm_ + m.distance_mm);
-    return emit(front().segment.point(u), m.speed_mm_per_s, front().job_index);
+    const auto located = table_.locate(offset_mm_ + m.distance_mm);
+    PathTickState state;
+    state.position = front().segment.point(located.u);
+    state.speed_mm_per_s = m.speed_mm_per_s;
+    state.tau_s = tau;
+    state.u = located.u;
+    state.ds_du = located.ds_du;
+    state.d2s_du2 = located.d2s_du2;
+    return state;
+  }
+
+  /// Velocity and acceleration of the exact path for a state from exact_state(), by the
+  /// chain rule through the profile (ṡ, s̈ of the phase `span`) and the table's s(u):
+  /// u̇ = ṡ / S'(u), ü = (s̈ - S''(u) u̇²) / S'(u), ẋ = p' u̇, ẍ = p'' u̇² + p' ü.
+  void add_derivatives(PathTickState& state, const VelocityProfile::PhaseSpan& span) const noexcept {
+    state.smooth = false;
+    if (!(state.ds_du > 0)) return;  // a cusp end: |p'| = 0
+    const MotionState m = profile_.state_in(span, state.tau_s);
+    const double du = m.speed_mm_per_s / state.ds_du;
+    const double ddu = (m.acceleration_mm_per_s2 - state.d2s_du2 * du * du) / state.ds_du;
+    const MachinePoint d1 = front().segment.derivative(state.u, 1);
+    const MachinePoint d2 = front().segment.derivative(state.u, 2);
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      state.velocity[axis] = d1[axis] * du;
+      state.acceleration[axis] = d2[axis] * (du * du) + d1[axis] * ddu;
+      if (!std::isfinite(state.velocity[axis]) || !std::isfinite(state.acceleration[axis])) return;
+    }
+    state.smooth = true;
+  }
+
+  [[nodiscard]] double tau_at(std::uint64_t tick) const noexcept {
+    return static_cast<double>(tick) / machine_.rate_hz - origin_s_;
+  }
+
+  /// At tick_ (segment time tau, exact state `start`, its velocity and acceleration added here if
+  /// not yet known): plans the chunk of ticks tick_+1 .. tick_+N. N is the largest power of two
+  /// <= the preferred length whose last tick is still in the profile phase of tick_ (so chunks
+  /// never straddle a phase or segment boundary). The exact states at the chunk's end and middle
+  /// are evaluated and N is halved (the middle becoming the end) until the Hermite's middle is
+  /// within chunk_error_bound(N)/4 of the exact one; with N = 2 failing, the exact state of the
+  /// next tick is kept (a chunk of one tick). N never goes below the shortest chunk whose check
+  /// is above the rounding of the exact evaluation (rounding_floor); when no chunk passes, the
+  /// next attempt waits a back-off of 1, 2, 4, ... ticks (exact ticks meanwhile).
+  void plan_chunk(double tau, PathTickState& start) noexcept {
+    if (max_chunk_ticks_ < 2 || profile_.phase_count() == 0 || tick_ < retry_tick_) return;
+    const auto span = profile_.phase_span(tau);
+    const std::uint64_t k0 = tick_;
+    std::uint32_t n = preferred_chunk_ticks_;
+    while (n >= 2 && !(tau_at(k0 + n) < span.end_s)) n /= 2;
+    const double floor = rounding_floor(start.position);
+    std::uint32_t shortest = 2;
+    while (shortest < n && chunk_error_bound(shortest, machine_) / 4 < floor) shortest *= 2;
+    if (n < 2 || chunk_error_bound(n, machine_) / 4 < floor) return;
+    const bool limited = n < preferred_chunk_ticks_;
+    if (!start.smooth) add_derivatives(start, span);
+    PathTickState end = exact_state(tau_at(k0 + n));
+    add_derivatives(end, span);
+    bool rejected = false;
+    while (start.smooth && end.smooth) {
+      PathTickState middle = exact_state(tau_at(k0 + n / 2));
+      add_derivatives(middle, span);
+      const auto q = HermiteChunk::controls(start, end, static_cast<double>(n) / machine_.rate_hz);
+      const MachinePoint h = HermiteChunk::midpoint(q);
+      double difference = 0;
+      for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+        difference = std::fmax(difference, std::fabs(h[axis] - (middle.position[axis] - start.position[axis])));
+      }
+      if (difference <= chunk_error_bound(n, machine_) / 4 && chunk_.start(start.position, q, n)) {
+        ++stats_.chunks;
+        chunk_end_tick_ = k0 + n;
+        chunk_end_state_ = end;
+        chunk_span_ = span;
+        backoff_ticks_ = 1;
+        if (rejected) {
+          preferred_chunk_ticks_ = n;
+        } else if (!limited && n < max_chunk_ticks_) {
+          preferred_chunk_ticks_ = 2 * n;
+        }
+        return;
+      }
+      ++stats_.rejected_chunks;
+      rejected = true;
+      if (n == 2) {
+        // The exact state of the next tick is known: keep it (a chunk of one tick, nothing stepped).
+        chunk_end_tick_ = k0 + 1;
+        chunk_end_state_ = middle;
+        chunk_span_ = span;
+        break;
+      }
+      if (n / 2 < shortest) break;
+      n /= 2;
+      end = middle;
+    }
+    // No chunk passed: exact ticks for a while, then try again from the shortest chunk.
+    preferred_chunk_ticks_ = shortest;
+    retry_tick_ = k0 + backoff_ticks_;
+    if (backoff_ticks_ < HermiteChunk::max_ticks) backoff_ticks_ *= 2;
+  }
+
+  /// The rounding level of an exact evaluation near `p` (2^-48 of its largest coordinate, at
+  /// least 2^-48 mm): a chunk whose check would be tighter than that is not attempted.
+  [[nodiscard]] static double rounding_floor(const MachinePoint& p) noexcept {
+    double largest = 1;
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) largest = std::fmax(largest, std::fabs(p[axis]));
+    return largest * 0x1p-48;
   }
 
   [[nodiscard]] Result<Setpoint<S>> holding_tick() noexcept {
@@ -323,6 +476,17 @@ class MotionController {
   std::uint64_t tick_ = 0;
   MachinePoint last_position_{};
   std::uint32_t last_segment_ = 0;
+  // Chunked interpolation (plan_chunk): the chunk being stepped and the exact state at its end.
+  static constexpr std::uint64_t no_chunk = ~std::uint64_t{0};
+  std::uint32_t max_chunk_ticks_ = 64;
+  std::uint32_t preferred_chunk_ticks_ = 64;
+  std::uint64_t chunk_end_tick_ = no_chunk;
+  std::uint64_t retry_tick_ = 0;     ///< no chunk is planned before this tick (back-off)
+  std::uint32_t backoff_ticks_ = 1;  ///< the next back-off after a failed plan
+  HermiteChunk chunk_{};
+  PathTickState chunk_end_state_{};
+  VelocityProfile::PhaseSpan chunk_span_{};
+  InterpolatorStats stats_{};
 };
 
 }  // namespace curvestep

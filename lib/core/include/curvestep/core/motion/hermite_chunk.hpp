@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+// HermiteChunk: the setpoints of a run of ticks ("chunk") stepped by forward differencing between
+// two exact evaluations of the path, within a documented bound (docs/motion.md, "Per-tick work").
+//
+// The exact setpoint at tick k is x(t_k) = p(u(s(t_k))): profile, arc-length table, curve. Inside
+// one segment and one profile phase x(t) is smooth, so a chunk of N ticks (N a power of two,
+// duration h = N Δt) is replaced by the quintic Hermite H(σ), σ = (t - t_0)/h in [0,1], that
+// matches position, velocity and acceleration of the exact path at both ends:
+//     Bézier control points  P0 = x0,  P1 = x0 + h v0/5,  P2 = x0 + 2h v0/5 + h² a0/20,
+//                            P3 = x1 - 2h v1/5 + h² a1/20,  P4 = x1 - h v1/5,  P5 = x1
+// (B'(0) = 5(P1-P0)/h, B''(0) = 20(P2-2P1+P0)/h², and mirrored at σ = 1). Consecutive chunks
+// share end states, so the stream is C2: numerically differentiated acceleration stays continuous.
+// The control points are taken relative to x0 and stepped by ForwardDifference<double, 3, 5> at
+// h/N (additions only; N is a power of two, so its seed and its std::pow factors are exact and
+// the stepper rounds identically on every target); the setpoint is x0 + the stepped offset.
+//
+// Error. For smooth x the Hermite error is e(σ) = x⁽⁶⁾(ξ)/720 h⁶ σ³(1-σ)³, largest at σ = 1/2.
+// With E = max|e| (per axis) and e = 64 E σ³(1-σ)³:  |e'| <= 3.44 E/h, |e''| <= 24 E/h²,
+// |e'''| <= 384 E/h³. chunk_error_bound(N) is the largest E for which the setpoints are within
+// 10⁻³ of the path tolerance and their numerically differentiated speed, acceleration and jerk
+// change by at most 10⁻³ of v_max, a_max and j_max:
+//     ε(N) = min(10⁻³ tol, 10⁻³ v_max h/3.44, 10⁻³ a_max h²/24, 10⁻³ j_max h³/384).
+// The controller accepts a chunk only if the Hermite at σ = 1/2 is within ε(N)/4 of an exact
+// evaluation there (a factor 4 for the variation of x⁽⁶⁾ across the chunk); otherwise it halves
+// N (the exact middle state becomes the new end). N = 1 is the exact path.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include <curvestep/core/curve/bezier.hpp>
+#include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/core/motion/path_segment.hpp>
+#include <curvestep/core/result.hpp>
+#include <curvestep/core/sampling/forward_difference.hpp>
+
+namespace curvestep {
+
+/// The exact path at one tick: position and its time derivatives.
+struct PathTickState {
+  MachinePoint position{};      ///< p(u(s(t))) (mm)
+  MachinePoint velocity{};      ///< dx/dt (mm/s); valid if `smooth`
+  MachinePoint acceleration{};  ///< d²x/dt² (mm/s²); valid if `smooth`
+  double speed_mm_per_s = 0;    ///< the profile's speed (reported in the setpoint)
+  bool smooth = false;          ///< velocity and acceleration are known and finite
+  double tau_s = 0;             ///< where it was evaluated: segment time,
+  double u = 0;                 ///< curve parameter,
+  double ds_du = 0;             ///< and slope and curvature of the arc-length table's s(u) there
+  double d2s_du2 = 0;
+};
+
+/// ε(N): the per-axis bound of |stepped setpoint - exact setpoint| for a chunk of `ticks` ticks
+/// (see the header comment). Uses only +, -, *, /.
+[[nodiscard]] inline double chunk_error_bound(std::uint32_t ticks, const MachineLimits& machine) noexcept {
+  const double h = static_cast<double>(ticks) / machine.rate_hz;
+  double bound = 1e-3 * machine.tolerance_mm;
+  bound = std::fmin(bound, 1e-3 * machine.v_max_mm_per_s * h / 3.44);
+  bound = std::fmin(bound, 1e-3 * machine.a_max_mm_per_s2 * h * h / 24);
+  bound = std::fmin(bound, 1e-3 * machine.j_max_mm_per_s3 * h * h * h / 384);
+  return bound;
+}
+
+/// One chunk: the quintic Hermite between two exact states, stepped tick by tick.
+class HermiteChunk {
+ public:
+  using Stepper = ForwardDifference<double, motion_axes, 5>;
+  using Controls = std::array<MachinePoint, 6>;
+
+  /// Largest chunk (ticks) the controller may use.
+  static constexpr std::uint32_t max_ticks = 256;
+
+  /// Control points, relative to a.position, of the quintic Hermite from state a to state b over
+  /// `duration_s` (both states smooth).
+  [[nodiscard]] static Controls controls(const PathTickState& a, const PathTickState& b, double duration_s) noexcept {
+    const double h = duration_s;
+    const double h2 = h * h;
+    Controls q{};
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      const double end = b.position[axis] - a.position[axis];
+      q[0][axis] = 0;
+      q[1][axis] = h * a.velocity[axis] / 5;
+      q[2][axis] = 2 * h * a.velocity[axis] / 5 + h2 * a.acceleration[axis] / 20;
+      q[3][axis] = end - 2 * h * b.velocity[axis] / 5 + h2 * b.acceleration[axis] / 20;
+      q[4][axis] = end - h * b.velocity[axis] / 5;
+      q[5][axis] = end;
+    }
+    return q;
+  }
+
+  /// The quintic at σ = 1/2 (relative to the start): (q0 + 5 q1 + 10 q2 + 10 q3 + 5 q4 + q5) / 32.
+  [[nodiscard]] static MachinePoint midpoint(const Controls& q) noexcept {
+    MachinePoint m{};
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      m[axis] = (q[0][axis] + 5 * q[1][axis] + 10 * q[2][axis] + 10 * q[3][axis] + 5 * q[4][axis] + q[5][axis]) / 32;
+    }
+    return m;
+  }
+
+  /// Starts stepping the quintic `q` (relative to `origin`) in `ticks` steps. NotFinite if a
+  /// control point is not finite; InvalidStep for ticks == 0.
+  [[nodiscard]] Result<void> start(const MachinePoint& origin, const Controls& q, std::uint32_t ticks) noexcept {
+    CURVESTEP_TRY(const auto curve, (Bezier<double, motion_axes, 5>::create(std::span<const MachinePoint>(q.data(), q.size()))));
+    CURVESTEP_TRY(stepper_, Stepper::create(curve, ticks));
+    origin_ = origin;
+    return ok();
+  }
+
+  /// The next tick's setpoint position: origin + the quintic at the next step (additions only).
+  /// Contract: fewer than `ticks` steps taken.
+  [[nodiscard]] MachinePoint next() noexcept {
+    stepper_.step();
+    const auto offset = stepper_.point();
+    MachinePoint p;
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) p[axis] = origin_[axis] + offset[axis];
+    return p;
+  }
+
+ private:
+  Stepper stepper_{};
+  MachinePoint origin_{};
+};
+
+}  // namespace curvestep
