@@ -89,13 +89,12 @@ class HermiteChunk {
     return q;
   }
 
-  /// The quintic at σ = 1/2 (relative to the start): (q0 + 5 q1 + 10 q2 + 10 q3 + 5 q4 + q5) / 32.
-  [[nodiscard]] static MachinePoint midpoint(const Controls& q) noexcept {
-    MachinePoint m{};
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      m[axis] = (q[0][axis] + 5 * q[1][axis] + 10 * q[2][axis] + 10 * q[3][axis] + 5 * q[4][axis] + q[5][axis]) / 32;
-    }
-    return m;
+  /// The quintic at σ = 1/2, 1/4 and 3/4 (relative to the start): the Bernstein weights of degree 5
+  /// there, (1 5 10 10 5 1)/32 and (243 405 270 90 15 1)/1024 (reversed for 3/4), are exact in double.
+  [[nodiscard]] static MachinePoint at_half(const Controls& q) noexcept { return weighted(q, {1, 5, 10, 10, 5, 1}, 32); }
+  [[nodiscard]] static MachinePoint at_quarter(const Controls& q) noexcept { return weighted(q, {243, 405, 270, 90, 15, 1}, 1024); }
+  [[nodiscard]] static MachinePoint at_three_quarters(const Controls& q) noexcept {
+    return weighted(q, {1, 15, 90, 270, 405, 243}, 1024);
   }
 
   /// Starts stepping the quintic `q` (relative to `origin`) in `ticks` steps. NotFinite if a
@@ -118,6 +117,16 @@ class HermiteChunk {
   }
 
  private:
+  [[nodiscard]] static MachinePoint weighted(const Controls& q, const std::array<double, 6>& w, double total) noexcept {
+    MachinePoint m{};
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      double sum = 0;
+      for (std::size_t i = 0; i < 6; ++i) sum += w[i] * q[i][axis];
+      m[axis] = sum / total;
+    }
+    return m;
+  }
+
   Stepper stepper_{};
   MachinePoint origin_{};
 };

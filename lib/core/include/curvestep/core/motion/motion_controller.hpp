@@ -117,6 +117,10 @@ class MotionController {
     if (state_ != ControllerState::Idle) return fail(Error::InvalidState);
     if (queue_.empty()) return fail(Error::NothingQueued);
     CURVESTEP_CHECK(begin_segment(0, 0, 0));
+    // A job's setpoints depend only on the job: the chunk adaptation starts afresh.
+    preferred_chunk_ticks_ = max_chunk_ticks_;
+    retry_tick_ = 0;
+    backoff_ticks_ = 1;
     state_ = ControllerState::Running;
     return ok();
   }
@@ -134,6 +138,7 @@ class MotionController {
     hold_base_mm_ = offset_mm_ + now.distance_mm;
     origin_s_ = time_now();
     chunk_end_tick_ = no_chunk;
+    clear_state_cache();
     state_ = ControllerState::Holding;
   }
 
@@ -166,6 +171,7 @@ class MotionController {
     has_previous_ = false;
     tick_ = 0;
     chunk_end_tick_ = no_chunk;
+    clear_state_cache();
     retry_tick_ = 0;
     backoff_ticks_ = 1;
     stats_ = InterpolatorStats{};
@@ -174,6 +180,7 @@ class MotionController {
   /// The next setpoint (one tick). InvalidState when idle, finished, aborted or faulted.
   /// Holding, Held and Starved produce setpoints that stay on the path (speed 0 once stopped).
   [[nodiscard]] Result<Setpoint<S>> next_setpoint() noexcept {
+    last_chunk_ticks_ = 1;
     switch (state_) {
       case ControllerState::Running: return running_tick();
       case ControllerState::Holding: return holding_tick();
@@ -203,6 +210,9 @@ class MotionController {
     std::uint64_t rejected_chunks = 0;    ///< chunk halvings because the midpoint check failed
   };
   [[nodiscard]] const InterpolatorStats& interpolator_stats() const noexcept { return stats_; }
+  /// The length in ticks of the chunk the last setpoint was stepped in, 1 if it was evaluated
+  /// exactly (tests check each stepped setpoint against chunk_error_bound of its chunk).
+  [[nodiscard]] std::uint32_t last_chunk_ticks() const noexcept { return last_chunk_ticks_; }
 
   /// Longest chunk in ticks (a power of two, 1..HermiteChunk::max_ticks; default 64). 1 evaluates
   /// the path exactly at every tick (the reference the stepped stream is tested against).
@@ -250,6 +260,7 @@ class MotionController {
   [[nodiscard]] Result<void> begin_segment(double offset, double v0, double origin) noexcept {
     CURVESTEP_TRY(table_, PathLengthTable<TableIntervals>::build(front().segment));
     chunk_end_tick_ = no_chunk;
+    clear_state_cache();
     offset_mm_ = offset;
     origin_s_ = origin;
     const double remaining = table_.length() - offset;
@@ -270,6 +281,7 @@ class MotionController {
       const double tau = time_now() - origin_s_;
       if (tick_ < chunk_end_tick_) {
         ++stats_.stepped_ticks;
+        last_chunk_ticks_ = chunk_ticks_;
         return emit(chunk_.next(), profile_.state_in(chunk_span_, tau).speed_mm_per_s, front().job_index);
       }
       chunk_end_tick_ = no_chunk;
@@ -348,12 +360,13 @@ class MotionController {
   /// At tick_ (segment time tau, exact state `start`, its velocity and acceleration added here if
   /// not yet known): plans the chunk of ticks tick_+1 .. tick_+N. N is the largest power of two
   /// <= the preferred length whose last tick is still in the profile phase of tick_ (so chunks
-  /// never straddle a phase or segment boundary). The exact states at the chunk's end and middle
-  /// are evaluated and N is halved (the middle becoming the end) until the Hermite's middle is
-  /// within chunk_error_bound(N)/4 of the exact one; with N = 2 failing, the exact state of the
-  /// next tick is kept (a chunk of one tick). N never goes below the shortest chunk whose check
-  /// is above the rounding of the exact evaluation (rounding_floor); when no chunk passes, the
-  /// next attempt waits a back-off of 1, 2, 4, ... ticks (exact ticks meanwhile).
+  /// never straddle a phase or segment boundary). The Hermite to the exact end state is compared
+  /// with exact evaluations at N/2, N/4 and 3N/4 and N is halved (the middle becoming the end)
+  /// until all are within chunk_error_bound(N)/4; with N = 2 failing, the exact state of the
+  /// next tick is kept (a chunk of one tick). Exact states computed for a rejected chunk are
+  /// cached for the next one. N never goes below the shortest chunk whose check is above the
+  /// rounding of the exact evaluation (rounding_floor); when no chunk passes, the next attempt
+  /// waits a back-off of 1, 2, 4, ... ticks (exact ticks meanwhile).
   void plan_chunk(double tau, PathTickState& start) noexcept {
     if (max_chunk_ticks_ < 2 || profile_.phase_count() == 0 || tick_ < retry_tick_) return;
     const auto span = profile_.phase_span(tau);
@@ -366,20 +379,23 @@ class MotionController {
     if (n < 2 || chunk_error_bound(n, machine_) / 4 < floor) return;
     const bool limited = n < preferred_chunk_ticks_;
     if (!start.smooth) add_derivatives(start, span);
-    PathTickState end = exact_state(tau_at(k0 + n));
-    add_derivatives(end, span);
     bool rejected = false;
-    while (start.smooth && end.smooth) {
-      PathTickState middle = exact_state(tau_at(k0 + n / 2));
-      add_derivatives(middle, span);
+    while (start.smooth) {
+      const PathTickState end = state_at(k0 + n, span, true);
+      if (!end.smooth) break;
       const auto q = HermiteChunk::controls(start, end, static_cast<double>(n) / machine_.rate_hz);
-      const MachinePoint h = HermiteChunk::midpoint(q);
-      double difference = 0;
-      for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-        difference = std::fmax(difference, std::fabs(h[axis] - (middle.position[axis] - start.position[axis])));
+      const double allowed = chunk_error_bound(n, machine_) / 4;
+      // σ = 1/2 first (where a smooth path's error peaks), then 1/4 and 3/4.
+      bool passed = deviation(HermiteChunk::at_half(q), state_at(k0 + n / 2, span, false), start) <= allowed;
+      // A line's exact path is a cubic in t inside a phase (the Hermite reproduces it up to
+      // rounding): the middle suffices. On curves the table's knots make it only C1, so check more.
+      if (passed && n >= 4 && front().segment.kind() != SegmentKind::Line) {
+        passed = deviation(HermiteChunk::at_quarter(q), state_at(k0 + n / 4, span, false), start) <= allowed &&
+                 deviation(HermiteChunk::at_three_quarters(q), state_at(k0 + 3 * (n / 4), span, false), start) <= allowed;
       }
-      if (difference <= chunk_error_bound(n, machine_) / 4 && chunk_.start(start.position, q, n)) {
+      if (passed && chunk_.start(start.position, q, n)) {
         ++stats_.chunks;
+        chunk_ticks_ = n;
         chunk_end_tick_ = k0 + n;
         chunk_end_state_ = end;
         chunk_span_ = span;
@@ -396,18 +412,52 @@ class MotionController {
       if (n == 2) {
         // The exact state of the next tick is known: keep it (a chunk of one tick, nothing stepped).
         chunk_end_tick_ = k0 + 1;
-        chunk_end_state_ = middle;
+        chunk_end_state_ = state_at(k0 + 1, span, false);
         chunk_span_ = span;
         break;
       }
       if (n / 2 < shortest) break;
       n /= 2;
-      end = middle;
     }
     // No chunk passed: exact ticks for a while, then try again from the shortest chunk.
     preferred_chunk_ticks_ = shortest;
     retry_tick_ = k0 + backoff_ticks_;
     if (backoff_ticks_ < HermiteChunk::max_ticks) backoff_ticks_ *= 2;
+  }
+
+  /// Largest per-axis |(x0 + offset) - exact| with x0 = start's position.
+  [[nodiscard]] static double deviation(const MachinePoint& offset, const PathTickState& exact, const PathTickState& start) noexcept {
+    double worst = 0;
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      worst = std::fmax(worst, std::fabs(offset[axis] - (exact.position[axis] - start.position[axis])));
+    }
+    return worst;
+  }
+
+  /// The exact state at `tick` (in phase `span` of the current segment), from the cache of states
+  /// evaluated while planning, or evaluated now and cached; with velocity and acceleration if asked.
+  [[nodiscard]] PathTickState state_at(std::uint64_t tick, const VelocityProfile::PhaseSpan& span, bool derivatives) noexcept {
+    CachedState* slot = nullptr;
+    for (auto& c : state_cache_) {
+      if (c.tick == tick) {
+        slot = &c;
+        break;
+      }
+    }
+    if (slot == nullptr) {
+      slot = &state_cache_[0];  // replace the oldest (the smallest tick, often already passed)
+      for (auto& c : state_cache_) {
+        if (c.tick == no_chunk || (slot->tick != no_chunk && c.tick < slot->tick)) slot = &c;
+      }
+      slot->tick = tick;
+      slot->state = exact_state(tau_at(tick));
+    }
+    if (derivatives && !slot->state.smooth) add_derivatives(slot->state, span);
+    return slot->state;
+  }
+
+  void clear_state_cache() noexcept {
+    for (auto& c : state_cache_) c.tick = no_chunk;
   }
 
   /// The rounding level of an exact evaluation near `p` (2^-48 of its largest coordinate, at
@@ -481,9 +531,16 @@ class MotionController {
   std::uint32_t max_chunk_ticks_ = 64;
   std::uint32_t preferred_chunk_ticks_ = 64;
   std::uint64_t chunk_end_tick_ = no_chunk;
+  std::uint32_t chunk_ticks_ = 1;       ///< N of the chunk being stepped
+  std::uint32_t last_chunk_ticks_ = 1;  ///< N of the chunk of the last setpoint (1: exact)
   std::uint64_t retry_tick_ = 0;     ///< no chunk is planned before this tick (back-off)
   std::uint32_t backoff_ticks_ = 1;  ///< the next back-off after a failed plan
   HermiteChunk chunk_{};
+  struct CachedState {
+    std::uint64_t tick = no_chunk;  ///< no_chunk: empty
+    PathTickState state{};
+  };
+  std::array<CachedState, 4> state_cache_{};  ///< exact states of future ticks (plan_chunk)
   PathTickState chunk_end_state_{};
   VelocityProfile::PhaseSpan chunk_span_{};
   InterpolatorStats stats_{};
