@@ -79,7 +79,7 @@ TEST_CASE("motion: stepped setpoints stay within chunk_error_bound of the exact 
     int job_number = 0;
     for (const auto& job : jobs()) {
       INFO("machine " << machine_number << " job " << job_number++);
-      check_against_exact(run_chunked<double>(job, m, 64), run_chunked<double>(job, m, 1), m);
+      check_against_exact(run_chunked<double>(job, m, HermiteChunk::max_ticks), run_chunked<double>(job, m, 1), m);
     }
     ++machine_number;
   }
@@ -91,7 +91,7 @@ TEST_CASE("motion: chunks replace most exact evaluations; the exact mode evaluat
   for (const std::size_t job_number : {std::size_t{3}, std::size_t{7}}) {
     INFO("job " << job_number);
     const auto job = jobs()[job_number];
-    const auto stepped = run_chunked<double>(job, m, 64);
+    const auto stepped = run_chunked<double>(job, m, HermiteChunk::max_ticks);
     const auto exact = run_chunked<double>(job, m, 1);
     const auto ticks = stepped.setpoints.size();
     // The exact mode: one evaluation per tick except the last (the end point, emitted as it is).
@@ -104,7 +104,7 @@ TEST_CASE("motion: chunks replace most exact evaluations; the exact mode evaluat
     CHECK(stepped.stats.chunks * 8 <= stepped.stats.stepped_ticks + stepped.stats.chunks);
   }
   // A straight line: the Hermite reproduces it, so no chunk is ever rejected.
-  const auto straight = run_chunked<double>(jobs()[0], m, 64);
+  const auto straight = run_chunked<double>(jobs()[0], m, HermiteChunk::max_ticks);
   CHECK(straight.stats.rejected_chunks == 0);
   CHECK(straight.stats.exact_evaluations * 20 <= straight.setpoints.size());
 }
@@ -112,7 +112,7 @@ TEST_CASE("motion: chunks replace most exact evaluations; the exact mode evaluat
 TEST_CASE("motion: the longest chunk is configurable; 1 is the exact path", "[core][motion][chunks]") {
   MotionController<double> c;
   REQUIRE(c.configure(test_machine()).has_value());
-  CHECK(c.max_chunk_ticks() == 64);
+  CHECK(c.max_chunk_ticks() == HermiteChunk::max_ticks);
   CHECK(c.set_max_chunk_ticks(0).error() == Error::InvalidArgument);
   CHECK(c.set_max_chunk_ticks(3).error() == Error::InvalidArgument);
   CHECK(c.set_max_chunk_ticks(2 * HermiteChunk::max_ticks).error() == Error::InvalidArgument);
@@ -127,7 +127,7 @@ TEST_CASE("motion: the longest chunk is configurable; 1 is the exact path", "[co
 TEST_CASE("motion: stepped Q16.16 setpoints round the same as the exact ones within one raw unit", "[core][motion][chunks]") {
   const MachineLimits m = test_machine();
   for (const auto& job : jobs()) {
-    const auto stepped = run_chunked<Q16_16>(job, m, 64);
+    const auto stepped = run_chunked<Q16_16>(job, m, HermiteChunk::max_ticks);
     const auto exact = run_chunked<Q16_16>(job, m, 1);
     REQUIRE(stepped.setpoints.size() == exact.setpoints.size());
     std::int64_t worst = 0;
@@ -187,7 +187,7 @@ HoldRun hold_and_resume(std::uint32_t max_chunk, std::size_t hold_at) {
 
 TEST_CASE("motion: feed hold in the middle of a chunk brakes like the exact path, and resume steps again", "[core][motion][chunks]") {
   const MachineLimits m = test_machine();
-  const auto stepped = hold_and_resume(64, 1501);
+  const auto stepped = hold_and_resume(HermiteChunk::max_ticks, 1501);
   const auto exact = hold_and_resume(1, 1501);
   CHECK(stepped.stepping_when_held);  // the hold arrives while a chunk is being stepped
   REQUIRE(stepped.setpoints.size() == exact.setpoints.size());
@@ -241,7 +241,7 @@ TEST_CASE("motion: abort in the middle of a chunk stops at once; after reset a j
   REQUIRE(c.start().has_value());
   std::vector<Setpoint<double>> again;
   while (!c.finished()) again.push_back(c.next_setpoint().value());
-  const auto fresh = run_chunked<double>(job, m, 64);
+  const auto fresh = run_chunked<double>(job, m, HermiteChunk::max_ticks);
   REQUIRE(again.size() == fresh.setpoints.size());
   bool identical = true;
   for (std::size_t i = 0; i < again.size(); ++i) identical = identical && again[i] == fresh.setpoints[i];
@@ -268,7 +268,7 @@ TEST_CASE("motion: a starved queue stops on the path with chunks and resumes whe
     CHECK(sp.back().position[1] == 20.0);
     return std::make_pair(sp, c.interpolator_stats());
   };
-  const auto [stepped, stats] = starve(64);
+  const auto [stepped, stats] = starve(HermiteChunk::max_ticks);
   const auto [exact, exact_stats] = starve(1);
   CHECK(stats.stepped_ticks * 2 > stepped.size());
   REQUIRE(stepped.size() == exact.size());

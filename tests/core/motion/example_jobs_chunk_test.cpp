@@ -34,7 +34,7 @@ TEST_CASE("motion: every example job stays within chunk_error_bound of the exact
     const auto job = host::load_job(file);
     for (const MachineLimits& m : {example, fast}) {
       INFO(file.filename().string() << " at " << m.rate_hz << " Hz");
-      const auto stepped = run_chunked<double>(job.segments, m, 64);
+      const auto stepped = run_chunked<double>(job.segments, m, HermiteChunk::max_ticks);
       const auto exact = run_chunked<double>(job.segments, m, 1);
       const auto c = compare_streams(stepped, exact, m);
       CHECK(c.same_shape);
@@ -51,7 +51,7 @@ TEST_CASE("motion: every example job stays within chunk_error_bound of the exact
                                     << stepped.stats.exact_evaluations << " exact evaluations, worst "
                                     << c.worst_position << " mm (" << c.worst_ratio << " of the bound)");
       // Q16.16 (what a firmware emits): the same job ends on the same raw point.
-      const auto q_stepped = run_chunked<Q16_16>(job.segments, m, 64);
+      const auto q_stepped = run_chunked<Q16_16>(job.segments, m, HermiteChunk::max_ticks);
       const auto q_exact = run_chunked<Q16_16>(job.segments, m, 1);
       REQUIRE(q_stepped.setpoints.size() == q_exact.setpoints.size());
       CHECK(q_stepped.setpoints.back() == q_exact.setpoints.back());

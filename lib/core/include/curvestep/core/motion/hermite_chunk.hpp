@@ -30,11 +30,11 @@
 #include <cstddef>
 #include <cstdint>
 
-#include <curvestep/core/curve/bezier.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
 #include <curvestep/core/result.hpp>
-#include <curvestep/core/sampling/forward_difference.hpp>
+#include <curvestep/core/contract.hpp>
+#include <curvestep/core/sampling/detail/difference_seed.hpp>
 
 namespace curvestep {
 
@@ -65,7 +65,6 @@ struct PathTickState {
 /// One chunk: the quintic Hermite between two exact states, stepped tick by tick.
 class HermiteChunk {
  public:
-  using Stepper = ForwardDifference<double, motion_axes, 5>;
   using Controls = std::array<MachinePoint, 6>;
 
   /// Largest chunk (ticks) the controller may use.
@@ -97,22 +96,48 @@ class HermiteChunk {
     return weighted(q, {1, 15, 90, 270, 405, 243}, 1024);
   }
 
-  /// Starts stepping the quintic `q` (relative to `origin`) in `ticks` steps. NotFinite if a
-  /// control point is not finite; InvalidStep for ticks == 0.
+  /// Starts stepping the quintic `q` (relative to `origin`) in `ticks` steps, ticks a power of two
+  /// <= max_ticks (contract). NotFinite if a control point or a difference is not finite.
   [[nodiscard]] Result<void> start(const MachinePoint& origin, const Controls& q, std::uint32_t ticks) noexcept {
-    CURVESTEP_TRY(const auto curve, (Bezier<double, motion_axes, 5>::create(std::span<const MachinePoint>(q.data(), q.size()))));
-    CURVESTEP_TRY(stepper_, Stepper::create(curve, ticks));
+    CURVESTEP_EXPECTS(ticks >= 1 && ticks <= max_ticks && (ticks & (ticks - 1)) == 0);
+    // Δʲ(0) = Σ_{i>=j} a_i j! S(i,j) / N^i with a_i the power coefficients (difference_seed.hpp);
+    // N is a power of two, so 1/N^i is exact.
+    const double step = 1.0 / static_cast<double>(ticks);
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      std::array<double, 6> control{};
+      for (std::size_t i = 0; i < 6; ++i) control[i] = q[i][axis];
+      const auto a = detail::power_coefficients(control, 5);
+      std::array<double, 6> scaled{};  // a_i / N^i
+      double power = 1;
+      for (std::size_t i = 0; i < 6; ++i) {
+        scaled[i] = a[i] * power;
+        power *= step;
+      }
+      table_[axis][0] = scaled[0];
+      for (std::size_t j = 1; j < 6; ++j) {
+        double sum = 0;
+        for (std::size_t i = j; i < 6; ++i) sum += scaled[i] * static_cast<double>(detail::stirling_difference_weights[i][j]);
+        if (!std::isfinite(sum)) return fail(Error::NotFinite);
+        table_[axis][j] = sum;
+      }
+    }
     origin_ = origin;
     return ok();
   }
 
-  /// The next tick's setpoint position: origin + the quintic at the next step (additions only).
-  /// Contract: fewer than `ticks` steps taken.
+  /// The next tick's setpoint position: origin + the quintic at the next step, by 5 additions per
+  /// axis (and one to add the origin). Contract: fewer than `ticks` steps taken since start().
   [[nodiscard]] MachinePoint next() noexcept {
-    stepper_.step();
-    const auto offset = stepper_.point();
     MachinePoint p;
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) p[axis] = origin_[axis] + offset[axis];
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      auto& d = table_[axis];
+      d[0] += d[1];
+      d[1] += d[2];
+      d[2] += d[3];
+      d[3] += d[4];
+      d[4] += d[5];
+      p[axis] = origin_[axis] + d[0];
+    }
     return p;
   }
 
@@ -127,7 +152,7 @@ class HermiteChunk {
     return m;
   }
 
-  Stepper stepper_{};
+  std::array<std::array<double, 6>, motion_axes> table_{};  ///< per axis: Δ⁰..Δ⁵ of the offset from origin_
   MachinePoint origin_{};
 };
 

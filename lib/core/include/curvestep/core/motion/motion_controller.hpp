@@ -214,7 +214,7 @@ class MotionController {
   /// exactly (tests check each stepped setpoint against chunk_error_bound of its chunk).
   [[nodiscard]] std::uint32_t last_chunk_ticks() const noexcept { return last_chunk_ticks_; }
 
-  /// Longest chunk in ticks (a power of two, 1..HermiteChunk::max_ticks; default 64). 1 evaluates
+  /// Longest chunk in ticks (a power of two, 1..HermiteChunk::max_ticks, the default). 1 evaluates
   /// the path exactly at every tick (the reference the stepped stream is tested against).
   /// InvalidArgument otherwise; InvalidState while moving.
   [[nodiscard]] Result<void> set_max_chunk_ticks(std::uint32_t ticks) noexcept {
@@ -387,9 +387,10 @@ class MotionController {
       const double allowed = chunk_error_bound(n, machine_) / 4;
       // σ = 1/2 first (where a smooth path's error peaks), then 1/4 and 3/4.
       bool passed = deviation(HermiteChunk::at_half(q), state_at(k0 + n / 2, span, false), start) <= allowed;
-      // A line's exact path is a cubic in t inside a phase (the Hermite reproduces it up to
-      // rounding): the middle suffices. On curves the table's knots make it only C1, so check more.
-      if (passed && n >= 4 && front().segment.kind() != SegmentKind::Line) {
+      // Inside one piece of the arc-length table the exact path is smooth and the Hermite's error
+      // peaks at σ = 1/2 (a line's is a cubic in t, reproduced up to rounding). The table is only
+      // C1 at its knots, so a chunk that crosses one is also checked at σ = 1/4 and 3/4.
+      if (passed && n >= 4 && front().segment.kind() != SegmentKind::Line && crosses_knot(start.u, end.u)) {
         passed = deviation(HermiteChunk::at_quarter(q), state_at(k0 + n / 4, span, false), start) <= allowed &&
                  deviation(HermiteChunk::at_three_quarters(q), state_at(k0 + 3 * (n / 4), span, false), start) <= allowed;
       }
@@ -423,6 +424,12 @@ class MotionController {
     preferred_chunk_ticks_ = shortest;
     retry_tick_ = k0 + backoff_ticks_;
     if (backoff_ticks_ < HermiteChunk::max_ticks) backoff_ticks_ *= 2;
+  }
+
+  /// True if u0 < u1 lie in different pieces of the arc-length table.
+  [[nodiscard]] static bool crosses_knot(double u0, double u1) noexcept {
+    constexpr double intervals = static_cast<double>(TableIntervals);
+    return std::floor(u0 * intervals) != std::floor(u1 * intervals);
   }
 
   /// Largest per-axis |(x0 + offset) - exact| with x0 = start's position.
@@ -528,8 +535,8 @@ class MotionController {
   std::uint32_t last_segment_ = 0;
   // Chunked interpolation (plan_chunk): the chunk being stepped and the exact state at its end.
   static constexpr std::uint64_t no_chunk = ~std::uint64_t{0};
-  std::uint32_t max_chunk_ticks_ = 64;
-  std::uint32_t preferred_chunk_ticks_ = 64;
+  std::uint32_t max_chunk_ticks_ = HermiteChunk::max_ticks;
+  std::uint32_t preferred_chunk_ticks_ = HermiteChunk::max_ticks;
   std::uint64_t chunk_end_tick_ = no_chunk;
   std::uint32_t chunk_ticks_ = 1;       ///< N of the chunk being stepped
   std::uint32_t last_chunk_ticks_ = 1;  ///< N of the chunk of the last setpoint (1: exact)
