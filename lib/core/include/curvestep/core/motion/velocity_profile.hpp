@@ -216,18 +216,28 @@ class VelocityProfile {
                        s.acceleration_mm_per_s2 + jerk * tau};
   }
 
-  void add_phase(double duration, double jerk) noexcept {
-    if (!(duration > 0) || count_ == phases_.size()) return;
+  /// Where the next phase starts: the end of the last one (rounding leaves a tiny acceleration
+  /// after an S-curve ramp, and a trapezoid ramp ends with a jump to 0: both become 0), or the
+  /// entry speed at rest.
+  [[nodiscard]] MotionState next_start() const noexcept {
     MotionState start{};
     if (count_ > 0) {
       const Phase& last = phases_[count_ - 1];
       start = advance(last.start, last.jerk_mm_per_s3, last.duration_s);
-      // Rounding leaves a tiny acceleration after an S-curve ramp; a trapezoid ramp ends with a jump to 0.
       if (trapezoid_ || std::fabs(start.acceleration_mm_per_s2) < 1e-9) start.acceleration_mm_per_s2 = 0;
     } else {
       start.speed_mm_per_s = entry_;
     }
-    phases_[count_++] = Phase{duration, jerk, start};
+    return start;
+  }
+
+  void append(double duration, double jerk, const MotionState& start) noexcept {
+    if (count_ < phases_.size()) phases_[count_++] = Phase{duration, jerk, start};
+  }
+
+  void add_phase(double duration, double jerk) noexcept {
+    if (!(duration > 0) || count_ == phases_.size()) return;
+    append(duration, jerk, next_start());
   }
 
   void add_speed_change(double from, double to, const ProfileLimits& limits) noexcept {
@@ -237,16 +247,10 @@ class VelocityProfile {
     const double a = limits.acceleration_mm_per_s2;
     if (!limits.jerk_limited) {
       // Trapezoid: constant acceleration, modelled as one phase of zero jerk with a jump in a.
-      MotionState start{};
-      if (count_ > 0) {
-        const Phase& last = phases_[count_ - 1];
-        start = advance(last.start, last.jerk_mm_per_s3, last.duration_s);
-      } else {
-        start.speed_mm_per_s = entry_;
-      }
+      MotionState start = next_start();
       start.speed_mm_per_s = from;
       start.acceleration_mm_per_s2 = sign * a;
-      if (count_ < phases_.size()) phases_[count_++] = Phase{dv / a, 0, start};
+      append(dv / a, 0, start);
       return;
     }
     const double j = limits.jerk_mm_per_s3;
