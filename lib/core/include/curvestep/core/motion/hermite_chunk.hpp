@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // HermiteChunk: the setpoints of a run of ticks ("chunk") stepped by forward differencing between
 // two exact evaluations of the path, within a documented bound (docs/motion.md, "Per-tick work").
+// Only +, -, *, / in double, in the same order on every target: the stepped setpoints are
+// bit-identical in the simulator and in a firmware.
 //
 // The exact setpoint at tick k is x(t_k) = p(u(s(t_k))): profile, arc-length table, curve. Inside
 // one segment and one profile phase x(t) is smooth, so a chunk of N ticks (N a power of two,
@@ -10,9 +12,16 @@
 //                            P3 = x1 - 2h v1/5 + h² a1/20,  P4 = x1 - h v1/5,  P5 = x1
 // (B'(0) = 5(P1-P0)/h, B''(0) = 20(P2-2P1+P0)/h², and mirrored at σ = 1). Consecutive chunks
 // share end states, so the stream is C2: numerically differentiated acceleration stays continuous.
-// The control points are taken relative to x0 and stepped by ForwardDifference<double, 3, 5> at
-// h/N (additions only; N is a power of two, so its seed and its std::pow factors are exact and
-// the stepper rounds identically on every target); the setpoint is x0 + the stepped offset.
+// The control points are taken relative to x0 and stepped at σ = k/N by a forward-difference table
+// (Δ⁰..Δ⁵ per axis, 5 additions per step), seeded with the power coefficients and Stirling weights
+// of sampling/detail/difference_seed.hpp as ForwardDifference seeds its chunks; N is a power of two,
+// so the seed's divisions by N^i are exact. ForwardDifference itself is not used: its create()
+// chooses a re-seed interval from a proven bound (hodograph differences, std::pow), about 9000
+// instructions per chunk here, more than the exact evaluations a chunk saves. Without re-seeding,
+// after k <= N <= 256 steps the seed's roundings ε_j have grown to Σ_j C(k,j) ε_j <= Σ_j |ε_j| N^j/j!,
+// and ε_j <= a few u Σ_i |a_i| j!S(i,j)/N^i with u = 2^-53 and |a_i| <= 2⁵ C(5,i) max|P - x0|: the
+// stepping error stays below 10⁻¹² of the chunk's extent, far below chunk_error_bound (the tests
+// measure the total). The setpoint is x0 + Δ⁰.
 //
 // Error. For smooth x the Hermite error is e(σ) = x⁽⁶⁾(ξ)/720 h⁶ σ³(1-σ)³, largest at σ = 1/2.
 // With E = max|e| (per axis) and e = 64 E σ³(1-σ)³:  |e'| <= 3.44 E/h, |e''| <= 24 E/h²,
@@ -21,8 +30,10 @@
 // change by at most 10⁻³ of v_max, a_max and j_max:
 //     ε(N) = min(10⁻³ tol, 10⁻³ v_max h/3.44, 10⁻³ a_max h²/24, 10⁻³ j_max h³/384).
 // The controller accepts a chunk only if the Hermite at σ = 1/2 is within ε(N)/4 of an exact
-// evaluation there (a factor 4 for the variation of x⁽⁶⁾ across the chunk); otherwise it halves
-// N (the exact middle state becomes the new end). N = 1 is the exact path.
+// evaluation there (a factor 4 for the variation of x⁽⁶⁾ across the chunk), and at σ = 1/4 and 3/4
+// too when the chunk crosses a knot of the arc-length table (where the exact path is only C1, so
+// the error need not peak in the middle); otherwise it halves N (the exact middle state becomes
+// the new end). N = 1 is the exact path.
 #pragma once
 
 #include <array>
@@ -32,8 +43,8 @@
 
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
-#include <curvestep/core/result.hpp>
 #include <curvestep/core/contract.hpp>
+#include <curvestep/core/result.hpp>
 #include <curvestep/core/sampling/detail/difference_seed.hpp>
 
 namespace curvestep {

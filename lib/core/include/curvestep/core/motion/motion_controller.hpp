@@ -6,6 +6,7 @@
 //                                     └► per segment start: exit speed by a backward pass over the
 //                                        next Lookahead segments ─► S-curve profile ─► per tick:
 //                                        t → s (profile) → u (arc-length table) → p(u) → setpoint
+//                                        (exactly at chunk ends, forward-differenced in between)
 //
 // Determinism: a segment's exit speed depends only on the segment and the Lookahead segments after
 // it (or the end of the job), never on how many happened to be queued: the window ends with a
@@ -17,8 +18,19 @@
 // so speed is continuous across segments. The last setpoint of a job is its end point exactly.
 // Feed hold brakes along the path (possibly into later segments) within the limits; resume plans
 // the rest of the segment from rest; abort stops at once and flushes the queue.
-// Budget per tick: one profile evaluation (a cubic), a binary search in a 65-entry table, one
-// curve evaluation (de Casteljau, degree <= 7) and the quantisation.
+//
+// Per-tick work (docs/motion.md, "Per-tick work"): inside one profile phase of one segment the
+// ticks are cut into chunks of N = 2^k <= max_chunk_ticks() ticks. At a chunk's end the path is
+// evaluated exactly (position, velocity, acceleration); the ticks inside follow the quintic Hermite
+// between the chunk's ends (hermite_chunk.hpp), stepped by 5 additions per axis. A chunk is used
+// only if the Hermite is within chunk_error_bound(N)/4 of exact evaluations at its middle (and its
+// quarters when it crosses a knot of the arc-length table); otherwise N is halved, down to the
+// exact path. Every setpoint that is not stepped (chunk ends, exact ticks, feed hold, the end) is
+// the exact evaluation bit for bit.
+// Budget per tick: a stepped tick is 15 additions, the profile's speed (a quadratic) and the
+// quantisation; a chunk end costs a plan: 2 to 4 exact evaluations (profile, table search, de
+// Casteljau) and 2 derivatives, plus 2 per halving. The tick that starts a segment (arc-length
+// table) stays the worst case.
 #pragma once
 
 #include <cmath>
@@ -547,7 +559,7 @@ class MotionController {
     std::uint64_t tick = no_chunk;  ///< no_chunk: empty
     PathTickState state{};
   };
-  std::array<CachedState, 4> state_cache_{};  ///< exact states of future ticks (plan_chunk)
+  std::array<CachedState, 2> state_cache_{};  ///< exact states of future ticks (plan_chunk)
   PathTickState chunk_end_state_{};
   VelocityProfile::PhaseSpan chunk_span_{};
   InterpolatorStats stats_{};

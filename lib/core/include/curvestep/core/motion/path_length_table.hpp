@@ -6,7 +6,9 @@
 // 1/Intervals of a smooth curve its relative error is far below 1e-12). Inside a piece s(u) is the
 // cubic Hermite interpolant through (u_k, s_k) with slopes |p'(u_k)| (error O(h^4), and well
 // behaved where |p'| vanishes at a cusp, unlike the inverse u(s) whose slope is infinite there);
-// u(s) inverts that cubic by Newton's method inside a bisection bracket (at most 40 steps).
+// u(s) inverts that cubic by Newton's method inside a bisection bracket (at most 40 steps);
+// locate(s) also gives S'(u) and S''(u) of that cubic, for the interpolator's chain rule. The
+// cubics meet with matching slopes but not curvatures: the path the table defines is C1 in s.
 // Everything is +, -, *, /, sqrt in double: the same bits on every target.
 #pragma once
 
