@@ -83,6 +83,15 @@ TEST_CASE("motion: stepped setpoints stay within chunk_error_bound of the exact 
     }
     ++machine_number;
   }
+  // 100 kHz, where short chunks' checks fall below the evaluation's rounding and are not tried.
+  MachineLimits fastest = test_machine();
+  fastest.rate_hz = 100000;
+  for (const std::size_t job_number : {std::size_t{4}, std::size_t{5}}) {
+    INFO("100 kHz, job " << job_number);
+    const auto stepped = run_chunked<double>(jobs()[job_number], fastest, HermiteChunk::max_ticks);
+    check_against_exact(stepped, run_chunked<double>(jobs()[job_number], fastest, 1), fastest);
+    CHECK(stepped.stats.exact_evaluations * 20 <= stepped.setpoints.size());
+  }
 }
 
 TEST_CASE("motion: chunks replace most exact evaluations; the exact mode evaluates every tick", "[core][motion][chunks]") {
