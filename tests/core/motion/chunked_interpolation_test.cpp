@@ -288,3 +288,19 @@ TEST_CASE("motion: a starved queue stops on the path with chunks and resumes whe
   CHECK(worst <= 1e-3 * m.tolerance_mm);
   CHECK(measure(stepped, m.rate_hz).jerk <= m.j_max_mm_per_s3 * 1.01);
 }
+
+TEST_CASE("motion: feed hold at any tick of a chunk (ends, middles, one-tick chunks) brakes exactly", "[core][motion][chunks]") {
+  std::size_t held_while_stepping = 0;
+  for (std::size_t hold_at = 1480; hold_at < 1544; hold_at += 3) {
+    INFO("hold after " << hold_at << " ticks");
+    const auto stepped = hold_and_resume(HermiteChunk::max_ticks, hold_at);
+    const auto exact = hold_and_resume(1, hold_at);
+    if (stepped.stepping_when_held) ++held_while_stepping;
+    REQUIRE(stepped.setpoints.size() == exact.setpoints.size());
+    bool braking_identical = true;
+    for (std::size_t i = stepped.hold_index; i < stepped.resume_index; ++i) braking_identical = braking_identical && stepped.setpoints[i] == exact.setpoints[i];
+    CHECK(braking_identical);
+    CHECK(stepped.setpoints.back() == exact.setpoints.back());
+  }
+  CHECK(held_while_stepping >= 10);
+}
