@@ -338,7 +338,7 @@ class MotionController {
     const MotionState m = profile_.at(tau);
     const auto located = table_.locate(offset_mm_ + m.distance_mm);
     PathTickState state;
-    state.position = front().segment.point(located.u);
+    state.position = current_segment().point(located.u);
     state.speed_mm_per_s = m.speed_mm_per_s;
     state.tau_s = tau;
     state.u = located.u;
@@ -356,8 +356,8 @@ class MotionController {
     const MotionState m = profile_.state_in(span, state.tau_s);
     const double du = m.speed_mm_per_s / state.ds_du;
     const double ddu = (m.acceleration_mm_per_s2 - state.d2s_du2 * du * du) / state.ds_du;
-    const MachinePoint d1 = front().segment.derivative(state.u, 1);
-    const MachinePoint d2 = front().segment.derivative(state.u, 2);
+    const MachinePoint d1 = current_segment().derivative(state.u, 1);
+    const MachinePoint d2 = current_segment().derivative(state.u, 2);
     for (std::size_t axis = 0; axis < motion_axes; ++axis) {
       state.velocity[axis] = d1[axis] * du;
       state.acceleration[axis] = d2[axis] * (du * du) + d1[axis] * ddu;
@@ -365,6 +365,9 @@ class MotionController {
     }
     state.smooth = true;
   }
+
+  /// The segment being followed (the chunk planner's only access to the queued geometry).
+  [[nodiscard]] const PathSegment& current_segment() const noexcept { return front().segment; }
 
   [[nodiscard]] double tau_at(std::uint64_t tick) const noexcept {
     return static_cast<double>(tick) / machine_.rate_hz - origin_s_;
@@ -403,7 +406,7 @@ class MotionController {
       // Inside one piece of the arc-length table the exact path is smooth and the Hermite's error
       // peaks at σ = 1/2 (a line's is a cubic in t, reproduced up to rounding). The table is only
       // C1 at its knots, so a chunk that crosses one is also checked at σ = 1/4 and 3/4.
-      if (passed && n >= 4 && front().segment.kind() != SegmentKind::Line && crosses_knot(start.u, end.u)) {
+      if (passed && n >= 4 && current_segment().kind() != SegmentKind::Line && crosses_knot(start.u, end.u)) {
         passed = deviation(HermiteChunk::at_quarter(q), state_at(k0 + n / 4, span, false), start) <= allowed &&
                  deviation(HermiteChunk::at_three_quarters(q), state_at(k0 + 3 * (n / 4), span, false), start) <= allowed;
       }
