@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include <curvestep/core/contract.hpp>
 #include <curvestep/core/result.hpp>
 
 namespace curvestep {
@@ -169,23 +170,42 @@ class VelocityProfile {
   [[nodiscard]] constexpr std::size_t phase_count() const noexcept { return count_; }
   [[nodiscard]] constexpr const Phase& phase(std::size_t i) const noexcept { return phases_[i]; }
 
+  /// The phase that at(t) uses for t, and its time span [begin_s, end_s) computed exactly as at()
+  /// computes it (the last phase runs to duration_s()). Inside one span s(t) is one cubic.
+  struct PhaseSpan {
+    std::size_t index = 0;  ///< phase number
+    double begin_s = 0;     ///< first time of the phase (at() subtracts it)
+    double end_s = 0;       ///< first time past the phase
+  };
+
+  /// The span of the phase containing t (t <= 0: the first phase). Contract: phase_count() > 0.
+  [[nodiscard]] PhaseSpan phase_span(double t) const noexcept {
+    CURVESTEP_EXPECTS(count_ > 0);
+    double elapsed = 0;
+    for (std::size_t i = 0; i + 1 < count_; ++i) {
+      const double end = elapsed + phases_[i].duration_s;
+      if (t < end) return PhaseSpan{i, elapsed, end};
+      elapsed = end;
+    }
+    return PhaseSpan{count_ - 1, elapsed, duration_};
+  }
+
+  /// The state at t inside `span` (t in [span.begin_s, span.end_s)), with at()'s clamps: equal to
+  /// at(t) bit for bit for 0 < t < duration_s(). At t = span.begin_s it is the phase's own start
+  /// (a trapezoid's acceleration after its jump, where at(0) reports 0).
+  [[nodiscard]] MotionState state_in(const PhaseSpan& span, double t) const noexcept {
+    const Phase& ph = phases_[span.index];
+    MotionState m = advance(ph.start, ph.jerk_mm_per_s3, t - span.begin_s);
+    if (m.distance_mm > length_) m.distance_mm = length_;
+    if (m.speed_mm_per_s < 0) m.speed_mm_per_s = 0;
+    return m;
+  }
+
   /// State at time t in [0, duration] (clamped); at t >= duration: (L, exit speed, 0) exactly.
   [[nodiscard]] MotionState at(double t) const noexcept {
     if (!(t > 0)) return MotionState{0, entry_, 0};
-    if (t >= duration_) return MotionState{length_, exit_, 0};
-    double elapsed = 0;
-    for (std::size_t i = 0; i < count_; ++i) {
-      const Phase& ph = phases_[i];
-      if (t < elapsed + ph.duration_s || i + 1 == count_) {
-        const double tau = t - elapsed;
-        MotionState m = advance(ph.start, ph.jerk_mm_per_s3, tau);
-        if (m.distance_mm > length_) m.distance_mm = length_;
-        if (m.speed_mm_per_s < 0) m.speed_mm_per_s = 0;
-        return m;
-      }
-      elapsed += ph.duration_s;
-    }
-    return MotionState{length_, exit_, 0};
+    if (t >= duration_ || count_ == 0) return MotionState{length_, exit_, 0};
+    return state_in(phase_span(t), t);
   }
 
  private:
@@ -196,18 +216,28 @@ class VelocityProfile {
                        s.acceleration_mm_per_s2 + jerk * tau};
   }
 
-  void add_phase(double duration, double jerk) noexcept {
-    if (!(duration > 0) || count_ == phases_.size()) return;
+  /// Where the next phase starts: the end of the last one (rounding leaves a tiny acceleration
+  /// after an S-curve ramp, and a trapezoid ramp ends with a jump to 0: both become 0), or the
+  /// entry speed at rest.
+  [[nodiscard]] MotionState next_start() const noexcept {
     MotionState start{};
     if (count_ > 0) {
       const Phase& last = phases_[count_ - 1];
       start = advance(last.start, last.jerk_mm_per_s3, last.duration_s);
-      // Rounding leaves a tiny acceleration after an S-curve ramp; a trapezoid ramp ends with a jump to 0.
       if (trapezoid_ || std::fabs(start.acceleration_mm_per_s2) < 1e-9) start.acceleration_mm_per_s2 = 0;
     } else {
       start.speed_mm_per_s = entry_;
     }
-    phases_[count_++] = Phase{duration, jerk, start};
+    return start;
+  }
+
+  void append(double duration, double jerk, const MotionState& start) noexcept {
+    if (count_ < phases_.size()) phases_[count_++] = Phase{duration, jerk, start};
+  }
+
+  void add_phase(double duration, double jerk) noexcept {
+    if (!(duration > 0) || count_ == phases_.size()) return;
+    append(duration, jerk, next_start());
   }
 
   void add_speed_change(double from, double to, const ProfileLimits& limits) noexcept {
@@ -217,16 +247,10 @@ class VelocityProfile {
     const double a = limits.acceleration_mm_per_s2;
     if (!limits.jerk_limited) {
       // Trapezoid: constant acceleration, modelled as one phase of zero jerk with a jump in a.
-      MotionState start{};
-      if (count_ > 0) {
-        const Phase& last = phases_[count_ - 1];
-        start = advance(last.start, last.jerk_mm_per_s3, last.duration_s);
-      } else {
-        start.speed_mm_per_s = entry_;
-      }
+      MotionState start = next_start();
       start.speed_mm_per_s = from;
       start.acceleration_mm_per_s2 = sign * a;
-      if (count_ < phases_.size()) phases_[count_++] = Phase{dv / a, 0, start};
+      append(dv / a, 0, start);
       return;
     }
     const double j = limits.jerk_mm_per_s3;
