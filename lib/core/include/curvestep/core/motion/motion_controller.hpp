@@ -4,14 +4,17 @@
 //
 //   push segments ─► queue (Capacity) ─► plan: length, caps, junction speed (once, at push)
 //                                     └► per segment start: exit speed by a backward pass over the
-//                                        next Lookahead segments ─► S-curve profile ─► per tick:
+//                                        next lookahead_window() segments ─► S-curve profile ─► per tick:
 //                                        t → s (profile) → u (arc-length table) → p(u) → setpoint
 //                                        (exactly at chunk ends, forward-differenced in between)
 //
-// Determinism: a segment's exit speed depends only on the segment and the Lookahead segments after
-// it (or the end of the job), never on how many happened to be queued: the window ends with a
-// stop, whether the job ends there or not. So a firmware whose queue is kept at least Lookahead
-// deep produces exactly the simulator's setpoints; all planning arithmetic is +, −, ×, ÷ and sqrt
+// Determinism: a segment's exit speed depends only on the segment and the W segments after it (or
+// the end of the job), never on how many happened to be queued: the window ends with a stop,
+// whether the job ends there or not. W is the run-time window (set_lookahead, 1..Lookahead,
+// default Lookahead), so the setpoints are a function of the job, the machine and W alone: a
+// controller with set_lookahead(W) gives exactly those of any controller with window W (e.g. a
+// smaller queue with Lookahead = W), and a firmware whose queue is kept at least W deep produces
+// exactly the simulator's setpoints with the same W; all planning arithmetic is +, −, ×, ÷ and sqrt
 // in IEEE double, which rounds identically on every target, and positions are quantised to the
 // position scalar (Q16.16 in fixed-point builds) only at the output.
 // Time is tick / rate_hz; segment boundaries fall between ticks and the remainder carries over,
@@ -68,8 +71,20 @@ class MotionController {
   static_assert(Lookahead >= 1 && Lookahead < QueueCapacity, "the look-ahead window must fit in the queue");
 
  public:
-  /// Number of segments the window looks ahead.
+  /// The largest look-ahead window (segments); the window in use is lookahead_window().
   static constexpr std::size_t lookahead = Lookahead;
+
+  /// Sets the look-ahead window: the number of queued segments after the current one that its exit
+  /// speed (and a feed hold's limits) consider, 1..Lookahead (default Lookahead). The setpoints
+  /// depend on the window, not on the queue's capacity. InvalidArgument outside 1..Lookahead;
+  /// InvalidState while moving. Kept by reset().
+  [[nodiscard]] Result<void> set_lookahead(std::size_t window) noexcept {
+    if (!stopped()) return fail(Error::InvalidState);
+    if (window < 1 || window > Lookahead) return fail(Error::InvalidArgument);
+    lookahead_ = window;
+    return ok();
+  }
+  [[nodiscard]] std::size_t lookahead_window() const noexcept { return lookahead_; }
 
   /// Sets the machine. InvalidLimit/InvalidRate from MachineLimits::validate; InvalidState while moving.
   [[nodiscard]] Result<void> configure(const MachineLimits& machine) noexcept {
@@ -120,7 +135,7 @@ class MotionController {
     if (state_ != ControllerState::Running) return;
     const auto now = profile_.at(time_now() - origin_s_);
     ProfileLimits limits = front().plan.limits;
-    for (std::size_t i = 1; i < queue_.size() && i <= Lookahead; ++i) {
+    for (std::size_t i = 1; i < queue_.size() && i <= lookahead_; ++i) {
       limits.acceleration_mm_per_s2 = std::fmin(limits.acceleration_mm_per_s2, queue_[i].plan.limits.acceleration_mm_per_s2);
       limits.jerk_mm_per_s3 = std::fmin(limits.jerk_mm_per_s3, queue_[i].plan.limits.jerk_mm_per_s3);
     }
@@ -309,10 +324,10 @@ class MotionController {
   [[nodiscard]] double time_now() const noexcept { return static_cast<double>(tick_) / machine_.rate_hz; }
 
   /// The highest exit speed of the front segment when entered at v0: a backward pass over the
-  /// next Lookahead segments, whose window always ends at rest.
+  /// next lookahead_ segments, whose window always ends at rest.
   [[nodiscard]] double exit_speed(double v0, double remaining_mm) const noexcept {
     const std::size_t after = queue_.size() - 1;
-    const std::size_t window = after < Lookahead ? after : Lookahead;
+    const std::size_t window = after < lookahead_ ? after : lookahead_;
     if (window == 0) return 0;
     double v = 0;  // the largest entry speed of segment m from which a stop by the window's end works
     for (std::size_t m = window; m >= 1; --m) {
@@ -589,6 +604,7 @@ class MotionController {
   MachineLimits machine_{};
   bool configured_ = false;
   bool end_of_job_ = false;
+  std::size_t lookahead_ = Lookahead;  ///< the look-ahead window in use (set_lookahead)
   ControllerState state_ = ControllerState::Idle;
   Failure fault_{Error::InvalidState, no_index};
   RingBuffer<Entry, QueueCapacity> queue_{};
