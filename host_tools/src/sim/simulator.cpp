@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
@@ -17,7 +18,7 @@ namespace curvestep::host {
 namespace {
 
 constexpr std::size_t queue_capacity = 32;
-constexpr std::size_t lookahead = 16;
+constexpr std::size_t max_lookahead = SimulationOptions::max_lookahead;
 
 std::string failure_text(const Job& job, const Failure& f) {
   std::ostringstream s;
@@ -30,9 +31,11 @@ std::string failure_text(const Job& job, const Failure& f) {
 /// Runs both a double and a Q16.16 controller in lockstep: the same plan, two output scalars.
 class LockstepRun {
  public:
-  LockstepRun(const Job& job, const MachineLimits& machine) : job_(job) {
+  LockstepRun(const Job& job, const MachineLimits& machine, std::size_t lookahead) : job_(job) {
     check(exact_.configure(machine), "machine");
     check(fixed_.configure(machine), "machine");
+    check(exact_.set_lookahead(lookahead), "lookahead");
+    check(fixed_.set_lookahead(lookahead), "lookahead");
   }
 
   void fill() {
@@ -80,8 +83,8 @@ class LockstepRun {
 
   const Job& job_;
   std::size_t next_ = 0;
-  MotionController<double, queue_capacity, lookahead> exact_;
-  MotionController<Q16_16, queue_capacity, lookahead> fixed_;
+  MotionController<double, queue_capacity, max_lookahead> exact_;
+  MotionController<Q16_16, queue_capacity, max_lookahead> fixed_;
 };
 
 /// A path length for progress: arcs exactly (helix: √((r·sweep)² + Δz²)), curves by the chords of
@@ -123,8 +126,12 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
   if (auto valid = machine.validate(); !valid) {
     throw std::runtime_error("machine: " + std::string(describe(valid.error())));
   }
+  if (options.lookahead < 1 || options.lookahead > max_lookahead) {
+    throw std::runtime_error("lookahead: must be between 1 and " + std::to_string(max_lookahead) + " segments, not " +
+                             std::to_string(options.lookahead));
+  }
   SimulationResult result;
-  LockstepRun run(job, machine);
+  LockstepRun run(job, machine, options.lookahead);
   run.fill();
   run.start();
   const double dt = 1.0 / machine.rate_hz;

@@ -122,3 +122,69 @@ TEST_CASE("sim: a missing machine option is a usage error", "[host_tools][sim]")
   CHECK(r.status != 0);
   CHECK(r.output.find("--machine") != std::string::npos);
 }
+
+namespace {
+
+/// 100 collinear lines of 0.04 mm: at the machine's feed the braking distance spans more than 9
+/// of them, so the look-ahead window changes the setpoints.
+std::string short_lines_job() {
+  std::string segments;
+  for (int k = 0; k < 100; ++k) {
+    if (k > 0) segments += ",";
+    segments += R"({"type": "line", "points": [[)" + std::to_string(0.04 * k) + ",0],[" + std::to_string(0.04 * (k + 1)) + ",0]]}";
+  }
+  return temporary("short_lines.json", R"({"version": 1, "units": "mm", "segments": [)" + segments + "]}");
+}
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+TEST_CASE("sim: --lookahead replays a shorter window, and the default is 16", "[host_tools][sim][lookahead]") {
+  const std::string job = short_lines_job();
+  const std::string machine = source("examples/jobs/machine.json");
+  const Run nine = run("sim " + job + " --machine " + machine + " --lookahead 9 -o /tmp/curvestep_sim_test_la9.csv");
+  const Run sixteen = run("sim " + job + " --machine " + machine + " --lookahead 16 -o /tmp/curvestep_sim_test_la16.csv");
+  const Run by_default = run("sim " + job + " --machine " + machine + " -o /tmp/curvestep_sim_test_la_default.csv");
+  INFO(nine.output);
+  REQUIRE(nine.status == 0);
+  REQUIRE(sixteen.status == 0);
+  REQUIRE(by_default.status == 0);
+  CHECK(nine.output.find("look-ahead 9") != std::string::npos);
+  CHECK(by_default.output.find("look-ahead") == std::string::npos);
+  const std::string csv9 = file_text("/tmp/curvestep_sim_test_la9.csv");
+  const std::string csv16 = file_text("/tmp/curvestep_sim_test_la16.csv");
+  CHECK(file_text("/tmp/curvestep_sim_test_la_default.csv") == csv16);
+  CHECK(csv9 != csv16);
+  // The command writes what the library gives with the same window.
+  curvestep::host::SimulationOptions options;
+  options.lookahead = 9;
+  const auto result = curvestep::host::simulate(curvestep::host::parse_job(file_text(job), "short_lines.json"),
+                                                curvestep::host::load_machine(machine), options);
+  std::ostringstream expected;
+  curvestep::host::write_setpoints_csv(expected, result.setpoints);
+  CHECK(csv9 == expected.str());
+}
+
+TEST_CASE("sim: an out-of-range --lookahead fails with a one-line cause", "[host_tools][sim][lookahead]") {
+  for (const std::string bad : {"0", "17", "-3", "nine"}) {
+    const Run r = run("sim " + source("examples/jobs/seed_cubic.json") + " --machine " + source("examples/jobs/machine.json") +
+                      " --lookahead " + bad);
+    INFO(bad << ": " << r.output);
+    CHECK(r.status != 0);
+    CHECK(r.output.find("--lookahead") != std::string::npos);
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
+}
+
+TEST_CASE("sim: --help documents --lookahead", "[host_tools][sim][lookahead]") {
+  const Run r = run("sim --help");
+  CHECK(r.status == 0);
+  CHECK(r.output.find("--lookahead") != std::string::npos);
+  CHECK(r.output.find("1..16") != std::string::npos);
+}

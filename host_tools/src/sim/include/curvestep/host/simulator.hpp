@@ -40,7 +40,13 @@ struct SimulationSummary {
 
 /// Options of one simulation.
 struct SimulationOptions {
+  /// The largest look-ahead window the simulator's controllers have (their template Lookahead).
+  static constexpr std::size_t max_lookahead = 16;
   bool fixed_point = true;  ///< Q16.16 setpoints (the firmware's); false: double
+  /// Look-ahead window in segments (MotionController::set_lookahead), 1..max_lookahead. The
+  /// setpoints depend on it: replay a device with its own window to get its stream bit for bit
+  /// (an App<Board, S, Queue, Lookahead> with Queue >= Lookahead + 8 plans with Lookahead).
+  std::size_t lookahead = max_lookahead;
   std::function<void(double fraction)> progress;  ///< called now and then with 0..1 (may be empty)
 };
 
@@ -51,7 +57,8 @@ struct SimulationResult {
 };
 
 /// Runs the job on the machine. Throws std::runtime_error with a one-line cause if the controller
-/// rejects a segment (naming the job file and segment) or faults.
+/// rejects a segment (naming the job file and segment) or faults, or if options.lookahead is
+/// outside 1..max_lookahead.
 [[nodiscard]] SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options = {});
 
 /// Writes `t,x,y,z,v` and one line per setpoint (shortest round-trip decimals).
