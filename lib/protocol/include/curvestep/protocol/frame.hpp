@@ -1,18 +1,18 @@
 // SPDX-License-Identifier: MIT
-// Frames: [type][sequence][payload][CRC-16 LE], COBS-encoded and ended by one 0x00 byte.
+// Frames: [type][sequence][payload][CRC-32C LE], COBS-encoded and ended by one 0x00 byte.
 //
 // Why this layout. A serial line loses, corrupts and (through USB adapters and restarts)
 // truncates bytes; the frame must survive all three without help from the payload:
 //   * the 0x00 delimiter plus COBS lets a receiver find the next frame after any garbage,
 //     because 0x00 never occurs inside an encoded frame;
-//   * the CRC-16/CCITT-FALSE covers type, sequence and payload, so a corrupted header is
-//     caught exactly like corrupted data (every 1-3 bit error is detected, see crc16.hpp);
+//   * the CRC-32C covers type, sequence and payload, so a corrupted header is caught exactly
+//     like corrupted data (every 1-5 bit error is detected; why 32 bits: crc32.hpp);
 //   * the sequence number in every frame lets the link layer detect loss, duplicates and
 //     reordering (link_sender.hpp, link_receiver.hpp);
 //   * there is no length field: COBS delimits the frame, and a length byte would be one
-//     more thing to corrupt. The payload length is the frame length minus four.
-// Sizes: a frame holds at most max_payload_size (160) payload bytes, 164 bytes before COBS
-// and 166 on the wire, so the whole receive buffer of a small controller is 166 bytes.
+//     more thing to corrupt. The payload length is the frame length minus six.
+// Sizes: a frame holds at most max_payload_size (160) payload bytes, 166 bytes before COBS
+// and 168 on the wire, so the whole receive buffer of a small controller is 167 bytes.
 #pragma once
 
 #include <array>
@@ -22,7 +22,7 @@
 
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/cobs.hpp>
-#include <curvestep/protocol/crc16.hpp>
+#include <curvestep/protocol/crc32.hpp>
 #include <curvestep/protocol/limits.hpp>
 #include <curvestep/protocol/messages.hpp>
 
@@ -46,9 +46,8 @@ struct Frame {
   raw[1] = std::byte{sequence};
   for (std::size_t i = 0; i < payload.size(); ++i) raw[frame_header_size + i] = payload[i];
   const std::size_t body = frame_header_size + payload.size();
-  const std::uint16_t crc = crc16(std::span<const std::byte>(raw.data(), body));
-  raw[body] = std::byte{static_cast<std::uint8_t>(crc & 0xFFu)};
-  raw[body + 1] = std::byte{static_cast<std::uint8_t>(crc >> 8)};
+  const std::uint32_t crc = crc32c(std::span<const std::byte>(raw.data(), body));
+  for (std::size_t i = 0; i < frame_crc_size; ++i) raw[body + i] = std::byte{static_cast<std::uint8_t>(crc >> (8 * i))};
   CURVESTEP_TRY(const std::size_t encoded, cobs_encode(std::span<const std::byte>(raw.data(), body + frame_crc_size), out));
   if (encoded >= out.size()) return fail(Error::BufferTooSmall, encoded + 1);
   out[encoded] = std::byte{0};
@@ -64,15 +63,15 @@ struct Frame {
                       out);
 }
 
-/// Checks a COBS-decoded frame (without delimiter): FrameTooShort below 4 bytes, FrameTooLong
+/// Checks a COBS-decoded frame (without delimiter): FrameTooShort below 6 bytes, FrameTooLong
 /// above max_frame_size (index = length), BadCrc (index = sequence byte as received).
 [[nodiscard]] constexpr Result<Frame> parse_frame(std::span<const std::byte> raw) noexcept {
   if (raw.size() < min_frame_size) return fail(Error::FrameTooShort, raw.size());
   if (raw.size() > max_frame_size) return fail(Error::FrameTooLong, raw.size());
   const std::size_t body = raw.size() - frame_crc_size;
-  const std::uint16_t expected = crc16(raw.first(body));
-  const auto received = static_cast<std::uint16_t>(static_cast<std::uint16_t>(raw[body]) |
-                                                   (static_cast<std::uint16_t>(raw[body + 1]) << 8));
+  const std::uint32_t expected = crc32c(raw.first(body));
+  std::uint32_t received = 0;
+  for (std::size_t i = 0; i < frame_crc_size; ++i) received |= static_cast<std::uint32_t>(raw[body + i]) << (8 * i);
   if (expected != received) return fail(Error::BadCrc, static_cast<std::uint8_t>(raw[1]));
   Frame frame;
   frame.type = static_cast<std::uint8_t>(raw[0]);

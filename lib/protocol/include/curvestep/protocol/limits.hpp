@@ -8,13 +8,13 @@
 namespace curvestep::protocol {
 
 /// Protocol version exchanged in the handshake; both ends must agree exactly.
-inline constexpr std::uint16_t protocol_version = 1;
+inline constexpr std::uint16_t protocol_version = 2;
 
 /// Bytes of frame header: message type, sequence number.
 inline constexpr std::size_t frame_header_size = 2;
-/// Bytes of CRC-16 trailer.
-inline constexpr std::size_t frame_crc_size = 2;
-/// Largest payload of one frame (the largest message, a degree-7 rational 3-axis segment, is 135).
+/// Bytes of CRC-32C trailer.
+inline constexpr std::size_t frame_crc_size = 4;
+/// Largest payload of one frame (the largest message, the 3-axis MachineConfiguration, is 158).
 inline constexpr std::size_t max_payload_size = 160;
 /// Largest frame before COBS: header + payload + CRC.
 inline constexpr std::size_t max_frame_size = frame_header_size + max_payload_size + frame_crc_size;
@@ -30,6 +30,6 @@ inline constexpr std::size_t max_axes = 3;
 /// Most setpoints in one setpoint batch.
 inline constexpr std::size_t max_setpoints_per_batch = 24;
 
-static_assert(max_encoded_frame_size == 166, "docs/protocol.md states 166 bytes on the wire");
+static_assert(max_encoded_frame_size == 168, "docs/protocol.md states 168 bytes on the wire");
 
 }  // namespace curvestep::protocol

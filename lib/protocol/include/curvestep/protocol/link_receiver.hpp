@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// LinkReceiver: the controller's end of the reliable link (handshake, acks, naks, credit).
+// LinkReceiver: the receiving half of a reliable stream (acks, naks, credit; the handshake at
+// the controller), used in both directions: by the controller for the host's commands, and by
+// the host for the controller's SetpointBatch stream.
 //
 // Why it looks like this. The controller is the side with the least memory and the hard
-// real-time job, so its half of the link is the simple one: go-back-N. It keeps no reorder
+// real-time job, so the receiving half is the simple one: go-back-N. It keeps no reorder
 // buffer, only the next sequence number it expects:
 //   * sequence == expected: the frame is delivered to the application, expected advances,
 //     and an Ack(next_expected, credit_end) goes back;
@@ -22,6 +24,9 @@
 // Hello of the current session (a retransmission) only repeats the Capabilities answer.
 // Sequenced frames before any handshake get Nak(NotConnected), which tells a host that was
 // connected that the controller restarted.
+// At the host (Endpoint::Host) there is no Hello to receive: open() starts the stream when the
+// host's own handshake succeeded, only SetpointBatch frames are sequenced, and the Acks carry
+// credit_end 0 (the host takes whatever the controller sends; the controller ignores it).
 // The controller also sends an Ack when credit grows and, if configured, every ack_interval_ms
 // as a heartbeat, so a lost credit update cannot deadlock the link.
 // Cost: no buffers; a handful of bytes of state; every call is O(1).
@@ -69,21 +74,43 @@ struct ReceiverSettings {
 /// The controller's end of the link; allocation-free, time passed in as now_ms.
 class LinkReceiver {
  public:
-  /// A receiver that answers Hello with `capabilities` (its version, queue capacity, ...).
-  constexpr explicit LinkReceiver(const Capabilities& capabilities, ReceiverSettings settings = {}) noexcept
-      : capabilities_(capabilities), settings_(settings) {}
+  /// A receiver that answers Hello with `capabilities` (its version, queue capacity, ...);
+  /// `local` is the end it serves (the controller unless told otherwise).
+  constexpr explicit LinkReceiver(const Capabilities& capabilities, ReceiverSettings settings = {},
+                                  Endpoint local = Endpoint::Controller) noexcept
+      : capabilities_(capabilities), settings_(settings), local_(local) {}
+
+  /// Starts a new stream without a Hello (the host's receiver, once its own handshake is done):
+  /// next expected sequence 0, no credit.
+  constexpr void open(std::uint32_t now_ms) noexcept {
+    connected_ = true;
+    expected_ = 0;
+    segments_accepted_ = 0;
+    nak_sent_ = false;
+    credit_end_ = 0;
+    advertised_credit_end_ = 0;
+    last_ack_ms_ = now_ms;
+    last_frame_ms_ = now_ms;
+  }
+
+  /// Ends the stream: sequenced frames are ignored (host) or Nak-ed NotConnected (controller).
+  constexpr void close() noexcept { connected_ = false; }
 
   /// Handles one checked frame from the host. `free_queue_slots` is the number of empty queue
   /// slots before this frame is processed.
   [[nodiscard]] constexpr Reception on_frame(const Frame& frame, std::uint16_t free_queue_slots,
                                              std::uint32_t now_ms) noexcept {
     last_frame_ms_ = now_ms;
-    if (frame.type == static_cast<std::uint8_t>(MessageType::Hello)) return on_hello(frame, free_queue_slots, now_ms);
+    const bool controller = local_ == Endpoint::Controller;
+    if (controller && frame.type == static_cast<std::uint8_t>(MessageType::Hello)) {
+      return on_hello(frame, free_queue_slots, now_ms);
+    }
     const auto type = static_cast<MessageType>(frame.type);
-    // Controller-to-host types coming from the host are ignored. Unknown types take a sequence
-    // number like any command and are delivered, so the application reports UnknownMessage.
-    if (is_known(frame.type) && !is_sequenced(type)) return {};
-    if (!connected_) return nak(Error::NotConnected, true);
+    // Frames outside the sequenced stream toward this end (Ack, Nak, reports, ...) are the
+    // application's. At the controller, unknown types take a sequence number like any command
+    // and are delivered, so the application reports UnknownMessage.
+    if (!is_sequenced_toward(local_, frame.type)) return {};
+    if (!connected_) return controller ? nak(Error::NotConnected, true) : Reception{};
     const auto distance = static_cast<std::uint8_t>(frame.sequence - expected_);
     if (distance >= 128) {  // behind: a duplicate of something already delivered
       return acknowledge(free_queue_slots, now_ms);
@@ -213,6 +240,7 @@ class LinkReceiver {
   std::uint16_t segments_accepted_ = 0;
   std::uint8_t expected_ = 0;
   std::uint8_t outgoing_sequence_ = 0;
+  Endpoint local_ = Endpoint::Controller;
   bool connected_ = false;
   bool nak_sent_ = false;
 };
