@@ -136,7 +136,7 @@ class Host {
     for (const std::byte b : board_.outgoing) {
       const auto pushed = decoder_.push(b);
       if (!pushed) {
-        if (acknowledge_setpoints) reply(receiver_.on_bad_frame(pushed.error()));
+        if (acknowledge_setpoints) reply(receiver_.on_bad_frame(pushed.error(), board_.clock_ms));
         continue;
       }
       if (!pushed.value()) continue;

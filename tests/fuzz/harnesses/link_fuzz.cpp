@@ -107,7 +107,9 @@ std::size_t build_frame(curvestep::fuzz::InputReader& in, std::array<std::byte, 
   const auto body = in.bytes(length);
   for (std::size_t i = 0; i < body.size(); ++i) payload[i] = std::byte{body[i]};
   if (type == 0x01 && body.size() < 4) {  // a Hello of the right version, so sessions happen
-    const std::array<std::uint8_t, 4> hello{1, 0, body.empty() ? std::uint8_t{0} : body[0], 0};
+    const std::array<std::uint8_t, 4> hello{static_cast<std::uint8_t>(protocol_version & 0xFFu),
+                                            static_cast<std::uint8_t>(protocol_version >> 8),
+                                            body.empty() ? std::uint8_t{0} : body[0], 0};
     for (std::size_t i = 0; i < 4; ++i) payload[i] = std::byte{hello[i]};
     sent.payload = std::span<const std::byte>(payload.data(), 4);
   } else {

@@ -242,7 +242,25 @@ TEST_CASE("link: the controller refuses a segment beyond the credit it granted",
   CHECK(controller.naks[0].expected == 1);
 }
 
-TEST_CASE("link: retransmission gives up with RetransmitLimit", "[protocol][link]") {
+TEST_CASE("link: retransmission gives up with RetransmitLimit when the controller talks but never acknowledges",
+          "[protocol][link]") {
+  Host<> host(SenderSettings{100, 2});
+  Controller controller(4);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  CHECK(host.transmit(0).size() == 1);
+  host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Ack, Ack{0, 4}, Nak{}}), 50);  // no progress
+  CHECK(host.transmit(100).size() == 1);
+  host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Ack, Ack{0, 4}, Nak{}}), 150);
+  CHECK(host.transmit(200).size() == 1);
+  host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Ack, Ack{0, 4}, Nak{}}), 250);
+  CHECK(host.transmit(300).empty());
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::RetransmitLimit);
+  CHECK(host.sender.state() == LinkState::Failed);
+}
+
+TEST_CASE("link: retransmission to a silent controller gives up with LinkTimeout", "[protocol][link]") {
   Host<> host(SenderSettings{100, 2});
   Controller controller(4);
   handshake(host, controller);
@@ -252,8 +270,34 @@ TEST_CASE("link: retransmission gives up with RetransmitLimit", "[protocol][link
   CHECK(host.transmit(200).size() == 1);
   CHECK(host.transmit(300).empty());
   REQUIRE(host.link_errors.size() == 1);
-  CHECK(host.link_errors[0] == Error::RetransmitLimit);
+  CHECK(host.link_errors[0] == Error::LinkTimeout);  // nothing heard since the handshake: the controller is gone
   CHECK(host.sender.state() == LinkState::Failed);
+}
+
+TEST_CASE("link: a receiver Naks every damaged frame and a gap once per round of resends", "[protocol][link]") {
+  Controller controller(4, ReceiverSettings{0, 0, 20});
+  Host<> host;
+  handshake(host, controller);
+  // Damaged frames are direct evidence of a loss: each one is Nak-ed.
+  CHECK(controller.receiver.on_bad_frame(Error::BadCrc, 1).reply == ReplyKind::Nak);
+  CHECK(controller.receiver.on_bad_frame(Error::BadCrc, 2).reply == ReplyKind::Nak);
+  for (int i = 0; i < 3; ++i) REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  const auto frames = host.transmit(3);
+  REQUIRE(frames.size() == 3);
+  const auto naks_before = controller.naks.size();
+  // frame 0 lost; 1 and 2 are ahead: one Nak for the gap (the damage above already Nak-ed it)
+  controller.receive(frames[1], 4);
+  controller.receive(frames[2], 4);
+  CHECK(controller.naks.size() == naks_before);
+  // a new round (frame 1 again: no further ahead than before) with frame 0 lost again: Nak again
+  controller.receive(frames[1], 5);
+  CHECK(controller.naks.size() == naks_before + 1);
+  controller.receive(frames[2], 5);
+  CHECK(controller.naks.size() == naks_before + 1);
+  // and after nak_interval_ms a further ahead frame is Nak-ed too
+  controller.receive(frames[2], 30);
+  CHECK(controller.naks.size() == naks_before + 2);
+  for (const Nak& n : controller.naks) CHECK(n.expected == 0);
 }
 
 TEST_CASE("link: a controller that restarted answers NotConnected and the host reports DeviceRestarted", "[protocol][link]") {
@@ -506,6 +550,7 @@ TEST_CASE("link: only timeouts in a row without progress count toward max_retran
   CHECK(s.transmit(450).size() == 1);
   CHECK(s.transmit(550).size() == 1);
   CHECK(s.sender.timeouts_without_progress() == 3);
+  s.controller_receives({Message(Ack{1, 0})}, 600);  // the host still talks (a heartbeat), without progress
   Bytes out(max_encoded_frame_size);
   const auto failed = s.sender.poll(650, out);
   REQUIRE_FALSE(failed.has_value());

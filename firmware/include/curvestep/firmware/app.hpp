@@ -305,7 +305,7 @@ class App {
       for (std::size_t i = 0; i < count && i < chunk.size(); ++i) {
         const auto pushed = decoder_.push(chunk[i]);
         if (!pushed) {
-          send_reply(receiver_.on_bad_frame(pushed.error()));
+          send_reply(receiver_.on_bad_frame(pushed.error(), now));
         } else if (pushed.value()) {
           on_frame(decoder_.frame(), now);
         }

@@ -12,7 +12,14 @@
 //     acknowledged again, because the host evidently missed the first Ack;
 //   * sequence ahead of expected (a gap): discarded, and one Nak(expected) asks the host
 //     to go back; further frames of the same gap are discarded silently so one loss does
-//     not trigger a storm of retransmissions.
+//     not trigger a storm of retransmissions. The Nak is armed again when the sender has
+//     evidently gone back and the gap is still there (an ahead frame no further ahead than
+//     the last one seen: a new round of resends), or after nak_interval_ms;
+//   * a damaged frame (bad CRC, framing, length) is always Nak-ed: it is direct evidence of
+//     a loss, and on a noisy line a Nak repairs it at once where the sender's timer would
+//     wait (and count toward its retransmission limit). The sender goes back on a Nak only
+//     once everything outstanding has been (re)sent, so several Naks for one round of frames
+//     cause one go-back, not a storm.
 // Credit: the host may send a QueueSegment only while it has credit. The controller
 // advertises credit_end = (segments accepted so far) + (free queue slots), modulo 2^16. That
 // edge only ever moves forward (like TCP's right window edge), so a stale or reordered Ack can
@@ -69,6 +76,7 @@ struct Reception {
 struct ReceiverSettings {
   std::uint32_t ack_interval_ms = 0;    ///< heartbeat Ack period while connected (0: none)
   std::uint32_t link_timeout_ms = 0;    ///< silence after which check_link fails (0: never)
+  std::uint32_t nak_interval_ms = 20;   ///< a further Nak for the same gap after this long (0: one per gap)
 };
 
 /// The controller's end of the link; allocation-free, time passed in as now_ms.
@@ -85,6 +93,7 @@ class LinkReceiver {
   constexpr void open(std::uint32_t now_ms) noexcept {
     connected_ = true;
     expected_ = 0;
+    last_ahead_ = 0;
     segments_accepted_ = 0;
     nak_sent_ = false;
     credit_end_ = 0;
@@ -110,14 +119,19 @@ class LinkReceiver {
     // application's. At the controller, unknown types take a sequence number like any command
     // and are delivered, so the application reports UnknownMessage.
     if (!is_sequenced_toward(local_, frame.type)) return {};
-    if (!connected_) return controller ? nak(Error::NotConnected, true) : Reception{};
+    if (!connected_) return controller ? nak(Error::NotConnected, true, now_ms) : Reception{};
     const auto distance = static_cast<std::uint8_t>(frame.sequence - expected_);
     if (distance >= 128) {  // behind: a duplicate of something already delivered
       return acknowledge(free_queue_slots, now_ms);
     }
-    if (distance != 0) return nak(Error::SequenceError, false);  // ahead: a gap
+    if (distance != 0) {  // ahead: a gap
+      if (nak_sent_ && distance <= last_ahead_) nak_sent_ = false;  // the sender went back: still a gap
+      last_ahead_ = distance;
+      return nak(Error::SequenceError, false, now_ms);
+    }
+    last_ahead_ = 0;
     grow_credit(free_queue_slots);
-    if (consumes_credit(type) && segments_accepted_ == credit_end_) return nak(Error::QueueFull, true);
+    if (consumes_credit(type) && segments_accepted_ == credit_end_) return nak(Error::QueueFull, true, now_ms);
     ++expected_;
     nak_sent_ = false;
     if (consumes_credit(type)) ++segments_accepted_;
@@ -128,9 +142,15 @@ class LinkReceiver {
 
   /// Handles a frame the decoder dropped (BadCrc, BadFraming, ...): one Nak per gap, so the host
   /// retransmits at once instead of waiting for its timeout.
-  [[nodiscard]] constexpr Reception on_bad_frame(Error reason) noexcept {
+  [[nodiscard]] constexpr Reception on_bad_frame(Error reason) noexcept { return on_bad_frame(reason, last_frame_ms_); }
+
+  /// As above, at time `now_ms`.
+  [[nodiscard]] constexpr Reception on_bad_frame(Error reason, std::uint32_t now_ms) noexcept {
     if (!connected_) return {};
-    return nak(reason, false);
+    Reception r = nak(reason, true, now_ms);
+    nak_sent_ = true;  // the gap this damage opened is Nak-ed
+    last_nak_ms_ = now_ms;
+    return r;
   }
 
   /// Periodic step: an Ack if credit grew since the last one or the heartbeat is due.
@@ -192,6 +212,7 @@ class LinkReceiver {
     if (connected_ && hello.value().session == capabilities_.session) return r;  // a retransmitted Hello
     connected_ = true;
     expected_ = 0;
+    last_ahead_ = 0;
     segments_accepted_ = 0;
     nak_sent_ = false;
     credit_end_ = free_queue_slots;
@@ -222,10 +243,14 @@ class LinkReceiver {
     return r;
   }
 
-  [[nodiscard]] constexpr Reception nak(Error reason, bool always) noexcept {
+  [[nodiscard]] constexpr Reception nak(Error reason, bool always, std::uint32_t now_ms) noexcept {
     Reception r;
-    if (!always && nak_sent_) return r;
-    if (!always) nak_sent_ = true;
+    const bool rearmed = settings_.nak_interval_ms != 0 && now_ms - last_nak_ms_ >= settings_.nak_interval_ms;
+    if (!always && nak_sent_ && !rearmed) return r;
+    if (!always) {
+      nak_sent_ = true;
+      last_nak_ms_ = now_ms;
+    }
     r.reply = ReplyKind::Nak;
     r.nak = Nak{expected_, reason};
     return r;
@@ -235,10 +260,12 @@ class LinkReceiver {
   ReceiverSettings settings_;
   std::uint32_t last_frame_ms_ = 0;
   std::uint32_t last_ack_ms_ = 0;
+  std::uint32_t last_nak_ms_ = 0;
   std::uint16_t credit_end_ = 0;
   std::uint16_t advertised_credit_end_ = 0;
   std::uint16_t segments_accepted_ = 0;
   std::uint8_t expected_ = 0;
+  std::uint8_t last_ahead_ = 0;  // distance ahead of the last out-of-order frame (0: none since the last delivery)
   std::uint8_t outgoing_sequence_ = 0;
   Endpoint local_ = Endpoint::Controller;
   bool connected_ = false;

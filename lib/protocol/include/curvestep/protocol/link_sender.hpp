@@ -12,8 +12,10 @@
 // Only timeouts count toward max_retransmits, and only timeouts in a row without progress:
 // a Nak-triggered go-back is the normal repair of a damaged frame on a noisy line, and any
 // acknowledgement that moves the window clears the count. After max_retransmits timeouts
-// without progress the link fails with RetransmitLimit (index = the oldest sequence number),
-// so the time to give up is about (max_retransmits + 1) x retransmit_timeout_ms of no progress.
+// without progress the link fails, after about (max_retransmits + 1) x retransmit_timeout_ms
+// of no progress: with LinkTimeout if nothing at all was heard from the peer in that time (it
+// is gone), else with RetransmitLimit (index = the oldest sequence number: the peer talks but
+// never takes the frame).
 // Sequence numbers are 8 bits; Window is at most 127, so "behind" and "ahead" can never be
 // confused by the receiver.
 // Flow control has two limits, both enforced by can_submit()/submit():
@@ -128,7 +130,11 @@ class LinkSender {
       return give_up(Error::LinkTimeout, now_ms - heard_ms_);
     }
     if (transmitted_ > 0 && now_ms - timer_ms_ >= settings_.retransmit_timeout_ms) {
-      if (timeouts_ >= settings_.max_retransmits) return give_up(Error::RetransmitLimit, first_sequence_);
+      if (timeouts_ >= settings_.max_retransmits) {
+        const std::uint32_t silence = now_ms - heard_ms_;
+        if (silence >= settings_.retransmit_timeout_ms * timeouts_) return give_up(Error::LinkTimeout, silence);
+        return give_up(Error::RetransmitLimit, first_sequence_);
+      }
       ++timeouts_;
       go_back(now_ms);
     }
@@ -154,6 +160,9 @@ class LinkSender {
       default: return ok();
     }
   }
+
+  /// The peer was heard at `now_ms` (any frame of its, also those handled elsewhere).
+  constexpr void heard(std::uint32_t now_ms) noexcept { heard_ms_ = now_ms; }
 
   /// Where the link is.
   [[nodiscard]] constexpr LinkState state() const noexcept { return state_; }
@@ -248,7 +257,8 @@ class LinkSender {
     if (state_ != LinkState::Connected) return ok();
     if (nak.reason == Error::NotConnected) return give_up(Error::DeviceRestarted, nak.expected);
     on_ack(nak.expected, 0, false, now_ms);
-    if (nak.expected == first_sequence_ && sent_ > 0) go_back(now_ms);
+    // One go-back per round: Naks that arrive while a resend is still going out are covered by it.
+    if (nak.expected == first_sequence_ && sent_ > 0 && sent_ >= count_) go_back(now_ms);
     return ok();
   }
 
