@@ -5,6 +5,7 @@
 // names where the job stopped and exits non-zero). docs/robustness.md, "Soak".
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -18,6 +19,8 @@
 #include <thread>
 
 #include <curvestep/host/link/transport.hpp>
+#include <curvestep/protocol/frame.hpp>
+#include <curvestep/protocol/frame_decoder.hpp>
 
 #include "hil_support.hpp"
 #include "process.hpp"
@@ -131,7 +134,7 @@ TEST_CASE("soak: a long job through faults in both directions arrives bit-identi
   const auto started = std::chrono::steady_clock::now();
   const int status = ct::run_program({"stream", job.string(), "--machine", machine.string(), "--port", port, "--capture",
                                       capture.string()},
-                                     errors, "stream_soak", std::chrono::seconds(170), &output);
+                                     errors, "stream_soak", std::chrono::seconds(std::max(170, soak_segments() / 4)), &output);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   INFO(errors);
   INFO(output);
@@ -150,7 +153,9 @@ TEST_CASE("soak: a long job through faults in both directions arrives bit-identi
   // 4-segment job left it (a leak of even 16 bytes per setpoint would add 1.5 MiB).
   REQUIRE(baseline_kib > 0);
   CHECK(peak_kib - baseline_kib < 512);
-  std::cout << "soak: " << actual.size() << " setpoints in " << seconds << " s through the fault proxy (" << proxy.stderr_text()
+  std::string proxy_counts = proxy.stderr_text();
+  while (!proxy_counts.empty() && proxy_counts.back() == '\n') proxy_counts.pop_back();
+  std::cout << "soak: " << actual.size() << " setpoints in " << seconds << " s through the fault proxy (" << proxy_counts
             << "), device queue peak " << queue_peak << " segments, device peak RSS " << peak_kib << " KiB (after the "
             << "warm-up job " << baseline_kib << " KiB)\n";
   CHECK(device.stop() == 0);
@@ -186,4 +191,48 @@ TEST_CASE("soak: a device killed and restarted mid-job is detected and the host 
   CHECK_THAT(errors, Catch::Contains("the job stopped after segment") && Catch::Contains("acknowledged)"));
   CHECK_THAT(errors, Catch::Contains("setpoints received up to index"));
   CHECK(second.stop() == 0);
+}
+
+TEST_CASE("hil: curvestep stream refuses a controller of another protocol version with a clear message",
+          "[integration][hil][version]") {
+  // A fake controller of protocol version 1 on a pseudo-terminal: it answers every Hello with
+  // Capabilities of version 1 (same session), as an old firmware would.
+  hl::PseudoTerminal pty;
+  auto line = pty.master_transport();
+  std::atomic<bool> stop{false};
+  std::thread controller([&] {
+    curvestep::protocol::FrameDecoder<> decoder;
+    std::array<std::byte, 256> bytes{};
+    while (!stop.load()) {
+      std::size_t n = 0;
+      try {
+        n = line->read(bytes, 5);
+      } catch (const hl::TransportError&) {
+        return;
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto pushed = decoder.push(bytes[i]);
+        if (!pushed || !pushed.value() || decoder.frame().type != 0x01) continue;
+        const auto hello = curvestep::protocol::decode<curvestep::protocol::Hello>(decoder.frame().payload);
+        if (!hello) continue;
+        curvestep::protocol::Capabilities old;
+        old.version = 1;
+        old.session = hello.value().session;
+        std::array<std::byte, curvestep::protocol::max_encoded_frame_size> frame{};
+        const auto size = curvestep::protocol::encode_frame(curvestep::protocol::Message(old), 0, frame);
+        if (size) line->write(std::span<const std::byte>(frame.data(), size.value()));
+      }
+    }
+  });
+  std::string errors;
+  const auto job = ct::zigzag_job(2);
+  const int status = ct::run_program({"stream", job.string(), "--machine", ct::wire_exact_machine().string(), "--port",
+                                      pty.slave_path()},
+                                     errors, "stream_version", std::chrono::seconds(20));
+  stop.store(true);
+  controller.join();
+  INFO(errors);
+  CHECK(status == 4);
+  CHECK_THAT(errors, Catch::Contains("VersionMismatch") &&
+                         Catch::Contains("the controller speaks protocol version 1, this host speaks version 2"));
 }

@@ -30,9 +30,11 @@ void HostLink::raise(const Failure& failure) const {
   if (failure.code == Error::LinkTimeout) text += ": the controller stopped answering";
   if (failure.code == Error::DeviceRestarted) text += ": the controller restarted and lost the session";
   if (failure.code == Error::VersionMismatch) {
-    text += ": the controller speaks protocol version " + std::to_string(sender_.capabilities().version) +
-            " (or refused ours), this host speaks version " + std::to_string(protocol::protocol_version) +
-            "; update the firmware or the host tools so both match";
+    const std::uint16_t theirs = sender_.capabilities().version;
+    text += theirs != 0 ? ": the controller speaks protocol version " + std::to_string(theirs) + ", this host speaks version " +
+                              std::to_string(protocol::protocol_version)
+                        : ": the controller refused this host's protocol version " + std::to_string(protocol::protocol_version);
+    text += "; update the firmware or the host tools so both versions match";
   }
   throw LinkError(failure.code, text);
 }

@@ -61,7 +61,15 @@ TEST_CASE("link: a handshake with a wrong version is refused on both ends", "[pr
     REQUIRE_FALSE(r.has_value());
     CHECK(r.error() == Error::VersionMismatch);
     CHECK(sender.state() == LinkState::Failed);
+    CHECK(sender.capabilities().version == protocol_version + 3);  // for the error message
     CHECK_FALSE(sender.submit(Message(Start{})).has_value());
+  }
+  SECTION("a host refused by the controller knows no controller version") {
+    Host<> host;
+    Controller controller(5, {}, static_cast<std::uint16_t>(protocol_version + 1));
+    host.sender.connect(1, 0);
+    host.receive(controller.receive(host.transmit(0)[0], 0)[0], 0);
+    CHECK(host.sender.capabilities().version == 0);
   }
 }
 

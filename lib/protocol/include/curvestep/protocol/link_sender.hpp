@@ -168,7 +168,8 @@ class LinkSender {
   [[nodiscard]] constexpr LinkState state() const noexcept { return state_; }
   /// Why the link failed (NotConnected before any failure).
   [[nodiscard]] constexpr Error last_error() const noexcept { return error_; }
-  /// The controller's capabilities (meaningful once Connected).
+  /// The controller's capabilities (meaningful once Connected; after a VersionMismatch refusal
+  /// of its Capabilities, `version` is the controller's version, else 0).
   [[nodiscard]] constexpr const Capabilities& capabilities() const noexcept { return capabilities_; }
   /// Frames submitted and not yet acknowledged.
   [[nodiscard]] constexpr std::size_t in_flight() const noexcept { return count_; }
@@ -197,6 +198,8 @@ class LinkSender {
   };
 
   constexpr void reset(std::uint32_t now_ms) noexcept {
+    capabilities_ = Capabilities{};
+    capabilities_.version = 0;  // none heard yet
     timer_ms_ = now_ms;
     count_ = 0;
     sent_ = 0;
@@ -224,8 +227,8 @@ class LinkSender {
 
   [[nodiscard]] constexpr Result<void> on_capabilities(const Capabilities& c, std::uint32_t now_ms) noexcept {
     if (state_ != LinkState::Connecting || c.session != session_) return ok();  // stale or repeated answer
+    capabilities_ = c;  // kept even when refused, so the caller can name the controller's version
     if (c.version != protocol_version) return give_up(Error::VersionMismatch, c.version);
-    capabilities_ = c;
     credit_end_ = c.credit_end;
     state_ = LinkState::Connected;
     heard_ms_ = now_ms;
