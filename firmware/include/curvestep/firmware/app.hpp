@@ -256,7 +256,7 @@ class App {
   [[nodiscard]] std::uint8_t last_error() const noexcept { return last_error_; }
   /// The commanded position (Q16.16 raw) of the last setpoint.
   [[nodiscard]] const protocol::WirePoint& position() const noexcept { return position_; }
-  /// True if on_tick() would advance: not moving, or room for one more setpoint in the stream.
+  /// True if on_tick() may advance: no setpoint stream, or room for one more setpoint in it.
   [[nodiscard]] bool ready_to_tick() const noexcept { return !settings_.stream_setpoints || !setpoints_.full(); }
   /// True once the job's last segment (flag end of job) has been queued.
   [[nodiscard]] bool job_end_known() const noexcept { return job_end_known_; }
