@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <curvestep/protocol/crc16.hpp>
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
 
@@ -22,16 +23,17 @@ using curvestep::protocol::testing::to_hex;
 namespace {
 
 // docs/protocol.md, "Worked example": QueueSegment, sequence 5, Line from (0, 0) to
-// (10.5, -2.25) mm at 20 mm/s. Computed independently in Python (a table-driven CRC-32C,
-// reflected polynomial 0x82F63B78, and a separate COBS routine: docs/protocol.md shows the
-// script); the document shows the same bytes.
-const char* const example_payload = "00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff";
+// (10.5, -2.25) mm at 20 mm/s. Computed independently in Python (binascii.crc_hqx for the
+// frame's CRC-16, a table-driven CRC-32C, reflected polynomial 0x82F63B78, for the message CRC,
+// and a separate COBS routine: docs/protocol.md shows the script); the document shows the same bytes.
+const char* const example_payload =
+    "00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff c2 dd 37 8c";
 const char* const example_raw =
-    "11 05 00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff 7a bb 32 e6";
+    "11 05 00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff c2 dd 37 8c b9 6b";
 const char* const example_wire =
-    "03 11 05 02 02 01 02 14 01 01 01 01 01 01 01 01 01 03 80 0a 01 08 c0 fd ff 7a bb 32 e6 00";
-const char* const hello_wire = "02 01 02 02 07 34 12 d5 f0 dc f8 00";    // Hello(version 2, session 0x1234), sequence 0
-const char* const ack_wire = "05 03 07 06 28 05 a6 a8 6f 27 00";         // Ack(6, 40), sequence 7
+    "03 11 05 02 02 01 02 14 01 01 01 01 01 01 01 01 01 03 80 0a 01 0a c0 fd ff c2 dd 37 8c b9 6b 00";
+const char* const hello_wire = "02 01 02 02 05 34 12 fa 5d 00";  // Hello(version 2, session 0x1234), sequence 0
+const char* const ack_wire = "05 03 07 06 28 03 1c 93 00";       // Ack(6, 40), sequence 7
 
 QueueSegment example_segment() {
   QueueSegment s;
@@ -141,11 +143,25 @@ TEST_CASE("frame: every single-bit flip of the sample frame is detected by the C
       ++flips;
     }
   }
-  CHECK(flips == 28 * 8);
+  CHECK(flips == 30 * 8);
 }
 
-TEST_CASE("frame: every two-bit error of the sample frame is detected by the CRC-32C", "[protocol][framing]") {
-  // CRC-32C has Hamming distance 6 at this length (Koopman), so every 2-bit error must be caught.
+TEST_CASE("frame: a damaged segment whose frame CRC-16 still matches is refused by its message CRC-32C",
+          "[protocol][framing]") {
+  auto raw = hex(example_raw);
+  raw[10] ^= std::byte{0x01};  // feed byte changed...
+  const std::size_t body = raw.size() - frame_crc_size;
+  const std::uint16_t crc = crc16(std::span<const std::byte>(raw).first(body));
+  raw[body] = std::byte{static_cast<std::uint8_t>(crc & 0xFFu)};  // ...and the CRC-16 made to match, as a
+  raw[body + 1] = std::byte{static_cast<std::uint8_t>(crc >> 8)};  // random damage does once in 65536
+  const auto r = parse_frame(raw);
+  REQUIRE_FALSE(r.has_value());
+  CHECK(r.error() == Error::BadCrc);
+  CHECK(r.where() == 5);  // the sequence number
+}
+
+TEST_CASE("frame: every two-bit error of the sample frame is detected", "[protocol][framing]") {
+  // CRC-16/CCITT-FALSE alone has Hamming distance 4 at this length, so every 2-bit error is caught.
   const auto raw = hex(example_raw);
   const std::size_t bits = raw.size() * 8;
   std::size_t pairs = 0;
@@ -184,7 +200,7 @@ TEST_CASE("frame: a frame shorter than header and CRC is FrameTooShort", "[proto
     CHECK(r.error() == Error::FrameTooShort);
   }
   FrameDecoder<> decoder;
-  const auto wire = bytes({0x06, 0x11, 0x05, 0x28, 0x01, 0x02, 0x00});  // COBS of 5 bytes: too short
+  const auto wire = bytes({0x04, 0x11, 0x05, 0x28, 0x00});  // COBS of 3 bytes: too short
   const FeedResult r = feed(decoder, wire);
   REQUIRE(r.errors.size() == 1);
   CHECK(r.errors[0] == Error::FrameTooShort);
@@ -260,7 +276,7 @@ TEST_CASE("frame: the Hello and Ack examples of docs/protocol.md encode byte for
 }
 
 TEST_CASE("frame: a too small output buffer is BufferTooSmall", "[protocol][framing]") {
-  for (std::size_t n = 0; n < 30; ++n) {
+  for (std::size_t n = 0; n < 32; ++n) {
     std::vector<std::byte> out(n);
     const auto r = encode_frame(Message(example_segment()), 5, out);
     REQUIRE_FALSE(r.has_value());

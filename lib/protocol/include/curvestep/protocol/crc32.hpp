@@ -1,17 +1,19 @@
 // SPDX-License-Identifier: MIT
-// CRC-32C (Castagnoli) over frame header and payload (protocol version 2).
+// CRC-32C (Castagnoli): the message check of MachineConfiguration, QueueSegment and SetpointBatch.
 //
-// Why CRC-32C and not the CRC-16 of version 1. A frame that a dropped byte has shifted, or that
-// several corrupted bytes have hit, looks random to the check, and a 16-bit check accepts a
-// random frame with probability 2^-16. At 1 % corrupted and 1 % dropped bytes about a third of
-// all 50-byte frames and most 160-byte frames are damaged; a soak of a million frames then
-// delivers several damaged frames as good ones, and a wrong segment moves a machine. A 32-bit
-// check accepts a random frame with probability 2^-32 (2.3e-10): below one in a thousand such
-// soaks. CRC-32C (polynomial 0x1EDC6F41, reflected 0x82F63B78, init 0xFFFFFFFF, reflected
-// input and output, final XOR 0xFFFFFFFF; iSCSI, SCTP, ext4) also has Hamming distance 6 for
-// messages up to 5243 bits (Koopman), so every error of up to 5 bits in one of our frames (at
-// most 166 bytes = 1328 bits) is caught, better than the IEEE CRC-32's distance 5 there, and
-// every burst up to 32 bits. Check value: the ASCII bytes "123456789" give 0xE3069283.
+// Why a second check. Every frame carries a CRC-16/CCITT-FALSE (crc16.hpp), which catches every
+// error of up to 3 bits and passes a randomly damaged frame once in 65536. A frame that a
+// dropped byte has shifted, or that several corrupted bytes have hit, looks random to it. At 1 %
+// corrupted and 1 % dropped bytes about half of all 50-byte frames and nearly all 160-byte
+// frames are damaged, and a soak of a million setpoints moves tens of thousands of frames: a few
+// damaged ones would pass the CRC-16 and become a wrong setpoint or, worse, a wrong segment that
+// moves the machine. The messages that carry the machine's data therefore end their payload
+// with a CRC-32C of type and payload (messages.hpp), checked with the frame (frame.hpp) so a
+// frame that fails it is Nak-ed and resent like any damaged frame. Both checks together pass a
+// random frame with probability 2^-48. CRC-32C (polynomial 0x1EDC6F41, reflected 0x82F63B78,
+// init 0xFFFFFFFF, reflected input and output, final XOR 0xFFFFFFFF; iSCSI, SCTP, ext4) has
+// Hamming distance 6 up to 5243 bits (Koopman), better than the IEEE CRC-32 at these lengths.
+// Check value: the ASCII bytes "123456789" give 0xE3069283.
 // Cost: the bitwise form below needs no table flash; 8 shift/XOR steps per byte, as CRC-16.
 #pragma once
 

@@ -1,17 +1,21 @@
 // SPDX-License-Identifier: MIT
-// Frames: [type][sequence][payload][CRC-32C LE], COBS-encoded and ended by one 0x00 byte.
+// Frames: [type][sequence][payload][CRC-16 LE], COBS-encoded and ended by one 0x00 byte.
 //
 // Why this layout. A serial line loses, corrupts and (through USB adapters and restarts)
 // truncates bytes; the frame must survive all three without help from the payload:
 //   * the 0x00 delimiter plus COBS lets a receiver find the next frame after any garbage,
 //     because 0x00 never occurs inside an encoded frame;
-//   * the CRC-32C covers type, sequence and payload, so a corrupted header is caught exactly
-//     like corrupted data (every 1-5 bit error is detected; why 32 bits: crc32.hpp);
+//   * the CRC-16/CCITT-FALSE covers type, sequence and payload, so a corrupted header is
+//     caught exactly like corrupted data (every 1-3 bit error is detected, see crc16.hpp);
+//   * the messages that carry machine data (MachineConfiguration, QueueSegment, SetpointBatch)
+//     end their payload with a CRC-32C of type and payload (messages.hpp; why: crc32.hpp);
+//     parse_frame checks it too, so a frame that passes the CRC-16 by chance is still refused
+//     (BadCrc) before the link acknowledges it;
 //   * the sequence number in every frame lets the link layer detect loss, duplicates and
 //     reordering (link_sender.hpp, link_receiver.hpp);
 //   * there is no length field: COBS delimits the frame, and a length byte would be one
-//     more thing to corrupt. The payload length is the frame length minus six.
-// Sizes: a frame holds at most max_payload_size (160) payload bytes, 166 bytes before COBS
+//     more thing to corrupt. The payload length is the frame length minus four.
+// Sizes: a frame holds at most max_payload_size (162) payload bytes, 166 bytes before COBS
 // and 168 on the wire, so the whole receive buffer of a small controller is 167 bytes.
 #pragma once
 
@@ -22,6 +26,7 @@
 
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/cobs.hpp>
+#include <curvestep/protocol/crc16.hpp>
 #include <curvestep/protocol/crc32.hpp>
 #include <curvestep/protocol/limits.hpp>
 #include <curvestep/protocol/messages.hpp>
@@ -46,8 +51,9 @@ struct Frame {
   raw[1] = std::byte{sequence};
   for (std::size_t i = 0; i < payload.size(); ++i) raw[frame_header_size + i] = payload[i];
   const std::size_t body = frame_header_size + payload.size();
-  const std::uint32_t crc = crc32c(std::span<const std::byte>(raw.data(), body));
-  for (std::size_t i = 0; i < frame_crc_size; ++i) raw[body + i] = std::byte{static_cast<std::uint8_t>(crc >> (8 * i))};
+  const std::uint16_t crc = crc16(std::span<const std::byte>(raw.data(), body));
+  raw[body] = std::byte{static_cast<std::uint8_t>(crc & 0xFFu)};
+  raw[body + 1] = std::byte{static_cast<std::uint8_t>(crc >> 8)};
   CURVESTEP_TRY(const std::size_t encoded, cobs_encode(std::span<const std::byte>(raw.data(), body + frame_crc_size), out));
   if (encoded >= out.size()) return fail(Error::BufferTooSmall, encoded + 1);
   out[encoded] = std::byte{0};
@@ -63,20 +69,24 @@ struct Frame {
                       out);
 }
 
-/// Checks a COBS-decoded frame (without delimiter): FrameTooShort below 6 bytes, FrameTooLong
-/// above max_frame_size (index = length), BadCrc (index = sequence byte as received).
+/// Checks a COBS-decoded frame (without delimiter): FrameTooShort below 4 bytes, FrameTooLong
+/// above max_frame_size (index = length), BadCrc (index = sequence byte as received) if the
+/// frame's CRC-16 or, for the types that carry one, the message's CRC-32C does not match.
 [[nodiscard]] constexpr Result<Frame> parse_frame(std::span<const std::byte> raw) noexcept {
   if (raw.size() < min_frame_size) return fail(Error::FrameTooShort, raw.size());
   if (raw.size() > max_frame_size) return fail(Error::FrameTooLong, raw.size());
   const std::size_t body = raw.size() - frame_crc_size;
-  const std::uint32_t expected = crc32c(raw.first(body));
-  std::uint32_t received = 0;
-  for (std::size_t i = 0; i < frame_crc_size; ++i) received |= static_cast<std::uint32_t>(raw[body + i]) << (8 * i);
+  const std::uint16_t expected = crc16(raw.first(body));
+  const auto received = static_cast<std::uint16_t>(static_cast<std::uint16_t>(raw[body]) |
+                                                   (static_cast<std::uint16_t>(raw[body + 1]) << 8));
   if (expected != received) return fail(Error::BadCrc, static_cast<std::uint8_t>(raw[1]));
   Frame frame;
   frame.type = static_cast<std::uint8_t>(raw[0]);
   frame.sequence = static_cast<std::uint8_t>(raw[1]);
   frame.payload = raw.subspan(frame_header_size, body - frame_header_size);
+  if (carries_message_crc(frame.type) && !message_crc_matches(frame.type, frame.payload)) {
+    return fail(Error::BadCrc, frame.sequence);
+  }
   return frame;
 }
 

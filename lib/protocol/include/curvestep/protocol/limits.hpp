@@ -12,10 +12,12 @@ inline constexpr std::uint16_t protocol_version = 2;
 
 /// Bytes of frame header: message type, sequence number.
 inline constexpr std::size_t frame_header_size = 2;
-/// Bytes of CRC-32C trailer.
-inline constexpr std::size_t frame_crc_size = 4;
-/// Largest payload of one frame (the largest message, the 3-axis MachineConfiguration, is 158).
-inline constexpr std::size_t max_payload_size = 160;
+/// Bytes of the frame's CRC-16 trailer.
+inline constexpr std::size_t frame_crc_size = 2;
+/// Bytes of the CRC-32C that ends the payload of MachineConfiguration, QueueSegment and SetpointBatch.
+inline constexpr std::size_t message_crc_size = 4;
+/// Largest payload of one frame (the largest message, the 3-axis MachineConfiguration, is 162).
+inline constexpr std::size_t max_payload_size = 162;
 /// Largest frame before COBS: header + payload + CRC.
 inline constexpr std::size_t max_frame_size = frame_header_size + max_payload_size + frame_crc_size;
 /// Largest frame on the wire: COBS adds one byte per 254 (so one here), plus the 0x00 delimiter.
