@@ -112,6 +112,14 @@ std::size_t build_frame(curvestep::fuzz::InputReader& in, std::array<std::byte, 
                                             body.empty() ? std::uint8_t{0} : body[0], 0};
     for (std::size_t i = 0; i < 4; ++i) payload[i] = std::byte{hello[i]};
     sent.payload = std::span<const std::byte>(payload.data(), 4);
+  } else if (carries_message_crc(type)) {
+    // Configuration and segments carry a message CRC-32C: seal the payload so the frame is
+    // well-formed (a wrong one is a damaged frame, covered by case 2).
+    const std::size_t kept = body.size() < max_payload_size - message_crc_size ? body.size()
+                                                                              : max_payload_size - message_crc_size;
+    const std::uint32_t crc = message_crc(type, std::span<const std::byte>(payload.data(), kept));
+    for (std::size_t i = 0; i < message_crc_size; ++i) payload[kept + i] = std::byte{static_cast<std::uint8_t>(crc >> (8 * i))};
+    sent.payload = std::span<const std::byte>(payload.data(), kept + message_crc_size);
   } else {
     sent.payload = std::span<const std::byte>(payload.data(), body.size());
   }
