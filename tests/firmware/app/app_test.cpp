@@ -792,11 +792,7 @@ TEST_CASE("firmware: a malformed payload is answered with BadPayload at its byte
   TestApp app(board);
   Host<TestApp> host(board, app);
   connect_and_configure(host);
-  // segment kind 4 does not exist; the message CRC-32C is right, so the frame reaches the decoder
-  std::array<std::byte, 6> payload{std::byte{4}, std::byte{0}};
-  const std::uint32_t crc = message_crc(static_cast<std::uint8_t>(MessageType::QueueSegment),
-                                        std::span<const std::byte>(payload.data(), 2));
-  for (std::size_t i = 0; i < 4; ++i) payload[2 + i] = static_cast<std::byte>((crc >> (8 * i)) & 0xFFu);
+  const std::array<std::byte, 2> payload{std::byte{4}, std::byte{0}};  // segment kind 4 does not exist
   std::array<std::byte, max_encoded_frame_size> frame{};
   const auto size = encode_frame(static_cast<std::uint8_t>(MessageType::QueueSegment), 1, payload, frame);
   REQUIRE(size.has_value());

@@ -103,7 +103,7 @@ std::size_t build_frame(curvestep::fuzz::InputReader& in, std::array<std::byte, 
   static constexpr std::array<std::uint8_t, 8> types{0x01, 0x10, 0x11, 0x11, 0x12, 0x13, 0x15, 0x16};
   const std::uint8_t type = selector < 224 ? types[selector % types.size()] : selector;
   const std::uint8_t sequence = in.u8();
-  const std::size_t length = in.u8() % (max_payload_size + 1);
+  const std::size_t length = in.u8() % (max_message_size + 1);
   const auto body = in.bytes(length);
   for (std::size_t i = 0; i < body.size(); ++i) payload[i] = std::byte{body[i]};
   if (type == 0x01 && body.size() < 4) {  // a Hello of the right version, so sessions happen
@@ -112,14 +112,6 @@ std::size_t build_frame(curvestep::fuzz::InputReader& in, std::array<std::byte, 
                                             body.empty() ? std::uint8_t{0} : body[0], 0};
     for (std::size_t i = 0; i < 4; ++i) payload[i] = std::byte{hello[i]};
     sent.payload = std::span<const std::byte>(payload.data(), 4);
-  } else if (carries_message_crc(type)) {
-    // Configuration and segments carry a message CRC-32C: seal the payload so the frame is
-    // well-formed (a wrong one is a damaged frame, covered by case 2).
-    const std::size_t kept = body.size() < max_payload_size - message_crc_size ? body.size()
-                                                                              : max_payload_size - message_crc_size;
-    const std::uint32_t crc = message_crc(type, std::span<const std::byte>(payload.data(), kept));
-    for (std::size_t i = 0; i < message_crc_size; ++i) payload[kept + i] = std::byte{static_cast<std::uint8_t>(crc >> (8 * i))};
-    sent.payload = std::span<const std::byte>(payload.data(), kept + message_crc_size);
   } else {
     sent.payload = std::span<const std::byte>(payload.data(), body.size());
   }

@@ -23,17 +23,17 @@ using curvestep::protocol::testing::to_hex;
 namespace {
 
 // docs/protocol.md, "Worked example": QueueSegment, sequence 5, Line from (0, 0) to
-// (10.5, -2.25) mm at 20 mm/s. Computed independently in Python (binascii.crc_hqx for the
-// frame's CRC-16, a table-driven CRC-32C, reflected polynomial 0x82F63B78, for the message CRC,
-// and a separate COBS routine: docs/protocol.md shows the script); the document shows the same bytes.
-const char* const example_payload =
-    "00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff c2 dd 37 8c";
+// (10.5, -2.25) mm at 20 mm/s. Computed independently in Python (a table-driven CRC-32C,
+// reflected polynomial 0x82F63B78, for the payload's check, binascii.crc_hqx for the frame's
+// CRC-16, and a separate COBS routine: docs/protocol.md shows the script); the document shows
+// the same bytes.
+const char* const example_payload = "00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff";
 const char* const example_raw =
-    "11 05 00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff c2 dd 37 8c b9 6b";
+    "11 05 00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff 7a bb 32 e6 79 04";
 const char* const example_wire =
-    "03 11 05 02 02 01 02 14 01 01 01 01 01 01 01 01 01 03 80 0a 01 0a c0 fd ff c2 dd 37 8c b9 6b 00";
-const char* const hello_wire = "02 01 02 02 05 34 12 fa 5d 00";  // Hello(version 2, session 0x1234), sequence 0
-const char* const ack_wire = "05 03 07 06 28 03 1c 93 00";       // Ack(6, 40), sequence 7
+    "03 11 05 02 02 01 02 14 01 01 01 01 01 01 01 01 01 03 80 0a 01 0a c0 fd ff 7a bb 32 e6 79 04 00";
+const char* const hello_wire = "02 01 02 02 09 34 12 d5 f0 dc f8 67 a1 00";  // Hello(version 2, session 0x1234), sequence 0
+const char* const ack_wire = "05 03 07 06 28 07 a6 a8 6f 27 02 fd 00";       // Ack(6, 40), sequence 7
 
 QueueSegment example_segment() {
   QueueSegment s;
@@ -119,7 +119,7 @@ TEST_CASE("frame: the worked example decodes to the same segment", "[protocol][f
   REQUIRE(r.errors.empty());
   REQUIRE(r.frames.size() == 1);
   const auto raw = hex(example_raw);
-  CHECK(to_hex(r.frames[0]) == to_hex(std::span<const std::byte>(raw).first(raw.size() - frame_crc_size)));
+  CHECK(to_hex(r.frames[0]) == to_hex(std::span<const std::byte>(raw).first(raw.size() - frame_crc_size - message_crc_size)));
   const auto m = decode_message(static_cast<std::uint8_t>(r.frames[0][0]), std::span<const std::byte>(r.frames[0]).subspan(2));
   REQUIRE(m.has_value());
   const QueueSegment& s = m.value().get<QueueSegment>();
@@ -146,7 +146,7 @@ TEST_CASE("frame: every single-bit flip of the sample frame is detected by the C
   CHECK(flips == 30 * 8);
 }
 
-TEST_CASE("frame: a damaged segment whose frame CRC-16 still matches is refused by its message CRC-32C",
+TEST_CASE("frame: a damaged frame whose CRC-16 still matches is refused by its payload's CRC-32C",
           "[protocol][framing]") {
   auto raw = hex(example_raw);
   raw[10] ^= std::byte{0x01};  // feed byte changed...
@@ -216,13 +216,13 @@ TEST_CASE("frame: a truncated frame fails its CRC", "[protocol][framing]") {
 }
 
 TEST_CASE("frame: payloads above the maximum are FrameTooLong on both ends", "[protocol][framing]") {
-  std::vector<std::byte> payload(max_payload_size + 1, std::byte{0x5A});
+  std::vector<std::byte> payload(max_message_size + 1, std::byte{0x5A});
   std::vector<std::byte> out(400);
   const auto r = encode_frame(0x11, 0, payload, out);
   REQUIRE_FALSE(r.has_value());
   CHECK(r.error() == Error::FrameTooLong);
 
-  payload.resize(max_payload_size);
+  payload.resize(max_message_size);
   const auto fits = encode_frame(0x11, 0, payload, out);
   REQUIRE(fits.has_value());
   CHECK(fits.value() == max_encoded_frame_size);

@@ -17,7 +17,6 @@
 using namespace curvestep;
 using namespace curvestep::protocol;
 using curvestep::protocol::testing::hex;
-using curvestep::protocol::testing::sealed;
 using curvestep::protocol::testing::to_hex;
 
 namespace {
@@ -207,12 +206,11 @@ TEST_CASE("messages: every message type round-trips through encode and decode", 
 TEST_CASE("messages: a setpoint batch encodes as hand-computed zig-zag varints", "[protocol][messages]") {
   // first index 1000; (1, 2, -0.5) mm; then deltas (+100, -1, 0) and (+8192, -8193, +63) raw.
   // zig-zag: 100 -> 200 = c8 01; -1 -> 1 = 01; 0 -> 00; 8192 -> 16384 = 80 80 01;
-  // -8193 -> 16385 = 81 80 01; 63 -> 126 = 7e; then the message CRC-32C of 0x21 and those 29 bytes
-  // (Python, a table-driven CRC-32C: 0xF9E00A0A).
+  // -8193 -> 16385 = 81 80 01; 63 -> 126 = 7e.
   const auto b = batch(1000, 3, {{65536, 131072, -32768}, {65636, 131071, -32768}, {73828, 122878, -32705}});
   CHECK(to_hex(payload_of(b)) ==
-        "e8 03 00 00 03 03 00 00 01 00 00 00 02 00 00 80 ff ff c8 01 01 00 80 80 01 81 80 01 7e 0a 0a e0 f9");
-  CHECK(encoded_size(b, 3) == 33);
+        "e8 03 00 00 03 03 00 00 01 00 00 00 02 00 00 80 ff ff c8 01 01 00 80 80 01 81 80 01 7e");
+  CHECK(encoded_size(b, 3) == 29);
 }
 
 TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 39 percent spare", "[protocol][messages]") {
@@ -225,11 +223,11 @@ TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 39 per
     const auto step = static_cast<std::int32_t>(k) * 8191;
     b.setpoints[k] = {step, -step, k % 2 == 1 ? 8191 : 0};
   }
-  CHECK(encoded_size(b, b.count) == 6 + 12 + 23 * 6 + 4);  // with the message CRC-32C
+  CHECK(encoded_size(b, b.count) == 6 + 12 + 23 * 6);
   std::vector<std::byte> wire(max_encoded_frame_size);
   const auto size = encode_frame(Message(b), 0, wire);
   REQUIRE(size.has_value());
-  CHECK(size.value() == 166);  // 160 payload + 2 header + 2 CRC-16 + 1 COBS code + 1 delimiter
+  CHECK(size.value() == 166);  // 2 header + 156 message + 4 CRC-32C + 2 CRC-16 + 1 COBS code + 1 delimiter
   const double bytes_per_second = 166.0 * 1000.0 / static_cast<double>(max_setpoints_per_batch);
   const double link_bytes_per_second = 115200.0 / 10.0;  // 8N1: 10 bit times per byte
   CHECK(bytes_per_second == Approx(6916.667).epsilon(1e-6));
@@ -244,11 +242,11 @@ TEST_CASE("messages: the encoder refuses batches that leave the payload limit", 
     const std::int32_t big = k % 2 == 0 ? 0x40000000 : -0x40000000;
     b.setpoints[k] = {big, big, big};
   }
-  std::array<std::byte, max_payload_size> out{};
+  std::array<std::byte, max_message_size> out{};
   const auto r = encode(b, out);
   REQUIRE_FALSE(r.has_value());
   CHECK(r.error() == Error::BufferTooSmall);
-  CHECK(encoded_size(b, b.count) > max_payload_size);
+  CHECK(encoded_size(b, b.count) > max_message_size);
 }
 
 TEST_CASE("messages: every truncation of every payload is BadPayload", "[protocol][messages]") {
@@ -267,19 +265,17 @@ TEST_CASE("messages: every truncation of every payload is BadPayload", "[protoco
   for (const Message& m : messages) {
     const auto payload = payload_of(m);
     INFO("type " << static_cast<int>(m.type()) << " payload " << to_hex(payload));
-    // Messages with a CRC-32C check it first: a cut or lengthened payload fails it.
-    const Error expected = carries_message_crc(static_cast<std::uint8_t>(m.type())) ? Error::BadCrc : Error::BadPayload;
     for (std::size_t n = 0; n < payload.size(); ++n) {
       const auto r = decode_message(static_cast<std::uint8_t>(m.type()), std::span<const std::byte>(payload).first(n));
       REQUIRE_FALSE(r.has_value());
-      CHECK(r.error() == expected);
+      CHECK(r.error() == Error::BadPayload);
     }
     auto longer = payload;
     longer.push_back(std::byte{0});
     const auto r = decode_message(static_cast<std::uint8_t>(m.type()), longer);
     REQUIRE_FALSE(r.has_value());
-    CHECK(r.error() == expected);
-    if (expected == Error::BadPayload) CHECK(r.where() == payload.size());
+    CHECK(r.error() == Error::BadPayload);
+    CHECK(r.where() == payload.size());
   }
 }
 
@@ -305,40 +301,40 @@ TEST_CASE("messages: unknown message types are UnknownMessage with the type as i
 
 TEST_CASE("messages: malformed segment fields are BadPayload at their byte offset", "[protocol][messages]") {
   // kind 4 does not exist
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "04 00")).where() == 0);
+  CHECK(decode<QueueSegment>(hex("04 00")).where() == 0);
   // reserved flag bits 0x40 and 0x80 (0x80 was end of job in version 1)
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "00 40 00000000 00000000 00000000 00000000")).where() == 1);
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "00 80 00000000 00000000 00000000 00000000")).where() == 1);
+  CHECK(decode<QueueSegment>(hex("00 40 00000000 00000000 00000000 00000000")).where() == 1);
+  CHECK(decode<QueueSegment>(hex("00 80 00000000 00000000 00000000 00000000")).where() == 1);
   // the turns flag on a line
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "00 20 00000000 00000000 00000000 00000000 00000000")).where() == 1);
+  CHECK(decode<QueueSegment>(hex("00 20 00000000 00000000 00000000 00000000 00000000")).where() == 1);
   // an arc with the turns flag but zero turns (offset 2)
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "01 20 00000000 00000000 00000000 00000000 00000000 00000000 00000000")).where() == 2);
+  CHECK(decode<QueueSegment>(hex("01 20 00000000 00000000 00000000 00000000 00000000 00000000 00000000")).where() == 2);
   // clockwise flag on a line
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "00 08 00000000 00000000 00000000 00000000")).where() == 1);
+  CHECK(decode<QueueSegment>(hex("00 08 00000000 00000000 00000000 00000000")).where() == 1);
   // Bezier of degree 0 and 8
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "02 00 00")).where() == 2);
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "02 00 08")).where() == 2);
+  CHECK(decode<QueueSegment>(hex("02 00 00")).where() == 2);
+  CHECK(decode<QueueSegment>(hex("02 00 08")).where() == 2);
   // rational linear segment with weight 0 for the second point (offset 3 + 16 + 4)
-  const auto r = decode<QueueSegment>(sealed(MessageType::QueueSegment, "03 00 01 00000000 00000000 00000100 00000000 00000100 00000000"));
+  const auto r = decode<QueueSegment>(hex("03 00 01 00000000 00000000 00000100 00000000 00000100 00000000"));
   REQUIRE_FALSE(r.has_value());
   CHECK(r.error() == Error::BadPayload);
   CHECK(r.where() == 23);
   // the same with weight 1.0 decodes
-  CHECK(decode<QueueSegment>(sealed(MessageType::QueueSegment, "03 00 01 00000000 00000000 00000100 00000000 00000100 00000100")).has_value());
+  CHECK(decode<QueueSegment>(hex("03 00 01 00000000 00000000 00000100 00000000 00000100 00000100")).has_value());
 }
 
 TEST_CASE("messages: other malformed fields are BadPayload", "[protocol][messages]") {
   CHECK(decode<Nak>(hex("05 00")).error() == Error::BadPayload);            // reason 0 is not an error
   CHECK(decode<StatusReport>(hex("04 00 02 0000 0000 00000000 00000000 00000000")).where() == 0);  // state 4
   CHECK(decode<StatusReport>(hex("00 00 04 0000 0000 00000000 00000000 00000000")).where() == 2);  // 4 axes
-  CHECK(decode<SetpointBatch>(sealed(MessageType::SetpointBatch, "00000000 03 00")).where() == 5);         // zero setpoints
-  CHECK(decode<SetpointBatch>(sealed(MessageType::SetpointBatch, "00000000 03 19")).where() == 5);         // 25 setpoints
-  CHECK(decode<MachineConfiguration>(sealed(MessageType::MachineConfiguration, "01")).where() == 0);              // one axis
-  CHECK(decode<MachineConfiguration>(sealed(MessageType::MachineConfiguration, "02 02")).where() == 1);           // reserved profile flag bit 1
+  CHECK(decode<SetpointBatch>(hex("00000000 03 00")).where() == 5);         // zero setpoints
+  CHECK(decode<SetpointBatch>(hex("00000000 03 19")).where() == 5);         // 25 setpoints
+  CHECK(decode<MachineConfiguration>(hex("01")).where() == 0);              // one axis
+  CHECK(decode<MachineConfiguration>(hex("02 02")).where() == 1);           // reserved profile flag bit 1
   CHECK(decode<Capabilities>(hex("0100 0000 a000 1000 1000 20 10 05 07 00000000")).where() == 12);  // 5 axes
   // a varint longer than 5 bytes, and a delta that leaves the int32 range
-  CHECK(decode<SetpointBatch>(sealed(MessageType::SetpointBatch, "00000000 02 02 00000000 00000000 ffffffffff01 00")).error() == Error::BadPayload);
-  const auto overflow = decode<SetpointBatch>(sealed(MessageType::SetpointBatch, "00000000 02 02 ffffff7f 00000000 02 00"));
+  CHECK(decode<SetpointBatch>(hex("00000000 02 02 00000000 00000000 ffffffffff01 00")).error() == Error::BadPayload);
+  const auto overflow = decode<SetpointBatch>(hex("00000000 02 02 ffffff7f 00000000 02 00"));
   REQUIRE_FALSE(overflow.has_value());
   CHECK(overflow.where() == 14);  // the first delta: 4 + 1 + 1 + 2 * 4
 }
@@ -383,19 +379,18 @@ TEST_CASE("messages: a MachineConfiguration of two axes encodes as hand-computed
   c.control_rate_hz = 1000;
   for (std::size_t a = 0; a < 2; ++a) c.axes[a] = AxisConfiguration{80, 200, 2000, -100 * 65536, 100 * 65536};
   // Python: struct.pack('<BBdddddd', 2, 1, 200, 2000, 50000, 0.01, 0.05, 100000) + '<iiI' (50 << 16, 0, 1000)
-  // + 2 x ('<ddd', 80, 200, 2000) + '<ii' (-100 << 16, 100 << 16): 62 + 2 x 32 = 126 bytes (docs/protocol.md),
-  // then the message CRC-32C of 0x10 and those bytes (a table-driven CRC-32C in Python): 130 bytes
+  // + 2 x ('<ddd', 80, 200, 2000) + '<ii' (-100 << 16, 100 << 16): 62 + 2 x 32 = 126 bytes (docs/protocol.md)
   const auto expected = hex(
       "02 01 0000000000006940 0000000000409f40 00000000006ae840 7b14ae47e17a843f 9a9999999999a93f 00000000006af840"
       " 00003200 00000000 e8030000"
       " 0000000000005440 0000000000006940 0000000000409f40 00009cff 00006400"
-      " 0000000000005440 0000000000006940 0000000000409f40 00009cff 00006400 b8dc8fb7");
+      " 0000000000005440 0000000000006940 0000000000409f40 00009cff 00006400");
   CHECK(to_hex(payload_of(c)) == to_hex(expected));
-  CHECK(expected.size() == configuration_header_size + 2 * configuration_axis_size + message_crc_size);
+  CHECK(expected.size() == configuration_header_size + 2 * configuration_axis_size);
   MachineConfiguration three = c;
   three.axis_count = 3;
-  CHECK(payload_of(three).size() == 162);
-  CHECK(payload_of(three).size() <= max_payload_size);
+  CHECK(payload_of(three).size() == 158);
+  CHECK(payload_of(three).size() <= max_message_size);
 }
 
 TEST_CASE("messages: a helical arc carries its extra turns and the end-of-job flag", "[protocol][messages]") {
@@ -408,10 +403,8 @@ TEST_CASE("messages: a helical arc carries its extra turns and the end-of-job fl
   s.points[0] = WirePoint{10 * 65536, 0, 0};
   s.points[1] = WirePoint{10 * 65536, 0, -65536};
   s.points[2] = WirePoint{0, 0, 0};
-  // kind 1, flags 0x34 (three axes 0x04, end of job 0x10, turns 0x20), turns 2, start, end, centre XY,
-  // message CRC-32C (Python: a table-driven CRC-32C over 0x11 and the payload)
-  const auto expected =
-      hex("01 34 02000000 00000a00 00000000 00000000 00000a00 00000000 0000ffff 00000000 00000000 7e0dec29");
+  // kind 1, flags 0x34 (three axes 0x04, end of job 0x10, turns 0x20), turns 2, start, end, centre XY
+  const auto expected = hex("01 34 02000000 00000a00 00000000 00000000 00000a00 00000000 0000ffff 00000000 00000000");
   CHECK(to_hex(payload_of(s)) == to_hex(expected));
   const auto back = decode<QueueSegment>(expected);
   REQUIRE(back.has_value());
@@ -454,6 +447,6 @@ TEST_CASE("messages: the largest segment fits the payload limit", "[protocol][me
   s.axis_count = 3;
   s.has_feed = true;
   s.weights.fill(65536);
-  CHECK(payload_of(s).size() == 3 + 4 + 8 * 12 + 8 * 4 + 4);
-  CHECK(payload_of(s).size() <= max_payload_size);
+  CHECK(payload_of(s).size() == 3 + 4 + 8 * 12 + 8 * 4);
+  CHECK(payload_of(s).size() <= max_message_size);
 }

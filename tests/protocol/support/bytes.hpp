@@ -9,8 +9,6 @@
 #include <string>
 #include <vector>
 
-#include <curvestep/protocol/messages.hpp>
-
 namespace curvestep::protocol::testing {
 
 /// Bytes from integer literals.
@@ -52,16 +50,6 @@ inline std::string to_hex(std::span<const std::byte> data) {
     out.push_back(digits[v >> 4]);
     out.push_back(digits[v & 15u]);
   }
-  return out;
-}
-
-/// `text` (hex) followed by its message CRC-32C for `type` (a payload of MachineConfiguration,
-/// QueueSegment or SetpointBatch, to test the decoder's field checks behind the CRC). The CRC
-/// routine itself is checked against published vectors in crc32_test.cpp.
-inline std::vector<std::byte> sealed(MessageType type, const std::string& text) {
-  std::vector<std::byte> out = hex(text);
-  const std::uint32_t crc = message_crc(static_cast<std::uint8_t>(type), out);
-  for (int i = 0; i < 4; ++i) out.push_back(static_cast<std::byte>((crc >> (8 * i)) & 0xFFu));
   return out;
 }
 

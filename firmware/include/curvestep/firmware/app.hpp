@@ -654,7 +654,7 @@ class App {
         ++count;
       }
       // Fast axes take up to 5 varint bytes per delta: keep the batch within one payload.
-      while (count > 1 && protocol::encoded_size(batch, count) > protocol::max_payload_size) --count;
+      while (count > 1 && protocol::encoded_size(batch, count) > protocol::max_message_size) --count;
       batch.count = static_cast<std::uint8_t>(count);
       if (!sender_.submit(protocol::Message(batch))) return;  // cannot happen: checked can_submit and size
       for (std::size_t i = 0; i < count; ++i) setpoints_.pop_front();

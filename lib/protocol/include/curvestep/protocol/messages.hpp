@@ -26,7 +26,6 @@
 #include <curvestep/core/error.hpp>
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/byte_io.hpp>
-#include <curvestep/protocol/crc32.hpp>
 #include <curvestep/protocol/limits.hpp>
 
 namespace curvestep::protocol {
@@ -78,32 +77,6 @@ enum class Endpoint : std::uint8_t {
 [[nodiscard]] constexpr bool is_sequenced_toward(Endpoint receiver, std::uint8_t type) noexcept {
   if (receiver == Endpoint::Host) return type == static_cast<std::uint8_t>(MessageType::SetpointBatch);
   return !is_known(type) || is_command(static_cast<MessageType>(type));
-}
-
-/// True for the types whose payload ends with a CRC-32C (MachineConfiguration, QueueSegment,
-/// SetpointBatch: the machine's data). The frame's CRC-16 passes a randomly damaged frame once
-/// in 65536; on a line that damages many frames, over a long job, that happens (crc32.hpp), so
-/// these messages carry a second, 32-bit check of their own, over the type byte and the payload
-/// before it.
-[[nodiscard]] constexpr bool carries_message_crc(std::uint8_t type) noexcept {
-  return type == static_cast<std::uint8_t>(MessageType::MachineConfiguration) ||
-         type == static_cast<std::uint8_t>(MessageType::QueueSegment) ||
-         type == static_cast<std::uint8_t>(MessageType::SetpointBatch);
-}
-
-/// CRC-32C of the type byte followed by `body` (a message payload without its CRC field).
-[[nodiscard]] constexpr std::uint32_t message_crc(std::uint8_t type, std::span<const std::byte> body) noexcept {
-  const std::array<std::byte, 1> head{std::byte{type}};
-  return crc32c_final(crc32c_update(crc32c_update(crc32c_initial, head), body));
-}
-
-/// True if `payload` ends with the little-endian message_crc of `type` and the bytes before it.
-[[nodiscard]] constexpr bool message_crc_matches(std::uint8_t type, std::span<const std::byte> payload) noexcept {
-  if (payload.size() < message_crc_size) return false;
-  const std::size_t body = payload.size() - message_crc_size;
-  std::uint32_t received = 0;
-  for (std::size_t i = 0; i < message_crc_size; ++i) received |= static_cast<std::uint32_t>(payload[body + i]) << (8 * i);
-  return received == message_crc(type, payload.first(body));
 }
 
 /// True for messages that take one slot of the controller's queue (and so one credit).
@@ -285,13 +258,6 @@ constexpr void read_point(ByteReader& reader, WirePoint& point, std::size_t axes
   for (std::size_t a = 0; a < axes; ++a) point[a] = reader.i32();
 }
 
-/// BadCrc (index = offset of the CRC field, 0 if the payload is shorter) unless `payload` ends
-/// with the message CRC of `type`.
-[[nodiscard]] constexpr Result<void> check_message_crc(MessageType type, std::span<const std::byte> payload) noexcept {
-  if (message_crc_matches(static_cast<std::uint8_t>(type), payload)) return ok();
-  return fail(Error::BadCrc, payload.size() < message_crc_size ? 0 : payload.size() - message_crc_size);
-}
-
 /// Reads a byte that must be a known Error code.
 constexpr Error read_error(ByteReader& reader) noexcept {
   const std::size_t at = reader.offset();
@@ -351,8 +317,7 @@ inline constexpr std::size_t configuration_header_size = 62;
 /// Payload bytes of one axis in a MachineConfiguration.
 inline constexpr std::size_t configuration_axis_size = 32;
 
-/// Encodes a MachineConfiguration payload (62 + 32 per axis bytes and the message CRC-32C);
-/// InvalidArgument for 0/1/4+ axes.
+/// Encodes a MachineConfiguration payload (62 + 32 per axis bytes); InvalidArgument for 0/1/4+ axes.
 [[nodiscard]] constexpr Result<std::size_t> encode(const MachineConfiguration& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 0);
   if (static_cast<std::uint8_t>(m.profile) > 1) return fail(Error::InvalidArgument, 1);
@@ -376,7 +341,6 @@ inline constexpr std::size_t configuration_axis_size = 32;
     w.i32(axis.min_position_mm);
     w.i32(axis.max_position_mm);
   }
-  w.u32(message_crc(static_cast<std::uint8_t>(MessageType::MachineConfiguration), out.first(w.size())));
   return w.finish();
 }
 
@@ -388,8 +352,7 @@ inline constexpr std::uint8_t segment_flag_clockwise = 0x08;  ///< Arc only: clo
 inline constexpr std::uint8_t segment_flag_end_of_job = 0x10; ///< the last segment of the job
 inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u32 count of extra full turns follows
 
-/// Encodes a QueueSegment payload (message CRC-32C last); InvalidArgument (index = field number)
-/// for an impossible segment.
+/// Encodes a QueueSegment payload; InvalidArgument (index = field number) for an impossible segment.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueueSegment& m, std::span<std::byte> out) noexcept {
   if (static_cast<std::uint8_t>(m.kind) > 3) return fail(Error::InvalidArgument, 0);
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
@@ -422,7 +385,6 @@ inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u
       w.i32(m.weights[i]);
     }
   }
-  w.u32(message_crc(static_cast<std::uint8_t>(MessageType::QueueSegment), out.first(w.size())));
   return w.finish();
 }
 
@@ -449,8 +411,7 @@ template <class Empty>
 }
 
 /// Encodes a SetpointBatch payload: header, the first setpoint absolute, then per later setpoint
-/// and axis the zig-zag LEB128 varint of the difference to the previous setpoint, then the
-/// message CRC-32C.
+/// and axis the zig-zag LEB128 varint of the difference to the previous setpoint.
 [[nodiscard]] constexpr Result<std::size_t> encode(const SetpointBatch& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
   if (m.count < 1 || m.count > max_setpoints_per_batch) return fail(Error::InvalidArgument, 2);
@@ -465,13 +426,12 @@ template <class Empty>
       w.varint(zigzag_encode(delta));
     }
   }
-  w.u32(message_crc(static_cast<std::uint8_t>(MessageType::SetpointBatch), out.first(w.size())));
   return w.finish();
 }
 
-/// Payload bytes of the first `count` setpoints of `m`, message CRC included (to size batches).
+/// Payload bytes of the first `count` setpoints of `m` (to size batches before encoding).
 [[nodiscard]] constexpr std::size_t encoded_size(const SetpointBatch& m, std::size_t count) noexcept {
-  std::size_t size = 6 + 4 * std::size_t{m.axis_count} + message_crc_size;
+  std::size_t size = 6 + 4 * std::size_t{m.axis_count};
   for (std::size_t k = 1; k < count; ++k) {
     for (std::size_t a = 0; a < m.axis_count; ++a) {
       size += varint_size(zigzag_encode(std::int64_t{m.setpoints[k][a]} - std::int64_t{m.setpoints[k - 1][a]}));
@@ -555,8 +515,6 @@ template <>
 template <>
 [[nodiscard]] constexpr Result<MachineConfiguration> decode<MachineConfiguration>(
     std::span<const std::byte> payload) noexcept {
-  CURVESTEP_CHECK(detail::check_message_crc(MessageType::MachineConfiguration, payload));
-  payload = payload.first(payload.size() - message_crc_size);
   ByteReader r(payload);
   MachineConfiguration m;
   m.axis_count = r.u8();
@@ -588,8 +546,6 @@ template <>
 /// Decodes a QueueSegment payload.
 template <>
 [[nodiscard]] constexpr Result<QueueSegment> decode<QueueSegment>(std::span<const std::byte> payload) noexcept {
-  CURVESTEP_CHECK(detail::check_message_crc(MessageType::QueueSegment, payload));
-  payload = payload.first(payload.size() - message_crc_size);
   ByteReader r(payload);
   QueueSegment m;
   const std::uint8_t kind = r.u8();
@@ -693,8 +649,6 @@ template <>
 /// Decodes a SetpointBatch payload; a delta that leaves the int32 range is BadPayload.
 template <>
 [[nodiscard]] constexpr Result<SetpointBatch> decode<SetpointBatch>(std::span<const std::byte> payload) noexcept {
-  CURVESTEP_CHECK(detail::check_message_crc(MessageType::SetpointBatch, payload));
-  payload = payload.first(payload.size() - message_crc_size);
   ByteReader r(payload);
   SetpointBatch m;
   m.first_index = r.u32();
