@@ -6,8 +6,8 @@
 // dropped byte has shifted, or that several corrupted bytes have hit, looks random to it. At 1 %
 // corrupted and 1 % dropped bytes about two thirds of all 50-byte frames and nearly all
 // 160-byte frames are damaged; a soak of 100 000 setpoints at 0.2 % moves about 5 000 damaged
-// frames, so one run in thirteen would accept one (the HIL soak did: a corrupted report ended
-// the job). Each is a wrong setpoint, Ack or report or, worst, a wrong segment that moves the
+// frames, so one run in thirteen would accept one (one soak run failed early, most likely so).
+// Each is a wrong setpoint, Ack or report or, worst, a wrong segment that moves the
 // machine. So every payload ends with a CRC-32C of type, sequence and message (frame.hpp),
 // checked with the frame: a damaged frame must pass both checks (2^-48). CRC-32C (polynomial
 // 0x1EDC6F41, reflected 0x82F63B78, init 0xFFFFFFFF, reflected input and output, final XOR
