@@ -50,7 +50,7 @@ struct DemoRun {
   double max_deviation_mm = 0;
   std::size_t setpoints = 0;   ///< captured from the device
   std::size_t expected = 0;    ///< produced by the simulator
-  std::size_t lost = 0;        ///< setpoints the device sent that never arrived (batches are not retransmitted)
+  std::size_t lost = 0;        ///< setpoints the simulator produced that never arrived (must be 0: the stream is reliable)
   bool identical = false;      ///< every captured setpoint equals the simulator's at the same tick
   std::string difference;  ///< where the streams first differ, if they do
 };
@@ -116,7 +116,8 @@ DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine,
   run.duration_s = sim.summary.duration_s;
   run.distance_mm = sim.summary.distance_mm;
   run.max_deviation_mm = sim.summary.max_quantisation_mm + sim.summary.max_chord_deviation_mm;
-  run.identical = !streamed.setpoints.empty();
+  run.identical = !streamed.setpoints.empty() && streamed.setpoints.size() == sim.setpoints.size();
+  if (!run.identical) run.difference = "captured " + std::to_string(streamed.setpoints.size()) + " setpoints";
   for (const auto& got : streamed.setpoints) {
     const auto tick = static_cast<std::size_t>(std::llround(got.time_s * device_machine.rate_hz));
     if (tick >= sim.setpoints.size() || got.raw_q16 != sim.setpoints[tick].raw_q16) {
@@ -161,8 +162,8 @@ void run_demo(const DemoOptions& options) {
               << "    setpoints:            " << run.setpoints << " captured of " << run.expected << "\n"
               << "    setpoints identical:  " << (run.identical ? "yes" : "no (" + run.difference + ")") << "\n";
     if (run.lost > 0) {
-      std::cout << "    warning:              " << run.lost
-                << " setpoints were lost on the link (setpoint batches are not retransmitted yet)\n";
+      all_identical = false;
+      std::cout << "    error:                " << run.lost << " setpoints never arrived\n";
     }
   }
   std::cout << "  outputs (plots, setpoints, reports) in " << options.out << "\n";

@@ -18,14 +18,15 @@
 
 namespace curvestep::test {
 
-/// A machine whose every value travels exactly on the wire (Q16.16 or whole numbers), with no
-/// rapid speed and the S-curve profile, which the protocol does not carry: the device and
-/// `curvestep sim` then plan from identical numbers.
+/// A machine whose every value travels exactly on the wire (protocol version 2 carries the
+/// planning limits as binary64, the rapid speed and the profile too; feeds are Q16.16), with
+/// a rapid speed and a tolerance that version 1 could not carry: the device and `curvestep
+/// sim` plan from identical numbers.
 inline std::filesystem::path wire_exact_machine() {
   const auto path = scratch_dir() / "machine.json";
   std::ofstream(path) << R"({
-  "version": 1, "v_max": 200, "a_max": 2000, "j_max": 50000, "feed": 50,
-  "tolerance": 0.0078125, "rate_hz": 1000, "junction_deviation": 0.015625,
+  "version": 1, "v_max": 200, "a_max": 2000, "j_max": 50000, "feed": 50, "rapid": 150,
+  "tolerance": 0.01, "rate_hz": 1000, "junction_deviation": 0.02,
   "max_step_rate": 100000, "profile": "scurve",
   "axes": {
     "x": {"steps_per_mm": 80, "v_max": 200, "a_max": 2000},

@@ -111,6 +111,8 @@ class Process {
     if (!exited_) ::kill(pid_, SIGTERM);
     return wait(std::chrono::seconds(10));
   }
+  /// The child's process id.
+  [[nodiscard]] pid_t pid() const noexcept { return pid_; }
   /// Everything the child wrote to stderr so far.
   [[nodiscard]] std::string stderr_text() const {
     std::ifstream in(stderr_path_);
@@ -143,10 +145,11 @@ class Process {
 /// Runs `curvestep` with `arguments` to the end (at most `limit`); returns the exit status, and
 /// stderr in `error_text`.
 inline int run_program(const std::vector<std::string>& arguments, std::string& error_text, const std::string& name,
-                       std::chrono::milliseconds limit = std::chrono::seconds(120)) {
+                       std::chrono::milliseconds limit = std::chrono::seconds(120), std::string* output = nullptr) {
   Process p(arguments, name + ".stderr");
   const int status = p.wait(limit);
   error_text = p.stderr_text();
+  if (output != nullptr) *output = p.rest_of_stdout();
   return status;
 }
 

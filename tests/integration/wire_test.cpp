@@ -18,7 +18,7 @@ namespace ct = curvestep::test;
 namespace hl = curvestep::host::link;
 
 TEST_CASE("host link: every segment of the example jobs survives the wire exactly", "[host_tools][wire]") {
-  for (const char* name : {"every_type.json", "inch_square.json", "seed_cubic.json"}) {
+  for (const char* name : {"every_type.json", "inch_square.json", "seed_cubic.json", "helix.json"}) {
     INFO(name);
     const auto job = curvestep::host::load_job(ct::wire_exact_job(std::filesystem::path(CURVESTEP_EXAMPLE_JOBS) / name));
     const auto wire = hl::to_wire(job, 3);
@@ -38,6 +38,7 @@ TEST_CASE("host link: every segment of the example jobs survives the wire exactl
       CHECK(back.value().kind() == original.kind());
       CHECK(back.value().rapid() == original.rapid());
       CHECK(back.value().feed_mm_per_s() == original.feed_mm_per_s());
+      if (original.kind() == curvestep::SegmentKind::Arc) CHECK(back.value().arc_sweep_rad() == original.arc_sweep_rad());
       for (double u : {0.0, 0.125, 0.5, 0.875, 1.0}) {
         const auto a = original.point(u);
         const auto b = back.value().point(u);
@@ -47,16 +48,53 @@ TEST_CASE("host link: every segment of the example jobs survives the wire exactl
   }
 }
 
-TEST_CASE("host link: machine values the wire cannot carry exactly are named in notes", "[host_tools][wire]") {
+TEST_CASE("host link: the example machine travels exactly, rapid speed, profile and step rate included",
+          "[host_tools][wire]") {
   const auto example = curvestep::host::load_machine(std::filesystem::path(CURVESTEP_EXAMPLE_JOBS) / "machine.json");
   const auto wire = hl::to_wire(example, 3);
-  bool tolerance = false;
+  CHECK(wire.notes.empty());
+  // Through the bytes on the wire and back with the firmware's decoder and conversion.
+  std::array<std::byte, curvestep::protocol::max_payload_size> payload{};
+  const auto size = curvestep::protocol::encode(wire.configuration, payload);
+  REQUIRE(size);
+  const auto decoded = curvestep::protocol::decode<curvestep::protocol::MachineConfiguration>(
+      std::span<const std::byte>(payload.data(), size.value()));
+  REQUIRE(decoded);
+  const auto back = curvestep::firmware::to_machine_limits(decoded.value());
+  REQUIRE(back);
+  const auto& m = back.value();
+  CHECK(m.tolerance_mm == 0.01);
+  CHECK(m.junction_deviation_mm == 0.02);
+  CHECK(m.rapid_mm_per_s == 150.0);
+  CHECK(m.max_step_rate_hz == 40000.0);
+  CHECK(m.jerk_limited);
+  CHECK(m.v_max_mm_per_s == example.v_max_mm_per_s);
+  CHECK(m.a_max_mm_per_s2 == example.a_max_mm_per_s2);
+  CHECK(m.j_max_mm_per_s3 == example.j_max_mm_per_s3);
+  CHECK(m.feed_mm_per_s == example.feed_mm_per_s);
+  CHECK(m.rate_hz == example.rate_hz);
+  for (std::size_t a = 0; a < 3; ++a) {
+    CHECK(m.axes[a].steps_per_mm == example.axes[a].steps_per_mm);
+    CHECK(m.axes[a].v_max_mm_per_s == example.axes[a].v_max_mm_per_s);
+    CHECK(m.axes[a].a_max_mm_per_s2 == example.axes[a].a_max_mm_per_s2);
+  }
+  auto trapezoid = example;
+  trapezoid.jerk_limited = false;
+  CHECK_FALSE(curvestep::firmware::to_machine_limits(hl::to_wire(trapezoid, 3).configuration).value().jerk_limited);
+}
+
+TEST_CASE("host link: machine feeds the wire cannot carry exactly are named in notes", "[host_tools][wire]") {
+  auto odd = curvestep::host::load_machine(std::filesystem::path(CURVESTEP_EXAMPLE_JOBS) / "machine.json");
+  odd.feed_mm_per_s = 0.01;  // feeds are Q16.16 like segment feeds: 655/65536
+  odd.rapid_mm_per_s = 0.01;
+  const auto wire = hl::to_wire(odd, 3);
+  bool feed = false;
   bool rapid = false;
   for (const auto& note : wire.notes) {
-    tolerance = tolerance || note.find("tolerance 0.01 travels as") != std::string::npos;
-    rapid = rapid || note.find("rapid 150") != std::string::npos;
+    feed = feed || note.find("feed 0.01 travels as") != std::string::npos;
+    rapid = rapid || note.find("rapid 0.01 travels as") != std::string::npos;
   }
-  CHECK(tolerance);
+  CHECK(feed);
   CHECK(rapid);
   const auto exact = curvestep::host::load_machine(ct::wire_exact_machine());
   const auto exact_wire = hl::to_wire(exact, 3);

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """The App<Board> firmware image in QEMU answers the protocol handshake over -serial pty:
-Hello(version 1, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
-here independently of the C++ encoder (COBS + CRC-16/CCITT-FALSE via binascii.crc_hqx).
+Hello(version 2, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
+here independently of the C++ encoder (COBS, the payload's CRC-32C table-driven, the frame's
+CRC-16/CCITT-FALSE via binascii.crc_hqx).
 Usage: firmware_test.py <stm32f1|stm32f4> <firmware.elf>"""
 import binascii
 import os
@@ -44,15 +45,30 @@ def cobs_decode(data):
     return bytes(out)
 
 
-def frame(message_type, sequence, payload):
-    body = bytes([message_type, sequence]) + payload
+def crc32c(data):
+    """CRC-32C (Castagnoli): reflected polynomial 0x82F63B78, init and final XOR 0xFFFFFFFF."""
+    table = []
+    for n in range(256):
+        c = n
+        for _ in range(8):
+            c = (c >> 1) ^ 0x82F63B78 if c & 1 else c >> 1
+        table.append(c)
+    crc = 0xFFFFFFFF
+    for byte in data:
+        crc = table[(crc ^ byte) & 0xFF] ^ (crc >> 8)
+    return crc ^ 0xFFFFFFFF
+
+
+def frame(message_type, sequence, message):
+    body = bytes([message_type, sequence]) + message
+    body += struct.pack("<I", crc32c(body))  # every payload ends with its CRC-32C (protocol version 2)
     return cobs_encode(body + struct.pack("<H", binascii.crc_hqx(body, 0xFFFF)))
 
 
 def main():
     board_name, elf = sys.argv[1], sys.argv[2]
-    hello = frame(0x01, 0, struct.pack("<HH", 1, 0x1234))
-    assert hello == bytes.fromhex("02010201053412 26c600".replace(" ", "")), hello.hex()  # docs/protocol.md
+    hello = frame(0x01, 0, struct.pack("<HH", 2, 0x1234))
+    assert hello == bytes.fromhex("02010202093412 d5f0dcf8 67a100".replace(" ", "")), hello.hex()  # docs/protocol.md
     with QemuBoard(MACHINES[board_name], elf) as board:
         deadline = time.monotonic() + 20
         while True:
@@ -65,7 +81,7 @@ def main():
                 continue
             decoded = cobs_decode(match.group(1))
             body, crc = decoded[:-2], struct.unpack("<H", decoded[-2:])[0]
-            if crc != binascii.crc_hqx(body, 0xFFFF):
+            if crc != binascii.crc_hqx(body, 0xFFFF) or struct.unpack("<I", body[-4:])[0] != crc32c(body[:-4]):
                 print("FAIL: CRC mismatch in", decoded.hex())
                 return 1
             if body[0] != 0x02:
@@ -75,7 +91,7 @@ def main():
             print(f"Capabilities: version={version} session={session:#x} max_payload={max_payload} queue={queue} "
                   f"credit_end={credit_end} fixed={total_bits}/{fraction_bits} axes={axes} degree={degree} "
                   f"tick_rate={tick_rate}")
-            ok = (version == 1 and session == 0x1234 and max_payload == 160 and total_bits == 32 and
+            ok = (version == 2 and session == 0x1234 and max_payload == 162 and total_bits == 32 and
                   fraction_bits == 16 and axes == 3 and tick_rate == 1_000_000 and queue >= 8)
             print("PASS" if ok else "FAIL: unexpected Capabilities")
             return 0 if ok else 1

@@ -14,7 +14,10 @@ std::string describe_error(Error code) {
 }
 
 HostLink::HostLink(Transport& transport, protocol::SenderSettings settings)
-    : transport_(transport), sender_(settings), epoch_(std::chrono::steady_clock::now()) {}
+    : transport_(transport),
+      sender_(settings),
+      receiver_(protocol::Capabilities{}, protocol::ReceiverSettings{250, 0}, protocol::Endpoint::Host),
+      epoch_(std::chrono::steady_clock::now()) {}
 
 std::uint32_t HostLink::now_ms() const noexcept {
   const auto elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - epoch_);
@@ -26,15 +29,67 @@ void HostLink::raise(const Failure& failure) const {
   if (failure.code == Error::RetransmitLimit) text += " (frame " + std::to_string(failure.index) + " never acknowledged)";
   if (failure.code == Error::LinkTimeout) text += ": the controller stopped answering";
   if (failure.code == Error::DeviceRestarted) text += ": the controller restarted and lost the session";
+  if (failure.code == Error::VersionMismatch) {
+    const std::uint16_t theirs = sender_.capabilities().version;
+    text += theirs != 0 ? ": the controller speaks protocol version " + std::to_string(theirs) + ", this host speaks version " +
+                              std::to_string(protocol::protocol_version)
+                        : ": the controller refused this host's protocol version " + std::to_string(protocol::protocol_version);
+    text += "; update the firmware or the host tools so both versions match";
+  }
   throw LinkError(failure.code, text);
 }
 
 void HostLink::connect(const Handler& handler) {
   std::random_device random;
+  receiver_.close();
   sender_.connect(static_cast<std::uint16_t>(random()), now_ms());
   while (sender_.state() != protocol::LinkState::Connected) {
     pump(10, handler);
     if (sender_.state() == protocol::LinkState::Failed) raise(Failure{sender_.last_error(), no_index});
+  }
+  receiver_.open(now_ms());  // the controller opened its setpoint stream (sequence 0) with this session
+}
+
+void HostLink::reply(const protocol::Reception& reception) {
+  if (reception.reply == protocol::ReplyKind::None) return;
+  std::array<std::byte, protocol::max_encoded_frame_size> frame{};
+  const auto size = receiver_.encode_reply(reception, frame);
+  if (!size || size.value() == 0) return;
+  transport_.write(std::span<const std::byte>(frame.data(), size.value()));
+  statistics_.bytes_sent += size.value();
+}
+
+void HostLink::on_frame(const protocol::Frame& frame, const Handler& handler) {
+  const auto message = protocol::decode_message(frame);
+  const bool sequenced = protocol::is_sequenced_toward(protocol::Endpoint::Host, frame.type);
+  if (!message) {
+    // With a 32-bit CRC a malformed payload is a sender bug, not noise; a sequenced one is
+    // refused like a damaged frame, so it is resent rather than acknowledged and lost.
+    ++statistics_.frames_rejected;
+    if (sequenced) reply(receiver_.on_bad_frame(message.error()));
+    return;
+  }
+  ++statistics_.frames_received;
+  sender_.heard(now_ms());
+  if (sequenced) {
+    const std::uint8_t expected = receiver_.expected_sequence();
+    const protocol::Reception r = receiver_.on_frame(frame, 0, now_ms());
+    reply(r);
+    if (r.disposition != protocol::Disposition::Deliver) {
+      const bool behind = static_cast<std::uint8_t>(frame.sequence - expected) >= 128;
+      if (receiver_.connected() && behind) ++statistics_.batches_repeated;
+      return;
+    }
+    ++statistics_.batches_delivered;
+  } else {
+    (void)receiver_.on_frame(frame, 0, now_ms());  // any frame shows the controller is alive
+    const auto handled = sender_.on_message(message.value(), now_ms());
+    if (!handled) raise(handled.failure());
+  }
+  const auto type = message.value().type();
+  if (type != protocol::MessageType::Capabilities && type != protocol::MessageType::Ack &&
+      type != protocol::MessageType::Nak && handler) {
+    handler(message.value());
   }
 }
 
@@ -63,25 +118,14 @@ void HostLink::pump(int wait_ms, const Handler& handler) {
       const auto pushed = decoder_.push(bytes[i]);
       if (!pushed) {
         ++statistics_.frames_rejected;
+        reply(receiver_.on_bad_frame(pushed.error(), now_ms()));  // a Nak: the controller resends at once
         continue;
       }
-      if (!pushed.value()) continue;
-      const auto message = protocol::decode_message(decoder_.frame());
-      if (!message) {
-        ++statistics_.frames_rejected;
-        continue;
-      }
-      ++statistics_.frames_received;
-      const auto handled = sender_.on_message(message.value(), now_ms());
-      if (!handled) raise(handled.failure());
-      const auto type = message.value().type();
-      if (type != protocol::MessageType::Capabilities && type != protocol::MessageType::Ack &&
-          type != protocol::MessageType::Nak && handler) {
-        handler(message.value());
-      }
+      if (pushed.value()) on_frame(decoder_.frame(), handler);
     }
     count = transport_.read(bytes, 0);
   }
+  reply(receiver_.poll(0, now_ms()));  // heartbeat Ack of the setpoint stream
   transmit_due();
 }
 

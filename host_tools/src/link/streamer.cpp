@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <map>
 
 #include <curvestep/host/link/host_link.hpp>
@@ -38,20 +39,23 @@ class Upload {
       rate_hz_ = wire_machine.configuration.control_rate_hz;
       if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
       link_.submit(protocol::Message(wire_machine.configuration));
+      submitted_.push_back(configuration_marker);
       // Start at once: the controller arms the job and begins by itself when its look-ahead
       // window is full or the job's last segment (flag end_of_job) has arrived.
       link_.submit(protocol::Message(protocol::Start{}));
+      submitted_.push_back(start_marker);
       started_ = true;
       start_ms_ = link_.now_ms();
       last_status_ms_ = start_ms_;
       while (!finished()) {
+        settle_acknowledged();
         submit_segments();
         link_.pump(5, handler);
         request_status();
         report_progress(false);
       }
     } catch (const LinkError& e) {
-      throw StreamError(e.code(), std::string(e.what()) + last_state_text());
+      throw StreamError(e.code(), std::string(e.what()) + progress_text() + last_state_text());
     }
     report_progress(true);
     return collect();
@@ -60,6 +64,35 @@ class Upload {
  private:
   void warn(const std::string& text) const {
     if (options_.warn) options_.warn(text);
+  }
+
+  /// Where the job stopped: the last segment the controller acknowledged, the last setpoint received.
+  std::string progress_text() {
+    settle_acknowledged();
+    std::string text = "; the job stopped after ";
+    if (acknowledged_segments_ == 0) {
+      text += "no acknowledged segment";
+    } else {
+      const std::size_t piece = acknowledged_segments_ - 1;
+      const std::size_t file_index = job_.source_index.empty() ? piece : job_.source_index[piece];
+      text += "segment " + std::to_string(file_index) + " of " + job_.name + " (" + std::to_string(acknowledged_segments_) +
+              " of " + std::to_string(wire_job_.segments.size()) + " acknowledged)";
+    }
+    if (setpoints_.empty()) return text + ", no setpoint received";
+    std::uint32_t last = setpoints_.begin()->first;
+    for (const auto& entry : setpoints_) {
+      if (entry.first > last + 1) break;
+      last = entry.first;
+    }
+    return text + ", setpoints received up to index " + std::to_string(last);
+  }
+
+  /// Drops the oldest submissions the controller has acknowledged (they leave the window in order).
+  void settle_acknowledged() {
+    while (submitted_.size() > link_.in_flight()) {
+      if (submitted_.front() < status_marker) acknowledged_segments_ = submitted_.front() + 1;
+      submitted_.pop_front();
+    }
   }
 
   std::string last_state_text() const {
@@ -81,6 +114,7 @@ class Upload {
   void submit_segments() {
     while (next_ < wire_job_.segments.size() && link_.can_submit(protocol::MessageType::QueueSegment)) {
       link_.submit(protocol::Message(wire_job_.segments[next_]));
+      submitted_.push_back(next_);
       sequence_to_segment_[sequence_] = next_;
       ++sequence_;
       ++next_;
@@ -93,6 +127,7 @@ class Upload {
     const auto interval = static_cast<std::uint32_t>(options_.status_interval_s * 1000);
     if (now - last_status_ms_ < interval || !link_.can_submit(protocol::MessageType::StatusRequest)) return;
     link_.submit(protocol::Message(protocol::StatusRequest{}));
+    submitted_.push_back(status_marker);
     sequence_to_segment_.erase(sequence_);
     ++sequence_;
     last_status_ms_ = now;
@@ -102,7 +137,9 @@ class Upload {
     switch (m.type()) {
       case protocol::MessageType::SetpointBatch: {
         const auto& batch = m.get<protocol::SetpointBatch>();
-        for (std::uint32_t k = 0; k < batch.count; ++k) setpoints_[batch.first_index + k] = batch.setpoints[k];
+        for (std::uint32_t k = 0; k < batch.count; ++k) {
+          if (!setpoints_.emplace(batch.first_index + k, batch.setpoints[k]).second) ++duplicates_;
+        }
         break;
       }
       case protocol::MessageType::StatusReport: {
@@ -132,15 +169,24 @@ class Upload {
       idle_seen_ = false;
       return false;
     }
-    // Idle: done once the last setpoint arrived (its batch may follow the report), or after a
-    // grace period if it was lost on the link.
+    // Idle: done once every setpoint up to the last one arrived (the reliable stream delivers
+    // them, maybe after the report). A stream that does not complete within the link timeout
+    // means the controller stopped sending them: that is an error, never a silent loss.
     const std::uint32_t now = link_.now_ms();
     if (!idle_seen_) {
       idle_seen_ = true;
       idle_since_ms_ = now;
     }
-    if (!setpoints_.empty() && setpoints_.rbegin()->first >= last_status_.setpoint_index) return true;
-    return now - idle_since_ms_ > 1000;
+    if (!setpoints_.empty() && setpoints_.rbegin()->first >= last_status_.setpoint_index &&
+        setpoints_.rbegin()->first - setpoints_.begin()->first + 1 == setpoints_.size()) {
+      return true;
+    }
+    const std::uint32_t patience = options_.link.link_timeout_ms != 0 ? options_.link.link_timeout_ms : 3000;
+    if (now - idle_since_ms_ > patience) {
+      throw StreamError(Error::LinkTimeout, transport_.name() + ": the controller finished the job but its setpoint stream stopped" +
+                                                progress_text());
+    }
+    return false;
   }
 
   void report_progress(bool final_call) {
@@ -190,6 +236,9 @@ class Upload {
       expected = index + 1;
     }
     if (last_status_.setpoint_index > expected) result.missing_setpoints += last_status_.setpoint_index - expected;
+    result.duplicate_setpoints = duplicates_;
+    result.max_queue_depth = last_status_.max_queue_depth;
+    result.batches_repeated = link_.statistics().batches_repeated;
     result.frames_rejected = link_.statistics().frames_rejected;
     result.bytes_sent = link_.statistics().bytes_sent;
     return result;
@@ -197,6 +246,7 @@ class Upload {
 
   static constexpr std::size_t configuration_marker = static_cast<std::size_t>(-1);
   static constexpr std::size_t start_marker = static_cast<std::size_t>(-2);
+  static constexpr std::size_t status_marker = static_cast<std::size_t>(-3);
 
   Transport& transport_;
   const Job& job_;
@@ -209,6 +259,9 @@ class Upload {
   protocol::StatusReport last_status_{};
   double rate_hz_ = 1000;
   std::size_t next_ = 0;
+  std::deque<std::size_t> submitted_;  // what each unacknowledged frame carries, oldest first
+  std::size_t acknowledged_segments_ = 0;
+  std::size_t duplicates_ = 0;
   std::uint8_t sequence_ = 2;  // the configuration is sequence 0, Start 1
   std::uint32_t idle_since_ms_ = 0;
   bool idle_seen_ = false;

@@ -19,6 +19,23 @@ std::uint32_t to_whole(double value, bool& exact) {
   return static_cast<std::uint32_t>(rounded);
 }
 
+/// The extra full turns of an arc: its sweep minus the sweep of the same arc without extra turns
+/// (as the controller will rebuild it from the wire points), in whole turns.
+std::uint32_t extra_turns(const PathSegment& s, const protocol::QueueSegment& q, const std::string& where) {
+  const auto point = [&q](std::size_t slot, std::size_t axes) {
+    MachinePoint p{};
+    for (std::size_t a = 0; a < axes && a < motion_axes; ++a) p[a] = static_cast<double>(q.points[slot][a]) / 65536.0;
+    return p;
+  };
+  // Only the sweep matters here, so any radius difference is accepted (the controller checks it).
+  const auto base = PathSegment::make_arc(point(0, q.axis_count), point(1, q.axis_count), point(2, 2), q.direction, 0,
+                                          std::numeric_limits<double>::max());
+  if (!base) throw std::runtime_error(where + "the arc cannot be rebuilt from its wire points");
+  const double turns = std::nearbyint((std::fabs(s.arc_sweep_rad()) - std::fabs(base.value().arc_sweep_rad())) / two_pi);
+  if (!(turns >= 0 && turns <= 4294967295.0)) throw std::runtime_error(where + "the arc's number of turns is out of range");
+  return static_cast<std::uint32_t>(turns);
+}
+
 }  // namespace
 
 std::int32_t to_q16(double value, bool& exact) {
@@ -50,28 +67,27 @@ WireMachine to_wire(const MachineLimits& m, std::size_t axis_count) {
     if (!exact) out.notes.push_back(std::string(field) + " " + format_number(value) + " travels as " + std::to_string(v));
     return v;
   };
+  // Planning limits travel as binary64, exactly; feeds (the default and the rapid speed) as
+  // Q16.16 like segment feeds, and the rate as a whole number.
   c.axis_count = static_cast<std::uint8_t>(axis_count);
-  c.max_velocity_mm_per_s = q16(m.v_max_mm_per_s, "v_max");
-  c.max_acceleration_mm_per_s2 = whole(m.a_max_mm_per_s2, "a_max");
-  c.max_jerk_mm_per_s3 = whole(m.j_max_mm_per_s3, "j_max");
+  c.profile = m.jerk_limited ? protocol::ProfileKind::SCurve : protocol::ProfileKind::Trapezoid;
+  c.max_velocity_mm_per_s = m.v_max_mm_per_s;
+  c.max_acceleration_mm_per_s2 = m.a_max_mm_per_s2;
+  c.max_jerk_mm_per_s3 = m.j_max_mm_per_s3;
+  c.tolerance_mm = m.tolerance_mm;
+  c.junction_deviation_mm = m.junction_deviation_mm;
+  c.max_step_rate_hz = m.max_step_rate_hz;
   c.default_feed_mm_per_s = q16(m.feed_mm_per_s, "feed");
-  c.tolerance_mm = q16(m.tolerance_mm, "tolerance");
-  c.junction_deviation_mm = q16(m.junction_deviation_mm, "junction_deviation");
+  c.rapid_mm_per_s = q16(m.rapid_mm_per_s, "rapid");
   c.control_rate_hz = whole(m.rate_hz, "rate_hz");
-  const char* names[] = {"axes.x", "axes.y", "axes.z"};
   for (std::size_t a = 0; a < axis_count && a < motion_axes; ++a) {
-    const std::string prefix = names[a];
     auto& axis = c.axes[a];
-    axis.steps_per_mm = q16(m.axes[a].steps_per_mm, (prefix + ".steps_per_mm").c_str());
+    axis.steps_per_mm = m.axes[a].steps_per_mm;
     axis.min_position_mm = std::numeric_limits<std::int32_t>::min();
     axis.max_position_mm = std::numeric_limits<std::int32_t>::max();
-    axis.max_velocity_mm_per_s = q16(m.axes[a].v_max_mm_per_s, (prefix + ".v_max").c_str());
-    axis.max_acceleration_mm_per_s2 = whole(m.axes[a].a_max_mm_per_s2, (prefix + ".a_max").c_str());
+    axis.max_velocity_mm_per_s = m.axes[a].v_max_mm_per_s;
+    axis.max_acceleration_mm_per_s2 = m.axes[a].a_max_mm_per_s2;
   }
-  if (m.rapid_mm_per_s != 0 && m.rapid_mm_per_s != m.v_max_mm_per_s) {
-    out.notes.push_back("rapid " + format_number(m.rapid_mm_per_s) + " is not sent (the protocol has no field): the device runs rapids at v_max");
-  }
-  if (!m.jerk_limited) out.notes.push_back("profile \"trapezoid\" is not sent (the protocol has no field): the device decides the profile");
   return out;
 }
 
@@ -125,9 +141,6 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
         break;
       }
       case SegmentKind::Arc: {
-        if (std::fabs(s.arc_sweep_rad()) > two_pi) {
-          throw std::runtime_error(where + "an arc of more than one turn cannot be sent (the protocol has no turns field)");
-        }
         q.kind = protocol::SegmentKind::Arc;
         q.degree = 2;
         q.direction = s.arc_sweep_rad() > 0 ? ArcDirection::CounterClockwise : ArcDirection::Clockwise;
@@ -135,6 +148,7 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
         put(1, s.end(), axis_count);
         q.points[2][0] = coordinate(s.arc_center()[0]);
         q.points[2][1] = coordinate(s.arc_center()[1]);
+        q.turns = extra_turns(s, q, where);
         break;
       }
     }

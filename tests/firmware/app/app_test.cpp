@@ -33,15 +33,16 @@ constexpr std::int32_t q(double mm) { return static_cast<std::int32_t>(mm * 6553
 MachineConfiguration machine() {
   MachineConfiguration c;
   c.axis_count = 3;
-  c.max_velocity_mm_per_s = q(100);
+  c.max_velocity_mm_per_s = 100;
   c.max_acceleration_mm_per_s2 = 1000;
   c.max_jerk_mm_per_s3 = 10000;
   c.default_feed_mm_per_s = q(50);
-  c.tolerance_mm = q(0.01);
-  c.junction_deviation_mm = q(0.05);
+  c.tolerance_mm = 0.01;
+  c.junction_deviation_mm = 0.05;
+  c.max_step_rate_hz = 100000;
   c.control_rate_hz = 1000;
   for (auto& axis : c.axes) {
-    axis.steps_per_mm = q(80);
+    axis.steps_per_mm = 80;
     axis.min_position_mm = q(-100);
     axis.max_position_mm = q(100);
   }
@@ -403,6 +404,7 @@ TEST_CASE("firmware: losing the host link holds the machine and Resume continues
   FakeBoard board;
   AppSettings settings;
   settings.link_timeout_ms = 50;
+  settings.stream_setpoints = false;  // a silent host would not acknowledge setpoints either (next test)
   TestApp app(board, settings);
   Host<TestApp> host(board, app);
   connect_and_configure(host);
@@ -482,7 +484,7 @@ TEST_CASE("firmware: a step rate the drivers cannot follow faults with its error
   TestApp app(board);
   Host<TestApp> host(board, app);
   MachineConfiguration config = machine();
-  config.axes[0].steps_per_mm = q(2000);  // 100 mm/s would need 200 000 steps/s
+  config.axes[0].steps_per_mm = 2000;  // 100 mm/s would need 200 000 steps/s
   connect_and_configure(host, config);
   // The App lowered the step-rate limit until the busiest tick fits the board's 64-edge batch.
   const auto fitted = StepConfig::create(app.controller().machine(), FakeBoard::step_timing());
@@ -562,7 +564,26 @@ TEST_CASE("firmware: wire values convert exactly to planner values", "[firmware]
   CHECK(limits.value().v_max_mm_per_s == 100.0);
   CHECK(limits.value().j_max_mm_per_s3 == 10000.0);
   CHECK(limits.value().rate_hz == 1000.0);
-  CHECK(limits.value().tolerance_mm == 655.0 / 65536.0);  // q(0.01) truncates to 655 raw
+  CHECK(limits.value().tolerance_mm == 0.01);  // binary64 on the wire: the host's double exactly
+  CHECK(limits.value().junction_deviation_mm == 0.05);
+  CHECK(limits.value().max_step_rate_hz == 100000.0);
+  CHECK(limits.value().jerk_limited);
+  CHECK(limits.value().rapid_mm_per_s == 0.0);
+  MachineConfiguration trapezoid = machine();
+  trapezoid.profile = ProfileKind::Trapezoid;
+  trapezoid.rapid_mm_per_s = q(80);
+  CHECK_FALSE(to_machine_limits(trapezoid).value().jerk_limited);
+  CHECK(to_machine_limits(trapezoid).value().rapid_mm_per_s == 80.0);
+  QueueSegment helix;
+  helix.kind = protocol::SegmentKind::Arc;
+  helix.axis_count = 3;
+  helix.points[0] = p(2, 0, 0);
+  helix.points[1] = p(2, 0, -3);
+  helix.points[2] = p(0, 0);
+  helix.turns = 2;  // a full circle (start == end) plus two more turns: three turns, 3 mm down
+  const auto three_turns = to_path_segment(helix);
+  REQUIRE(three_turns.has_value());
+  CHECK(three_turns.value().arc_sweep_rad() == Approx(6 * 3.14159265358979323846).epsilon(1e-15));
   QueueSegment arc;
   arc.kind = protocol::SegmentKind::Arc;
   arc.axis_count = 2;
@@ -697,7 +718,7 @@ TEST_CASE("firmware: segments that leave the travel range are refused with the a
   reversed.axes[1].min_position_mm = q(10);
   reversed.axes[1].max_position_mm = q(-10);
   CHECK(to_travel_limits(reversed).error() == Error::InvalidArgument);
-  CHECK(to_travel_limits(reversed).where() == 53);
+  CHECK(to_travel_limits(reversed).where() == 62 + 32 + 24);  // header, axis 0, axis 1's three binary64 fields
 }
 
 TEST_CASE("firmware: a travel range of zero to zero leaves the axis unlimited", "[firmware][app]") {
@@ -717,7 +738,9 @@ TEST_CASE("firmware: a travel range of zero to zero leaves the axis unlimited", 
 TEST_CASE("firmware: the next job's first segment is accepted in the poll right after a job ends",
           "[firmware][app]") {
   FakeBoard board;
-  TestApp app(board);
+  AppSettings settings;
+  settings.stream_setpoints = false;  // ticks without a poll in between: nothing drains a stream
+  TestApp app(board, settings);
   Host<TestApp> host(board, app);
   connect_and_configure(host);
   QueueSegment first = line(p(0, 0), p(2, 0));
@@ -875,4 +898,128 @@ TEST_CASE("firmware: a new session declares the position afresh with its first j
   CHECK(app.position() == p(12, 10));
   // The steps moved by the second job only: the first job's 2 mm and then 2 mm more.
   CHECK(board.steps == std::array<std::int64_t, 3>{steps_of(4), 0, 0});
+}
+
+TEST_CASE("firmware: a host that stops acknowledging setpoints pauses the interpolator and a long stall is a fault",
+          "[firmware][app]") {
+  FakeBoard board;
+  AppSettings settings;
+  settings.stall_timeout_ms = 300;
+  settings.link_timeout_ms = 0;
+  TestApp app(board, settings);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  QueueSegment s = line(p(0, 0), p(30, 0));
+  s.end_of_job = true;
+  queue_and_start(host, {s});
+  REQUIRE(app.moving());
+  host.acknowledge_setpoints = false;
+  host.run_ticks(200);
+  // window (4 batches) and buffer (48) full: the controller stopped advancing, nothing was dropped
+  const std::uint64_t tick = app.controller().tick();
+  CHECK(app.statistics().stalled_ticks > 0);
+  CHECK_FALSE(app.ready_to_tick());
+  host.run_ticks(100);
+  CHECK(app.controller().tick() == tick);
+  CHECK(app.state() == MachineState::Running);
+  host.run_ticks(300);  // stalled for more than 300 ms
+  CHECK(app.state() == MachineState::Fault);
+  REQUIRE_FALSE(host.received.errors.empty());
+  CHECK(host.received.errors.back().code == Error::LinkTimeout);
+  CHECK(app.statistics().dropped_setpoints == 0);
+}
+
+TEST_CASE("firmware: a slow host gets every setpoint exactly once because the App waits instead of dropping",
+          "[firmware][app]") {
+  FakeBoard board;
+  AppSettings settings;
+  settings.stall_timeout_ms = 0;  // fast mode: wait for ever
+  TestApp app(board, settings);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  const auto job = mixed_job();
+  const auto expected = reference(machine(), job);
+  std::size_t next = 0;
+  bool started = false;
+  for (int t = 0; t < 400000 && !(started && next == job.size() && app.state() == MachineState::Idle && !app.moving() &&
+                                  app.setpoint_sender().idle());
+       ++t) {
+    while (next < job.size() && host.sender().can_submit(MessageType::QueueSegment)) {
+      REQUIRE(host.sender().submit(Message(job[next++])).has_value());
+    }
+    if (!started && host.sender().can_submit(MessageType::Start)) {
+      REQUIRE(host.sender().submit(Message(Start{})).has_value());
+      started = true;
+    }
+    if (t % 100 == 99 && host.sender().can_submit(MessageType::StatusRequest)) {
+      REQUIRE(host.sender().submit(Message(StatusRequest{})).has_value());
+    }
+    host.reading = (t / 37) % 5 == 0;  // the host reads only a fifth of the time, in bursts
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+  }
+  CHECK(app.statistics().stalled_ticks > 0);
+  const auto got = host.setpoints();
+  INFO("state " << static_cast<int>(app.state()) << " moving " << app.moving() << " errors " << host.received.errors.size()
+                << " first error " << (host.received.errors.empty() ? 0 : static_cast<int>(host.received.errors[0].code))
+                << " sender state " << static_cast<int>(app.setpoint_sender().state()) << " in flight "
+                << app.setpoint_sender().in_flight() << " go-backs " << app.setpoint_sender().go_backs() << " clock "
+                << board.clock_ms << " repeated " << host.repeated_batches);
+  REQUIRE(got.size() == expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    INFO("setpoint " << i);
+    REQUIRE(got[i] == expected[i]);
+  }
+}
+
+TEST_CASE("firmware: a lost setpoint frame is resent after the host's Nak and the batches shrink on a noisy line",
+          "[firmware][app]") {
+  FakeBoard board;
+  TestApp app(board);
+  Host<TestApp> host(board, app);
+  connect_and_configure(host);
+  const auto job = mixed_job();
+  const auto expected = reference(machine(), job);
+  std::size_t next = 0;
+  bool started = false;
+  std::mt19937 rng(curvestep::testing::test_seed());
+  int damaged = 0;
+  for (int t = 0; t < 400000 && !(started && next == job.size() && app.state() == MachineState::Idle && !app.moving() &&
+                                  app.setpoint_sender().idle());
+       ++t) {
+    while (next < job.size() && host.sender().can_submit(MessageType::QueueSegment)) {
+      REQUIRE(host.sender().submit(Message(job[next++])).has_value());
+    }
+    if (!started && host.sender().can_submit(MessageType::Start)) {
+      REQUIRE(host.sender().submit(Message(Start{})).has_value());
+      started = true;
+    }
+    if (t % 100 == 99 && host.sender().can_submit(MessageType::StatusRequest)) {
+      REQUIRE(host.sender().submit(Message(StatusRequest{})).has_value());
+    }
+    app.on_tick();
+    ++board.clock_ms;
+    app.poll();
+    // damage one byte in 200 of what the App sent (setpoint frames among them)
+    for (std::byte& b : board.outgoing) {
+      if (b != std::byte{0} && rng() % 200 == 0) {
+        b ^= std::byte{0x10};
+        ++damaged;
+      }
+    }
+    host.take_output();
+    host.pump();
+  }
+  CHECK(damaged > 0);
+  CHECK(app.statistics().setpoint_go_backs > 0);
+  const auto got = host.setpoints();
+  REQUIRE(got.size() == expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    INFO("setpoint " << i);
+    REQUIRE(got[i] == expected[i]);
+  }
+  bool small = false;
+  for (const auto& b : host.received.batches) small = small || b.count < max_setpoints_per_batch / 2;
+  CHECK(small);
 }

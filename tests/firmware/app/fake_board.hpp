@@ -13,6 +13,7 @@
 #include <curvestep/firmware/app.hpp>
 #include <curvestep/firmware/board.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
+#include <curvestep/protocol/link_receiver.hpp>
 #include <curvestep/protocol/link_sender.hpp>
 
 namespace curvestep::firmware::testing {
@@ -71,18 +72,32 @@ struct Received {
   protocol::Capabilities last_capabilities{};
 };
 
-/// The host end: a LinkSender over the FakeBoard's byte queues, with the App in the loop.
+/// The host end: a LinkSender for commands and a LinkReceiver for the App's setpoint stream
+/// over the FakeBoard's byte queues, with the App in the loop.
 template <class AppType>
 class Host {
  public:
-  Host(FakeBoard& board, AppType& app) : board_(board), app_(app), sender_(protocol::SenderSettings{100, 10, 0}) {}
+  Host(FakeBoard& board, AppType& app)
+      : board_(board),
+        app_(app),
+        sender_(protocol::SenderSettings{100, 10, 0}),
+        receiver_(protocol::Capabilities{}, protocol::ReceiverSettings{}, protocol::Endpoint::Host) {}
 
   /// Handshake; true once Capabilities arrived.
   bool connect(std::uint16_t session = 0x1234) {
+    receiver_.close();
     sender_.connect(session, board_.clock_ms);
     for (int i = 0; i < 20 && sender_.state() != protocol::LinkState::Connected; ++i) pump();
+    if (sender_.state() == protocol::LinkState::Connected) receiver_.open(board_.clock_ms);
     return sender_.state() == protocol::LinkState::Connected;
   }
+
+  /// False: the host stops acknowledging setpoint batches (it ignores them).
+  bool acknowledge_setpoints = true;
+  /// False: the host does not read what the App sent (a slow host: the bytes wait).
+  bool reading = true;
+  /// Setpoint batches the App sent again after the host had them (retransmissions seen).
+  int repeated_batches = 0;
 
   /// Submits a message (waiting for window and credit by pumping); false if it never fits.
   bool send(const protocol::Message& m) {
@@ -114,14 +129,29 @@ class Host {
     }
   }
 
-  /// Decodes what the App wrote so far.
+  /// Decodes what the App wrote so far; setpoint batches go through the host's receiver
+  /// (acknowledged, delivered once each and in order).
   void take_output() {
+    if (!reading) return;  // the bytes wait in the line
     for (const std::byte b : board_.outgoing) {
       const auto pushed = decoder_.push(b);
-      if (!pushed || !pushed.value()) continue;
+      if (!pushed) {
+        if (acknowledge_setpoints) reply(receiver_.on_bad_frame(pushed.error(), board_.clock_ms));
+        continue;
+      }
+      if (!pushed.value()) continue;
       const auto m = protocol::decode_message(decoder_.frame());
       if (!m) continue;
       const protocol::Message& msg = m.value();
+      if (msg.holds<protocol::SetpointBatch>()) {
+        if (!acknowledge_setpoints) continue;
+        const protocol::Reception r = receiver_.on_frame(decoder_.frame(), 0, board_.clock_ms);
+        reply(r);
+        if (r.disposition != protocol::Disposition::Deliver) {
+          ++repeated_batches;
+          continue;
+        }
+      }
       [[maybe_unused]] const auto handled = sender_.on_message(msg, board_.clock_ms);
       switch (msg.type()) {
         case protocol::MessageType::Capabilities:
@@ -152,9 +182,17 @@ class Host {
   Received received;
 
  private:
+  void reply(const protocol::Reception& r) {
+    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
+    const auto size = receiver_.encode_reply(r, frame);
+    if (!size) return;
+    for (std::size_t i = 0; i < size.value(); ++i) board_.incoming.push_back(frame[i]);
+  }
+
   FakeBoard& board_;
   AppType& app_;
   protocol::LinkSender<8> sender_;
+  protocol::LinkReceiver receiver_;
   protocol::FrameDecoder<> decoder_;
 };
 

@@ -103,11 +103,13 @@ std::size_t build_frame(curvestep::fuzz::InputReader& in, std::array<std::byte, 
   static constexpr std::array<std::uint8_t, 8> types{0x01, 0x10, 0x11, 0x11, 0x12, 0x13, 0x15, 0x16};
   const std::uint8_t type = selector < 224 ? types[selector % types.size()] : selector;
   const std::uint8_t sequence = in.u8();
-  const std::size_t length = in.u8() % (max_payload_size + 1);
+  const std::size_t length = in.u8() % (max_message_size + 1);
   const auto body = in.bytes(length);
   for (std::size_t i = 0; i < body.size(); ++i) payload[i] = std::byte{body[i]};
   if (type == 0x01 && body.size() < 4) {  // a Hello of the right version, so sessions happen
-    const std::array<std::uint8_t, 4> hello{1, 0, body.empty() ? std::uint8_t{0} : body[0], 0};
+    const std::array<std::uint8_t, 4> hello{static_cast<std::uint8_t>(protocol_version & 0xFFu),
+                                            static_cast<std::uint8_t>(protocol_version >> 8),
+                                            body.empty() ? std::uint8_t{0} : body[0], 0};
     for (std::size_t i = 0; i < 4; ++i) payload[i] = std::byte{hello[i]};
     sent.payload = std::span<const std::byte>(payload.data(), 4);
   } else {

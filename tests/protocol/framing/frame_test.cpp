@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <curvestep/protocol/crc16.hpp>
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
 
@@ -22,13 +23,17 @@ using curvestep::protocol::testing::to_hex;
 namespace {
 
 // docs/protocol.md, "Worked example": QueueSegment, sequence 5, Line from (0, 0) to
-// (10.5, -2.25) mm at 20 mm/s. Computed independently with Python's binascii.crc_hqx and a
-// separate COBS routine; the document shows the same bytes.
+// (10.5, -2.25) mm at 20 mm/s. Computed independently in Python (a table-driven CRC-32C,
+// reflected polynomial 0x82F63B78, for the payload's check, binascii.crc_hqx for the frame's
+// CRC-16, and a separate COBS routine: docs/protocol.md shows the script); the document shows
+// the same bytes.
 const char* const example_payload = "00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff";
 const char* const example_raw =
-    "11 05 00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff 28 b0";
+    "11 05 00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff 7a bb 32 e6 79 04";
 const char* const example_wire =
-    "03 11 05 02 02 01 02 14 01 01 01 01 01 01 01 01 01 03 80 0a 01 06 c0 fd ff 28 b0 00";
+    "03 11 05 02 02 01 02 14 01 01 01 01 01 01 01 01 01 03 80 0a 01 0a c0 fd ff 7a bb 32 e6 79 04 00";
+const char* const hello_wire = "02 01 02 02 09 34 12 d5 f0 dc f8 67 a1 00";  // Hello(version 2, session 0x1234), sequence 0
+const char* const ack_wire = "05 03 07 06 28 07 a6 a8 6f 27 02 fd 00";       // Ack(6, 40), sequence 7
 
 QueueSegment example_segment() {
   QueueSegment s;
@@ -95,8 +100,8 @@ TEST_CASE("frame: docs/protocol.md shows the same example bytes as this test", "
   const std::string doc = protocol_document();
   CHECK(doc.find(example_raw) != std::string::npos);
   CHECK(doc.find(example_wire) != std::string::npos);
-  CHECK(doc.find("02 01 02 01 05 34 12 26 c6 00") != std::string::npos);
-  CHECK(doc.find("05 03 07 06 28 03 1c 93 00") != std::string::npos);
+  CHECK(doc.find(hello_wire) != std::string::npos);
+  CHECK(doc.find(ack_wire) != std::string::npos);
 }
 
 TEST_CASE("frame: the worked example of docs/protocol.md encodes byte for byte", "[protocol][framing]") {
@@ -114,7 +119,7 @@ TEST_CASE("frame: the worked example decodes to the same segment", "[protocol][f
   REQUIRE(r.errors.empty());
   REQUIRE(r.frames.size() == 1);
   const auto raw = hex(example_raw);
-  CHECK(to_hex(r.frames[0]) == to_hex(std::span<const std::byte>(raw).first(raw.size() - 2)));
+  CHECK(to_hex(r.frames[0]) == to_hex(std::span<const std::byte>(raw).first(raw.size() - frame_crc_size - message_crc_size)));
   const auto m = decode_message(static_cast<std::uint8_t>(r.frames[0][0]), std::span<const std::byte>(r.frames[0]).subspan(2));
   REQUIRE(m.has_value());
   const QueueSegment& s = m.value().get<QueueSegment>();
@@ -138,7 +143,38 @@ TEST_CASE("frame: every single-bit flip of the sample frame is detected by the C
       ++flips;
     }
   }
-  CHECK(flips == 26 * 8);
+  CHECK(flips == 30 * 8);
+}
+
+TEST_CASE("frame: a damaged frame whose CRC-16 still matches is refused by its payload's CRC-32C",
+          "[protocol][framing]") {
+  auto raw = hex(example_raw);
+  raw[10] ^= std::byte{0x01};  // feed byte changed...
+  const std::size_t body = raw.size() - frame_crc_size;
+  const std::uint16_t crc = crc16(std::span<const std::byte>(raw).first(body));
+  raw[body] = std::byte{static_cast<std::uint8_t>(crc & 0xFFu)};  // ...and the CRC-16 made to match, as a
+  raw[body + 1] = std::byte{static_cast<std::uint8_t>(crc >> 8)};  // random damage does once in 65536
+  const auto r = parse_frame(raw);
+  REQUIRE_FALSE(r.has_value());
+  CHECK(r.error() == Error::BadCrc);
+  CHECK(r.where() == 5);  // the sequence number
+}
+
+TEST_CASE("frame: every two-bit error of the sample frame is detected", "[protocol][framing]") {
+  // CRC-16/CCITT-FALSE alone has Hamming distance 4 at this length, so every 2-bit error is caught.
+  const auto raw = hex(example_raw);
+  const std::size_t bits = raw.size() * 8;
+  std::size_t pairs = 0;
+  for (std::size_t a = 0; a < bits; ++a) {
+    for (std::size_t b = a + 1; b < bits; ++b) {
+      auto corrupted = raw;
+      corrupted[a / 8] ^= static_cast<std::byte>(1u << (a % 8));
+      corrupted[b / 8] ^= static_cast<std::byte>(1u << (b % 8));
+      if (parse_frame(corrupted).has_value()) FAIL("undetected flip of bits " << a << " and " << b);
+      ++pairs;
+    }
+  }
+  CHECK(pairs == bits * (bits - 1) / 2);
 }
 
 TEST_CASE("frame: every single-bit flip of the sample frame on the wire is rejected by the decoder", "[protocol][framing]") {
@@ -180,13 +216,13 @@ TEST_CASE("frame: a truncated frame fails its CRC", "[protocol][framing]") {
 }
 
 TEST_CASE("frame: payloads above the maximum are FrameTooLong on both ends", "[protocol][framing]") {
-  std::vector<std::byte> payload(max_payload_size + 1, std::byte{0x5A});
+  std::vector<std::byte> payload(max_message_size + 1, std::byte{0x5A});
   std::vector<std::byte> out(400);
   const auto r = encode_frame(0x11, 0, payload, out);
   REQUIRE_FALSE(r.has_value());
   CHECK(r.error() == Error::FrameTooLong);
 
-  payload.resize(max_payload_size);
+  payload.resize(max_message_size);
   const auto fits = encode_frame(0x11, 0, payload, out);
   REQUIRE(fits.has_value());
   CHECK(fits.value() == max_encoded_frame_size);
@@ -235,12 +271,12 @@ TEST_CASE("frame: the decoder resynchronises on 0x00 after garbage", "[protocol]
 }
 
 TEST_CASE("frame: the Hello and Ack examples of docs/protocol.md encode byte for byte", "[protocol][framing]") {
-  CHECK(to_hex(wire_frame(Message(Hello{1, 0x1234}), 0)) == "02 01 02 01 05 34 12 26 c6 00");
-  CHECK(to_hex(wire_frame(Message(Ack{6, 40}), 7)) == "05 03 07 06 28 03 1c 93 00");
+  CHECK(to_hex(wire_frame(Message(Hello{2, 0x1234}), 0)) == hello_wire);
+  CHECK(to_hex(wire_frame(Message(Ack{6, 40}), 7)) == ack_wire);
 }
 
 TEST_CASE("frame: a too small output buffer is BufferTooSmall", "[protocol][framing]") {
-  for (std::size_t n = 0; n < 28; ++n) {
+  for (std::size_t n = 0; n < 32; ++n) {
     std::vector<std::byte> out(n);
     const auto r = encode_frame(Message(example_segment()), 5, out);
     REQUIRE_FALSE(r.has_value());

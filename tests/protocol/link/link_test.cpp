@@ -61,7 +61,15 @@ TEST_CASE("link: a handshake with a wrong version is refused on both ends", "[pr
     REQUIRE_FALSE(r.has_value());
     CHECK(r.error() == Error::VersionMismatch);
     CHECK(sender.state() == LinkState::Failed);
+    CHECK(sender.capabilities().version == protocol_version + 3);  // for the error message
     CHECK_FALSE(sender.submit(Message(Start{})).has_value());
+  }
+  SECTION("a host refused by the controller knows no controller version") {
+    Host<> host;
+    Controller controller(5, {}, static_cast<std::uint16_t>(protocol_version + 1));
+    host.sender.connect(1, 0);
+    host.receive(controller.receive(host.transmit(0)[0], 0)[0], 0);
+    CHECK(host.sender.capabilities().version == 0);
   }
 }
 
@@ -242,7 +250,25 @@ TEST_CASE("link: the controller refuses a segment beyond the credit it granted",
   CHECK(controller.naks[0].expected == 1);
 }
 
-TEST_CASE("link: retransmission gives up with RetransmitLimit", "[protocol][link]") {
+TEST_CASE("link: retransmission gives up with RetransmitLimit when the controller talks but never acknowledges",
+          "[protocol][link]") {
+  Host<> host(SenderSettings{100, 2});
+  Controller controller(4);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  CHECK(host.transmit(0).size() == 1);
+  host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Ack, Ack{0, 4}, Nak{}}), 50);  // no progress
+  CHECK(host.transmit(100).size() == 1);
+  host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Ack, Ack{0, 4}, Nak{}}), 150);
+  CHECK(host.transmit(200).size() == 1);
+  host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Ack, Ack{0, 4}, Nak{}}), 250);
+  CHECK(host.transmit(300).empty());
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::RetransmitLimit);
+  CHECK(host.sender.state() == LinkState::Failed);
+}
+
+TEST_CASE("link: retransmission to a silent controller gives up with LinkTimeout", "[protocol][link]") {
   Host<> host(SenderSettings{100, 2});
   Controller controller(4);
   handshake(host, controller);
@@ -252,8 +278,34 @@ TEST_CASE("link: retransmission gives up with RetransmitLimit", "[protocol][link
   CHECK(host.transmit(200).size() == 1);
   CHECK(host.transmit(300).empty());
   REQUIRE(host.link_errors.size() == 1);
-  CHECK(host.link_errors[0] == Error::RetransmitLimit);
+  CHECK(host.link_errors[0] == Error::LinkTimeout);  // nothing heard since the handshake: the controller is gone
   CHECK(host.sender.state() == LinkState::Failed);
+}
+
+TEST_CASE("link: a receiver Naks every damaged frame and a gap once per round of resends", "[protocol][link]") {
+  Controller controller(4, ReceiverSettings{0, 0, 20});
+  Host<> host;
+  handshake(host, controller);
+  // Damaged frames are direct evidence of a loss: each one is Nak-ed.
+  CHECK(controller.receiver.on_bad_frame(Error::BadCrc, 1).reply == ReplyKind::Nak);
+  CHECK(controller.receiver.on_bad_frame(Error::BadCrc, 2).reply == ReplyKind::Nak);
+  for (int i = 0; i < 3; ++i) REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  const auto frames = host.transmit(3);
+  REQUIRE(frames.size() == 3);
+  const auto naks_before = controller.naks.size();
+  // frame 0 lost; 1 and 2 are ahead: one Nak for the gap (the damage above already Nak-ed it)
+  controller.receive(frames[1], 4);
+  controller.receive(frames[2], 4);
+  CHECK(controller.naks.size() == naks_before);
+  // a new round (frame 1 again: no further ahead than before) with frame 0 lost again: Nak again
+  controller.receive(frames[1], 5);
+  CHECK(controller.naks.size() == naks_before + 1);
+  controller.receive(frames[2], 5);
+  CHECK(controller.naks.size() == naks_before + 1);
+  // and after nak_interval_ms a further ahead frame is Nak-ed too
+  controller.receive(frames[2], 30);
+  CHECK(controller.naks.size() == naks_before + 2);
+  for (const Nak& n : controller.naks) CHECK(n.expected == 0);
 }
 
 TEST_CASE("link: a controller that restarted answers NotConnected and the host reports DeviceRestarted", "[protocol][link]") {
@@ -364,4 +416,186 @@ TEST_CASE("link: a host that hears nothing for the link timeout fails with LinkT
   REQUIRE(host.link_errors.size() == 1);
   CHECK(host.link_errors[0] == Error::LinkTimeout);
   CHECK(host.sender.state() == LinkState::Failed);
+}
+
+namespace {
+
+/// The controller's setpoint stream: a sender at the controller and a receiver at the host.
+struct SetpointStream {
+  LinkSender<4> sender{SenderSettings{100, 3, 0}, Endpoint::Controller};
+  LinkReceiver receiver{Capabilities{}, ReceiverSettings{}, Endpoint::Host};
+  FrameDecoder<> host_decoder;
+  std::vector<std::uint32_t> delivered;  // first_index of each delivered batch
+
+  SetpointStream() {
+    sender.open(0);
+    receiver.open(0);
+  }
+
+  static SetpointBatch batch(std::uint32_t first) {
+    SetpointBatch b;
+    b.first_index = first;
+    b.axis_count = 2;
+    b.count = 1;
+    b.setpoints[0] = WirePoint{static_cast<std::int32_t>(first), 0, 0};
+    return b;
+  }
+
+  std::vector<Bytes> transmit(std::uint32_t now) {
+    std::vector<Bytes> frames;
+    for (;;) {
+      Bytes out(max_encoded_frame_size);
+      const auto size = sender.poll(now, out);
+      REQUIRE(size.has_value());
+      if (size.value() == 0) return frames;
+      out.resize(size.value());
+      frames.push_back(out);
+    }
+  }
+
+  /// The host takes `frame`; returns its reply (Ack or Nak) as a message, if any.
+  std::vector<Message> host_receives(const Bytes& frame, std::uint32_t now) {
+    std::vector<Message> replies;
+    for (const std::byte b : frame) {
+      const auto pushed = host_decoder.push(b);
+      Reception r;
+      if (!pushed) {
+        r = receiver.on_bad_frame(pushed.error());
+      } else if (pushed.value()) {
+        r = receiver.on_frame(host_decoder.frame(), 0, now);
+        if (r.disposition == Disposition::Deliver) {
+          delivered.push_back(decode_message(host_decoder.frame()).value().get<SetpointBatch>().first_index);
+        }
+      }
+      if (r.reply == ReplyKind::Ack) replies.emplace_back(r.ack);
+      if (r.reply == ReplyKind::Nak) replies.emplace_back(r.nak);
+    }
+    return replies;
+  }
+
+  void controller_receives(const std::vector<Message>& replies, std::uint32_t now) {
+    for (const Message& m : replies) REQUIRE(sender.on_message(m, now).has_value());
+  }
+};
+
+}  // namespace
+
+TEST_CASE("link: setpoint batches are numbered, acknowledged by the host and released by the controller",
+          "[protocol][link]") {
+  SetpointStream s;
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    const auto sequence = s.sender.submit(Message(SetpointStream::batch(10 * i)));
+    REQUIRE(sequence.has_value());
+    CHECK(sequence.value() == i);
+  }
+  const auto frames = s.transmit(0);
+  REQUIRE(frames.size() == 3);
+  for (const Bytes& f : frames) {
+    const auto replies = s.host_receives(f, 1);
+    REQUIRE(replies.size() == 1);
+    REQUIRE(replies[0].holds<Ack>());
+    CHECK(replies[0].get<Ack>().credit_end == 0);  // the host grants no credit: batches take none
+    s.controller_receives(replies, 1);
+  }
+  CHECK(s.delivered == std::vector<std::uint32_t>{0, 10, 20});
+  CHECK(s.sender.idle());
+}
+
+TEST_CASE("link: a lost setpoint batch is Nak-ed at the next one and resent, and repeats are not delivered twice",
+          "[protocol][link]") {
+  SetpointStream s;
+  for (std::uint32_t i = 0; i < 3; ++i) REQUIRE(s.sender.submit(Message(SetpointStream::batch(i))).has_value());
+  const auto frames = s.transmit(0);
+  REQUIRE(frames.size() == 3);
+  s.controller_receives(s.host_receives(frames[0], 1), 1);
+  // frames[1] is lost; frames[2] shows the gap
+  const auto gap = s.host_receives(frames[2], 2);
+  REQUIRE(gap.size() == 1);
+  REQUIRE(gap[0].holds<Nak>());
+  CHECK(gap[0].get<Nak>().expected == 1);
+  CHECK(gap[0].get<Nak>().reason == Error::SequenceError);
+  s.controller_receives(gap, 2);
+  const auto resent = s.transmit(3);
+  REQUIRE(resent.size() == 2);  // go-back-N: batches 1 and 2
+  s.controller_receives(s.host_receives(resent[0], 4), 4);
+  s.controller_receives(s.host_receives(resent[1], 4), 4);
+  // a stray copy of batch 0 is acknowledged again but not delivered
+  const auto again = s.host_receives(frames[0], 5);
+  REQUIRE(again.size() == 1);
+  CHECK(again[0].holds<Ack>());
+  CHECK(s.delivered == std::vector<std::uint32_t>{0, 1, 2});
+  CHECK(s.sender.idle());
+  CHECK(s.sender.go_backs() == 1);
+}
+
+TEST_CASE("link: Nak-triggered go-backs do not count toward max_retransmits", "[protocol][link]") {
+  SetpointStream s;  // max_retransmits 3
+  REQUIRE(s.sender.submit(Message(SetpointStream::batch(0))).has_value());
+  REQUIRE(s.sender.submit(Message(SetpointStream::batch(1))).has_value());
+  (void)s.transmit(0);
+  // Ten damaged deliveries in a row, each Nak-ed at once: the sender keeps going back.
+  for (std::uint32_t k = 0; k < 10; ++k) {
+    s.controller_receives({Message(Nak{0, Error::BadCrc})}, 10 * k + 1);
+    CHECK(s.transmit(10 * k + 2).size() == 2);
+  }
+  CHECK(s.sender.state() == LinkState::Connected);
+  CHECK(s.sender.timeouts_without_progress() == 0);
+  CHECK(s.sender.go_backs() == 10);
+}
+
+TEST_CASE("link: only timeouts in a row without progress count toward max_retransmits", "[protocol][link]") {
+  SetpointStream s;  // 100 ms timeout, max_retransmits 3
+  REQUIRE(s.sender.submit(Message(SetpointStream::batch(0))).has_value());
+  REQUIRE(s.sender.submit(Message(SetpointStream::batch(1))).has_value());
+  (void)s.transmit(0);
+  CHECK(s.transmit(100).size() == 2);
+  CHECK(s.transmit(200).size() == 2);
+  CHECK(s.sender.timeouts_without_progress() == 2);
+  // progress (batch 0 acknowledged) clears the count
+  s.controller_receives({Message(Ack{1, 0})}, 250);
+  CHECK(s.sender.timeouts_without_progress() == 0);
+  CHECK(s.transmit(350).size() == 1);
+  CHECK(s.transmit(450).size() == 1);
+  CHECK(s.transmit(550).size() == 1);
+  CHECK(s.sender.timeouts_without_progress() == 3);
+  s.controller_receives({Message(Ack{1, 0})}, 600);  // the host still talks (a heartbeat), without progress
+  Bytes out(max_encoded_frame_size);
+  const auto failed = s.sender.poll(650, out);
+  REQUIRE_FALSE(failed.has_value());
+  CHECK(failed.error() == Error::RetransmitLimit);
+  CHECK(failed.where() == 1);  // the oldest unacknowledged sequence number
+}
+
+TEST_CASE("link: each end submits only its own sequenced messages", "[protocol][link]") {
+  SetpointStream s;
+  CHECK(s.sender.submit(Message(Start{})).error() == Error::InvalidArgument);
+  CHECK(s.sender.submit(Message(StatusReport{})).error() == Error::InvalidArgument);
+  Host<> host;
+  Controller controller(4);
+  handshake(host, controller);
+  CHECK(host.sender.submit(Message(SetpointStream::batch(0))).error() == Error::InvalidArgument);
+  CHECK(host.sender.submit(Message(Ack{})).error() == Error::InvalidArgument);
+}
+
+TEST_CASE("link: the host's receiver ignores setpoint frames until its handshake opened it", "[protocol][link]") {
+  LinkReceiver receiver(Capabilities{}, ReceiverSettings{}, Endpoint::Host);
+  Bytes wire(max_encoded_frame_size);
+  const auto size = encode_frame(Message(SetpointStream::batch(0)), 0, wire);
+  REQUIRE(size.has_value());
+  FrameDecoder<> decoder;
+  Reception r;
+  for (std::size_t i = 0; i < size.value(); ++i) {
+    const auto pushed = decoder.push(wire[i]);
+    if (pushed && pushed.value()) r = receiver.on_frame(decoder.frame(), 0, 0);
+  }
+  CHECK(r.disposition == Disposition::Ignore);
+  CHECK(r.reply == ReplyKind::None);  // no Nak(NotConnected): that is the controller's answer only
+  CHECK(receiver.on_bad_frame(Error::BadCrc).reply == ReplyKind::None);
+  receiver.open(0);
+  for (std::size_t i = 0; i < size.value(); ++i) {
+    const auto pushed = decoder.push(wire[i]);
+    if (pushed && pushed.value()) r = receiver.on_frame(decoder.frame(), 0, 0);
+  }
+  CHECK(r.disposition == Disposition::Deliver);
+  CHECK(r.reply == ReplyKind::Ack);
 }

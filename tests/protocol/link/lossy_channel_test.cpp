@@ -173,7 +173,116 @@ void run_stream(std::uint32_t seed, int total, BadLine::Rates rates, std::uint16
   CHECK(to_host.reordered > 0);
 }
 
+/// A batch of one setpoint whose coordinates carry its index.
+SetpointBatch indexed_batch(std::uint32_t first, std::uint8_t count) {
+  SetpointBatch b;
+  b.first_index = first;
+  b.axis_count = 3;
+  b.count = count;
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::int32_t>(first + k);
+    b.setpoints[k] = WirePoint{i, -i, 3 * i};
+  }
+  return b;
+}
+
+/// The controller's setpoint stream (LinkSender at the controller) to the host (LinkReceiver at
+/// the host) through two bad lines: every setpoint arrives exactly once and in order.
+template <std::size_t Window>
+void run_setpoint_stream(std::uint32_t seed, std::uint32_t setpoints, BadLine::Rates rates) {
+  INFO("seed " << seed << " setpoints " << setpoints << " window " << Window);
+  std::mt19937 rng(seed);
+  BadLine to_host(rng, rates);
+  BadLine to_controller(rng, rates);
+  LinkSender<Window> sender(SenderSettings{40, 10, 0}, Endpoint::Controller);
+  LinkReceiver receiver(Capabilities{}, ReceiverSettings{30, 0}, Endpoint::Host);
+  FrameDecoder<> host_decoder;
+  FrameDecoder<> controller_decoder;
+  sender.open(0);
+  receiver.open(0);
+  std::vector<std::uint32_t> received;
+  std::uint32_t next = 0;
+  std::uint32_t now = 0;
+  const std::uint32_t deadline = 2000000;
+  const auto host_reply = [&](const Reception& r) {
+    Bytes out(max_encoded_frame_size);
+    const auto size = receiver.encode_reply(r, out);
+    REQUIRE(size.has_value());
+    out.resize(size.value());
+    if (!out.empty()) to_controller.send(std::move(out), now);
+  };
+  for (; now < deadline; ++now) {
+    while (next < setpoints && sender.can_submit(MessageType::SetpointBatch)) {
+      const auto count = static_cast<std::uint8_t>(std::min<std::uint32_t>(static_cast<std::uint32_t>(1 + rng() % 24), setpoints - next));
+      REQUIRE(sender.submit(Message(indexed_batch(next, count))).has_value());
+      next += count;
+    }
+    for (;;) {
+      Bytes out(max_encoded_frame_size);
+      const auto size = sender.poll(now, out);
+      REQUIRE(size.has_value());  // never gives up: every timeout is followed by progress in time
+      if (size.value() == 0) break;
+      out.resize(size.value());
+      to_host.send(std::move(out), now);
+    }
+    for (const std::byte b : to_host.deliver(now)) {
+      const auto pushed = host_decoder.push(b);
+      if (!pushed) {
+        host_reply(receiver.on_bad_frame(pushed.error()));
+        continue;
+      }
+      if (!pushed.value()) continue;
+      const Reception r = receiver.on_frame(host_decoder.frame(), 0, now);
+      host_reply(r);
+      if (r.disposition != Disposition::Deliver) continue;
+      const auto m = decode_message(host_decoder.frame());
+      REQUIRE(m.has_value());
+      const auto& batch = m.value().get<SetpointBatch>();
+      for (std::size_t k = 0; k < batch.count; ++k) {
+        received.push_back(batch.first_index + static_cast<std::uint32_t>(k));
+        CHECK(batch.setpoints[k][2] == 3 * static_cast<std::int32_t>(batch.first_index + k));
+      }
+    }
+    host_reply(receiver.poll(0, now));
+    for (const std::byte b : to_controller.deliver(now)) {
+      const auto pushed = controller_decoder.push(b);
+      if (!pushed || !pushed.value()) continue;
+      const auto m = decode_message(controller_decoder.frame());
+      REQUIRE(m.has_value());
+      REQUIRE((m.value().holds<Ack>() || m.value().holds<Nak>()));
+      REQUIRE(sender.on_message(m.value(), now).has_value());
+    }
+    if (next == setpoints && sender.idle()) break;
+  }
+  INFO("lost " << to_host.lost << "+" << to_controller.lost << " corrupted " << to_host.corrupted << "+"
+               << to_controller.corrupted << " duplicated " << to_host.duplicated << " reordered " << to_host.reordered
+               << " go-backs " << sender.go_backs() << " at " << now << " ms");
+  REQUIRE(now < deadline);
+  REQUIRE(received.size() == setpoints);
+  for (std::uint32_t i = 0; i < setpoints; ++i) REQUIRE(received[i] == i);  // none lost, none twice, in order
+  CHECK(sender.go_backs() > 0);
+  CHECK(to_host.lost > 0);
+  CHECK(to_host.corrupted > 0);
+  CHECK(to_host.duplicated > 0);
+  CHECK(to_controller.lost > 0);
+}
+
 }  // namespace
+
+TEST_CASE("link: the controller's setpoint stream crosses a bad line to the host exactly once and in order",
+          "[protocol][link]") {
+  run_setpoint_stream<4>(curvestep::testing::test_seed() + 2, 20000, BadLine::Rates{});
+}
+
+TEST_CASE("link: the setpoint stream survives a very bad line with a window of one frame", "[protocol][link]") {
+  BadLine::Rates harsh;
+  harsh.loss = 0.2;
+  harsh.corruption = 0.15;
+  harsh.duplication = 0.2;
+  harsh.garbage = 0.1;
+  harsh.jitter_ms = 20;
+  run_setpoint_stream<1>(curvestep::testing::test_seed() + 3, 3000, harsh);
+}
 
 TEST_CASE("link: a randomized stream crosses a bad line exactly once and in order", "[protocol][link]") {
   run_stream<8>(curvestep::testing::test_seed(), curvestep::testing::test_count(400), BadLine::Rates{}, 5);

@@ -91,5 +91,5 @@ TEST_CASE("byte io: frames can be built at compile time", "[protocol][framing]")
     std::array<std::byte, max_encoded_frame_size> out{};
     return encode_frame(Message(Ack{6, 40}), 7, out).value();
   }();
-  STATIC_REQUIRE(ack_frame_size == 9);  // docs/protocol.md: 05 03 07 06 28 03 1c 93 00
+  STATIC_REQUIRE(ack_frame_size == 13);  // docs/protocol.md: 05 03 07 06 28 07 a6 a8 6f 27 02 fd 00
 }

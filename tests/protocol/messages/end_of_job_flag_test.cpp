@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// QueueSegment flag bit 7 (end of job): hand-computed bytes, round trip, and the bit stays reserved elsewhere.
+// QueueSegment flag bit 4 (end of job, protocol version 2): hand-computed bytes, round trip, reserved bits.
 #include <catch2/catch.hpp>
 
 #include <array>
@@ -14,7 +14,7 @@ using namespace curvestep;
 using namespace curvestep::protocol;
 using curvestep::protocol::testing::hex;
 
-TEST_CASE("messages: the end-of-job flag is bit 7 of a segment's flags byte", "[protocol][messages]") {
+TEST_CASE("messages: the end-of-job flag is bit 4 of a segment's flags byte", "[protocol][messages]") {
   QueueSegment s;
   s.kind = SegmentKind::Line;
   s.axis_count = 2;
@@ -23,8 +23,8 @@ TEST_CASE("messages: the end-of-job flag is bit 7 of a segment's flags byte", "[
   std::array<std::byte, max_payload_size> out{};
   const auto size = encode(s, out);
   REQUIRE(size.has_value());
-  // kind 0, flags 0x80 (end of job, two axes, no feed), start (0, 0), end (1, -1) mm
-  const auto expected = hex("00 80 00000000 00000000 00000100 0000ffff");
+  // kind 0, flags 0x10 (end of job, two axes, no feed), start (0, 0), end (1, -1) mm
+  const auto expected = hex("00 10 00000000 00000000 00000100 0000ffff");
   REQUIRE(size.value() == expected.size());
   for (std::size_t i = 0; i < expected.size(); ++i) CHECK(out[i] == expected[i]);
   const auto back = decode<QueueSegment>(std::span<const std::byte>(out.data(), size.value()));
@@ -38,7 +38,8 @@ TEST_CASE("messages: a segment without the end-of-job flag decodes with end_of_j
   const auto back = decode<QueueSegment>(hex("00 00 00000000 00000000 00000100 0000ffff"));
   REQUIRE(back.has_value());
   CHECK_FALSE(back.value().end_of_job);
-  // bits 4 to 6 stay reserved
-  CHECK(decode<QueueSegment>(hex("00 20 00000000 00000000 00000100 0000ffff")).where() == 1);
+  // bits 6 and 7 stay reserved (bit 7 was the end-of-job flag of version 1), bit 5 is for arcs only
   CHECK(decode<QueueSegment>(hex("00 40 00000000 00000000 00000100 0000ffff")).where() == 1);
+  CHECK(decode<QueueSegment>(hex("00 80 00000000 00000000 00000100 0000ffff")).where() == 1);
+  CHECK(decode<QueueSegment>(hex("00 20 00000000 00000000 00000100 0000ffff")).where() == 1);
 }

@@ -2,6 +2,8 @@
 // Messages: every type round-trips, hand-computed payloads, malformed payloads are rejected.
 #include <catch2/catch.hpp>
 
+#include <bit>
+
 #include <array>
 #include <random>
 #include <vector>
@@ -41,6 +43,12 @@ std::int32_t random_raw(std::mt19937& rng) {
   return static_cast<std::int32_t>(rng());
 }
 
+/// Any 64-bit pattern as a double (NaNs and infinities included: the wire must carry them unchanged).
+double random_double(std::mt19937& rng) {
+  const std::uint64_t high = rng();
+  return std::bit_cast<double>((high << 32) | rng());
+}
+
 WirePoint random_point(std::mt19937& rng, std::size_t axes) {
   WirePoint p{};
   for (std::size_t a = 0; a < axes; ++a) p[a] = random_raw(rng);
@@ -52,6 +60,7 @@ QueueSegment random_segment(std::mt19937& rng) {
   s.kind = static_cast<SegmentKind>(rng() % 4);
   s.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
   s.rapid = rng() % 2 == 0;
+  s.end_of_job = rng() % 2 == 0;
   s.has_feed = rng() % 2 == 0;
   s.feed_mm_per_s = s.has_feed ? random_raw(rng) : 0;
   s.degree = static_cast<std::uint8_t>(s.kind == SegmentKind::Line ? 1 : s.kind == SegmentKind::Arc ? 2 : 1 + rng() % 7);
@@ -60,6 +69,7 @@ QueueSegment random_segment(std::mt19937& rng) {
     s.points[0] = random_point(rng, s.axis_count);
     s.points[1] = random_point(rng, s.axis_count);
     s.points[2] = random_point(rng, 2);
+    s.turns = rng() % 3 == 0 ? static_cast<std::uint32_t>(rng()) | 1u : 0;
   } else {
     for (std::size_t i = 0; i < s.point_count(); ++i) s.points[i] = random_point(rng, s.axis_count);
   }
@@ -72,7 +82,8 @@ QueueSegment random_segment(std::mt19937& rng) {
 bool same(const QueueSegment& a, const QueueSegment& b) {
   return a.kind == b.kind && a.axis_count == b.axis_count && a.degree == b.degree && a.rapid == b.rapid &&
          a.has_feed == b.has_feed && a.feed_mm_per_s == b.feed_mm_per_s && a.points == b.points &&
-         a.weights == b.weights && (a.kind != SegmentKind::Arc || a.direction == b.direction);
+         a.weights == b.weights && a.end_of_job == b.end_of_job && a.turns == b.turns &&
+         (a.kind != SegmentKind::Arc || a.direction == b.direction);
 }
 
 SetpointBatch batch(std::uint32_t first, std::uint8_t axes, std::initializer_list<WirePoint> points) {
@@ -120,29 +131,38 @@ TEST_CASE("messages: every message type round-trips through encode and decode", 
 
     MachineConfiguration config;
     config.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
-    config.max_velocity_mm_per_s = random_raw(rng);
-    config.max_acceleration_mm_per_s2 = static_cast<std::uint32_t>(rng());
-    config.max_jerk_mm_per_s3 = static_cast<std::uint32_t>(rng());
+    config.profile = rng() % 2 == 0 ? ProfileKind::SCurve : ProfileKind::Trapezoid;
+    config.max_velocity_mm_per_s = random_double(rng);
+    config.max_acceleration_mm_per_s2 = random_double(rng);
+    config.max_jerk_mm_per_s3 = random_double(rng);
+    config.tolerance_mm = random_double(rng);
+    config.junction_deviation_mm = random_double(rng);
+    config.max_step_rate_hz = random_double(rng);
     config.default_feed_mm_per_s = random_raw(rng);
-    config.tolerance_mm = random_raw(rng);
-    config.junction_deviation_mm = random_raw(rng);
+    config.rapid_mm_per_s = random_raw(rng);
     config.control_rate_hz = static_cast<std::uint32_t>(rng());
     for (std::size_t ax = 0; ax < config.axis_count; ++ax) {
-      config.axes[ax] = AxisConfiguration{random_raw(rng), random_raw(rng), random_raw(rng), random_raw(rng),
-                                          static_cast<std::uint32_t>(rng())};
+      config.axes[ax] = AxisConfiguration{random_double(rng), random_double(rng), random_double(rng), random_raw(rng),
+                                          random_raw(rng)};
     }
     const auto m = round_trip(config).get<MachineConfiguration>();
-    CHECK((m.axis_count == config.axis_count && m.max_velocity_mm_per_s == config.max_velocity_mm_per_s &&
-           m.max_acceleration_mm_per_s2 == config.max_acceleration_mm_per_s2 &&
-           m.max_jerk_mm_per_s3 == config.max_jerk_mm_per_s3 &&
-           m.default_feed_mm_per_s == config.default_feed_mm_per_s && m.tolerance_mm == config.tolerance_mm &&
-           m.junction_deviation_mm == config.junction_deviation_mm && m.control_rate_hz == config.control_rate_hz));
+    // binary64 fields compare bit for bit (the wire carries the exact pattern)
+    const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
+    CHECK((m.axis_count == config.axis_count && m.profile == config.profile &&
+           bits(m.max_velocity_mm_per_s) == bits(config.max_velocity_mm_per_s) &&
+           bits(m.max_acceleration_mm_per_s2) == bits(config.max_acceleration_mm_per_s2) &&
+           bits(m.max_jerk_mm_per_s3) == bits(config.max_jerk_mm_per_s3) &&
+           bits(m.tolerance_mm) == bits(config.tolerance_mm) &&
+           bits(m.junction_deviation_mm) == bits(config.junction_deviation_mm) &&
+           bits(m.max_step_rate_hz) == bits(config.max_step_rate_hz) &&
+           m.default_feed_mm_per_s == config.default_feed_mm_per_s && m.rapid_mm_per_s == config.rapid_mm_per_s &&
+           m.control_rate_hz == config.control_rate_hz));
     for (std::size_t ax = 0; ax < config.axis_count; ++ax) {
-      CHECK((m.axes[ax].steps_per_mm == config.axes[ax].steps_per_mm &&
+      CHECK((bits(m.axes[ax].steps_per_mm) == bits(config.axes[ax].steps_per_mm) &&
              m.axes[ax].min_position_mm == config.axes[ax].min_position_mm &&
              m.axes[ax].max_position_mm == config.axes[ax].max_position_mm &&
-             m.axes[ax].max_velocity_mm_per_s == config.axes[ax].max_velocity_mm_per_s &&
-             m.axes[ax].max_acceleration_mm_per_s2 == config.axes[ax].max_acceleration_mm_per_s2));
+             bits(m.axes[ax].max_velocity_mm_per_s) == bits(config.axes[ax].max_velocity_mm_per_s) &&
+             bits(m.axes[ax].max_acceleration_mm_per_s2) == bits(config.axes[ax].max_acceleration_mm_per_s2)));
     }
 
     const QueueSegment segment = random_segment(rng);
@@ -159,11 +179,13 @@ TEST_CASE("messages: every message type round-trips through encode and decode", 
     status.error = static_cast<std::uint8_t>(rng());
     status.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
     status.queue_depth = static_cast<std::uint16_t>(rng());
+    status.max_queue_depth = static_cast<std::uint16_t>(rng());
     status.setpoint_index = static_cast<std::uint32_t>(rng());
     status.position = random_point(rng, status.axis_count);
     const auto s = round_trip(status).get<StatusReport>();
     CHECK((s.state == status.state && s.error == status.error && s.axis_count == status.axis_count &&
-           s.queue_depth == status.queue_depth && s.setpoint_index == status.setpoint_index &&
+           s.queue_depth == status.queue_depth && s.max_queue_depth == status.max_queue_depth &&
+           s.setpoint_index == status.setpoint_index &&
            s.position == status.position));
 
     SetpointBatch setpoints;
@@ -191,7 +213,7 @@ TEST_CASE("messages: a setpoint batch encodes as hand-computed zig-zag varints",
   CHECK(encoded_size(b, 3) == 29);
 }
 
-TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 40 percent spare", "[protocol][messages]") {
+TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 39 percent spare", "[protocol][messages]") {
   // Worst case of docs/protocol.md: every axis moves 8191 raw (0.125 mm) per 1 ms setpoint,
   // i.e. 125 mm/s per axis, so every delta takes two varint bytes.
   SetpointBatch b;
@@ -205,11 +227,11 @@ TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 40 per
   std::vector<std::byte> wire(max_encoded_frame_size);
   const auto size = encode_frame(Message(b), 0, wire);
   REQUIRE(size.has_value());
-  CHECK(size.value() == 162);
-  const double bytes_per_second = 162.0 * 1000.0 / static_cast<double>(max_setpoints_per_batch);
+  CHECK(size.value() == 166);  // 2 header + 156 message + 4 CRC-32C + 2 CRC-16 + 1 COBS code + 1 delimiter
+  const double bytes_per_second = 166.0 * 1000.0 / static_cast<double>(max_setpoints_per_batch);
   const double link_bytes_per_second = 115200.0 / 10.0;  // 8N1: 10 bit times per byte
-  CHECK(bytes_per_second == Approx(6750.0));
-  CHECK(bytes_per_second <= 0.6 * link_bytes_per_second);
+  CHECK(bytes_per_second == Approx(6916.667).epsilon(1e-6));
+  CHECK(bytes_per_second <= 0.61 * link_bytes_per_second);  // 60.04 %
 }
 
 TEST_CASE("messages: the encoder refuses batches that leave the payload limit", "[protocol][messages]") {
@@ -220,11 +242,11 @@ TEST_CASE("messages: the encoder refuses batches that leave the payload limit", 
     const std::int32_t big = k % 2 == 0 ? 0x40000000 : -0x40000000;
     b.setpoints[k] = {big, big, big};
   }
-  std::array<std::byte, max_payload_size> out{};
+  std::array<std::byte, max_message_size> out{};
   const auto r = encode(b, out);
   REQUIRE_FALSE(r.has_value());
   CHECK(r.error() == Error::BufferTooSmall);
-  CHECK(encoded_size(b, b.count) > max_payload_size);
+  CHECK(encoded_size(b, b.count) > max_message_size);
 }
 
 TEST_CASE("messages: every truncation of every payload is BadPayload", "[protocol][messages]") {
@@ -280,8 +302,13 @@ TEST_CASE("messages: unknown message types are UnknownMessage with the type as i
 TEST_CASE("messages: malformed segment fields are BadPayload at their byte offset", "[protocol][messages]") {
   // kind 4 does not exist
   CHECK(decode<QueueSegment>(hex("04 00")).where() == 0);
-  // reserved flag bit 0x10
-  CHECK(decode<QueueSegment>(hex("00 10 00000000 00000000 00000000 00000000")).where() == 1);
+  // reserved flag bits 0x40 and 0x80 (0x80 was end of job in version 1)
+  CHECK(decode<QueueSegment>(hex("00 40 00000000 00000000 00000000 00000000")).where() == 1);
+  CHECK(decode<QueueSegment>(hex("00 80 00000000 00000000 00000000 00000000")).where() == 1);
+  // the turns flag on a line
+  CHECK(decode<QueueSegment>(hex("00 20 00000000 00000000 00000000 00000000 00000000")).where() == 1);
+  // an arc with the turns flag but zero turns (offset 2)
+  CHECK(decode<QueueSegment>(hex("01 20 00000000 00000000 00000000 00000000 00000000 00000000 00000000")).where() == 2);
   // clockwise flag on a line
   CHECK(decode<QueueSegment>(hex("00 08 00000000 00000000 00000000 00000000")).where() == 1);
   // Bezier of degree 0 and 8
@@ -298,11 +325,12 @@ TEST_CASE("messages: malformed segment fields are BadPayload at their byte offse
 
 TEST_CASE("messages: other malformed fields are BadPayload", "[protocol][messages]") {
   CHECK(decode<Nak>(hex("05 00")).error() == Error::BadPayload);            // reason 0 is not an error
-  CHECK(decode<StatusReport>(hex("04 00 02 0000 00000000 00000000 00000000")).where() == 0);  // state 4
-  CHECK(decode<StatusReport>(hex("00 00 04 0000 00000000 00000000 00000000")).where() == 2);  // 4 axes
+  CHECK(decode<StatusReport>(hex("04 00 02 0000 0000 00000000 00000000 00000000")).where() == 0);  // state 4
+  CHECK(decode<StatusReport>(hex("00 00 04 0000 0000 00000000 00000000 00000000")).where() == 2);  // 4 axes
   CHECK(decode<SetpointBatch>(hex("00000000 03 00")).where() == 5);         // zero setpoints
   CHECK(decode<SetpointBatch>(hex("00000000 03 19")).where() == 5);         // 25 setpoints
   CHECK(decode<MachineConfiguration>(hex("01")).where() == 0);              // one axis
+  CHECK(decode<MachineConfiguration>(hex("02 02")).where() == 1);           // reserved profile flag bit 1
   CHECK(decode<Capabilities>(hex("0100 0000 a000 1000 1000 20 10 05 07 00000000")).where() == 12);  // 5 axes
   // a varint longer than 5 bytes, and a delta that leaves the int32 range
   CHECK(decode<SetpointBatch>(hex("00000000 02 02 00000000 00000000 ffffffffff01 00")).error() == Error::BadPayload);
@@ -330,6 +358,86 @@ TEST_CASE("messages: encoders refuse messages that cannot be represented", "[pro
   CHECK(encode(empty, out).error() == Error::InvalidArgument);
   std::array<std::byte, 3> tiny{};
   CHECK(encode(Capabilities{}, tiny).error() == Error::BufferTooSmall);
+  QueueSegment line_with_turns;
+  line_with_turns.turns = 1;
+  CHECK(encode(line_with_turns, out).error() == Error::InvalidArgument);
+}
+
+TEST_CASE("messages: a MachineConfiguration of two axes encodes as hand-computed binary64 and Q16.16 fields",
+          "[protocol][messages]") {
+  MachineConfiguration c;
+  c.axis_count = 2;
+  c.profile = ProfileKind::Trapezoid;
+  c.max_velocity_mm_per_s = 200;
+  c.max_acceleration_mm_per_s2 = 2000;
+  c.max_jerk_mm_per_s3 = 50000;
+  c.tolerance_mm = 0.01;
+  c.junction_deviation_mm = 0.05;
+  c.max_step_rate_hz = 100000;
+  c.default_feed_mm_per_s = 50 * 65536;
+  c.rapid_mm_per_s = 0;
+  c.control_rate_hz = 1000;
+  for (std::size_t a = 0; a < 2; ++a) c.axes[a] = AxisConfiguration{80, 200, 2000, -100 * 65536, 100 * 65536};
+  // Python: struct.pack('<BBdddddd', 2, 1, 200, 2000, 50000, 0.01, 0.05, 100000) + '<iiI' (50 << 16, 0, 1000)
+  // + 2 x ('<ddd', 80, 200, 2000) + '<ii' (-100 << 16, 100 << 16): 62 + 2 x 32 = 126 bytes (docs/protocol.md)
+  const auto expected = hex(
+      "02 01 0000000000006940 0000000000409f40 00000000006ae840 7b14ae47e17a843f 9a9999999999a93f 00000000006af840"
+      " 00003200 00000000 e8030000"
+      " 0000000000005440 0000000000006940 0000000000409f40 00009cff 00006400"
+      " 0000000000005440 0000000000006940 0000000000409f40 00009cff 00006400");
+  CHECK(to_hex(payload_of(c)) == to_hex(expected));
+  CHECK(expected.size() == configuration_header_size + 2 * configuration_axis_size);
+  MachineConfiguration three = c;
+  three.axis_count = 3;
+  CHECK(payload_of(three).size() == 158);
+  CHECK(payload_of(three).size() <= max_message_size);
+}
+
+TEST_CASE("messages: a helical arc carries its extra turns and the end-of-job flag", "[protocol][messages]") {
+  QueueSegment s;
+  s.kind = SegmentKind::Arc;
+  s.axis_count = 3;
+  s.degree = 2;
+  s.end_of_job = true;
+  s.turns = 2;
+  s.points[0] = WirePoint{10 * 65536, 0, 0};
+  s.points[1] = WirePoint{10 * 65536, 0, -65536};
+  s.points[2] = WirePoint{0, 0, 0};
+  // kind 1, flags 0x34 (three axes 0x04, end of job 0x10, turns 0x20), turns 2, start, end, centre XY
+  const auto expected = hex("01 34 02000000 00000a00 00000000 00000000 00000a00 00000000 0000ffff 00000000 00000000");
+  CHECK(to_hex(payload_of(s)) == to_hex(expected));
+  const auto back = decode<QueueSegment>(expected);
+  REQUIRE(back.has_value());
+  CHECK(back.value().turns == 2);
+  CHECK(back.value().end_of_job);
+  CHECK(back.value().points[1][2] == -65536);
+}
+
+TEST_CASE("messages: a StatusReport carries the deepest queue of the session", "[protocol][messages]") {
+  StatusReport r;
+  r.state = MachineState::Running;
+  r.axis_count = 3;
+  r.queue_depth = 17;
+  r.max_queue_depth = 32;
+  r.setpoint_index = 123456;
+  r.position = WirePoint{65536, 2 * 65536, -32768};
+  // Python: struct.pack('<BBBHHI', 1, 0, 3, 17, 32, 123456) + '<iii' (65536, 131072, -32768): 23 bytes
+  CHECK(to_hex(payload_of(r)) == to_hex(hex("01 00 03 1100 2000 40e20100 00000100 00000200 0080ffff")));
+}
+
+TEST_CASE("messages: setpoint batches travel in the sequenced stream toward the host only", "[protocol][messages]") {
+  CHECK(is_sequenced_toward(Endpoint::Host, static_cast<std::uint8_t>(MessageType::SetpointBatch)));
+  CHECK_FALSE(is_sequenced_toward(Endpoint::Controller, static_cast<std::uint8_t>(MessageType::SetpointBatch)));
+  for (int t = 0x10; t <= 0x16; ++t) {
+    CHECK(is_sequenced_toward(Endpoint::Controller, static_cast<std::uint8_t>(t)));
+    CHECK_FALSE(is_sequenced_toward(Endpoint::Host, static_cast<std::uint8_t>(t)));
+  }
+  for (const MessageType t : {MessageType::Hello, MessageType::Capabilities, MessageType::Ack, MessageType::Nak,
+                              MessageType::StatusReport, MessageType::ErrorReport}) {
+    CHECK_FALSE(is_sequenced_toward(Endpoint::Controller, static_cast<std::uint8_t>(t)));
+    CHECK_FALSE(is_sequenced_toward(Endpoint::Host, static_cast<std::uint8_t>(t)));
+  }
+  CHECK(is_sequenced_toward(Endpoint::Controller, 0x30));  // unknown: a command from a newer host
 }
 
 TEST_CASE("messages: the largest segment fits the payload limit", "[protocol][messages]") {
@@ -340,5 +448,5 @@ TEST_CASE("messages: the largest segment fits the payload limit", "[protocol][me
   s.has_feed = true;
   s.weights.fill(65536);
   CHECK(payload_of(s).size() == 3 + 4 + 8 * 12 + 8 * 4);
-  CHECK(payload_of(s).size() <= max_payload_size);
+  CHECK(payload_of(s).size() <= max_message_size);
 }

@@ -12,7 +12,9 @@
 //     bool configured();  std::uint32_t control_rate_hz();   // 0 until a MachineConfiguration
 //     bool moving();      // on_tick() produces setpoints
 //     const Controller& controller();   // the MotionController, for reports and tests
-//     const AppStatistics& statistics(); // dropped frames and setpoints
+//     const AppStatistics& statistics(); // dropped frames, stalled ticks, setpoint retransmissions
+//     bool ready_to_tick();  // on_tick() would advance (false: the setpoint stream is backed up)
+//     bool job_end_known();  // the job's last segment (flag end of job) has arrived
 //     std::uint8_t last_error();  const protocol::WirePoint& position();  // as in StatusReport
 //     std::uint16_t free_segments();     // the credit offered to the host, in whole segments
 //   };
@@ -64,8 +66,20 @@
 //     a new session leaves Fault.
 //
 // Setpoints are also streamed to the host (settings.stream_setpoints) as SetpointBatch messages
-// of up to 24 setpoints; a setpoint that finds the 48-entry buffer full is dropped and counted
-// (the next batch's first_index shows the gap). Setpoints while held or starved are not sent.
+// of up to 24 setpoints, in the controller's own reliable stream (protocol version 2): the App's
+// LinkSender<Window> numbers them, keeps them until the host acknowledges them and resends them
+// on a timeout or a Nak (the same go-back-N code the host uses for its commands). Nothing is
+// ever dropped: when the 48-entry setpoint buffer is full (the window of unacknowledged batches
+// is full and two more batches wait), on_tick() does not advance the controller at all; it
+// counts a stalled tick and returns. The host board's fast mode simply waits (ready_to_tick());
+// in real time a stall longer than settings.stall_timeout_ms is a Fault with LinkTimeout (the
+// host stopped acknowledging setpoints), because a machine cannot keep a paused interpolator
+// waiting for ever. On a noisy line the batches shrink (halved on every go-back, down to 4
+// setpoints, grown by one per clean batch), because a short frame is much more likely to arrive
+// whole: at 2 % damaged bytes a 160-byte frame arrives 4 % of the time, a 40-byte one 45 %.
+// Setpoints while held or starved are not sent.
+// The window is a board parameter: `static constexpr std::size_t setpoint_window` in the board
+// (default 4 frames, about 0.7 KiB; the host board uses 8).
 //
 // Time budget of on_tick(): one MotionController::next_setpoint (a profile evaluation, a table
 // search, one de Casteljau evaluation in double) plus StepGenerator::advance (see its header:
@@ -93,6 +107,7 @@
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
 #include <curvestep/protocol/link_receiver.hpp>
+#include <curvestep/protocol/link_sender.hpp>
 #include <curvestep/protocol/messages.hpp>
 
 namespace curvestep::firmware {
@@ -102,13 +117,32 @@ struct AppSettings {
   std::uint32_t link_timeout_ms = 1000;  ///< no valid frame for this long while connected: feed hold (0: never)
   std::uint32_t ack_interval_ms = 250;   ///< heartbeat Ack period while connected (0: none)
   bool stream_setpoints = true;          ///< send SetpointBatch messages while moving
+  std::uint32_t stall_timeout_ms = 1000; ///< setpoint stream backed up this long while moving: Fault (0: wait for ever)
+  std::uint32_t retransmit_timeout_ms = 100;  ///< resend unacknowledged setpoint batches after this silence
 };
 
-/// Counters of things the App had to drop instead of blocking.
+/// Counters of the App's link work (nothing is dropped that matters: see each field).
 struct AppStatistics {
-  std::uint32_t dropped_frames = 0;     ///< outgoing frames that found the transmit buffer full
-  std::uint32_t dropped_setpoints = 0;  ///< setpoints that found the setpoint buffer full
+  std::uint32_t dropped_frames = 0;     ///< unsequenced frames (Acks, reports) that found the transmit buffer full
+  std::uint32_t dropped_setpoints = 0;  ///< always 0 since protocol version 2 (kept for the API)
+  std::uint32_t stalled_ticks = 0;      ///< ticks that did not advance because the setpoint stream was backed up
+  std::uint32_t setpoint_go_backs = 0;  ///< retransmission rounds of the setpoint stream
+  std::uint16_t max_queue_depth = 0;    ///< deepest the segment queue has been this session
 };
+
+/// Frames of the board's setpoint window: B::setpoint_window if the board says, else 4.
+template <class B>
+[[nodiscard]] constexpr std::size_t board_setpoint_window() noexcept {
+  if constexpr (requires { B::setpoint_window; }) {
+    return static_cast<std::size_t>(B::setpoint_window);
+  } else {
+    return 4;
+  }
+}
+/// Smallest setpoint batch the App shrinks to on a noisy line.
+inline constexpr std::size_t min_setpoints_per_batch = 4;
+/// Transmit-buffer bytes kept free of setpoint frames, for Acks and reports.
+inline constexpr std::size_t transmit_reserve_bytes = 64;
 
 /// Bytes of the transmit buffer (three largest frames).
 inline constexpr std::size_t transmit_buffer_bytes = 3 * protocol::max_encoded_frame_size;
@@ -127,9 +161,17 @@ class App {
   /// The motion controller type.
   using Controller = MotionController<S, Queue, Lookahead>;
 
+  /// Frames of setpoint batches that may be unacknowledged at once.
+  static constexpr std::size_t setpoint_window = board_setpoint_window<B>();
+  /// The sender of the setpoint stream.
+  using SetpointSender = protocol::LinkSender<setpoint_window>;
+
   /// An App driving `board` (which must outlive it), idle and unconfigured.
   explicit App(B& board, AppSettings settings = {}) noexcept
-      : board_(board), settings_(settings), receiver_(make_capabilities(), make_receiver_settings(settings)) {}
+      : board_(board),
+        settings_(settings),
+        receiver_(make_capabilities(), make_receiver_settings(settings)),
+        sender_(protocol::SenderSettings{settings.retransmit_timeout_ms, 255, 0}, protocol::Endpoint::Controller) {}
 
   /// Main-loop work: reads serial bytes, runs the link and the commands, reports, writes bytes.
   void poll() noexcept {
@@ -139,13 +181,23 @@ class App {
     service_tick_events();
     apply_start_rule();
     watch_link(now);
+    watch_stall(now);
     send_setpoints();
+    transmit_setpoints(now);
     flush();
   }
 
   /// One control period: the next setpoint, its step edges to the board, the setpoint to the stream.
+  /// If the setpoint stream is backed up, nothing advances (a stalled tick, see the header).
   void on_tick() noexcept {
     if (!moving_) return;
+    if (!ready_to_tick()) {
+      if (!stalled_) stalled_since_ms_ = board_.now_ms();
+      stalled_ = true;
+      ++statistics_.stalled_ticks;
+      return;
+    }
+    stalled_ = false;
     const ControllerState before = controller_.state();
     auto next = controller_.next_setpoint();
     if (!next) {
@@ -175,7 +227,7 @@ class App {
     setpoint_index_ = static_cast<std::uint32_t>(job_tick);
     const bool in_motion = before == ControllerState::Running || before == ControllerState::Holding;
     if (settings_.stream_setpoints && in_motion) {
-      if (!setpoints_.try_push(IndexedSetpoint{setpoint_index_, wire})) ++statistics_.dropped_setpoints;
+      [[maybe_unused]] const bool pushed = setpoints_.try_push(IndexedSetpoint{setpoint_index_, wire});  // room checked above
     }
     const ControllerState after = controller_.state();
     if (after == ControllerState::Finished) {
@@ -204,6 +256,12 @@ class App {
   [[nodiscard]] std::uint8_t last_error() const noexcept { return last_error_; }
   /// The commanded position (Q16.16 raw) of the last setpoint.
   [[nodiscard]] const protocol::WirePoint& position() const noexcept { return position_; }
+  /// True if on_tick() may advance: no setpoint stream, or room for one more setpoint in it.
+  [[nodiscard]] bool ready_to_tick() const noexcept { return !settings_.stream_setpoints || !setpoints_.full(); }
+  /// True once the job's last segment (flag end of job) has been queued.
+  [[nodiscard]] bool job_end_known() const noexcept { return job_end_known_; }
+  /// The setpoint stream's sender (window, go-backs), for diagnostics and tests.
+  [[nodiscard]] const SetpointSender& setpoint_sender() const noexcept { return sender_; }
   /// Whole wire segments the queue can take now (the credit offered to the host).
   [[nodiscard]] std::uint16_t free_segments() const noexcept {
     if (!configured_ || state_ == protocol::MachineState::Fault) return 0;
@@ -247,7 +305,7 @@ class App {
       for (std::size_t i = 0; i < count && i < chunk.size(); ++i) {
         const auto pushed = decoder_.push(chunk[i]);
         if (!pushed) {
-          send_reply(receiver_.on_bad_frame(pushed.error()));
+          send_reply(receiver_.on_bad_frame(pushed.error(), now));
         } else if (pushed.value()) {
           on_frame(decoder_.frame(), now);
         }
@@ -264,10 +322,26 @@ class App {
       last_error_ = 0;
       has_last_end_ = false;
       positioned_ = false;
+      setpoints_.clear();
+      sender_.open(now);
+      batch_limit_ = protocol::max_setpoints_per_batch;
+      seen_go_backs_ = 0;
+      statistics_.max_queue_depth = 0;
+    } else if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::Ack) ||
+               frame.type == static_cast<std::uint8_t>(protocol::MessageType::Nak)) {
+      on_stream_reply(frame, now);
     } else if (r.disposition == protocol::Disposition::Deliver) {
       sequence_ = frame.sequence;
       dispatch(frame);
     }
+  }
+
+  /// The host's Ack or Nak of the setpoint stream.
+  void on_stream_reply(const protocol::Frame& frame, std::uint32_t now) noexcept {
+    if (!receiver_.connected()) return;
+    const auto m = protocol::decode_message(frame);
+    if (!m) return;
+    if (auto handled = sender_.on_message(m.value(), now); !handled) raise_fault(handled.failure());
   }
 
   void dispatch(const protocol::Frame& frame) noexcept {
@@ -348,6 +422,8 @@ class App {
     CURVESTEP_TRY(const PathSegment segment, to_path_segment(s));
     CURVESTEP_CHECK(check_travel(segment, travel_));
     CURVESTEP_CHECK(controller_.try_push(segment, job_segments_));
+    const auto depth = static_cast<std::uint16_t>(controller_.queued());
+    if (depth > statistics_.max_queue_depth) statistics_.max_queue_depth = depth;
     last_end_ = segment_end(s);
     has_last_end_ = true;
     ++job_segments_;
@@ -496,6 +572,14 @@ class App {
     }
   }
 
+  /// A setpoint stream backed up for longer than stall_timeout_ms while moving is a fault.
+  void watch_stall(std::uint32_t now) noexcept {
+    if (!stalled_ || !moving_ || settings_.stall_timeout_ms == 0) return;
+    if (now - stalled_since_ms_ < settings_.stall_timeout_ms) return;
+    stalled_ = false;
+    raise_fault(fail(Error::LinkTimeout, now - stalled_since_ms_));
+  }
+
   void watch_link(std::uint32_t now) noexcept {
     send_reply(receiver_.poll(free_segments(), now));
     if (link_hold_latched_ || receiver_.check_link(now)) return;
@@ -547,27 +631,54 @@ class App {
     s.error = last_error_;
     s.axis_count = axis_count_;
     s.queue_depth = static_cast<std::uint16_t>(controller_.queued());
+    s.max_queue_depth = statistics_.max_queue_depth;
     s.setpoint_index = setpoint_index_;
     s.position = position_;
     send_message(s);
   }
 
+  /// Moves buffered setpoints into the setpoint stream's window as batches (never drops any).
   void send_setpoints() noexcept {
+    adapt_batch_size();
     const bool stopped = !moving_ || controller_.state() == ControllerState::Held ||
                          controller_.state() == ControllerState::Starved;
-    while (!setpoints_.empty() && transmit_.available() >= protocol::max_encoded_frame_size) {
-      if (setpoints_.size() < protocol::max_setpoints_per_batch && !stopped) return;
+    while (!setpoints_.empty() && sender_.can_submit(protocol::MessageType::SetpointBatch)) {
+      if (setpoints_.size() < batch_limit_ && !stopped) return;
       protocol::SetpointBatch batch;
       batch.axis_count = axis_count_;
       batch.first_index = setpoints_.front().index;
       std::size_t count = 0;
-      while (!setpoints_.empty() && count < protocol::max_setpoints_per_batch &&
-             setpoints_.front().index == batch.first_index + count) {
-        batch.setpoints[count++] = setpoints_.front().position;
-        setpoints_.pop_front();
+      while (count < setpoints_.size() && count < batch_limit_ &&
+             setpoints_[count].index == batch.first_index + count) {
+        batch.setpoints[count] = setpoints_[count].position;
+        ++count;
       }
+      // Fast axes take up to 5 varint bytes per delta: keep the batch within one payload.
+      while (count > 1 && protocol::encoded_size(batch, count) > protocol::max_message_size) --count;
       batch.count = static_cast<std::uint8_t>(count);
-      send_message(batch);
+      if (!sender_.submit(protocol::Message(batch))) return;  // cannot happen: checked can_submit and size
+      for (std::size_t i = 0; i < count; ++i) setpoints_.pop_front();
+      if (batch_limit_ < protocol::max_setpoints_per_batch && sender_.go_backs() == seen_go_backs_) ++batch_limit_;
+    }
+  }
+
+  /// Halves the batch size after each retransmission round (short frames survive a noisy line).
+  void adapt_batch_size() noexcept {
+    if (sender_.go_backs() == seen_go_backs_) return;
+    statistics_.setpoint_go_backs += sender_.go_backs() - seen_go_backs_;
+    seen_go_backs_ = sender_.go_backs();
+    batch_limit_ = batch_limit_ / 2 < min_setpoints_per_batch ? min_setpoints_per_batch : batch_limit_ / 2;
+  }
+
+  /// Hands due setpoint frames (new or resent) to the transmit buffer, keeping room for replies.
+  void transmit_setpoints(std::uint32_t now) noexcept {
+    if (sender_.state() != protocol::LinkState::Connected) return;
+    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
+    while (transmit_.available() >= protocol::max_encoded_frame_size + transmit_reserve_bytes) {
+      const auto size = sender_.poll(now, frame);
+      if (!size) return raise_fault(size.failure());
+      if (size.value() == 0) return;
+      queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
     }
   }
 
@@ -589,6 +700,7 @@ class App {
   AppSettings settings_;
   protocol::FrameDecoder<> decoder_{};
   protocol::LinkReceiver receiver_;
+  SetpointSender sender_;
   Controller controller_{};
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
@@ -602,6 +714,9 @@ class App {
   std::uint32_t control_rate_hz_ = 0;
   std::uint32_t setpoint_index_ = 0;
   std::uint32_t job_segments_ = 0;
+  std::uint32_t stalled_since_ms_ = 0;
+  std::uint32_t seen_go_backs_ = 0;
+  std::size_t batch_limit_ = protocol::max_setpoints_per_batch;
   protocol::MachineState state_ = protocol::MachineState::Idle;
   std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
   std::uint8_t last_error_ = 0;
@@ -619,6 +734,7 @@ class App {
   bool fault_pending_ = false;
   bool has_last_end_ = false;
   bool link_hold_latched_ = false;
+  bool stalled_ = false;
 };
 
 }  // namespace curvestep::firmware

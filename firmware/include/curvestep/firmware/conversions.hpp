@@ -2,7 +2,7 @@
 // Wire messages to planner inputs: MachineConfiguration -> MachineLimits, QueueSegment -> PathSegment.
 //
 // Both conversions are exact: a Q16.16 raw value r becomes the double r / 65536, which a double
-// holds exactly, and whole-number accelerations and jerks become doubles exactly. A host that
+// holds exactly, and the configuration's binary64 limits are the host's doubles bit for bit. A host that
 // wants to predict the firmware bit for bit (curvestep sim, curvestep stream --compare) calls
 // these same functions on the messages it sends, so both ends plan from identical numbers.
 #pragma once
@@ -39,17 +39,20 @@ inline constexpr double arc_radius_tolerance_mm = 0.002;
 [[nodiscard]] constexpr Result<MachineLimits> to_machine_limits(const protocol::MachineConfiguration& c) noexcept {
   if (c.axis_count != 2 && c.axis_count != 3) return fail(Error::InvalidArgument, 0);
   MachineLimits m;
-  m.v_max_mm_per_s = wire_to_mm(c.max_velocity_mm_per_s);
-  m.a_max_mm_per_s2 = static_cast<double>(c.max_acceleration_mm_per_s2);
-  m.j_max_mm_per_s3 = static_cast<double>(c.max_jerk_mm_per_s3);
+  m.v_max_mm_per_s = c.max_velocity_mm_per_s;
+  m.a_max_mm_per_s2 = c.max_acceleration_mm_per_s2;
+  m.j_max_mm_per_s3 = c.max_jerk_mm_per_s3;
   m.feed_mm_per_s = wire_to_mm(c.default_feed_mm_per_s);
-  m.tolerance_mm = wire_to_mm(c.tolerance_mm);
-  m.junction_deviation_mm = wire_to_mm(c.junction_deviation_mm);
+  m.rapid_mm_per_s = wire_to_mm(c.rapid_mm_per_s);
+  m.tolerance_mm = c.tolerance_mm;
+  m.junction_deviation_mm = c.junction_deviation_mm;
+  m.max_step_rate_hz = c.max_step_rate_hz;
+  m.jerk_limited = c.profile == protocol::ProfileKind::SCurve;
   m.rate_hz = static_cast<double>(c.control_rate_hz);
   for (std::size_t a = 0; a < c.axis_count; ++a) {
-    m.axes[a].steps_per_mm = wire_to_mm(c.axes[a].steps_per_mm);
-    m.axes[a].v_max_mm_per_s = wire_to_mm(c.axes[a].max_velocity_mm_per_s);
-    m.axes[a].a_max_mm_per_s2 = static_cast<double>(c.axes[a].max_acceleration_mm_per_s2);
+    m.axes[a].steps_per_mm = c.axes[a].steps_per_mm;
+    m.axes[a].v_max_mm_per_s = c.axes[a].max_velocity_mm_per_s;
+    m.axes[a].a_max_mm_per_s2 = c.axes[a].max_acceleration_mm_per_s2;
   }
   CURVESTEP_CHECK(m.validate());
   return m;
@@ -78,7 +81,7 @@ inline constexpr double arc_radius_tolerance_mm = 0.002;
   switch (s.kind) {
     case protocol::SegmentKind::Line: made = PathSegment::make_line(points[0], points[1]); break;
     case protocol::SegmentKind::Arc:
-      made = PathSegment::make_arc(points[0], points[1], wire_to_point(s.points[2], 2), s.direction, 0,
+      made = PathSegment::make_arc(points[0], points[1], wire_to_point(s.points[2], 2), s.direction, s.turns,
                                    arc_radius_tolerance_mm);
       break;
     case protocol::SegmentKind::Bezier:
@@ -115,11 +118,14 @@ struct TravelRange {
 using TravelLimits = std::array<TravelRange, motion_axes>;
 
 /// The travel ranges of a MachineConfiguration; InvalidArgument (index = byte offset of the axis'
-/// min_position_mm field) if min > max.
+/// min_position_mm field: 62 + 32 k + 24) if min > max.
 [[nodiscard]] constexpr Result<TravelLimits> to_travel_limits(const protocol::MachineConfiguration& c) noexcept {
   TravelLimits travel{};
   for (std::size_t a = 0; a < c.axis_count && a < motion_axes; ++a) {
-    if (c.axes[a].min_position_mm > c.axes[a].max_position_mm) return fail(Error::InvalidArgument, 33 + 20 * a);
+    if (c.axes[a].min_position_mm > c.axes[a].max_position_mm) {
+      return fail(Error::InvalidArgument,
+                  protocol::configuration_header_size + protocol::configuration_axis_size * a + 24);
+    }
     travel[a] = TravelRange{wire_to_mm(c.axes[a].min_position_mm), wire_to_mm(c.axes[a].max_position_mm)};
   }
   return travel;

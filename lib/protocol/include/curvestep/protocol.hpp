@@ -5,6 +5,7 @@
 #include <curvestep/protocol/byte_io.hpp>
 #include <curvestep/protocol/cobs.hpp>
 #include <curvestep/protocol/crc16.hpp>
+#include <curvestep/protocol/crc32.hpp>
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
 #include <curvestep/protocol/limits.hpp>

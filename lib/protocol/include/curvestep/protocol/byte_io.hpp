@@ -7,6 +7,7 @@
 // instead of checking every field.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -64,6 +65,13 @@ class ByteWriter {
   }
   /// Appends a little-endian two's-complement 32-bit value (a Q16.16 raw value, for instance).
   constexpr void i32(std::int32_t value) noexcept { u32(static_cast<std::uint32_t>(value)); }
+  /// Appends a little-endian 64-bit value.
+  constexpr void u64(std::uint64_t value) noexcept {
+    u32(static_cast<std::uint32_t>(value & 0xFFFFFFFFu));
+    u32(static_cast<std::uint32_t>(value >> 32));
+  }
+  /// Appends an IEEE 754 binary64 value as its 64-bit pattern, little-endian (exact, NaN included).
+  constexpr void f64(double value) noexcept { u64(std::bit_cast<std::uint64_t>(value)); }
   /// Appends an unsigned LEB128 varint: 7 bits per byte, low group first, 0x80 = more follows.
   constexpr void varint(std::uint64_t value) noexcept {
     while (value >= 0x80u) {
@@ -116,6 +124,14 @@ class ByteReader {
   }
   /// Reads a little-endian two's-complement 32-bit value.
   constexpr std::int32_t i32() noexcept { return static_cast<std::int32_t>(u32()); }
+  /// Reads a little-endian 64-bit value.
+  constexpr std::uint64_t u64() noexcept {
+    const std::uint64_t low = u32();
+    const std::uint64_t high = u32();
+    return low | (high << 32);
+  }
+  /// Reads an IEEE 754 binary64 value (the caller checks finiteness where it matters).
+  constexpr double f64() noexcept { return std::bit_cast<double>(u64()); }
   /// Reads an unsigned LEB128 varint of at most `max_bytes` bytes (BadPayload if longer).
   constexpr std::uint64_t varint(std::size_t max_bytes = 10) noexcept {
     std::uint64_t value = 0;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Frames: [type][sequence][payload][CRC-16 LE], COBS-encoded and ended by one 0x00 byte.
+// Frames: [type][sequence][message][CRC-32C LE][CRC-16 LE], COBS-encoded, ended by one 0x00 byte.
+// The payload is the message followed by its CRC-32C.
 //
 // Why this layout. A serial line loses, corrupts and (through USB adapters and restarts)
 // truncates bytes; the frame must survive all three without help from the payload:
@@ -7,12 +8,16 @@
 //     because 0x00 never occurs inside an encoded frame;
 //   * the CRC-16/CCITT-FALSE covers type, sequence and payload, so a corrupted header is
 //     caught exactly like corrupted data (every 1-3 bit error is detected, see crc16.hpp);
+//   * every payload ends with a CRC-32C of type, sequence and message (why: crc32.hpp);
+//     parse_frame checks it after the CRC-16, so a damaged frame that passes the CRC-16 by
+//     chance (once in 65536) is still refused (BadCrc) before the link acknowledges it, and
+//     Frame::payload is the message alone;
 //   * the sequence number in every frame lets the link layer detect loss, duplicates and
 //     reordering (link_sender.hpp, link_receiver.hpp);
 //   * there is no length field: COBS delimits the frame, and a length byte would be one
-//     more thing to corrupt. The payload length is the frame length minus four.
-// Sizes: a frame holds at most max_payload_size (160) payload bytes, 164 bytes before COBS
-// and 166 on the wire, so the whole receive buffer of a small controller is 166 bytes.
+//     more thing to corrupt. The message length is the frame length minus eight.
+// Sizes: a message has at most max_message_size (158) bytes, a payload 162, a frame 166 bytes
+// before COBS and 168 on the wire, so the whole receive buffer of a small controller is 167.
 #pragma once
 
 #include <array>
@@ -23,29 +28,34 @@
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/cobs.hpp>
 #include <curvestep/protocol/crc16.hpp>
+#include <curvestep/protocol/crc32.hpp>
 #include <curvestep/protocol/limits.hpp>
 #include <curvestep/protocol/messages.hpp>
 
 namespace curvestep::protocol {
 
-/// A checked frame: header fields and a view of the payload (valid while the buffer lives).
+/// A checked frame: header fields and a view of the message (valid while the buffer lives).
 struct Frame {
   std::uint8_t type = 0;                  ///< raw message type (may be unknown to this version)
   std::uint8_t sequence = 0;              ///< sender's sequence number
-  std::span<const std::byte> payload{};   ///< payload bytes, 0..max_payload_size
+  std::span<const std::byte> payload{};   ///< the message bytes (its CRC-32C checked and removed), 0..max_message_size
 };
 
-/// Builds the frame for `type`, `sequence` and `payload` into `out`: COBS bytes then 0x00.
-/// FrameTooLong if the payload exceeds max_payload_size; BufferTooSmall if `out` is too short.
+/// Builds the frame for `type`, `sequence` and `message` into `out`: the message's CRC-32C and
+/// the frame's CRC-16 are appended, then COBS bytes and 0x00. FrameTooLong if the message
+/// exceeds max_message_size; BufferTooSmall if `out` is too short.
 [[nodiscard]] constexpr Result<std::size_t> encode_frame(std::uint8_t type, std::uint8_t sequence,
-                                                         std::span<const std::byte> payload,
+                                                         std::span<const std::byte> message,
                                                          std::span<std::byte> out) noexcept {
-  if (payload.size() > max_payload_size) return fail(Error::FrameTooLong, payload.size());
+  if (message.size() > max_message_size) return fail(Error::FrameTooLong, message.size());
   std::array<std::byte, max_frame_size> raw{};
   raw[0] = std::byte{type};
   raw[1] = std::byte{sequence};
-  for (std::size_t i = 0; i < payload.size(); ++i) raw[frame_header_size + i] = payload[i];
-  const std::size_t body = frame_header_size + payload.size();
+  for (std::size_t i = 0; i < message.size(); ++i) raw[frame_header_size + i] = message[i];
+  std::size_t body = frame_header_size + message.size();
+  const std::uint32_t check = crc32c(std::span<const std::byte>(raw.data(), body));
+  for (std::size_t i = 0; i < message_crc_size; ++i) raw[body + i] = std::byte{static_cast<std::uint8_t>(check >> (8 * i))};
+  body += message_crc_size;
   const std::uint16_t crc = crc16(std::span<const std::byte>(raw.data(), body));
   raw[body] = std::byte{static_cast<std::uint8_t>(crc & 0xFFu)};
   raw[body + 1] = std::byte{static_cast<std::uint8_t>(crc >> 8)};
@@ -58,14 +68,15 @@ struct Frame {
 /// Builds the frame carrying message `m` with `sequence` into `out` (see the overload above).
 [[nodiscard]] constexpr Result<std::size_t> encode_frame(const Message& m, std::uint8_t sequence,
                                                          std::span<std::byte> out) noexcept {
-  std::array<std::byte, max_payload_size> payload{};
+  std::array<std::byte, max_message_size> payload{};
   CURVESTEP_TRY(const std::size_t size, encode(m, payload));
   return encode_frame(static_cast<std::uint8_t>(m.type()), sequence, std::span<const std::byte>(payload.data(), size),
                       out);
 }
 
-/// Checks a COBS-decoded frame (without delimiter): FrameTooShort below 4 bytes, FrameTooLong
-/// above max_frame_size (index = length), BadCrc (index = sequence byte as received).
+/// Checks a COBS-decoded frame (without delimiter): FrameTooShort below 8 bytes, FrameTooLong
+/// above max_frame_size (index = length), BadCrc (index = sequence byte as received) if the
+/// frame's CRC-16 or the payload's CRC-32C does not match.
 [[nodiscard]] constexpr Result<Frame> parse_frame(std::span<const std::byte> raw) noexcept {
   if (raw.size() < min_frame_size) return fail(Error::FrameTooShort, raw.size());
   if (raw.size() > max_frame_size) return fail(Error::FrameTooLong, raw.size());
@@ -74,10 +85,14 @@ struct Frame {
   const auto received = static_cast<std::uint16_t>(static_cast<std::uint16_t>(raw[body]) |
                                                    (static_cast<std::uint16_t>(raw[body + 1]) << 8));
   if (expected != received) return fail(Error::BadCrc, static_cast<std::uint8_t>(raw[1]));
+  const std::size_t message_end = body - message_crc_size;
+  std::uint32_t check = 0;
+  for (std::size_t i = 0; i < message_crc_size; ++i) check |= static_cast<std::uint32_t>(raw[message_end + i]) << (8 * i);
+  if (check != crc32c(raw.first(message_end))) return fail(Error::BadCrc, static_cast<std::uint8_t>(raw[1]));
   Frame frame;
   frame.type = static_cast<std::uint8_t>(raw[0]);
   frame.sequence = static_cast<std::uint8_t>(raw[1]);
-  frame.payload = raw.subspan(frame_header_size, body - frame_header_size);
+  frame.payload = raw.subspan(frame_header_size, message_end - frame_header_size);
   return frame;
 }
 

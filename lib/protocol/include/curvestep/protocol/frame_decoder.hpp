@@ -8,7 +8,7 @@
 // restart of the peer or a lost delimiter. A run longer than the buffer is dropped up to
 // the next 0x00 and reported once as FrameTooLong. Empty frames (0x00 0x00) are ignored,
 // so a sender may prefix frames with 0x00 to flush a receiver's partial garbage.
-// Memory: Capacity bytes (default 166, the largest frame on the wire) plus three counters.
+// Memory: Capacity bytes (default 167, the largest frame on the wire without its delimiter) plus three counters.
 #pragma once
 
 #include <array>

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
-// LinkReceiver: the controller's end of the reliable link (handshake, acks, naks, credit).
+// LinkReceiver: the receiving half of a reliable stream (acks, naks, credit; the handshake at
+// the controller), used in both directions: by the controller for the host's commands, and by
+// the host for the controller's SetpointBatch stream.
 //
 // Why it looks like this. The controller is the side with the least memory and the hard
-// real-time job, so its half of the link is the simple one: go-back-N. It keeps no reorder
+// real-time job, so the receiving half is the simple one: go-back-N. It keeps no reorder
 // buffer, only the next sequence number it expects:
 //   * sequence == expected: the frame is delivered to the application, expected advances,
 //     and an Ack(next_expected, credit_end) goes back;
@@ -10,7 +12,14 @@
 //     acknowledged again, because the host evidently missed the first Ack;
 //   * sequence ahead of expected (a gap): discarded, and one Nak(expected) asks the host
 //     to go back; further frames of the same gap are discarded silently so one loss does
-//     not trigger a storm of retransmissions.
+//     not trigger a storm of retransmissions. The Nak is armed again when the sender has
+//     evidently gone back and the gap is still there (an ahead frame no further ahead than
+//     the last one seen: a new round of resends), or after nak_interval_ms;
+//   * a damaged frame (bad CRC, framing, length) is always Nak-ed: it is direct evidence of
+//     a loss, and on a noisy line a Nak repairs it at once where the sender's timer would
+//     wait (and count toward its retransmission limit). The sender goes back on a Nak only
+//     once everything outstanding has been (re)sent, so several Naks for one round of frames
+//     cause one go-back, not a storm.
 // Credit: the host may send a QueueSegment only while it has credit. The controller
 // advertises credit_end = (segments accepted so far) + (free queue slots), modulo 2^16. That
 // edge only ever moves forward (like TCP's right window edge), so a stale or reordered Ack can
@@ -22,6 +31,9 @@
 // Hello of the current session (a retransmission) only repeats the Capabilities answer.
 // Sequenced frames before any handshake get Nak(NotConnected), which tells a host that was
 // connected that the controller restarted.
+// At the host (Endpoint::Host) there is no Hello to receive: open() starts the stream when the
+// host's own handshake succeeded, only SetpointBatch frames are sequenced, and the Acks carry
+// credit_end 0 (the host takes whatever the controller sends; the controller ignores it).
 // The controller also sends an Ack when credit grows and, if configured, every ack_interval_ms
 // as a heartbeat, so a lost credit update cannot deadlock the link.
 // Cost: no buffers; a handful of bytes of state; every call is O(1).
@@ -64,33 +76,62 @@ struct Reception {
 struct ReceiverSettings {
   std::uint32_t ack_interval_ms = 0;    ///< heartbeat Ack period while connected (0: none)
   std::uint32_t link_timeout_ms = 0;    ///< silence after which check_link fails (0: never)
+  std::uint32_t nak_interval_ms = 20;   ///< a further Nak for the same gap after this long (0: one per gap)
 };
 
 /// The controller's end of the link; allocation-free, time passed in as now_ms.
 class LinkReceiver {
  public:
-  /// A receiver that answers Hello with `capabilities` (its version, queue capacity, ...).
-  constexpr explicit LinkReceiver(const Capabilities& capabilities, ReceiverSettings settings = {}) noexcept
-      : capabilities_(capabilities), settings_(settings) {}
+  /// A receiver that answers Hello with `capabilities` (its version, queue capacity, ...);
+  /// `local` is the end it serves (the controller unless told otherwise).
+  constexpr explicit LinkReceiver(const Capabilities& capabilities, ReceiverSettings settings = {},
+                                  Endpoint local = Endpoint::Controller) noexcept
+      : capabilities_(capabilities), settings_(settings), local_(local) {}
+
+  /// Starts a new stream without a Hello (the host's receiver, once its own handshake is done):
+  /// next expected sequence 0, no credit.
+  constexpr void open(std::uint32_t now_ms) noexcept {
+    connected_ = true;
+    expected_ = 0;
+    last_ahead_ = 0;
+    segments_accepted_ = 0;
+    nak_sent_ = false;
+    credit_end_ = 0;
+    advertised_credit_end_ = 0;
+    last_ack_ms_ = now_ms;
+    last_frame_ms_ = now_ms;
+  }
+
+  /// Ends the stream: sequenced frames are ignored (host) or Nak-ed NotConnected (controller).
+  constexpr void close() noexcept { connected_ = false; }
 
   /// Handles one checked frame from the host. `free_queue_slots` is the number of empty queue
   /// slots before this frame is processed.
   [[nodiscard]] constexpr Reception on_frame(const Frame& frame, std::uint16_t free_queue_slots,
                                              std::uint32_t now_ms) noexcept {
     last_frame_ms_ = now_ms;
-    if (frame.type == static_cast<std::uint8_t>(MessageType::Hello)) return on_hello(frame, free_queue_slots, now_ms);
+    const bool controller = local_ == Endpoint::Controller;
+    if (controller && frame.type == static_cast<std::uint8_t>(MessageType::Hello)) {
+      return on_hello(frame, free_queue_slots, now_ms);
+    }
     const auto type = static_cast<MessageType>(frame.type);
-    // Controller-to-host types coming from the host are ignored. Unknown types take a sequence
-    // number like any command and are delivered, so the application reports UnknownMessage.
-    if (is_known(frame.type) && !is_sequenced(type)) return {};
-    if (!connected_) return nak(Error::NotConnected, true);
+    // Frames outside the sequenced stream toward this end (Ack, Nak, reports, ...) are the
+    // application's. At the controller, unknown types take a sequence number like any command
+    // and are delivered, so the application reports UnknownMessage.
+    if (!is_sequenced_toward(local_, frame.type)) return {};
+    if (!connected_) return controller ? nak(Error::NotConnected, true, now_ms) : Reception{};
     const auto distance = static_cast<std::uint8_t>(frame.sequence - expected_);
     if (distance >= 128) {  // behind: a duplicate of something already delivered
       return acknowledge(free_queue_slots, now_ms);
     }
-    if (distance != 0) return nak(Error::SequenceError, false);  // ahead: a gap
+    if (distance != 0) {  // ahead: a gap
+      if (nak_sent_ && distance <= last_ahead_) nak_sent_ = false;  // the sender went back: still a gap
+      last_ahead_ = distance;
+      return nak(Error::SequenceError, false, now_ms);
+    }
+    last_ahead_ = 0;
     grow_credit(free_queue_slots);
-    if (consumes_credit(type) && segments_accepted_ == credit_end_) return nak(Error::QueueFull, true);
+    if (consumes_credit(type) && segments_accepted_ == credit_end_) return nak(Error::QueueFull, true, now_ms);
     ++expected_;
     nak_sent_ = false;
     if (consumes_credit(type)) ++segments_accepted_;
@@ -101,9 +142,15 @@ class LinkReceiver {
 
   /// Handles a frame the decoder dropped (BadCrc, BadFraming, ...): one Nak per gap, so the host
   /// retransmits at once instead of waiting for its timeout.
-  [[nodiscard]] constexpr Reception on_bad_frame(Error reason) noexcept {
+  [[nodiscard]] constexpr Reception on_bad_frame(Error reason) noexcept { return on_bad_frame(reason, last_frame_ms_); }
+
+  /// As above, at time `now_ms`.
+  [[nodiscard]] constexpr Reception on_bad_frame(Error reason, std::uint32_t now_ms) noexcept {
     if (!connected_) return {};
-    return nak(reason, false);
+    Reception r = nak(reason, true, now_ms);
+    nak_sent_ = true;  // the gap this damage opened is Nak-ed
+    last_nak_ms_ = now_ms;
+    return r;
   }
 
   /// Periodic step: an Ack if credit grew since the last one or the heartbeat is due.
@@ -165,6 +212,7 @@ class LinkReceiver {
     if (connected_ && hello.value().session == capabilities_.session) return r;  // a retransmitted Hello
     connected_ = true;
     expected_ = 0;
+    last_ahead_ = 0;
     segments_accepted_ = 0;
     nak_sent_ = false;
     credit_end_ = free_queue_slots;
@@ -195,10 +243,14 @@ class LinkReceiver {
     return r;
   }
 
-  [[nodiscard]] constexpr Reception nak(Error reason, bool always) noexcept {
+  [[nodiscard]] constexpr Reception nak(Error reason, bool always, std::uint32_t now_ms) noexcept {
     Reception r;
-    if (!always && nak_sent_) return r;
-    if (!always) nak_sent_ = true;
+    const bool rearmed = settings_.nak_interval_ms != 0 && now_ms - last_nak_ms_ >= settings_.nak_interval_ms;
+    if (!always && nak_sent_ && !rearmed) return r;
+    if (!always) {
+      nak_sent_ = true;
+      last_nak_ms_ = now_ms;
+    }
     r.reply = ReplyKind::Nak;
     r.nak = Nak{expected_, reason};
     return r;
@@ -208,11 +260,14 @@ class LinkReceiver {
   ReceiverSettings settings_;
   std::uint32_t last_frame_ms_ = 0;
   std::uint32_t last_ack_ms_ = 0;
+  std::uint32_t last_nak_ms_ = 0;
   std::uint16_t credit_end_ = 0;
   std::uint16_t advertised_credit_end_ = 0;
   std::uint16_t segments_accepted_ = 0;
   std::uint8_t expected_ = 0;
+  std::uint8_t last_ahead_ = 0;  // distance ahead of the last out-of-order frame (0: none since the last delivery)
   std::uint8_t outgoing_sequence_ = 0;
+  Endpoint local_ = Endpoint::Controller;
   bool connected_ = false;
   bool nak_sent_ = false;
 };

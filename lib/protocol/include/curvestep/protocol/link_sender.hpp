@@ -1,14 +1,21 @@
 // SPDX-License-Identifier: MIT
-// LinkSender: the host's end of the reliable link (handshake, window, credit, retransmission).
+// LinkSender: the sending half of a reliable stream (window, credit, retransmission), used in
+// both directions: by the host for its commands (with the handshake), and by the controller for
+// its SetpointBatch stream (opened by the handshake the controller received).
 //
-// Why it looks like this. The controller's receiver is go-back-N with no reorder buffer
-// (link_receiver.hpp), so the host keeps every unacknowledged frame, already encoded, in a
-// ring of `Window` slots and resends them in order when:
-//   * the retransmission timer expires (one timer for the oldest unacknowledged frame,
-//     restarted whenever an Ack makes progress, as in TCP), or
-//   * a Nak names the oldest unacknowledged sequence number.
-// Each go-back counts against the oldest frame; after max_retransmits the link fails with
-// RetransmitLimit (index = that frame's sequence number) instead of retrying forever.
+// Why it looks like this. The receiver is go-back-N with no reorder buffer (link_receiver.hpp),
+// so the sender keeps every unacknowledged frame, already encoded, in a ring of `Window` slots
+// and resends them in order when:
+//   * the retransmission timer expires (one timer for the oldest unacknowledged frame, started
+//     when it is first sent and restarted whenever an Ack makes progress, as in TCP), or
+//   * a Nak names the oldest unacknowledged sequence number (an immediate go-back).
+// Only timeouts count toward max_retransmits, and only timeouts in a row without progress:
+// a Nak-triggered go-back is the normal repair of a damaged frame on a noisy line, and any
+// acknowledgement that moves the window clears the count. After max_retransmits timeouts
+// without progress the link fails, after about (max_retransmits + 1) x retransmit_timeout_ms
+// of no progress: with LinkTimeout if nothing at all was heard from the peer in that time (it
+// is gone), else with RetransmitLimit (index = the oldest sequence number: the peer talks but
+// never takes the frame).
 // Sequence numbers are 8 bits; Window is at most 127, so "behind" and "ahead" can never be
 // confused by the receiver.
 // Flow control has two limits, both enforced by can_submit()/submit():
@@ -16,8 +23,10 @@
 //   * the credit: a QueueSegment may be submitted only while segments_sent is before the
 //     controller's credit_end (mod 2^16, taken from Capabilities and every Ack), so the host
 //     never overruns the controller's queue whatever its size. Credit only moves forward.
-// Handshake: connect() sends Hello(version, session) every retransmit_timeout_ms until a
-// Capabilities with the same session arrives (LinkTimeout after max_retransmits tries). A
+// Handshake (host): connect() sends Hello(version, session) every retransmit_timeout_ms until a
+// Capabilities with the same session arrives (LinkTimeout after max_retransmits tries). The
+// controller's sender has no handshake of its own: open() starts its stream when the
+// controller's LinkReceiver accepted a new session. A
 // Capabilities with another version, or Nak(VersionMismatch), refuses the connection with
 // VersionMismatch. Once connected, Nak(NotConnected) means the controller restarted:
 // DeviceRestarted. With link_timeout_ms set, a connected host that hears nothing (the
@@ -45,37 +54,38 @@ enum class LinkState : std::uint8_t {
   Failed,        ///< gave up (see last_error()); connect() starts again
 };
 
-/// Timing of the host's link end.
+/// Timing of a sending link end.
 struct SenderSettings {
   std::uint32_t retransmit_timeout_ms = 100;  ///< resend unacknowledged frames after this silence
-  std::uint8_t max_retransmits = 10;          ///< go-backs of one frame (or Hellos) before failing
+  std::uint8_t max_retransmits = 10;          ///< timeouts in a row without progress (or Hellos) before failing
   std::uint32_t link_timeout_ms = 0;          ///< connected and nothing heard for this long: LinkTimeout (0: never)
 };
 
-/// The host's end of the link; `Window` frames may be unacknowledged at once.
+/// A sending link end; `Window` frames may be unacknowledged at once.
 template <std::size_t Window = 8>
 class LinkSender {
   static_assert(Window > 0 && Window <= 127, "Window must be 1..127 so 8-bit sequence numbers stay unambiguous");
 
  public:
-  /// A disconnected sender.
-  constexpr explicit LinkSender(SenderSettings settings = {}) noexcept : settings_(settings) {}
+  /// A disconnected sender at `local` (the host by default) that sends toward the other end.
+  constexpr explicit LinkSender(SenderSettings settings = {}, Endpoint local = Endpoint::Host) noexcept
+      : settings_(settings), peer_(local == Endpoint::Host ? Endpoint::Controller : Endpoint::Host) {}
 
   /// Starts (or restarts) the handshake with a fresh, preferably random, `session` number.
   constexpr void connect(std::uint16_t session, std::uint32_t now_ms) noexcept {
+    reset(now_ms);
     state_ = LinkState::Connecting;
     session_ = session;
     hello_attempts_ = 0;
     hello_due_ = true;
-    timer_ms_ = now_ms;
-    count_ = 0;
-    sent_ = 0;
-    transmitted_ = 0;
-    oldest_ = 0;
-    first_sequence_ = 0;
-    segments_sent_ = 0;
-    credit_end_ = 0;
-    error_ = Error::NotConnected;
+  }
+
+  /// Starts a new stream without a handshake of its own (the controller's setpoint stream, once
+  /// its receiver accepted a new session): sequence 0, empty window, Connected.
+  constexpr void open(std::uint32_t now_ms) noexcept {
+    reset(now_ms);
+    state_ = LinkState::Connected;
+    heard_ms_ = now_ms;
   }
 
   /// True if `type` could be submitted now (connected, window not full, credit for a segment).
@@ -84,18 +94,20 @@ class LinkSender {
     return !consumes_credit(type) || credit() > 0;
   }
 
-  /// Queues a sequenced host-to-controller message for sending; returns its sequence number.
-  /// NotConnected, QueueFull (window full or no credit), InvalidArgument for a message that is
-  /// not a host command, or the encoder's error.
+  /// Queues a sequenced message toward the peer for sending; returns its sequence number.
+  /// NotConnected, QueueFull (window full or no credit), InvalidArgument for a message that
+  /// does not travel in the sequenced stream toward the peer, or the encoder's error.
   [[nodiscard]] constexpr Result<std::uint8_t> submit(const Message& m) noexcept {
     if (state_ != LinkState::Connected) return fail(Error::NotConnected);
-    if (!is_sequenced(m.type())) return fail(Error::InvalidArgument, static_cast<std::uint8_t>(m.type()));
+    if (!is_known(static_cast<std::uint8_t>(m.type())) ||
+        !is_sequenced_toward(peer_, static_cast<std::uint8_t>(m.type()))) {
+      return fail(Error::InvalidArgument, static_cast<std::uint8_t>(m.type()));
+    }
     if (!can_submit(m.type())) return fail(Error::QueueFull, count_);
     const auto sequence = static_cast<std::uint8_t>(first_sequence_ + count_);
     Slot& slot = slots_[(oldest_ + count_) % Window];
     CURVESTEP_TRY(const std::size_t size, encode_frame(m, sequence, slot.bytes));
     slot.size = static_cast<std::uint16_t>(size);
-    slot.retransmits = 0;
     ++count_;
     if (consumes_credit(m.type())) ++segments_sent_;
     return sequence;
@@ -117,14 +129,20 @@ class LinkSender {
     if (settings_.link_timeout_ms != 0 && now_ms - heard_ms_ >= settings_.link_timeout_ms) {
       return give_up(Error::LinkTimeout, now_ms - heard_ms_);
     }
-    if (sent_ > 0 && now_ms - timer_ms_ >= settings_.retransmit_timeout_ms) {
-      CURVESTEP_CHECK(go_back());
+    if (transmitted_ > 0 && now_ms - timer_ms_ >= settings_.retransmit_timeout_ms) {
+      if (timeouts_ >= settings_.max_retransmits) {
+        const std::uint32_t silence = now_ms - heard_ms_;
+        if (silence >= settings_.retransmit_timeout_ms * timeouts_) return give_up(Error::LinkTimeout, silence);
+        return give_up(Error::RetransmitLimit, first_sequence_);
+      }
+      ++timeouts_;
+      go_back(now_ms);
     }
     if (sent_ >= count_) return std::size_t{0};
     const Slot& slot = slots_[(oldest_ + sent_) % Window];
     if (out.size() < slot.size) return fail(Error::BufferTooSmall, slot.size);
     for (std::size_t i = 0; i < slot.size; ++i) out[i] = slot.bytes[i];
-    if (sent_ == 0) timer_ms_ = now_ms;
+    if (transmitted_ == 0) timer_ms_ = now_ms;  // the oldest frame's first transmission starts the timer
     ++sent_;
     if (sent_ > transmitted_) transmitted_ = sent_;
     return std::size_t{slot.size};
@@ -143,11 +161,15 @@ class LinkSender {
     }
   }
 
+  /// The peer was heard at `now_ms` (any frame of its, also those handled elsewhere).
+  constexpr void heard(std::uint32_t now_ms) noexcept { heard_ms_ = now_ms; }
+
   /// Where the link is.
   [[nodiscard]] constexpr LinkState state() const noexcept { return state_; }
   /// Why the link failed (NotConnected before any failure).
   [[nodiscard]] constexpr Error last_error() const noexcept { return error_; }
-  /// The controller's capabilities (meaningful once Connected).
+  /// The controller's capabilities (meaningful once Connected; after a VersionMismatch refusal
+  /// of its Capabilities, `version` is the controller's version, else 0).
   [[nodiscard]] constexpr const Capabilities& capabilities() const noexcept { return capabilities_; }
   /// Frames submitted and not yet acknowledged.
   [[nodiscard]] constexpr std::size_t in_flight() const noexcept { return count_; }
@@ -164,13 +186,31 @@ class LinkSender {
   [[nodiscard]] constexpr std::uint16_t credit_end() const noexcept { return credit_end_; }
   /// Window capacity in frames.
   [[nodiscard]] static constexpr std::size_t window() noexcept { return Window; }
+  /// Go-backs so far (timeouts and Naks), a measure of line quality; wraps.
+  [[nodiscard]] constexpr std::uint32_t go_backs() const noexcept { return go_backs_; }
+  /// Timeouts in a row without progress (compared with max_retransmits).
+  [[nodiscard]] constexpr std::uint8_t timeouts_without_progress() const noexcept { return timeouts_; }
 
  private:
   struct Slot {
     std::array<std::byte, max_encoded_frame_size> bytes{};
     std::uint16_t size = 0;
-    std::uint8_t retransmits = 0;
   };
+
+  constexpr void reset(std::uint32_t now_ms) noexcept {
+    capabilities_ = Capabilities{};
+    capabilities_.version = 0;  // none heard yet
+    timer_ms_ = now_ms;
+    count_ = 0;
+    sent_ = 0;
+    transmitted_ = 0;
+    oldest_ = 0;
+    first_sequence_ = 0;
+    segments_sent_ = 0;
+    credit_end_ = 0;
+    timeouts_ = 0;
+    error_ = Error::NotConnected;
+  }
 
   [[nodiscard]] constexpr Failure give_up(Error code, std::size_t index) noexcept {
     state_ = LinkState::Failed;
@@ -178,19 +218,17 @@ class LinkSender {
     return fail(code, index);
   }
 
-  /// Resend everything unacknowledged, charging the oldest frame one retransmission.
-  [[nodiscard]] constexpr Result<void> go_back() noexcept {
-    Slot& oldest = slots_[oldest_];
-    if (oldest.retransmits >= settings_.max_retransmits) return give_up(Error::RetransmitLimit, first_sequence_);
-    ++oldest.retransmits;
+  /// Resend everything unacknowledged, from the oldest frame, and restart the timer.
+  constexpr void go_back(std::uint32_t now_ms) noexcept {
     sent_ = 0;
-    return ok();
+    timer_ms_ = now_ms;
+    ++go_backs_;
   }
 
   [[nodiscard]] constexpr Result<void> on_capabilities(const Capabilities& c, std::uint32_t now_ms) noexcept {
     if (state_ != LinkState::Connecting || c.session != session_) return ok();  // stale or repeated answer
+    capabilities_ = c;  // kept even when refused, so the caller can name the controller's version
     if (c.version != protocol_version) return give_up(Error::VersionMismatch, c.version);
-    capabilities_ = c;
     credit_end_ = c.credit_end;
     state_ = LinkState::Connected;
     heard_ms_ = now_ms;
@@ -211,6 +249,7 @@ class LinkSender {
     sent_ = sent_ > acknowledged ? sent_ - acknowledged : 0;
     first_sequence_ = next_expected;
     timer_ms_ = now_ms;
+    timeouts_ = 0;
   }
 
   [[nodiscard]] constexpr Result<void> on_nak(const Nak& nak, std::uint32_t now_ms) noexcept {
@@ -221,10 +260,8 @@ class LinkSender {
     if (state_ != LinkState::Connected) return ok();
     if (nak.reason == Error::NotConnected) return give_up(Error::DeviceRestarted, nak.expected);
     on_ack(nak.expected, 0, false, now_ms);
-    if (nak.expected == first_sequence_ && sent_ > 0) {
-      CURVESTEP_CHECK(go_back());
-      timer_ms_ = now_ms;
-    }
+    // One go-back per round: Naks that arrive while a resend is still going out are covered by it.
+    if (nak.expected == first_sequence_ && sent_ > 0 && sent_ >= count_) go_back(now_ms);
     return ok();
   }
 
@@ -239,9 +276,12 @@ class LinkSender {
   std::size_t transmitted_ = 0;  // of those, how many have been transmitted at least once
   std::uint16_t segments_sent_ = 0;
   std::uint16_t credit_end_ = 0;
+  std::uint32_t go_backs_ = 0;
   std::uint16_t session_ = 0;
   std::uint8_t first_sequence_ = 0;  // sequence number of the oldest unacknowledged frame
   std::uint8_t hello_attempts_ = 0;
+  std::uint8_t timeouts_ = 0;  // timeouts in a row without progress
+  Endpoint peer_ = Endpoint::Controller;
   bool hello_due_ = false;
   LinkState state_ = LinkState::Disconnected;
   Error error_ = Error::NotConnected;

@@ -2,8 +2,10 @@
 // Message structs, their payload encoders and decoders, and the tagged Message that holds any one.
 //
 // Every payload is a fixed sequence of little-endian fields (docs/protocol.md has the byte
-// tables). Coordinates, feeds and lengths travel as Q16.16 raw int32 (value * 65536): exact,
-// and what the firmware computes with, so no conversion happens on the controller. Decoders
+// tables). Coordinates, feeds and weights travel as Q16.16 raw int32 (value * 65536): exact,
+// and what the firmware computes with, so no conversion happens on the controller. The machine
+// configuration, sent once per job, carries its planning limits as IEEE 754 binary64, so the
+// planner on the controller gets exactly the doubles the host planned with. Decoders
 // check structure (lengths, counts, enum values, reserved bits, positive weights) and return
 // BadPayload with the byte offset of the offending field; the firmware validates meaning
 // (limits, rates, continuity) with the planner's own error codes.
@@ -32,8 +34,8 @@ namespace curvestep::protocol {
 enum class MessageType : std::uint8_t {
   Hello = 0x01,                 ///< host -> controller: open a session (version, session number)
   Capabilities = 0x02,          ///< controller -> host: the controller's limits, answer to Hello
-  Ack = 0x03,                   ///< controller -> host: cumulative acknowledgement and credit
-  Nak = 0x04,                   ///< controller -> host: negative acknowledgement (expected sequence, reason)
+  Ack = 0x03,                   ///< either way: cumulative acknowledgement (and, to the host, credit)
+  Nak = 0x04,                   ///< either way: negative acknowledgement (expected sequence, reason)
   MachineConfiguration = 0x10,  ///< host -> controller: limits, feed, tolerance, rate, axes
   QueueSegment = 0x11,          ///< host -> controller: one path segment for the queue
   Start = 0x12,                 ///< host -> controller: start executing the queue
@@ -42,7 +44,7 @@ enum class MessageType : std::uint8_t {
   Abort = 0x15,                 ///< host -> controller: stop at once and flush the queue
   StatusRequest = 0x16,         ///< host -> controller: ask for a status report
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
-  SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints
+  SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints (sequenced, acknowledged)
   ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
 };
 
@@ -51,10 +53,30 @@ enum class MessageType : std::uint8_t {
   return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x16) || (type >= 0x20 && type <= 0x22);
 }
 
-/// True for host-to-controller messages that travel in the reliable, sequenced stream.
-[[nodiscard]] constexpr bool is_sequenced(MessageType type) noexcept {
+/// The two ends of the link.
+enum class Endpoint : std::uint8_t {
+  Host,        ///< the PC or Raspberry Pi running `curvestep`
+  Controller,  ///< the firmware
+};
+
+/// True for host commands (0x10 .. 0x16): the host-to-controller reliable stream.
+[[nodiscard]] constexpr bool is_command(MessageType type) noexcept {
   const auto value = static_cast<std::uint8_t>(type);
   return value >= 0x10 && value <= 0x16;
+}
+
+/// True for messages that travel in a reliable, sequenced stream: host commands one way,
+/// SetpointBatch the other way. Every other frame carries a free-running diagnostic counter in
+/// its sequence byte and is never acknowledged.
+[[nodiscard]] constexpr bool is_sequenced(MessageType type) noexcept {
+  return is_command(type) || type == MessageType::SetpointBatch;
+}
+
+/// True if `type` travels in the sequenced stream toward `receiver`. Unknown types are taken
+/// as commands from a newer host (so the controller answers UnknownMessage in order).
+[[nodiscard]] constexpr bool is_sequenced_toward(Endpoint receiver, std::uint8_t type) noexcept {
+  if (receiver == Endpoint::Host) return type == static_cast<std::uint8_t>(MessageType::SetpointBatch);
+  return !is_known(type) || is_command(static_cast<MessageType>(type));
 }
 
 /// True for messages that take one slot of the controller's queue (and so one credit).
@@ -101,23 +123,33 @@ struct Nak {
 
 /// Limits of one axis.
 struct AxisConfiguration {
-  std::int32_t steps_per_mm = 0;                  ///< Q16.16 steps per millimetre
+  double steps_per_mm = 0;                        ///< steps per millimetre
+  double max_velocity_mm_per_s = 0;               ///< axis speed limit (0: none)
+  double max_acceleration_mm_per_s2 = 0;          ///< axis acceleration limit (0: none)
   std::int32_t min_position_mm = 0;               ///< Q16.16 travel limit, low end
   std::int32_t max_position_mm = 0;               ///< Q16.16 travel limit, high end
-  std::int32_t max_velocity_mm_per_s = 0;         ///< Q16.16 axis speed limit
-  std::uint32_t max_acceleration_mm_per_s2 = 0;   ///< axis acceleration limit, whole mm/s^2
+};
+
+/// Speed profile shape (MachineConfiguration flag bit 0).
+enum class ProfileKind : std::uint8_t {
+  SCurve = 0,     ///< jerk-limited (S-curve) speed profiles
+  Trapezoid = 1,  ///< acceleration-limited (trapezoidal) speed profiles
 };
 
 /// Machine configuration; the firmware validates the values (InvalidLimit, InvalidRate).
+/// Planning limits are binary64 (exact); feeds are Q16.16 like segment feeds.
 struct MachineConfiguration {
   static constexpr MessageType type = MessageType::MachineConfiguration;  ///< message type
   std::uint8_t axis_count = 3;                            ///< 2 or 3
-  std::int32_t max_velocity_mm_per_s = 0;                 ///< Q16.16 path speed limit
-  std::uint32_t max_acceleration_mm_per_s2 = 0;           ///< path acceleration limit, whole mm/s^2
-  std::uint32_t max_jerk_mm_per_s3 = 0;                   ///< path jerk limit, whole mm/s^3
+  ProfileKind profile = ProfileKind::SCurve;              ///< speed profile shape
+  double max_velocity_mm_per_s = 0;                       ///< path speed limit
+  double max_acceleration_mm_per_s2 = 0;                  ///< path acceleration limit
+  double max_jerk_mm_per_s3 = 0;                          ///< path jerk limit
+  double tolerance_mm = 0;                                ///< path (chord) tolerance
+  double junction_deviation_mm = 0;                       ///< junction deviation for corners
+  double max_step_rate_hz = 0;                            ///< fastest step train an axis driver follows
   std::int32_t default_feed_mm_per_s = 0;                 ///< Q16.16 feed for segments without one
-  std::int32_t tolerance_mm = 0;                          ///< Q16.16 path (chord) tolerance
-  std::int32_t junction_deviation_mm = 0;                 ///< Q16.16 junction deviation for corners
+  std::int32_t rapid_mm_per_s = 0;                        ///< Q16.16 speed of rapid moves (0: max velocity)
   std::uint32_t control_rate_hz = 0;                      ///< setpoint rate
   std::array<AxisConfiguration, max_axes> axes{};         ///< per axis, first axis_count used
 };
@@ -140,6 +172,7 @@ struct QueueSegment {
   bool has_feed = false;    ///< feed_mm_per_s is given (else the configured default)
   bool end_of_job = false;  ///< the last segment of the job: the controller may start without a full look-ahead
   ArcDirection direction = ArcDirection::CounterClockwise;  ///< Arc only
+  std::uint32_t turns = 0;  ///< Arc only: extra full turns beyond the sweep from start to end (a helix)
   std::int32_t feed_mm_per_s = 0;                           ///< Q16.16 feed, if has_feed
   std::array<WirePoint, max_segment_degree + 1> points{};  ///< Q16.16 points, point_count() used
   std::array<std::int32_t, max_segment_degree + 1> weights{};  ///< Q16.16 weights > 0, RationalBezier only
@@ -190,6 +223,7 @@ struct StatusReport {
   std::uint8_t error = 0;               ///< last Error code, 0 if none
   std::uint8_t axis_count = 3;          ///< coordinates in `position`
   std::uint16_t queue_depth = 0;        ///< segments waiting in the queue
+  std::uint16_t max_queue_depth = 0;    ///< deepest the queue has been this session (soak diagnostics)
   std::uint32_t setpoint_index = 0;     ///< index of the current setpoint since start
   WirePoint position{};                 ///< Q16.16 commanded position
 };
@@ -276,25 +310,36 @@ constexpr Error read_error(ByteReader& reader) noexcept {
   return w.finish();
 }
 
-/// Encodes a MachineConfiguration payload (29 + 20 per axis bytes); InvalidArgument for 0/1/4+ axes.
+/// MachineConfiguration flag bit 0: trapezoidal profiles (else S-curve).
+inline constexpr std::uint8_t configuration_flag_trapezoid = 0x01;
+/// Payload bytes of a MachineConfiguration before the axes.
+inline constexpr std::size_t configuration_header_size = 62;
+/// Payload bytes of one axis in a MachineConfiguration.
+inline constexpr std::size_t configuration_axis_size = 32;
+
+/// Encodes a MachineConfiguration payload (62 + 32 per axis bytes); InvalidArgument for 0/1/4+ axes.
 [[nodiscard]] constexpr Result<std::size_t> encode(const MachineConfiguration& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 0);
+  if (static_cast<std::uint8_t>(m.profile) > 1) return fail(Error::InvalidArgument, 1);
   ByteWriter w(out);
   w.u8(m.axis_count);
-  w.i32(m.max_velocity_mm_per_s);
-  w.u32(m.max_acceleration_mm_per_s2);
-  w.u32(m.max_jerk_mm_per_s3);
+  w.u8(m.profile == ProfileKind::Trapezoid ? configuration_flag_trapezoid : std::uint8_t{0});
+  w.f64(m.max_velocity_mm_per_s);
+  w.f64(m.max_acceleration_mm_per_s2);
+  w.f64(m.max_jerk_mm_per_s3);
+  w.f64(m.tolerance_mm);
+  w.f64(m.junction_deviation_mm);
+  w.f64(m.max_step_rate_hz);
   w.i32(m.default_feed_mm_per_s);
-  w.i32(m.tolerance_mm);
-  w.i32(m.junction_deviation_mm);
+  w.i32(m.rapid_mm_per_s);
   w.u32(m.control_rate_hz);
   for (std::size_t a = 0; a < m.axis_count; ++a) {
     const AxisConfiguration& axis = m.axes[a];
-    w.i32(axis.steps_per_mm);
+    w.f64(axis.steps_per_mm);
+    w.f64(axis.max_velocity_mm_per_s);
+    w.f64(axis.max_acceleration_mm_per_s2);
     w.i32(axis.min_position_mm);
     w.i32(axis.max_position_mm);
-    w.i32(axis.max_velocity_mm_per_s);
-    w.u32(axis.max_acceleration_mm_per_s2);
   }
   return w.finish();
 }
@@ -304,7 +349,8 @@ inline constexpr std::uint8_t segment_flag_rapid = 0x01;      ///< rapid move
 inline constexpr std::uint8_t segment_flag_feed = 0x02;       ///< a feed field follows
 inline constexpr std::uint8_t segment_flag_three_axes = 0x04; ///< points have X, Y, Z (else X, Y)
 inline constexpr std::uint8_t segment_flag_clockwise = 0x08;  ///< Arc only: clockwise (G2)
-inline constexpr std::uint8_t segment_flag_end_of_job = 0x80; ///< the last segment of the job
+inline constexpr std::uint8_t segment_flag_end_of_job = 0x10; ///< the last segment of the job
+inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u32 count of extra full turns follows
 
 /// Encodes a QueueSegment payload; InvalidArgument (index = field number) for an impossible segment.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueueSegment& m, std::span<std::byte> out) noexcept {
@@ -318,11 +364,14 @@ inline constexpr std::uint8_t segment_flag_end_of_job = 0x80; ///< the last segm
   if (m.axis_count == 3) flags |= segment_flag_three_axes;
   if (m.kind == SegmentKind::Arc && m.direction == ArcDirection::Clockwise) flags |= segment_flag_clockwise;
   if (m.end_of_job) flags |= segment_flag_end_of_job;
+  if (m.turns != 0 && m.kind != SegmentKind::Arc) return fail(Error::InvalidArgument, 3);
+  if (m.turns != 0) flags |= segment_flag_turns;
   ByteWriter w(out);
   w.u8(static_cast<std::uint8_t>(m.kind));
   w.u8(flags);
   if (bezier) w.u8(m.degree);
   if (m.has_feed) w.i32(m.feed_mm_per_s);
+  if (m.turns != 0) w.u32(m.turns);
   if (m.kind == SegmentKind::Arc) {
     detail::write_point(w, m.points[0], m.axis_count);
     detail::write_point(w, m.points[1], m.axis_count);
@@ -347,7 +396,7 @@ template <class Empty>
   return std::size_t{0};
 }
 
-/// Encodes a StatusReport payload (9 + 4 per axis bytes).
+/// Encodes a StatusReport payload (11 + 4 per axis bytes).
 [[nodiscard]] constexpr Result<std::size_t> encode(const StatusReport& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 2);
   ByteWriter w(out);
@@ -355,6 +404,7 @@ template <class Empty>
   w.u8(m.error);
   w.u8(m.axis_count);
   w.u16(m.queue_depth);
+  w.u16(m.max_queue_depth);
   w.u32(m.setpoint_index);
   detail::write_point(w, m.position, m.axis_count);
   return w.finish();
@@ -469,20 +519,25 @@ template <>
   MachineConfiguration m;
   m.axis_count = r.u8();
   if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 0);
-  m.max_velocity_mm_per_s = r.i32();
-  m.max_acceleration_mm_per_s2 = r.u32();
-  m.max_jerk_mm_per_s3 = r.u32();
+  const std::uint8_t flags = r.u8();
+  if ((flags & ~configuration_flag_trapezoid) != 0) r.reject_at(Error::BadPayload, 1);
+  m.profile = (flags & configuration_flag_trapezoid) != 0 ? ProfileKind::Trapezoid : ProfileKind::SCurve;
+  m.max_velocity_mm_per_s = r.f64();
+  m.max_acceleration_mm_per_s2 = r.f64();
+  m.max_jerk_mm_per_s3 = r.f64();
+  m.tolerance_mm = r.f64();
+  m.junction_deviation_mm = r.f64();
+  m.max_step_rate_hz = r.f64();
   m.default_feed_mm_per_s = r.i32();
-  m.tolerance_mm = r.i32();
-  m.junction_deviation_mm = r.i32();
+  m.rapid_mm_per_s = r.i32();
   m.control_rate_hz = r.u32();
   for (std::size_t a = 0; a < m.axis_count && !r.failed(); ++a) {
     AxisConfiguration& axis = m.axes[a];
-    axis.steps_per_mm = r.i32();
+    axis.steps_per_mm = r.f64();
+    axis.max_velocity_mm_per_s = r.f64();
+    axis.max_acceleration_mm_per_s2 = r.f64();
     axis.min_position_mm = r.i32();
     axis.max_position_mm = r.i32();
-    axis.max_velocity_mm_per_s = r.i32();
-    axis.max_acceleration_mm_per_s2 = r.u32();
   }
   CURVESTEP_CHECK(r.finish());
   return m;
@@ -499,7 +554,7 @@ template <>
   const std::uint8_t flags = r.u8();
   const std::uint8_t allowed = static_cast<std::uint8_t>(
       segment_flag_rapid | segment_flag_feed | segment_flag_three_axes | segment_flag_end_of_job |
-      (m.kind == SegmentKind::Arc ? segment_flag_clockwise : 0));
+      (m.kind == SegmentKind::Arc ? segment_flag_clockwise | segment_flag_turns : 0));
   if ((flags & ~allowed) != 0) r.reject_at(Error::BadPayload, 1);
   m.rapid = (flags & segment_flag_rapid) != 0;
   m.has_feed = (flags & segment_flag_feed) != 0;
@@ -515,6 +570,11 @@ template <>
   }
   if (r.failed()) return r.finish().failure();
   if (m.has_feed) m.feed_mm_per_s = r.i32();
+  if ((flags & segment_flag_turns) != 0) {
+    const std::size_t at = r.offset();
+    m.turns = r.u32();
+    if (!r.failed() && m.turns == 0) r.reject_at(Error::BadPayload, at);  // the flag means "some"
+  }
   if (m.kind == SegmentKind::Arc) {
     detail::read_point(r, m.points[0], m.axis_count);
     detail::read_point(r, m.points[1], m.axis_count);
@@ -579,6 +639,7 @@ template <>
   m.axis_count = r.u8();
   if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 2);
   m.queue_depth = r.u16();
+  m.max_queue_depth = r.u16();
   m.setpoint_index = r.u32();
   if (!r.failed()) detail::read_point(r, m.position, m.axis_count);
   CURVESTEP_CHECK(r.finish());

@@ -55,6 +55,8 @@ class HostBoard {
   static constexpr std::uint8_t axis_count = 3;
   /// Edges one control tick may produce (RAM is plentiful here).
   static constexpr std::size_t step_events_per_tick = 4096;
+  /// Setpoint-batch frames that may be unacknowledged at once (firmware::App's window).
+  static constexpr std::size_t setpoint_window = 8;
   /// Step timer and driver timing (typical stepper drivers: 2 us pulses, 1 us set-up and hold).
   [[nodiscard]] static constexpr StepTiming step_timing() noexcept {
     return StepTiming{SystemClock::step_timer_hz, 2000, 2000, 1000, 1000};

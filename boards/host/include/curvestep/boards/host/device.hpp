@@ -8,13 +8,17 @@
 //
 // Fast mode (tests; DeviceOptions::fast, `curvestep device --fast`): ticks run as fast as the
 // link allows instead of on the clock. The link is the flow control:
-//   * no tick while the serial line is backed up (the host is not reading the setpoint stream),
-//     so no setpoint is ever dropped for lack of buffer;
+//   * no tick while the setpoint stream is backed up (App::ready_to_tick: the host has not
+//     acknowledged enough batches) or the serial line is (the host is not reading); the stream's
+//     stall timeout is off, so a slow host only slows the device down, it never loses a setpoint;
 //   * no tick while the queue is shallower than the planner's look-ahead window needs (Lookahead
 //     + 2 entries, so the next segment is planned with a full window), unless the job's last
-//     segment has arrived (seen on the wire: QueueSegment flag end_of_job) or the controller is
-//     braking; held or starved, it waits for the host instead of spinning. A fast device thus never plans a segment with fewer segments ahead than a
-//     real-time device fed in time, and its setpoints equal `curvestep sim`'s.
+//     segment has arrived (App::job_end_known) or the controller is braking; held or starved, it
+//     waits for the host instead of spinning. A fast device thus never plans a segment with
+//     fewer segments ahead than a real-time device fed in time, and its setpoints equal
+//     `curvestep sim`'s.
+// Real time: a tick whose setpoint cannot be streamed does not advance (App::on_tick), and a
+// stream backed up for longer than the link timeout is a Fault (LinkTimeout).
 // Wall-clock time still drives the link (timeouts, heartbeats), so link loss is detected alike.
 //
 // The tick path (App::on_tick and the Output's set_step/set_direction) does not allocate, throw
@@ -43,29 +47,6 @@ struct DeviceOptions {
   firmware::AppSettings app{};     ///< link timeout, heartbeat, setpoint streaming
 };
 
-/// Watches the incoming frames for the end of a job (QueueSegment flag end_of_job) and new sessions.
-class EndOfJobWatch {
- public:
-  /// Feeds received bytes.
-  void feed(std::span<const std::byte> bytes) noexcept {
-    for (const std::byte b : bytes) {
-      const auto pushed = decoder_.push(b);
-      if (!pushed || !pushed.value()) continue;
-      const protocol::Frame& frame = decoder_.frame();
-      if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::Hello)) end_seen_ = false;
-      if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::QueueSegment) && frame.payload.size() >= 2) {
-        end_seen_ = (static_cast<std::uint8_t>(frame.payload[1]) & protocol::segment_flag_end_of_job) != 0;
-      }
-    }
-  }
-  /// True if the last segment frame seen ended the job.
-  [[nodiscard]] bool end_seen() const noexcept { return end_seen_; }
-
- private:
-  protocol::FrameDecoder<> decoder_{};
-  bool end_seen_ = false;
-};
-
 /// Name of a reported state, for the log.
 [[nodiscard]] constexpr const char* state_name(protocol::MachineState state) noexcept {
   switch (state) {
@@ -84,10 +65,12 @@ int run_device(int fd, Output& output, const DeviceOptions& options, const std::
   using Board = HostBoard<Output>;
   using Application = firmware::App<Board>;
   Board board(fd, output);
-  EndOfJobWatch watch;
-  board.set_read_observer([](void* context, std::span<const std::byte> bytes) { static_cast<EndOfJobWatch*>(context)->feed(bytes); },
-                          &watch);
-  auto app = std::make_unique<Application>(board, options.app);  // large: queue, plans, buffers
+  firmware::AppSettings settings = options.app;
+  if (options.fast) settings.stall_timeout_ms = 0;  // a slow host slows a fast device down, nothing else
+  else if (settings.stall_timeout_ms == 0 || settings.stall_timeout_ms > settings.link_timeout_ms) {
+    settings.stall_timeout_ms = settings.link_timeout_ms;  // real time: a stream stalled as long as a lost link is a fault
+  }
+  auto app = std::make_unique<Application>(board, settings);  // large: queue, plans, buffers
   if constexpr (requires { output.set_epoch(TickClock::now(), options.fast); }) output.set_epoch(TickClock::now(), options.fast);
   TickClock clock;
   protocol::MachineState reported = app->state();
@@ -122,6 +105,10 @@ int run_device(int fd, Output& output, const DeviceOptions& options, const std::
         board.clear_backed_up();
         continue;
       }
+      if (!app->ready_to_tick()) {
+        wait_for(POLLIN, 2);  // the host has not acknowledged enough setpoints yet
+        continue;
+      }
       const auto& controller = app->controller();
       if (controller.state() == ControllerState::Held || controller.state() == ControllerState::Starved) {
         wait_for(POLLIN, 2);  // nothing moves until the host resumes or refills: do not spin
@@ -129,7 +116,7 @@ int run_device(int fd, Output& output, const DeviceOptions& options, const std::
       }
       const bool window_full = controller.queued() >= Application::Controller::lookahead + 2;
       const bool braking = controller.state() != ControllerState::Running;
-      if (!window_full && !watch.end_seen() && !braking) {
+      if (!window_full && !app->job_end_known() && !braking) {
         wait_for(POLLIN, 2);
         continue;
       }

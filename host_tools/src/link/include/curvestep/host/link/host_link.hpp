@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
 // HostLink: the host's end of the link over a Transport: lib/protocol's LinkSender (handshake,
-// window, credit, retransmission) plus a FrameDecoder for the controller's frames.
+// window, credit, retransmission) for the host's commands, a LinkReceiver (Endpoint::Host) for
+// the controller's sequenced SetpointBatch stream (each batch delivered once and in order,
+// acknowledged, damaged or missing ones Nak-ed so the controller resends them), and a
+// FrameDecoder for the controller's frames.
 #pragma once
 
 #include <chrono>
@@ -13,6 +16,7 @@
 #include <curvestep/core/error.hpp>
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
+#include <curvestep/protocol/link_receiver.hpp>
 #include <curvestep/protocol/link_sender.hpp>
 #include <curvestep/protocol/messages.hpp>
 
@@ -35,6 +39,8 @@ struct LinkStatistics {
   std::size_t frames_received = 0;   ///< good frames from the controller
   std::size_t frames_rejected = 0;   ///< damaged frames (CRC, framing, length, payload)
   std::size_t bytes_sent = 0;        ///< bytes written, retransmissions included
+  std::size_t batches_delivered = 0; ///< setpoint batches delivered (each exactly once)
+  std::size_t batches_repeated = 0;  ///< setpoint batches received again (resent by the controller) and dropped
 };
 
 /// Host end of the link on one transport.
@@ -42,7 +48,7 @@ class HostLink {
  public:
   /// Window of unacknowledged frames.
   static constexpr std::size_t window = 8;
-  /// Called for every message that is not Capabilities, Ack or Nak.
+  /// Called for every message that is not Capabilities, Ack or Nak (SetpointBatch: once each, in order).
   using Handler = std::function<void(const protocol::Message&)>;
 
   /// A link over `transport` (not owned) with the sender's timing.
@@ -62,6 +68,8 @@ class HostLink {
   [[nodiscard]] const protocol::Capabilities& capabilities() const noexcept { return sender_.capabilities(); }
   /// True if every submitted frame was acknowledged.
   [[nodiscard]] bool idle() const noexcept { return sender_.idle(); }
+  /// Frames submitted and not yet acknowledged (the oldest ones of those submitted).
+  [[nodiscard]] std::size_t in_flight() const noexcept { return sender_.in_flight(); }
   /// Counters.
   [[nodiscard]] const LinkStatistics& statistics() const noexcept { return statistics_; }
   /// Milliseconds since this link was made (wrapping, the sender's clock).
@@ -71,8 +79,12 @@ class HostLink {
   void transmit_due();
   [[noreturn]] void raise(const Failure& failure) const;
 
+  void on_frame(const protocol::Frame& frame, const Handler& handler);
+  void reply(const protocol::Reception& reception);
+
   Transport& transport_;
   protocol::LinkSender<window> sender_;
+  protocol::LinkReceiver receiver_;
   protocol::FrameDecoder<> decoder_;
   std::chrono::steady_clock::time_point epoch_;
   LinkStatistics statistics_;

@@ -7,8 +7,11 @@
 // flagged end_of_job. The controller arms on Start and begins moving by itself once its
 // look-ahead window is full or the job's end has arrived (firmware/app.hpp, "the start rule"),
 // so its plan equals `curvestep sim`'s. The job is over when a StatusReport says Idle after the controller
-// reported Running, every segment was sent and acknowledged, and no setpoint is missing; a
-// Fault state or an ErrorReport ends it with the controller's cause.
+// reported Running, every segment was sent and acknowledged, and every setpoint up to the
+// reported index has arrived (the controller's setpoint stream is reliable since protocol
+// version 2, so none may be missing); a Fault state or an ErrorReport ends it with the
+// controller's cause. A controller that restarted mid-job (it answers NotConnected) ends it with
+// DeviceRestarted, naming the last acknowledged segment and the last setpoint received.
 #pragma once
 
 #include <cstddef>
@@ -38,10 +41,11 @@ struct StreamProgress {
 
 /// Options of one upload.
 struct StreamOptions {
-  /// Retransmission and link timeout. A noisy line (1 % of bytes damaged each way) loses most
-  /// 100-byte frames several times in a row, so go-backs are allowed generously; a dead line
-  /// is caught by the link timeout (the controller's heartbeat stops) long before.
-  protocol::SenderSettings link{100, 100, 3000};
+  /// Retransmission and link timeout. Only timeouts in a row without any progress count toward
+  /// max_retransmits (Nak-triggered go-backs on a noisy line do not), so the default 10 gives
+  /// up after about a second of no progress at all; a dead line is also caught by the link
+  /// timeout (the controller's heartbeat stops).
+  protocol::SenderSettings link{100, 10, 3000};
   std::function<void(const StreamProgress&)> progress;  ///< called about 10 times a second (may be empty)
   std::function<void(const std::string&)> warn;         ///< called for each value the wire cannot carry exactly
   double status_interval_s = 0.2;                       ///< StatusRequest period while running
@@ -62,7 +66,10 @@ class StreamError : public std::runtime_error {
 /// What a finished upload produced.
 struct StreamResult {
   std::vector<SetpointRecord> setpoints;  ///< the controller's setpoints, index order (time = index / rate)
-  std::size_t missing_setpoints = 0;      ///< setpoints lost on the link (batches are not retransmitted)
+  std::size_t missing_setpoints = 0;      ///< setpoints missing from the stream (0 unless the controller is broken)
+  std::size_t duplicate_setpoints = 0;    ///< setpoints received twice (0 unless the link is broken)
+  std::size_t batches_repeated = 0;       ///< setpoint batches the controller resent and the host had already
+  std::size_t max_queue_depth = 0;        ///< deepest the controller's segment queue was (its last StatusReport)
   std::size_t frames_rejected = 0;        ///< damaged frames from the controller
   std::size_t bytes_sent = 0;             ///< bytes written, retransmissions included
 };

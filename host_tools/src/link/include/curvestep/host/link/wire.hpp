@@ -3,10 +3,11 @@
 // MachineConfiguration, with a note for every value the wire cannot carry exactly.
 //
 // Coordinates of a loaded job are already Q16.16 (job.hpp quantises them), so they travel
-// exactly. Weights, feeds and machine limits may not be representable (0.01 mm is not a
-// Q16.16 value; accelerations travel as whole numbers), and the wire has no field for the
-// rapid speed, the profile kind or extra full turns of an arc. Every such loss is listed in
-// `notes`, because a device then plans with different numbers than `curvestep sim` does.
+// exactly. The machine's planning limits (speeds, accelerations, jerk, tolerance, junction
+// deviation, step rate, profile kind) travel as binary64 and so exactly; the default feed and
+// the rapid speed are Q16.16 like segment feeds, and weights and segment feeds may not be
+// representable either. Every such loss is listed in `notes`, because a device then plans with
+// different numbers than `curvestep sim` does. Arcs carry their extra full turns (helices).
 #pragma once
 
 #include <cstddef>
@@ -35,8 +36,8 @@ struct WireJob {
 };
 
 /// The job's PathSegments for a controller with `axis_count` axes. Throws std::runtime_error
-/// naming the job file and segment for what the wire cannot express (an arc of more than one
-/// turn, a Z move on a 2-axis controller, a coordinate outside Q16.16).
+/// naming the job file and segment for what the wire cannot express (a Z move on a 2-axis
+/// controller, a coordinate outside Q16.16).
 [[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count);
 
 /// `value` in Q16.16 raw units, rounded to nearest; sets `exact` false if rounding changed it.

@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: MIT
+// Robustness over pseudo-terminals: a soak (a long job through the fault proxy, faults both ways,
+// every setpoint bit-identical to `curvestep sim`, the device's queue depth and peak memory
+// reported) and a device that is killed and restarted mid-job (the host notices the new session,
+// names where the job stopped and exits non-zero). docs/robustness.md, "Soak".
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+
+#include <curvestep/host/link/transport.hpp>
+#include <curvestep/protocol/frame.hpp>
+#include <curvestep/protocol/frame_decoder.hpp>
+
+#include "hil_support.hpp"
+#include "process.hpp"
+
+namespace ct = curvestep::test;
+namespace hl = curvestep::host::link;
+using namespace std::chrono_literals;
+
+namespace {
+
+/// Peak resident set (VmHWM) of process `pid` in KiB, from /proc; -1 if unreadable.
+long peak_rss_kib(pid_t pid) {
+  std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(status, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
+  }
+  return -1;
+}
+
+/// The number after `label` in `text` (-1 if absent).
+long number_after(const std::string& text, const std::string& label) {
+  const auto at = text.find(label);
+  if (at == std::string::npos) return -1;
+  return std::stol(text.substr(at + label.size()));
+}
+
+std::vector<ct::RawSetpoint> simulate(const std::filesystem::path& job, const std::filesystem::path& machine) {
+  const auto csv = ct::scratch_dir() / ("sim_" + job.stem().string() + ".csv");
+  std::string errors;
+  const int status = ct::run_program({"sim", job.string(), "--machine", machine.string(), "-o", csv.string()}, errors, "sim");
+  INFO(errors);
+  REQUIRE((status == 0 || status == 3));
+  return ct::read_raw_setpoints(csv);
+}
+
+/// Segments of the soak job: CURVESTEP_SOAK_SEGMENTS, or 360 (about 100 000 setpoints).
+int soak_segments() {
+  if (const char* env = std::getenv("CURVESTEP_SOAK_SEGMENTS")) return std::atoi(env);
+  return 360;
+}
+
+/// A relay between a pseudo-terminal the host connects to and whichever device port it is told
+/// to use; a device that goes away is simply no longer served (its bytes are dropped) until the
+/// next port is set, as if the same serial cable were plugged into a restarted controller.
+class SwitchableLine {
+ public:
+  SwitchableLine() : host_(pty_.master_transport()), thread_([this] { run(); }) {}
+  SwitchableLine(const SwitchableLine&) = delete;
+  SwitchableLine& operator=(const SwitchableLine&) = delete;
+  ~SwitchableLine() {
+    stop_.store(true);
+    thread_.join();
+  }
+  [[nodiscard]] std::string host_port() const { return pty_.slave_path(); }
+  void connect_device(const std::string& port) {
+    auto device = hl::open_port(port, 115200);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    device_ = std::move(device);
+  }
+
+ private:
+  void run() {
+    std::array<std::byte, 512> buffer{};
+    while (!stop_.load()) {
+      const std::size_t n = host_->read(buffer, 2);
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (!device_) continue;
+      try {
+        if (n > 0) device_->write(std::span<const std::byte>(buffer.data(), n));
+        const std::size_t back = device_->read(buffer, 0);
+        if (back > 0) host_->write(std::span<const std::byte>(buffer.data(), back));
+      } catch (const hl::TransportError&) {
+        device_.reset();  // the device died: nothing answers until the next one is connected
+      }
+    }
+  }
+
+  hl::PseudoTerminal pty_;
+  std::unique_ptr<hl::FdTransport> host_;
+  std::mutex mutex_;
+  std::unique_ptr<hl::Transport> device_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace
+
+TEST_CASE("soak: a long job through faults in both directions arrives bit-identical with bounded device memory",
+          "[integration][hil][soak]") {
+  const auto machine = ct::wire_exact_machine();
+  const auto job = ct::zigzag_job(soak_segments());
+  const auto expected = simulate(job, machine);
+  ct::Process device({"device", "--fast"}, "device_soak.stderr");
+  const std::string device_port = device.first_line();
+  // A short job first: the device's peak memory after it is the baseline.
+  {
+    std::string errors;
+    const auto warmup = ct::zigzag_job(4);
+    REQUIRE(ct::run_program({"stream", warmup.string(), "--machine", machine.string(), "--port", device_port}, errors,
+                            "stream_soak_warmup") == 0);
+  }
+  const long baseline_kib = peak_rss_kib(device.pid());
+  ct::Process proxy({"proxy", "--device", device_port, "--corrupt", "0.002", "--drop", "0.002", "--duplicate", "0.001",
+                     "--seed", "29"},
+                    "proxy_soak.stderr");
+  const std::string port = proxy.first_line();
+  const auto capture = ct::scratch_dir() / "device_soak.csv";
+  std::string errors;
+  std::string output;
+  const auto started = std::chrono::steady_clock::now();
+  const int status = ct::run_program({"stream", job.string(), "--machine", machine.string(), "--port", port, "--capture",
+                                      capture.string()},
+                                     errors, "stream_soak", std::chrono::seconds(std::max(170, soak_segments() / 4)), &output);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  INFO(errors);
+  INFO(output);
+  REQUIRE(status == 0);
+  const auto actual = ct::read_raw_setpoints(capture);
+  CHECK(actual.size() == expected.size());
+  CHECK(ct::first_difference(expected, actual) == -1);
+  CHECK(number_after(output, "setpoints missing:") == 0);
+  CHECK(number_after(output, "setpoints duplicated:") == 0);
+  const long queue_peak = number_after(output, "device queue peak:");
+  CHECK(queue_peak > 0);
+  CHECK(queue_peak <= 32);  // the App's queue capacity
+  const long peak_kib = peak_rss_kib(device.pid());
+  proxy.stop();
+  // The device allocates nothing while it runs: its peak memory after 10^5 setpoints is where a
+  // 4-segment job left it (a leak of even 16 bytes per setpoint would add 1.5 MiB).
+  REQUIRE(baseline_kib > 0);
+  CHECK(peak_kib - baseline_kib < 512);
+  std::string proxy_counts = proxy.stderr_text();
+  while (!proxy_counts.empty() && proxy_counts.back() == '\n') proxy_counts.pop_back();
+  std::cout << "soak: " << actual.size() << " setpoints in " << seconds << " s through the fault proxy (" << proxy_counts
+            << "), device queue peak " << queue_peak << " segments, device peak RSS " << peak_kib << " KiB (after the "
+            << "warm-up job " << baseline_kib << " KiB)\n";
+  CHECK(device.stop() == 0);
+}
+
+TEST_CASE("soak: a device killed and restarted mid-job is detected and the host names where the job stopped",
+          "[integration][hil][restart]") {
+  const auto machine = ct::wire_exact_machine();
+  const auto job = ct::zigzag_job(200);
+  SwitchableLine line;
+  auto first = std::make_unique<ct::Process>(std::vector<std::string>{"device", "--fast"}, "device_restart_1.stderr");
+  line.connect_device(first->first_line());
+  ct::Process host({"stream", job.string(), "--machine", machine.string(), "--port", line.host_port(), "--capture",
+                    (ct::scratch_dir() / "restart.csv").string()},
+                   "stream_restart.stderr");
+  // Let the job run for a while, then kill the device (no clean shutdown) and start a new one.
+  std::string log;
+  for (int i = 0; i < 200 && log.find("running") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(20ms);
+    log = first->stderr_text();
+  }
+  REQUIRE_THAT(log, Catch::Contains("running"));
+  std::this_thread::sleep_for(300ms);
+  ::kill(first->pid(), SIGKILL);
+  CHECK(first->wait(5s) == 128 + SIGKILL);
+  ct::Process second({"device", "--fast"}, "device_restart_2.stderr");
+  line.connect_device(second.first_line());
+  const int status = host.wait(20s);
+  const std::string errors = host.stderr_text();
+  INFO(errors);
+  CHECK(status == 4);
+  CHECK_THAT(errors, Catch::Contains("DeviceRestarted") && Catch::Contains("restarted"));
+  CHECK_THAT(errors, Catch::Contains("the job stopped after segment") && Catch::Contains("acknowledged)"));
+  CHECK_THAT(errors, Catch::Contains("setpoints received up to index"));
+  CHECK(second.stop() == 0);
+}
+
+TEST_CASE("hil: curvestep stream refuses a controller of another protocol version with a clear message",
+          "[integration][hil][version]") {
+  // A fake controller of protocol version 1 on a pseudo-terminal: it answers every Hello with
+  // Capabilities of version 1 (same session), as an old firmware would.
+  hl::PseudoTerminal pty;
+  auto line = pty.master_transport();
+  std::atomic<bool> stop{false};
+  std::thread controller([&] {
+    curvestep::protocol::FrameDecoder<> decoder;
+    std::array<std::byte, 256> bytes{};
+    while (!stop.load()) {
+      std::size_t n = 0;
+      try {
+        n = line->read(bytes, 5);
+      } catch (const hl::TransportError&) {
+        return;
+      }
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto pushed = decoder.push(bytes[i]);
+        if (!pushed || !pushed.value() || decoder.frame().type != 0x01) continue;
+        const auto hello = curvestep::protocol::decode<curvestep::protocol::Hello>(decoder.frame().payload);
+        if (!hello) continue;
+        curvestep::protocol::Capabilities old;
+        old.version = 1;
+        old.session = hello.value().session;
+        std::array<std::byte, curvestep::protocol::max_encoded_frame_size> frame{};
+        const auto size = curvestep::protocol::encode_frame(curvestep::protocol::Message(old), 0, frame);
+        if (size) line->write(std::span<const std::byte>(frame.data(), size.value()));
+      }
+    }
+  });
+  std::string errors;
+  const auto job = ct::zigzag_job(2);
+  const int status = ct::run_program({"stream", job.string(), "--machine", ct::wire_exact_machine().string(), "--port",
+                                      pty.slave_path()},
+                                     errors, "stream_version", std::chrono::seconds(20));
+  stop.store(true);
+  controller.join();
+  INFO(errors);
+  CHECK(status == 4);
+  CHECK_THAT(errors, Catch::Contains("VersionMismatch") &&
+                         Catch::Contains("the controller speaks protocol version 1, this host speaks version 2"));
+}
