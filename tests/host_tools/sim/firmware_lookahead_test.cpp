@@ -7,9 +7,8 @@
 // Queue depth: the App grants credit in whole worst-case segments (slots_per_segment = 7 slots),
 // so its queue peaks at Queue - 6 entries, and a segment is planned just after the previous one
 // left the queue, with Queue - 8 segments behind it. The full window Lookahead is therefore used
-// only when Queue >= Lookahead + 8: App<_, _, 17, 9> is the simulator's --lookahead 9 stream. The
-// STM32F1's App<_, _, 16, 9> plans its first segment with 9 and the rest with 8 (a known issue,
-// test marked !shouldfail below).
+// only when Queue >= Lookahead + 8, which App's static_assert requires: App<_, _, 17, 9> is the
+// simulator's --lookahead 9 stream, and the STM32F1's App<_, _, 16, 8> is --lookahead 8.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -35,7 +34,7 @@ using curvestep::firmware::testing::Host;
 
 namespace {
 
-using F1App = App<FakeBoard, Q16_16, 16, 9>;      // boards/stm32f1: 16 slots, look-ahead 9
+using F1App = App<FakeBoard, Q16_16, 16, 8>;      // boards/stm32f1: 16 slots, look-ahead 8
 using WindowApp = App<FakeBoard, Q16_16, 17, 9>;  // the smallest queue that keeps a window of 9
 
 constexpr std::int32_t q(double mm) { return static_cast<std::int32_t>(mm * 65536.0); }
@@ -238,18 +237,18 @@ TEST_CASE("sim lookahead: simulate with lookahead 9 equals a firmware App with L
   }
 }
 
-// Known issue (firmware/include/curvestep/firmware/app.hpp, not fixed here): the STM32F1's
-// App<_, _, 16, 9> keeps at most 10 segments queued (credit = free slots / 7), so every segment
-// after the first is planned with 8 segments behind it, not 9. Its stream is then not
-// `curvestep sim --lookahead 9`. Either the App's static_assert should ask Queue >= Lookahead + 8
-// (and the F1 use Lookahead 8), or the App should set_lookahead(min(Lookahead, Queue - 8)).
-// This test fails while the issue exists (!shouldfail); when it passes, remove the tag.
-TEST_CASE("sim lookahead: the STM32F1's App with Queue 16 / Lookahead 9 equals simulate with lookahead 9",
-          "[host_tools][sim][lookahead][!shouldfail]") {
-  STATIC_REQUIRE(F1App::Controller::lookahead == 9);
+// The STM32F1's App<_, _, 16, 8> keeps at most 10 segments queued (credit = free slots / 7), so a
+// segment is planned with 8 segments behind it: exactly the simulator's --lookahead 8. (With
+// Lookahead 9 it planned the first segment with 9 and the rest with 8, matching neither; App now
+// refuses that combination at compile time.)
+TEST_CASE("sim lookahead: the STM32F1's App with Queue 16 / Lookahead 8 equals simulate with lookahead 8",
+          "[host_tools][sim][lookahead]") {
+  STATIC_REQUIRE(F1App::Controller::lookahead == 8);
   const auto job = short_lines();
-  const bool same = streamed<F1App>(job) == simulated(job, 9);
+  const bool same = streamed<F1App>(job) == simulated(job, 8);
   CHECK(same);
+  const bool differs_9 = streamed<F1App>(job) != simulated(job, 9);
+  CHECK(differs_9);
 }
 
 TEST_CASE("sim lookahead: the default window is 16 and out-of-range windows are refused with one line",

@@ -154,8 +154,12 @@ inline constexpr std::size_t slots_per_segment = CuspList<>::capacity + 1;
 /// The controller application for board B; S is the setpoint scalar (Q16.16 for bit-identity).
 template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16>
 class App {
-  static_assert(Queue >= Lookahead + slots_per_segment,
-                "the credit scheme must let the queue reach Lookahead + 1 segments (start rule)");
+  // Credit is granted in whole worst-case segments (slots_per_segment slots each), so at most
+  // Queue - slots_per_segment + 1 segments are queued, and a segment is planned just after its
+  // predecessor left the queue. The full window of Lookahead segments behind it (what the
+  // simulator's --lookahead assumes) is therefore there only if Queue >= Lookahead + slots + 1.
+  static_assert(Queue >= Lookahead + slots_per_segment + 1,
+                "the queue must keep Lookahead segments behind the one being planned (bit-identity with the simulator)");
 
  public:
   /// The motion controller type.
