@@ -283,7 +283,7 @@ class Bezier {
 
   /// derivative() on the first n + 1 points of `work` in place (n becomes the hodograph's degree,
   /// a degree-0 curve gives the zero point): the same numbers and errors as derivative().
-  [[nodiscard]] static constexpr std::optional<Failure> hodograph_in_place(std::array<Point, capacity>& work, std::size_t& n) noexcept {
+  [[nodiscard, gnu::always_inline]] static constexpr std::optional<Failure> hodograph_in_place(std::array<Point, capacity>& work, std::size_t& n) noexcept {
     if (n == 0) {
       work[0] = Point{};
       return std::nullopt;
