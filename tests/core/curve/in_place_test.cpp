@@ -76,6 +76,16 @@ void check_rational_in_place() {
   using Curve = RationalBezier<S, 3, 7>;
   for (std::size_t count = 2; count <= points.size(); ++count) {
     const auto curve = Curve::create(std::span<const Vec<S, 3>>(points.data(), count), std::span<const S>(weights.data(), count)).value();
+    for (const double td : {0.0, 0.3, 1.0}) {
+      const S t = number<S>(td);
+      for (std::size_t order = 0; order <= 3; ++order) {
+        const auto general = curve.derivative_at(t, order);
+        const auto bounded = curve.template derivative_at_most<3>(t, order);
+        REQUIRE(general.has_value() == bounded.has_value());
+        if (general) CHECK(same_bits(general.value(), bounded.value()));
+      }
+      CHECK(curve.template derivative_at_most<3>(t, 4).error() == Error::InvalidArgument);
+    }
     Curve into;
     REQUIRE(Curve::create_into(into, curve.control_points(), std::span<const S>(weights.data(), count)));
     CHECK(same_curve(into, curve));
@@ -108,7 +118,7 @@ TEST_CASE("in_place: Bezier derivative_at, split and create_into give the copyin
   check_bezier_in_place<Q16_16>();
 }
 
-TEST_CASE("in_place: RationalBezier split (halves over the curve) and create_into give the copying forms' numbers", "[core][curve]") {
+TEST_CASE("in_place: RationalBezier split (halves over the curve), create_into and derivative_at_most give the general forms' numbers", "[core][curve]") {
   check_rational_in_place<double>();
   check_rational_in_place<Q16_16>();
 }

@@ -130,11 +130,24 @@ class RationalBezier {
     if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
     if (order > MaxDegree + 4) return fail(Error::InvalidArgument);
     if (order == 0) return point_at(t);
-    return higher_derivative_at(t, order);
+    return higher_derivative_at<MaxDegree + 4>(t, order);
+  }
+
+  /// derivative_at(t, order) for orders up to MaxOrder only (InvalidArgument above), with its
+  /// working arrays sized for MaxOrder: the same numbers on less stack (a motion planner needs
+  /// orders 1..3, the general form up to MaxDegree + 4).
+  template <std::size_t MaxOrder>
+  [[nodiscard]] constexpr Result<Point> derivative_at_most(S t, std::size_t order) const {
+    static_assert(MaxOrder <= MaxDegree + 4, "derivative_at supports orders up to MaxDegree + 4");
+    if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
+    if (order > MaxOrder) return fail(Error::InvalidArgument);
+    if (order == 0) return point_at(t);
+    return higher_derivative_at<MaxOrder>(t, order);
   }
 
  private:
-  /// derivative_at() for order >= 1 (its own frame: the point's is not stacked on top of it).
+  /// derivative_at() for 1 <= order <= MaxOrder (its own frame: the point's is not stacked on top of it).
+  template <std::size_t MaxOrder>
   [[nodiscard, gnu::noinline]] constexpr Result<Point> higher_derivative_at(S t, std::size_t order) const {
     // Derivatives of order >= 1 do not change under translation: work relative to b_0.
     // A^(k)(t) = base.derivative_at(t, k) for k = 0..order is computed in one working array (the
@@ -145,8 +158,8 @@ class RationalBezier {
     std::array<HomogeneousPoint, capacity> hodograph{};
     if (!local_homogeneous(hodograph, false)) hodograph = homogeneous_.points_;
     std::size_t n = degree();
-    std::array<S, MaxDegree + 5> weight_derivatives{};  // w^(k)(t)
-    std::array<Point, MaxDegree + 5> r{};
+    std::array<S, MaxOrder + 1> weight_derivatives{};  // w^(k)(t)
+    std::array<Point, MaxOrder + 1> r{};
     std::optional<Failure> leibniz_failure;
     for (std::size_t k = 0; k <= order; ++k) {
       if (k > 0) {

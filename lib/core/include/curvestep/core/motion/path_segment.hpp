@@ -155,10 +155,10 @@ class PathSegment {
 
   /// d^order p / du^order at u in [0,1], order 1..3.
   [[nodiscard]] MachinePoint derivative(double u, std::size_t order) const {
-    CURVESTEP_EXPECTS(u >= 0 && u <= 1 && order >= 1);
+    CURVESTEP_EXPECTS(u >= 0 && u <= 1 && order >= 1 && order <= 3);
     switch (kind_) {
       case SegmentKind::Arc: return arc_derivative(u, order);
-      case SegmentKind::RationalBezier: return geometry_.rational.derivative_at(u, order).value();
+      case SegmentKind::RationalBezier: return geometry_.rational.derivative_at_most<3>(u, order).value();
       default: return geometry_.polynomial.derivative_at(u, order).value();
     }
   }
