@@ -38,6 +38,16 @@ class [[nodiscard]] Result {
       : value_(std::move(value)) {}
   constexpr Result(Failure failure) noexcept  // NOLINT: implicit, as with std::unexpected
       : failure_(failure), ok_(false) {}
+  /// A value-initialised T, built in place: a function can fill `value()` and return the Result
+  /// by name (no second copy of a large T on a microcontroller's stack).
+  constexpr explicit Result(std::in_place_t) noexcept(std::is_nothrow_default_constructible_v<T>) : value_{} {}
+
+  /// Turns this into a failure without building a Result (the value is left as it is, unused).
+  constexpr Result& operator=(Failure failure) noexcept {
+    failure_ = failure;
+    ok_ = false;
+    return *this;
+  }
 
   [[nodiscard]] constexpr bool has_value() const noexcept { return ok_; }
   constexpr explicit operator bool() const noexcept { return ok_; }

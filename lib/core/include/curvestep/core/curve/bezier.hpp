@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <optional>
 #include <span>
 
 #include <curvestep/core/contract.hpp>
@@ -30,6 +31,8 @@ namespace curvestep {
 
 template <Scalar S, std::size_t Dim, std::size_t MaxDegree>
 class Bezier;
+template <Scalar S, std::size_t Dim, std::size_t MaxDegree>
+class RationalBezier;
 
 /// The two halves of a curve split at one parameter.
 template <class Curve>
@@ -65,17 +68,24 @@ class Bezier {
   /// asked for, which is also the first control point that does not fit),
   /// NotFinite (index = control point) for NaN/inf coordinates.
   [[nodiscard]] static constexpr Result<Bezier> create(std::span<const Point> control) noexcept {
+    Result<Bezier> out(std::in_place);  // filled in place and returned by name: no copy of the curve
+    if (const auto made = create_into(out.value(), control); !made) out = made.failure();
+    return out;
+  }
+
+  /// create(control) written into `out` (for callers that hold the curve inside a larger object:
+  /// no Result<Bezier> copy on the stack). The same errors; on an error `out` is unchanged.
+  [[nodiscard]] static constexpr Result<void> create_into(Bezier& out, std::span<const Point> control) noexcept {
     if (control.empty()) return fail(Error::EmptyControlPolygon);
     if (control.size() > capacity) return fail(Error::DegreeAboveCapacity, control.size() - 1);
-    Bezier curve;
     for (std::size_t i = 0; i < control.size(); ++i) {
       for (std::size_t axis = 0; axis < Dim; ++axis) {
         if (!is_finite(control[i][axis])) return fail(Error::NotFinite, i);
       }
-      curve.points_[i] = control[i];
     }
-    curve.degree_ = control.size() - 1;
-    return curve;
+    for (std::size_t i = 0; i < capacity; ++i) out.points_[i] = i < control.size() ? control[i] : Point{};
+    out.degree_ = control.size() - 1;
+    return ok();
   }
 
   /// Convenience: create({p0, p1, ...}).
@@ -130,18 +140,27 @@ class Bezier {
 
   /// Splits at t in [0,1] into the curves on [0,t] and [t,1] (each reparametrised to [0,1]).
   [[nodiscard]] constexpr Result<SplitCurves<Bezier>> split(S t) const {
+    Result<SplitCurves<Bezier>> out(std::in_place);  // filled in place: no copy of the halves
+    if (const auto cut = split(t, out.value().left, out.value().right); !cut) out = cut.failure();
+    return out;
+  }
+
+  /// split(t) into `left` and `right` (either may be this curve). ParameterOutOfRange leaves
+  /// both unchanged.
+  [[nodiscard]] constexpr Result<void> split(S t, Bezier& left, Bezier& right) const {
     if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
-    SplitCurves<Bezier> halves;
-    halves.left.degree_ = halves.right.degree_ = degree_;
-    std::array<Point, capacity> work = points_;
-    halves.left.points_[0] = work[0];
-    halves.right.points_[degree_] = work[degree_];
-    for (std::size_t r = 1; r <= degree_; ++r) {
-      for (std::size_t i = 0; i + r <= degree_; ++i) work[i] = lerp(work[i], work[i + 1], t);
-      halves.left.points_[r] = work[0];
-      halves.right.points_[degree_ - r] = work[degree_ - r];
+    const std::size_t n = degree_;
+    std::array<Point, capacity> work = points_;  // read before left or right (may be *this) is written
+    for (std::size_t i = n + 1; i < capacity; ++i) left.points_[i] = right.points_[i] = Point{};
+    left.degree_ = right.degree_ = n;
+    left.points_[0] = work[0];
+    right.points_[n] = work[n];
+    for (std::size_t r = 1; r <= n; ++r) {
+      for (std::size_t i = 0; i + r <= n; ++i) work[i] = lerp(work[i], work[i + 1], t);
+      left.points_[r] = work[0];
+      right.points_[n - r] = work[n - r];
     }
-    return halves;
+    return ok();
   }
 
   /// The curve restricted to [t0, t1] within [0,1], reparametrised to [0,1].
@@ -161,6 +180,7 @@ class Bezier {
   /// The hodograph p'(t) as a curve of degree n-1: control points n (b_{i+1} - b_i).
   /// A degree-0 curve's derivative is the zero curve of degree 0. FixedOverflow/NotFinite.
   [[nodiscard]] constexpr Result<Bezier> derivative() const noexcept {
+    // (hodograph_in_place below repeats these steps on a working array; keep the two alike)
     Bezier d;
     if (degree_ == 0) return d;
     d.degree_ = degree_ - 1;
@@ -186,11 +206,19 @@ class Bezier {
   }
 
   /// p^(order)(t) for t in [0,1].
+  /// The same numbers as derivative(order).value().point_at(t) (and its errors), computed in one
+  /// working array instead of copies of the curve.
   [[nodiscard]] constexpr Result<Point> derivative_at(S t, std::size_t order = 1) const {
     if (!(S{} <= t && t <= from_int<S>(1))) return fail(Error::ParameterOutOfRange);  // NaN too
-    auto d = derivative(order);
-    if (!d) return d.failure();
-    return d.value().point_at(t);
+    std::array<Point, capacity> work = points_;
+    std::size_t n = degree_;
+    for (std::size_t k = 0; k < order; ++k) {
+      if (const auto failed = hodograph_in_place(work, n)) return *failed;
+    }
+    for (std::size_t r = 1; r <= n; ++r) {
+      for (std::size_t i = 0; i + r <= n; ++i) work[i] = lerp(work[i], work[i + 1], t);
+    }
+    return work[0];
   }
 
   /// The same curve with degree n+1: b'_i = (i b_{i-1} + (n+1-i) b_i) / (n+1).
@@ -250,6 +278,27 @@ class Bezier {
   }
 
  private:
+  template <Scalar, std::size_t, std::size_t>
+  friend class RationalBezier;
+
+  /// derivative() on the first n + 1 points of `work` in place (n becomes the hodograph's degree,
+  /// a degree-0 curve gives the zero point): the same numbers and errors as derivative().
+  [[nodiscard, gnu::always_inline]] static constexpr std::optional<Failure> hodograph_in_place(std::array<Point, capacity>& work, std::size_t& n) noexcept {
+    if (n == 0) {
+      work[0] = Point{};
+      return std::nullopt;
+    }
+    const auto m = static_cast<std::int64_t>(n);
+    const std::array<std::int64_t, 2> weights{-m, m};
+    for (std::size_t i = 0; i < n; ++i) {
+      auto p = detail::exact_combination<S, Dim>(std::span<const Point>(&work[i], 2), weights, 1);
+      if (!p) return fail(p.error(), i);
+      work[i] = p.value();
+    }
+    --n;
+    return std::nullopt;
+  }
+
   std::array<Point, capacity> points_{};
   std::size_t degree_ = 0;
 };

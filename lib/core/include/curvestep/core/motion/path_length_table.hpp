@@ -31,7 +31,8 @@ class PathLengthTable {
 
   /// Builds the table for `segment`. DegenerateCurve if the segment has zero length.
   [[nodiscard]] static Result<PathLengthTable> build(const PathSegment& segment) {
-    PathLengthTable table;
+    Result<PathLengthTable> out(std::in_place);  // filled in place and returned by name: no 1 KiB copy
+    PathLengthTable& table = out.value();
     double s = 0;
     table.length_[0] = 0;
     table.speed_[0] = norm(segment.derivative(0, 1));
@@ -51,8 +52,8 @@ class PathLengthTable {
       table.length_[k + 1] = s;
       table.speed_[k + 1] = norm(segment.derivative(b, 1));
     }
-    if (!(s > 0) || !std::isfinite(s)) return fail(Error::DegenerateCurve);
-    return table;
+    if (!(s > 0) || !std::isfinite(s)) out = fail(Error::DegenerateCurve);
+    return out;
   }
 
   /// Total arc length (mm).

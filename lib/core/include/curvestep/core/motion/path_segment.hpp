@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 
 #include <curvestep/core/curve/bezier.hpp>
@@ -65,13 +66,10 @@ class PathSegment {
 
   /// A straight line from a to b. DegenerateCurve if a == b (zero-length moves are dropped by callers);
   /// NotFinite for NaN/inf coordinates or b - a beyond double.
-  [[nodiscard]] static Result<PathSegment> make_line(const MachinePoint& a, const MachinePoint& b) noexcept {
-    if (a == b) return fail(Error::DegenerateCurve);
-    PathSegment s;
-    s.kind_ = SegmentKind::Line;
-    CURVESTEP_TRY(s.geometry_.polynomial, Polynomial::create({a, b}));
-    CURVESTEP_CHECK(s.check_derivatives());
-    return s;
+  [[nodiscard, gnu::noinline]] static Result<PathSegment> make_line(const MachinePoint& a, const MachinePoint& b) noexcept {
+    Result<PathSegment> out(std::in_place);  // built in place and returned by name (no copy)
+    if (const auto made = out.value().set_line(a, b); !made) out = made.failure();
+    return out;
   }
 
   /// An arc in the XY plane about `center` (its z ignored) from `start` to `end` in `direction`,
@@ -79,51 +77,30 @@ class PathSegment {
   /// start == end (in XY) with full_turns == 0 is a full circle. InvalidArgument if the radii of
   /// start and end differ by more than `radius_tolerance_mm`; DegenerateCurve for zero radius;
   /// NotFinite for NaN/inf in the XY radii or the height change.
-  [[nodiscard]] static Result<PathSegment> make_arc(const MachinePoint& start, const MachinePoint& end, const MachinePoint& center,
+  [[nodiscard, gnu::noinline]] static Result<PathSegment> make_arc(const MachinePoint& start, const MachinePoint& end, const MachinePoint& center,
                                                     ArcDirection direction, std::uint32_t full_turns,
                                                     double radius_tolerance_mm) noexcept {
-    const double ax = start[0] - center[0];
-    const double ay = start[1] - center[1];
-    const double bx = end[0] - center[0];
-    const double by = end[1] - center[1];
-    const double r = std::sqrt(ax * ax + ay * ay);
-    const double rb = std::sqrt(bx * bx + by * by);
-    if (!std::isfinite(r) || !std::isfinite(rb) || !std::isfinite(end[2] - start[2])) return fail(Error::NotFinite);
-    if (r == 0) return fail(Error::DegenerateCurve);
-    if (!(std::fabs(r - rb) <= radius_tolerance_mm)) return fail(Error::InvalidArgument, 1);  // NaN tolerance too
-    double sweep = detail::atan2(ax * by - ay * bx, ax * bx + ay * by);  // (-π, π]
-    const bool ccw = direction == ArcDirection::CounterClockwise;
-    if (ccw && sweep <= 0) sweep += 2 * detail::pi;
-    if (!ccw && sweep >= 0) sweep -= 2 * detail::pi;
-    sweep += (ccw ? 2 : -2) * detail::pi * static_cast<double>(full_turns);
-    PathSegment s;
-    s.kind_ = SegmentKind::Arc;
-    s.geometry_.arc = ArcData{start, end, MachinePoint{{center[0], center[1], start[2]}}, r, sweep, end[2] - start[2], rb / r};
-    return s;
+    Result<PathSegment> out(std::in_place);
+    if (const auto made = out.value().set_arc(start, end, center, direction, full_turns, radius_tolerance_mm); !made) {
+      out = made.failure();
+    }
+    return out;
   }
 
   /// A polynomial Bézier from 2..8 control points. NotFinite for NaN/inf, or derivatives beyond double.
-  [[nodiscard]] static Result<PathSegment> make_bezier(std::span<const MachinePoint> control) noexcept {
-    if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
-    PathSegment s;
-    s.kind_ = SegmentKind::Bezier;
-    CURVESTEP_TRY(s.geometry_.polynomial, Polynomial::create(control));
-    if (s.is_point()) return fail(Error::DegenerateCurve);
-    CURVESTEP_CHECK(s.check_derivatives());
-    return s;
+  [[nodiscard, gnu::noinline]] static Result<PathSegment> make_bezier(std::span<const MachinePoint> control) noexcept {
+    Result<PathSegment> out(std::in_place);
+    if (const auto made = out.value().set_bezier(control); !made) out = made.failure();
+    return out;
   }
 
   /// A rational Bézier from 2..8 control points and positive weights. NotFinite for NaN/inf, or
   /// weights and points so extreme that the derivatives could overflow (check_rational_derivatives).
-  [[nodiscard]] static Result<PathSegment> make_rational_bezier(std::span<const MachinePoint> control,
+  [[nodiscard, gnu::noinline]] static Result<PathSegment> make_rational_bezier(std::span<const MachinePoint> control,
                                                                 std::span<const double> weights) noexcept {
-    if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
-    PathSegment s;
-    s.kind_ = SegmentKind::RationalBezier;
-    CURVESTEP_TRY(s.geometry_.rational, Rational::create(control, weights));
-    if (s.is_point()) return fail(Error::DegenerateCurve);
-    CURVESTEP_CHECK(s.check_rational_derivatives());
-    return s;
+    Result<PathSegment> out(std::in_place);
+    if (const auto made = out.value().set_rational_bezier(control, weights); !made) out = made.failure();
+    return out;
   }
 
   [[nodiscard]] constexpr SegmentKind kind() const noexcept { return kind_; }
@@ -178,10 +155,10 @@ class PathSegment {
 
   /// d^order p / du^order at u in [0,1], order 1..3.
   [[nodiscard]] MachinePoint derivative(double u, std::size_t order) const {
-    CURVESTEP_EXPECTS(u >= 0 && u <= 1 && order >= 1);
+    CURVESTEP_EXPECTS(u >= 0 && u <= 1 && order >= 1 && order <= 3);
     switch (kind_) {
       case SegmentKind::Arc: return arc_derivative(u, order);
-      case SegmentKind::RationalBezier: return geometry_.rational.derivative_at(u, order).value();
+      case SegmentKind::RationalBezier: return geometry_.rational.derivative_at_most<3>(u, order).value();
       default: return geometry_.polynomial.derivative_at(u, order).value();
     }
   }
@@ -227,29 +204,10 @@ class PathSegment {
   /// The segment whose compact() gave `c`: the same control points, weights and arc data, so it
   /// evaluates, differentiates and splits bit for bit like the original. NotFinite and the other
   /// errors of Bezier::create / RationalBezier::create for numbers no PathSegment holds.
-  [[nodiscard]] static Result<PathSegment> expand(const CompactSegment& c) noexcept {
-    PathSegment s;
-    s.kind_ = c.kind;
-    s.rapid_ = c.rapid;
-    s.feed_ = c.feed_mm_per_s;
-    const auto load = [&c](std::size_t first) {
-      return MachinePoint{{c.values[first], c.values[first + 1], c.values[first + 2]}};
-    };
-    if (c.kind == SegmentKind::Arc) {
-      s.geometry_.arc = ArcData{load(0), load(3), load(6), c.values[9], c.values[10], c.values[11], c.values[12]};
-      return s;
-    }
-    if (c.degree > max_degree) return fail(Error::DegreeAboveCapacity, c.degree);
-    const std::size_t count = static_cast<std::size_t>(c.degree) + 1;
-    std::array<MachinePoint, capacity> points{};
-    for (std::size_t i = 0; i < count; ++i) points[i] = load(3 * i);
-    const std::span<const MachinePoint> control(points.data(), count);
-    if (c.kind == SegmentKind::RationalBezier) {
-      CURVESTEP_TRY(s.geometry_.rational, Rational::create(control, std::span<const double>(c.values.data() + 3 * capacity, count)));
-    } else {
-      CURVESTEP_TRY(s.geometry_.polynomial, Polynomial::create(control));
-    }
-    return s;
+  [[nodiscard, gnu::noinline]] static Result<PathSegment> expand(const CompactSegment& c) noexcept {
+    Result<PathSegment> out(std::in_place);  // built in place and returned by name (no copy)
+    if (const auto made = out.value().set_compact(c); !made) out = made.failure();
+    return out;
   }
 
   /// The two pieces on [0,u] and [u,1] (Bézier kinds only; lines and arcs have no cusps to split at).
@@ -276,13 +234,45 @@ class PathSegment {
   /// split_off() for one curve kind (one frame per kind: the rational halves alone take 0.9 KiB).
   template <class Curve>
   [[nodiscard, gnu::noinline]] Result<void> split_off_curve(Curve& curve, double u, PathSegment& left, Curve& left_curve) noexcept {
-    const auto halves = curve.split(u);  // (not CURVESTEP_TRY: that would copy the halves once more)
-    if (!halves) return halves.failure();
-    const auto& pieces = halves.value();
-    if (is_point(pieces.left.control_points()) || is_point(pieces.right.control_points())) return fail(Error::DegenerateCurve);
+    Curve left_half;
+    Curve right_half;
+    CURVESTEP_CHECK(curve.split(u, left_half, right_half));
+    if (is_point(left_half.control_points()) || is_point(right_half.control_points())) return fail(Error::DegenerateCurve);
     left = *this;
-    left_curve = pieces.left;
-    curve = pieces.right;
+    left_curve = left_half;
+    curve = right_half;
+    return ok();
+  }
+
+  // The make_* functions and expand() fill a PathSegment in place (inside the Result they
+  // return): on a microcontroller's stack a PathSegment copy is half a kilobyte.
+
+  [[nodiscard]] Result<void> set_line(const MachinePoint& a, const MachinePoint& b) noexcept {
+    if (a == b) return fail(Error::DegenerateCurve);
+    kind_ = SegmentKind::Line;
+    const std::array<MachinePoint, 2> ends{a, b};
+    CURVESTEP_CHECK(Polynomial::create_into(geometry_.polynomial, ends));
+    return check_derivatives();
+  }
+
+  [[nodiscard]] Result<void> set_arc(const MachinePoint& start, const MachinePoint& end, const MachinePoint& center,
+                                     ArcDirection direction, std::uint32_t full_turns, double radius_tolerance_mm) noexcept {
+    const double ax = start[0] - center[0];
+    const double ay = start[1] - center[1];
+    const double bx = end[0] - center[0];
+    const double by = end[1] - center[1];
+    const double r = std::sqrt(ax * ax + ay * ay);
+    const double rb = std::sqrt(bx * bx + by * by);
+    if (!std::isfinite(r) || !std::isfinite(rb) || !std::isfinite(end[2] - start[2])) return fail(Error::NotFinite);
+    if (r == 0) return fail(Error::DegenerateCurve);
+    if (!(std::fabs(r - rb) <= radius_tolerance_mm)) return fail(Error::InvalidArgument, 1);  // NaN tolerance too
+    double sweep = detail::atan2(ax * by - ay * bx, ax * bx + ay * by);  // (-π, π]
+    const bool ccw = direction == ArcDirection::CounterClockwise;
+    if (ccw && sweep <= 0) sweep += 2 * detail::pi;
+    if (!ccw && sweep >= 0) sweep -= 2 * detail::pi;
+    sweep += (ccw ? 2 : -2) * detail::pi * static_cast<double>(full_turns);
+    kind_ = SegmentKind::Arc;
+    geometry_.arc = ArcData{start, end, MachinePoint{{center[0], center[1], start[2]}}, r, sweep, end[2] - start[2], rb / r};
     return ok();
   }
 
@@ -318,7 +308,9 @@ class PathSegment {
   /// NotFinite if a derivative that derivative() evaluates (orders 1..3) overflows double: the
   /// hodographs' control points are then finite, and de Casteljau keeps their combinations finite.
   [[nodiscard]] constexpr Result<void> check_derivatives() const noexcept {
-    if (!geometry_.polynomial.derivative(3)) return fail(Error::NotFinite);
+    // derivative_at(0, 3) fails exactly where derivative(3) does (its hodographs are the same
+    // steps; de Casteljau at 0 returns a control point), without copies of the curve
+    if (!geometry_.polynomial.derivative_at(0.0, 3)) return fail(Error::NotFinite);
     return ok();
   }
 
@@ -342,6 +334,46 @@ class PathSegment {
     const double bound = 1e12 * ratio * ratio * ratio * extent * std::fmax(1.0, w_max);
     if (!std::isfinite(bound)) return fail(Error::NotFinite);
     return ok();
+  }
+
+  [[nodiscard]] Result<void> set_bezier(std::span<const MachinePoint> control) noexcept {
+    if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
+    kind_ = SegmentKind::Bezier;
+    CURVESTEP_CHECK(Polynomial::create_into(geometry_.polynomial, control));
+    if (is_point()) return fail(Error::DegenerateCurve);
+    return check_derivatives();
+  }
+
+  [[nodiscard]] Result<void> set_rational_bezier(std::span<const MachinePoint> control, std::span<const double> weights) noexcept {
+    if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
+    kind_ = SegmentKind::RationalBezier;
+    std::construct_at(&geometry_.rational);  // the union's active member follows the kind
+    CURVESTEP_CHECK(Rational::create_into(geometry_.rational, control, weights));
+    if (is_point()) return fail(Error::DegenerateCurve);
+    return check_rational_derivatives();
+  }
+
+  [[nodiscard]] Result<void> set_compact(const CompactSegment& c) noexcept {
+    kind_ = c.kind;
+    rapid_ = c.rapid;
+    feed_ = c.feed_mm_per_s;
+    const auto load = [&c](std::size_t first) {
+      return MachinePoint{{c.values[first], c.values[first + 1], c.values[first + 2]}};
+    };
+    if (c.kind == SegmentKind::Arc) {
+      geometry_.arc = ArcData{load(0), load(3), load(6), c.values[9], c.values[10], c.values[11], c.values[12]};
+      return ok();
+    }
+    if (c.degree > max_degree) return fail(Error::DegreeAboveCapacity, c.degree);
+    const std::size_t count = static_cast<std::size_t>(c.degree) + 1;
+    std::array<MachinePoint, capacity> points{};
+    for (std::size_t i = 0; i < count; ++i) points[i] = load(3 * i);
+    const std::span<const MachinePoint> control(points.data(), count);
+    if (c.kind == SegmentKind::RationalBezier) {
+      std::construct_at(&geometry_.rational);
+      return Rational::create_into(geometry_.rational, control, std::span<const double>(c.values.data() + 3 * capacity, count));
+    }
+    return Polynomial::create_into(geometry_.polynomial, control);
   }
 
   [[nodiscard]] constexpr bool is_point() const noexcept {

@@ -71,7 +71,8 @@ inline void tangent_and_curvature(const MachinePoint& d1, const MachinePoint& d2
 template <std::size_t Intervals = 64>
 [[nodiscard]] Result<SegmentPlan> plan_segment(const PathSegment& segment, const PathLengthTable<Intervals>& table,
                                                const MachineLimits& machine) {
-  SegmentPlan plan;
+  Result<SegmentPlan> out(std::in_place);  // filled in place and returned by name (no copy)
+  SegmentPlan& plan = out.value();
   plan.length_mm = table.length();
   double a_max = machine.a_max_mm_per_s2;
   double speed_cap = segment.rapid() ? (machine.rapid_mm_per_s > 0 ? machine.rapid_mm_per_s : machine.v_max_mm_per_s)
@@ -79,22 +80,28 @@ template <std::size_t Intervals = 64>
   speed_cap = std::fmin(speed_cap, machine.v_max_mm_per_s);
 
   constexpr std::size_t samples = 128;
-  std::array<double, samples + 1> speed{};
+  // The speeds are not kept (129 doubles, 1 KiB of a microcontroller's stack): the scan from a
+  // vanishing end evaluates them again, the same pure function of u, so the same bits.
+  const auto speed = [&segment](std::size_t k) { return norm(segment.derivative(static_cast<double>(k) / samples, 1)); };
   double largest_speed = 0;
+  double start_speed = 0;
+  double end_speed = 0;
   for (std::size_t k = 0; k <= samples; ++k) {
-    speed[k] = norm(segment.derivative(static_cast<double>(k) / samples, 1));
-    largest_speed = std::fmax(largest_speed, speed[k]);
+    const double v = speed(k);
+    if (k == 0) start_speed = v;
+    if (k == samples) end_speed = v;
+    largest_speed = std::fmax(largest_speed, v);
   }
   // An end where the velocity vanishes is a cusp the controller split at: the curvature is unbounded
   // next to it, but the speed goes to zero there (the junction is a reversal), v²κ ~ s^(5/6) -> 0.
   // Its neighbourhood (speed below 5% of the largest) is left out of the curvature caps.
   std::size_t first = 0;
   std::size_t last = samples;
-  if (speed[0] <= 1e-7 * largest_speed) {
-    while (first < samples && speed[first] < 0.05 * largest_speed) ++first;
+  if (start_speed <= 1e-7 * largest_speed) {
+    while (first < samples && speed(first) < 0.05 * largest_speed) ++first;
   }
-  if (speed[samples] <= 1e-7 * largest_speed) {
-    while (last > first && speed[last] < 0.05 * largest_speed) --last;
+  if (end_speed <= 1e-7 * largest_speed) {
+    while (last > first && speed(last) < 0.05 * largest_speed) --last;
   }
   double max_kappa = 0;
   double max_kappa_rate = 0;  // |dκ/ds|
@@ -146,7 +153,10 @@ template <std::size_t Intervals = 64>
     const auto peak = detail::golden_section_minimum([&](double u) { return -kappa_at(u); }, low, high, 40);
     max_kappa = std::fmax(max_kappa, -peak.value);
   }
-  if (!std::isfinite(max_kappa) || !std::isfinite(max_kappa_rate)) return fail(Error::DegenerateCurve);
+  if (!std::isfinite(max_kappa) || !std::isfinite(max_kappa_rate)) {
+    out = fail(Error::DegenerateCurve);
+    return out;
+  }
   max_kappa_rate *= 1.25;
   plan.max_curvature_per_mm = max_kappa;
 
@@ -171,9 +181,12 @@ template <std::size_t Intervals = 64>
     acceleration = std::fmin(0.85 * a_max, 0.25 * jerk / (3 * speed_cap * max_kappa));                       // 3 v a κ <= j/4
     jerk = 0.5 * jerk;
   }
-  if (!(speed_cap > 0) || !(acceleration > 0)) return fail(Error::InvalidLimit);
+  if (!(speed_cap > 0) || !(acceleration > 0)) {
+    out = fail(Error::InvalidLimit);
+    return out;
+  }
   plan.limits = ProfileLimits{speed_cap, acceleration, jerk, machine.jerk_limited};
-  return plan;
+  return out;
 }
 
 /// The largest speed at the joint from `previous` into `next` (both already planned).
