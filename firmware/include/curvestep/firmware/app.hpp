@@ -423,7 +423,9 @@ class App {
     if (s.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
     const protocol::WirePoint start = segment_start(s);
     if (has_last_end_ && start != last_end_) return fail(Error::SegmentsNotConnected, job_segments_);
-    CURVESTEP_TRY(const PathSegment segment, to_path_segment(s));
+    const auto made = to_path_segment(s);  // used in place: a PathSegment is large for small stacks
+    if (!made) return made.failure();
+    const PathSegment& segment = made.value();
     CURVESTEP_CHECK(check_travel(segment, travel_));
     CURVESTEP_CHECK(controller_.try_push(segment, job_segments_));
     const auto depth = static_cast<std::uint16_t>(controller_.queued());

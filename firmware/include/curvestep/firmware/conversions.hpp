@@ -95,14 +95,18 @@ inline constexpr double arc_radius_tolerance_mm = 0.002;
       break;
     }
   }
-  if (!made) return made;
-  PathSegment segment = made.value();
-  segment.set_rapid(s.rapid);
-  if (s.has_feed) {
-    if (s.feed_mm_per_s <= 0) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::Feed));
-    segment.set_feed_mm_per_s(wire_to_mm(s.feed_mm_per_s));
+  // The segment is finished inside `made` and returned by name: no second copy on the stack.
+  if (made) {
+    made.value().set_rapid(s.rapid);
+    if (s.has_feed) {
+      if (s.feed_mm_per_s <= 0) {
+        made = fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::Feed));
+      } else {
+        made.value().set_feed_mm_per_s(wire_to_mm(s.feed_mm_per_s));
+      }
+    }
   }
-  return segment;
+  return made;
 }
 
 /// Travel range of one axis in mm; min == max == 0 means the axis is not limited.
