@@ -21,8 +21,6 @@
 
 #include <curvestep/boards/host/board.hpp>
 #include <curvestep/boards/host/device.hpp>
-#include <curvestep/core/error_text.hpp>
-#include <curvestep/firmware/conversions.hpp>
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/link/streamer.hpp>
@@ -55,22 +53,6 @@ struct DemoRun {
   std::string difference;  ///< where the streams first differ, if they do
 };
 
-/// The job and machine exactly as the device will plan them (after the wire and the firmware's conversions).
-std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
-  const auto wire_machine = link::to_wire(machine, motion_axes);
-  auto limits = firmware::to_machine_limits(wire_machine.configuration);
-  if (!limits) throw std::runtime_error("machine: " + std::string(describe(limits.error())));
-  const auto wire_job = link::to_wire(job, motion_axes);
-  Job seen = job;
-  seen.segments.clear();
-  for (std::size_t i = 0; i < wire_job.segments.size(); ++i) {
-    auto segment = firmware::to_path_segment(wire_job.segments[i]);
-    if (!segment) throw std::runtime_error(job.name + ": segment " + std::to_string(i) + ": " + std::string(describe(segment.error())));
-    seen.segments.push_back(segment.value());
-  }
-  return {seen, limits.value()};
-}
-
 /// Runs the firmware on a fresh pseudo-terminal in a thread until `stop` is set.
 class VirtualDevice {
  public:
@@ -101,7 +83,7 @@ DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine,
   run.name = file.filename().string();
   std::vector<std::string> notes;
   const Job job = load_job_file(file, JobFileOptions{true}, &notes);
-  const auto [device_job, device_machine] = as_device_sees(job, machine);
+  const auto [device_job, device_machine] = link::as_device_sees(job, machine);
   const SimulationResult sim = simulate(device_job, device_machine);
 
   link::StreamResult streamed;

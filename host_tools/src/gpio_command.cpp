@@ -33,7 +33,6 @@
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/core/motion/step_position.hpp>
-#include <curvestep/firmware/conversions.hpp>
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/link/streamer.hpp>
@@ -69,22 +68,6 @@ constexpr const char* axis_names[] = {"x", "y", "z"};
 std::atomic<bool> interrupted{false};
 extern "C" void on_interrupt(int) { interrupted.store(true); }
 
-/// The job and machine as the device will plan them: after the wire format and the firmware's
-/// conversions (weights, tolerance and feeds as Q16.16; rapids at v_max, the protocol has no rapid).
-std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
-  auto limits = firmware::to_machine_limits(link::to_wire(machine, motion_axes).configuration);
-  if (!limits) throw std::runtime_error("machine: " + std::string(describe(limits.error())));
-  const auto wire_job = link::to_wire(job, motion_axes);
-  Job seen = job;
-  seen.segments.clear();
-  for (std::size_t i = 0; i < wire_job.segments.size(); ++i) {
-    auto segment = firmware::to_path_segment(wire_job.segments[i]);
-    if (!segment) throw std::runtime_error(job.name + ": segment " + std::to_string(i) + ": " + std::string(describe(segment.error())));
-    seen.segments.push_back(segment.value());
-  }
-  return {seen, limits.value()};
-}
-
 /// What the pre-check found.
 struct Plan {
   SimulationSummary summary;
@@ -95,7 +78,7 @@ struct Plan {
 /// Plans the job as the device will and refuses it (std::runtime_error, exit_step_rate) if an axis
 /// needs more than max_step_rate or a tick more steps than the host board's timing allows.
 Plan check_before_moving(const Job& job, const MachineLimits& machine, int& status) {
-  auto [device_job, device_machine] = as_device_sees(job, machine);
+  auto [device_job, device_machine] = link::as_device_sees(job, machine);
   // The wire has no max_step_rate field (the device assumes the default): the host knows the driver.
   device_machine.max_step_rate_hz = machine.max_step_rate_hz;
   const SimulationResult sim = simulate(device_job, device_machine);

@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <curvestep/core/error_text.hpp>
+#include <curvestep/firmware/conversions.hpp>
 #include <curvestep/host/csv.hpp>
 
 namespace curvestep::host::link {
@@ -156,6 +158,20 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
     out.segments.push_back(q);
   }
   return out;
+}
+
+std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
+  const auto limits = firmware::to_machine_limits(to_wire(machine, motion_axes).configuration);
+  if (!limits) throw std::runtime_error("machine: " + std::string(describe(limits.error())));
+  const auto wire_job = to_wire(job, motion_axes);
+  Job seen = job;
+  seen.segments.clear();
+  for (std::size_t i = 0; i < wire_job.segments.size(); ++i) {
+    const auto segment = firmware::to_path_segment(wire_job.segments[i]);
+    if (!segment) throw std::runtime_error(job.name + ": segment " + std::to_string(i) + ": " + std::string(describe(segment.error())));
+    seen.segments.push_back(segment.value());
+  }
+  return {seen, limits.value()};
 }
 
 }  // namespace curvestep::host::link

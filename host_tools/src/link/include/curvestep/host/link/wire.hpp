@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <curvestep/core/motion/machine_limits.hpp>
@@ -43,5 +44,11 @@ struct WireJob {
 /// `value` in Q16.16 raw units, rounded to nearest; sets `exact` false if rounding changed it.
 /// Throws std::out_of_range outside the Q16.16 range.
 [[nodiscard]] std::int32_t to_q16(double value, bool& exact);
+
+/// The job and machine exactly as a controller with motion_axes axes will plan them: through the
+/// wire format and the firmware's own conversions (firmware/conversions.hpp). Simulating these
+/// gives the device's setpoints, so a comparison cannot be fooled by rounding on the wire.
+/// Throws std::runtime_error naming the machine or the job's segment the firmware would refuse.
+[[nodiscard]] std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine);
 
 }  // namespace curvestep::host::link
