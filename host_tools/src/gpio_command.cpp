@@ -68,6 +68,10 @@ constexpr const char* axis_names[] = {"x", "y", "z"};
 std::atomic<bool> interrupted{false};
 extern "C" void on_interrupt(int) { interrupted.store(true); }
 
+/// Thrown from the stream's progress callback after Ctrl-C / SIGTERM: it leaves stream_job, and the
+/// board thread (the firmware and its step lines) stops when it goes out of scope.
+struct Interrupted {};
+
 /// What the pre-check found.
 struct Plan {
   SimulationSummary summary;
@@ -79,7 +83,7 @@ struct Plan {
 /// needs more than max_step_rate or a tick more steps than the host board's timing allows.
 Plan check_before_moving(const Job& job, const MachineLimits& machine, int& status) {
   auto [device_job, device_machine] = link::as_device_sees(job, machine);
-  // The wire has no max_step_rate field (the device assumes the default): the host knows the driver.
+  // The file's own max_step_rate is what the drivers can take (it also travels on the wire as binary64).
   device_machine.max_step_rate_hz = machine.max_step_rate_hz;
   const SimulationResult sim = simulate(device_job, device_machine);
   Plan plan;
@@ -186,6 +190,9 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
     constexpr std::size_t shown = 5;
     if (++*warnings <= shown) std::cerr << "curvestep gpio: warning: " << text << "\n";
   };
+  options.progress = [](const link::StreamProgress&) {
+    if (interrupted.load()) throw Interrupted{};
+  };
   link::StreamResult result;
   const auto started = std::chrono::steady_clock::now();
   std::string failure;
@@ -198,6 +205,8 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
       failure = e.what();
     } catch (const link::TransportError& e) {
       failure = e.what();
+    } catch (const Interrupted&) {
+      // reported below
     }
   }  // the board thread stops here; the output's lines go low
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -224,8 +233,8 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
     std::cerr << "curvestep gpio: " << failure << "\n";
     return exit_device_error;
   }
-  if (result.missing_setpoints != 0) {
-    std::cerr << "curvestep gpio: " << result.missing_setpoints << " setpoint reports were lost on the link (the motion was not affected)\n";
+  if (result.standing_ticks != 0) {
+    std::cerr << "curvestep gpio: the machine stood still for " << result.standing_ticks << " ticks (feed hold or a starved queue)\n";
   }
   for (std::size_t a = 0; a < motion_axes; ++a) {
     if (output.net_steps()[a] != plan.moved_steps[a]) {

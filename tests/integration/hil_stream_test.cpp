@@ -152,7 +152,7 @@ TEST_CASE("hil: with 1 percent corrupted and 1 percent dropped bytes in both dir
   const auto actual = ct::read_raw_setpoints(capture);
   CHECK(actual.size() == expected.size());
   CHECK(ct::first_difference(expected, actual) == -1);
-  CHECK_THAT(output, Catch::Contains("setpoints missing:   0") && Catch::Contains("setpoints duplicated: 0"));
+  CHECK_THAT(output, Catch::Contains("ticks standing:      0 ") && Catch::Contains("setpoints duplicated: 0"));
   // The faults reached the host: frames from the controller were damaged (and resent).
   CHECK_THAT(output, !Catch::Contains("damaged frames:      0\n"));
   proxy.stop();

@@ -67,7 +67,7 @@ TEST_CASE("host board: the step/dir waveform of a streamed job has the driver ti
   }
   stop = true;
   device.join();
-  REQUIRE(result.missing_setpoints == 0);
+  REQUIRE(result.standing_ticks == 0);
   REQUIRE(recorder->dropped() == 0);
 
   // Expected from the geometry: X 24 mm * 80 steps/mm forward; Y 6 * 10 mm * 80 steps/mm, half each way.

@@ -170,15 +170,15 @@ class Upload {
       return false;
     }
     // Idle: done once every setpoint up to the last one arrived (the reliable stream delivers
-    // them, maybe after the report). A stream that does not complete within the link timeout
-    // means the controller stopped sending them: that is an error, never a silent loss.
+    // them in order, maybe after the report). Indices may skip: a held or starved controller
+    // ticks without reporting (docs/firmware.md). A stream that does not reach the last index
+    // within the link timeout means the controller stopped sending: an error, never a silent loss.
     const std::uint32_t now = link_.now_ms();
     if (!idle_seen_) {
       idle_seen_ = true;
       idle_since_ms_ = now;
     }
-    if (!setpoints_.empty() && setpoints_.rbegin()->first >= last_status_.setpoint_index &&
-        setpoints_.rbegin()->first - setpoints_.begin()->first + 1 == setpoints_.size()) {
+    if (!setpoints_.empty() && setpoints_.rbegin()->first >= last_status_.setpoint_index) {
       return true;
     }
     const std::uint32_t patience = options_.link.link_timeout_ms != 0 ? options_.link.link_timeout_ms : 3000;
@@ -216,7 +216,7 @@ class Upload {
     const protocol::WirePoint* previous = nullptr;
     for (const auto& [index, point] : setpoints_) {
       if (index != expected) {
-        result.missing_setpoints += index - expected;
+        result.standing_ticks += index - expected;
         previous = nullptr;
       }
       SetpointRecord r;
@@ -235,7 +235,7 @@ class Upload {
       previous = &point;
       expected = index + 1;
     }
-    if (last_status_.setpoint_index > expected) result.missing_setpoints += last_status_.setpoint_index - expected;
+    if (last_status_.setpoint_index > expected) result.standing_ticks += last_status_.setpoint_index - expected;
     result.duplicate_setpoints = duplicates_;
     result.max_queue_depth = last_status_.max_queue_depth;
     result.batches_repeated = link_.statistics().batches_repeated;

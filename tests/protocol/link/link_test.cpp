@@ -52,6 +52,21 @@ TEST_CASE("link: a handshake with a wrong version is refused on both ends", "[pr
     REQUIRE(host.link_errors.size() == 1);
     CHECK(host.link_errors[0] == Error::VersionMismatch);
   }
+  SECTION("a Hello of another version does not end an established session") {
+    Host<> host;
+    Controller controller(5);
+    handshake(host, controller);
+    REQUIRE(controller.receiver.connected());
+    Bytes frame(max_encoded_frame_size);
+    const auto size = encode_frame(Message(Hello{static_cast<std::uint16_t>(protocol_version + 1), 0x1234}), 0, frame);
+    REQUIRE(size.has_value());
+    frame.resize(size.value());
+    (void)controller.receive(frame, 10);
+    REQUIRE(controller.naks.size() == 1);
+    CHECK(controller.naks[0].reason == Error::VersionMismatch);
+    CHECK(controller.receiver.connected());
+    CHECK(controller.connects == 1);
+  }
   SECTION("the host refuses Capabilities of another version") {
     LinkSender<> sender;
     sender.connect(7, 0);

@@ -203,7 +203,8 @@ class LinkReceiver {
     const auto hello = decode<Hello>(frame.payload);
     if (!hello) return r;
     if (hello.value().version != capabilities_.version) {
-      connected_ = false;
+      // Refused, but an established session (and its link watchdog) stays as it is: a stray
+      // Hello from another host version must not silently disconnect the running job.
       r.reply = ReplyKind::Nak;
       r.nak = Nak{expected_, Error::VersionMismatch};
       return r;

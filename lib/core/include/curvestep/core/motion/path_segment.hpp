@@ -251,6 +251,7 @@ class PathSegment {
     if (a == b) return fail(Error::DegenerateCurve);
     kind_ = SegmentKind::Line;
     const std::array<MachinePoint, 2> ends{a, b};
+    std::construct_at(&geometry_.polynomial);  // the union's active member follows the kind
     CURVESTEP_CHECK(Polynomial::create_into(geometry_.polynomial, ends));
     return check_derivatives();
   }
@@ -339,6 +340,7 @@ class PathSegment {
   [[nodiscard]] Result<void> set_bezier(std::span<const MachinePoint> control) noexcept {
     if (control.size() < 2) return fail(Error::TooFewPoints, control.size());
     kind_ = SegmentKind::Bezier;
+    std::construct_at(&geometry_.polynomial);
     CURVESTEP_CHECK(Polynomial::create_into(geometry_.polynomial, control));
     if (is_point()) return fail(Error::DegenerateCurve);
     return check_derivatives();
@@ -373,6 +375,7 @@ class PathSegment {
       std::construct_at(&geometry_.rational);
       return Rational::create_into(geometry_.rational, control, std::span<const double>(c.values.data() + 3 * capacity, count));
     }
+    std::construct_at(&geometry_.polynomial);
     return Polynomial::create_into(geometry_.polynomial, control);
   }
 
@@ -406,8 +409,9 @@ class PathSegment {
   double feed_ = 0;
   // One kind's geometry at a time (the active member follows kind_: Line and Bezier polynomial,
   // RationalBezier rational, Arc arc), which keeps a PathSegment at 472 bytes instead of 776 on
-  // Cortex-M (every copy on a microcontroller's stack counts). Each member is trivially copyable
-  // and is assigned whole when a make_* function or expand() sets the kind.
+  // Cortex-M (every copy on a microcontroller's stack counts). Each member is trivially copyable;
+  // a make_* function or expand() starts the member's lifetime for the kind it sets (an arc by
+  // assigning it whole, the Bézier kinds by std::construct_at before create_into fills them).
   union Geometry {
     constexpr Geometry() noexcept : polynomial{} {}
     Polynomial polynomial;

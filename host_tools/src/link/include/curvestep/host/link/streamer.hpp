@@ -66,7 +66,7 @@ class StreamError : public std::runtime_error {
 /// What a finished upload produced.
 struct StreamResult {
   std::vector<SetpointRecord> setpoints;  ///< the controller's setpoints, index order (time = index / rate)
-  std::size_t missing_setpoints = 0;      ///< setpoints missing from the stream (0 unless the controller is broken)
+  std::size_t standing_ticks = 0;         ///< tick indices not reported: ticks the controller stood held or starved (the reliable stream loses none)
   std::size_t duplicate_setpoints = 0;    ///< setpoints received twice (0 unless the link is broken)
   std::size_t batches_repeated = 0;       ///< setpoint batches the controller resent and the host had already
   std::size_t max_queue_depth = 0;        ///< deepest the controller's segment queue was (its last StatusReport)
