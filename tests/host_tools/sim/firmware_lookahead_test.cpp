@@ -42,15 +42,16 @@ constexpr std::int32_t q(double mm) { return static_cast<std::int32_t>(mm * 6553
 MachineConfiguration machine() {
   MachineConfiguration c;
   c.axis_count = 3;
-  c.max_velocity_mm_per_s = q(100);
+  c.max_velocity_mm_per_s = 100;  // protocol version 2: limits travel as binary64
   c.max_acceleration_mm_per_s2 = 1000;
   c.max_jerk_mm_per_s3 = 10000;
   c.default_feed_mm_per_s = q(100);
-  c.tolerance_mm = q(0.01);
-  c.junction_deviation_mm = q(0.05);
+  c.tolerance_mm = 0.01;
+  c.junction_deviation_mm = 0.05;
+  c.max_step_rate_hz = 100000;
   c.control_rate_hz = 1000;
   for (auto& axis : c.axes) {
-    axis.steps_per_mm = q(80);
+    axis.steps_per_mm = 80;
     axis.min_position_mm = q(-100);
     axis.max_position_mm = q(100);
   }
