@@ -7,7 +7,6 @@
 // The simulator is given what the device receives: the job and the machine after a round trip
 // through the wire format and the firmware's own conversions, so a value the wire rounds (a weight,
 // a tolerance) cannot make the comparison fail, and a real difference still does.
-#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -16,11 +15,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <curvestep/boards/host/board.hpp>
-#include <curvestep/boards/host/device.hpp>
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/link/streamer.hpp>
@@ -30,6 +27,7 @@
 #include <curvestep/host/report.hpp>
 #include <curvestep/host/simulator.hpp>
 
+#include "board_thread.hpp"
 #include "command_registry.hpp"
 
 namespace curvestep::host {
@@ -53,31 +51,6 @@ struct DemoRun {
   std::string difference;  ///< where the streams first differ, if they do
 };
 
-/// Runs the firmware on a fresh pseudo-terminal in a thread until `stop` is set.
-class VirtualDevice {
- public:
-  VirtualDevice() : thread_([this] { serve(); }) {}
-  VirtualDevice(const VirtualDevice&) = delete;
-  VirtualDevice& operator=(const VirtualDevice&) = delete;
-  ~VirtualDevice() {
-    stop_.store(true);
-    thread_.join();
-  }
-  [[nodiscard]] std::string port() const { return pty_.slave_path(); }
-
- private:
-  void serve() {
-    boards::host::DeviceOptions options;
-    options.fast = true;  // flow-controlled by the link: no wall-clock wait, same setpoints
-    boards::host::CountingStepOutput output;
-    (void)boards::host::run_device(pty_.master_fd(), output, options, stop_, nullptr);
-  }
-
-  link::PseudoTerminal pty_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
-
 DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine, const std::string& out) {
   DemoRun run;
   run.name = file.filename().string();
@@ -88,7 +61,8 @@ DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine,
 
   link::StreamResult streamed;
   {
-    VirtualDevice device;
+    boards::host::CountingStepOutput output;
+    BoardThread<boards::host::CountingStepOutput> device(output, true);  // fast: no wall-clock wait
     auto transport = link::open_port(device.port(), 115200);
     streamed = link::stream_job(*transport, job, machine);
   }

@@ -24,7 +24,6 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <curvestep/boards/host/board.hpp>
@@ -41,6 +40,7 @@
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/simulator.hpp>
 
+#include "board_thread.hpp"
 #include "command_registry.hpp"
 #include "gpio_command_output.hpp"
 
@@ -144,33 +144,6 @@ Plan check_before_moving(const Job& job, const MachineLimits& machine, int& stat
   }
   return plan;
 }
-
-/// The firmware on the host board, serving one end of a pseudo-terminal in a thread until stopped.
-template <class Output>
-class BoardThread {
- public:
-  BoardThread(Output& output, bool fast) : output_(output), fast_(fast), thread_([this] { serve(); }) {}
-  BoardThread(const BoardThread&) = delete;
-  BoardThread& operator=(const BoardThread&) = delete;
-  ~BoardThread() {
-    stop_.store(true);
-    thread_.join();
-  }
-  [[nodiscard]] std::string port() const { return pty_.slave_path(); }
-
- private:
-  void serve() {
-    boards::host::DeviceOptions options;
-    options.fast = fast_;
-    (void)boards::host::run_device(pty_.master_fd(), output_, options, stop_, nullptr);
-  }
-
-  link::PseudoTerminal pty_;
-  Output& output_;
-  bool fast_;
-  std::atomic<bool> stop_{false};
-  std::thread thread_;
-};
 
 std::string join_steps(const auto& values) {
   std::ostringstream s;

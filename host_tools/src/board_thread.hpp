@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// BoardThread: the firmware on the Linux host board, serving a fresh pseudo-terminal in a thread of
+// this process until it goes out of scope (curvestep demo and curvestep gpio).
+#pragma once
+
+#include <atomic>
+#include <string>
+#include <thread>
+
+#include <curvestep/boards/host/device.hpp>
+#include <curvestep/host/link/transport.hpp>
+
+namespace curvestep::host {
+
+/// Runs boards::host::run_device with `output` on one end of a new pty; port() is the other end.
+template <class Output>
+class BoardThread {
+ public:
+  /// `fast`: flow-controlled by the link instead of the wall clock (the same setpoints).
+  BoardThread(Output& output, bool fast) : output_(output), fast_(fast), thread_([this] { serve(); }) {}
+  BoardThread(const BoardThread&) = delete;
+  BoardThread& operator=(const BoardThread&) = delete;
+  /// Stops the device and waits for its thread.
+  ~BoardThread() {
+    stop_.store(true);
+    thread_.join();
+  }
+  /// The pseudo-terminal to open as the device's serial port.
+  [[nodiscard]] std::string port() const { return pty_.slave_path(); }
+
+ private:
+  void serve() {
+    boards::host::DeviceOptions options;
+    options.fast = fast_;
+    (void)boards::host::run_device(pty_.master_fd(), output_, options, stop_, nullptr);
+  }
+
+  link::PseudoTerminal pty_;
+  Output& output_;
+  bool fast_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;  // last: started once every other member exists
+};
+
+}  // namespace curvestep::host
