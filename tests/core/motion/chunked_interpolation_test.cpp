@@ -15,30 +15,9 @@ using namespace curvestep;
 using namespace curvestep::testing;
 
 namespace {
-PathSegment line(MachinePoint a, MachinePoint b) { return PathSegment::make_line(a, b).value(); }
-PathSegment cubic(MachinePoint a, MachinePoint b, MachinePoint c, MachinePoint d) {
-  const std::array<MachinePoint, 4> pts{a, b, c, d};
-  return PathSegment::make_bezier(pts).value();
-}
-PathSegment arc(MachinePoint a, MachinePoint b, MachinePoint c, ArcDirection dir) {
-  return PathSegment::make_arc(a, b, c, dir, 0, 1e-6).value();
-}
-
 /// The acceptance jobs of motion_controller_test.cpp and a long gentle cubic.
 std::vector<std::vector<PathSegment>> jobs() {
-  std::vector<std::vector<PathSegment>> out;
-  out.push_back({line(mp(0, 0), mp(300, 0))});
-  out.push_back({line(mp(0, 0), mp(50, 0)), line(mp(50, 0), mp(50, 50)), line(mp(50, 50), mp(0, 0))});
-  out.push_back({cubic(mp(0, 0), mp(20, 40), mp(40, -40), mp(60, 0)), cubic(mp(60, 0), mp(80, 40), mp(100, -40), mp(120, 0))});
-  out.push_back({line(mp(0, 0), mp(20, 0)), arc(mp(20, 0), mp(20, 20), mp(20, 10), ArcDirection::CounterClockwise),
-                 line(mp(20, 20), mp(0, 20))});
-  out.push_back({cubic(mp(0, 0), mp(30, 30), mp(0, 30), mp(30, 0))});
-  {
-    const std::array<MachinePoint, 3> q{mp(10, 0), mp(10, 10), mp(0, 10)};
-    const std::array<double, 3> w{1, std::sqrt(0.5), 1};
-    out.push_back({PathSegment::make_rational_bezier(q, w).value()});
-  }
-  out.push_back({PathSegment::make_arc(mp(5, 0, 0), mp(5, 0, 4), mp(0, 0), ArcDirection::Clockwise, 1, 1e-9).value()});
+  auto out = acceptance_jobs();
   out.push_back({cubic(mp(0, 0), mp(130, 60), mp(270, -60), mp(400, 0))});
   return out;
 }

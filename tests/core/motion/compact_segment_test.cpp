@@ -12,10 +12,13 @@
 #include <curvestep/core/motion/cusps.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
 
+#include "motion_test_support.hpp"
+
 using namespace curvestep;
 
+using curvestep::testing::mp;
+
 namespace {
-MachinePoint mp(double x, double y, double z = 0) { return MachinePoint{{x, y, z}}; }
 
 /// Bitwise equality of doubles (distinguishes -0 and +0, equal NaN payloads).
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
@@ -137,14 +140,7 @@ TEST_CASE("compact_segment: a segment with two cusps runs like its pieces split 
   pieces.push_back(rest);
   for (const auto& p : pieces) REQUIRE(find_cusps(p).count == 0);
 
-  MachineLimits m;
-  m.v_max_mm_per_s = 200;
-  m.a_max_mm_per_s2 = 2000;
-  m.j_max_mm_per_s3 = 50000;
-  m.feed_mm_per_s = 50;
-  m.tolerance_mm = 0.01;
-  m.rate_hz = 1000;
-  m.junction_deviation_mm = 0.05;
+  const MachineLimits m = curvestep::testing::test_machine();
   auto run = [&m](const std::vector<PathSegment>& job) {
     MotionController<Q16_16, 16, 8> controller;
     REQUIRE(controller.configure(m).has_value());

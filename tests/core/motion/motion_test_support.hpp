@@ -14,6 +14,34 @@ namespace curvestep::testing {
 
 inline MachinePoint mp(double x, double y, double z = 0) { return MachinePoint{{x, y, z}}; }
 
+/// Segment builders for tests (valid input: value() on the Result).
+inline PathSegment line(MachinePoint a, MachinePoint b) { return PathSegment::make_line(a, b).value(); }
+inline PathSegment cubic(MachinePoint a, MachinePoint b, MachinePoint c, MachinePoint d) {
+  const std::array<MachinePoint, 4> pts{a, b, c, d};
+  return PathSegment::make_bezier(pts).value();
+}
+inline PathSegment arc(MachinePoint a, MachinePoint b, MachinePoint c, ArcDirection dir) {
+  return PathSegment::make_arc(a, b, c, dir, 0, 1e-6).value();
+}
+
+/// Jobs covering every segment kind: tight curves, a cusp, tangent-continuous chains, sharp corners, long lines.
+inline std::vector<std::vector<PathSegment>> acceptance_jobs() {
+  std::vector<std::vector<PathSegment>> jobs;
+  jobs.push_back({line(mp(0, 0), mp(300, 0))});
+  jobs.push_back({line(mp(0, 0), mp(50, 0)), line(mp(50, 0), mp(50, 50)), line(mp(50, 50), mp(0, 0))});  // corners
+  jobs.push_back({cubic(mp(0, 0), mp(20, 40), mp(40, -40), mp(60, 0)), cubic(mp(60, 0), mp(80, 40), mp(100, -40), mp(120, 0))});
+  jobs.push_back({line(mp(0, 0), mp(20, 0)), arc(mp(20, 0), mp(20, 20), mp(20, 10), ArcDirection::CounterClockwise),
+                  line(mp(20, 20), mp(0, 20))});  // tangent-continuous line-arc-line
+  jobs.push_back({cubic(mp(0, 0), mp(30, 30), mp(0, 30), mp(30, 0))});  // cusp-like loop
+  {
+    const std::array<MachinePoint, 3> q{mp(10, 0), mp(10, 10), mp(0, 10)};
+    const std::array<double, 3> w{1, std::sqrt(0.5), 1};
+    jobs.push_back({PathSegment::make_rational_bezier(q, w).value()});
+  }
+  jobs.push_back({PathSegment::make_arc(mp(5, 0, 0), mp(5, 0, 4), mp(0, 0), ArcDirection::Clockwise, 1, 1e-9).value()});  // helix
+  return jobs;
+}
+
 /// A machine for tests: 1 kHz, S-curve.
 inline MachineLimits test_machine() {
   MachineLimits m;

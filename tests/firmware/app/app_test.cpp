@@ -23,6 +23,7 @@ using namespace curvestep::firmware;
 using namespace curvestep::protocol;
 using curvestep::firmware::testing::FakeBoard;
 using curvestep::firmware::testing::Host;
+using curvestep::firmware::testing::JobUpload;
 
 namespace {
 
@@ -134,32 +135,19 @@ std::vector<std::pair<std::uint32_t, WirePoint>> reference(const MachineConfigur
 template <class AppType>
 void stream_job(Host<AppType>& host, AppType& app, FakeBoard& board, const std::vector<QueueSegment>& job,
                 int max_ticks = 200000) {
-  std::size_t next = 0;
-  bool started = false;
+  JobUpload upload(job);
   for (int t = 0; t < max_ticks; ++t) {
-    while (next < job.size() && host.sender().can_submit(MessageType::QueueSegment)) {
-      REQUIRE(host.sender().submit(Message(job[next])).has_value());
-      ++next;
-    }
-    if (!started && host.sender().can_submit(MessageType::Start)) {
-      REQUIRE(host.sender().submit(Message(Start{})).has_value());
-      started = true;
-    }
-    // A host polls the status now and then; that traffic also keeps the link watchdog quiet.
-    if (t % 100 == 99 && host.sender().can_submit(MessageType::StatusRequest)) {
-      REQUIRE(host.sender().submit(Message(StatusRequest{})).has_value());
-    }
+    REQUIRE(upload.step(host.sender(), t));
     app.on_tick();
     ++board.clock_ms;
     host.pump();
-    if (started && next == job.size() && !app.moving() && app.state() == MachineState::Idle &&
-        host.sender().idle()) {
+    if (upload.all_sent() && !app.moving() && app.state() == MachineState::Idle && host.sender().idle()) {
       return;
     }
   }
   INFO("state " << static_cast<int>(app.state()) << " moving " << app.moving() << " queued "
                  << app.controller().queued() << " controller " << static_cast<int>(app.controller().state())
-                 << " sent " << next << " errors " << host.received.errors.size() << " credit "
+                 << " sent " << upload.segments_sent() << " errors " << host.received.errors.size() << " credit "
                  << host.sender().credit() << " in flight " << host.sender().in_flight());
   INFO("first error " << (host.received.errors.empty() ? 0 : static_cast<int>(host.received.errors[0].code)) << " at "
                        << (host.received.errors.empty() ? 0 : host.received.errors[0].index) << " clock " << board.clock_ms);
@@ -939,21 +927,11 @@ TEST_CASE("firmware: a slow host gets every setpoint exactly once because the Ap
   connect_and_configure(host);
   const auto job = mixed_job();
   const auto expected = reference(machine(), job);
-  std::size_t next = 0;
-  bool started = false;
-  for (int t = 0; t < 400000 && !(started && next == job.size() && app.state() == MachineState::Idle && !app.moving() &&
-                                  app.setpoint_sender().idle());
+  JobUpload upload(job);
+  for (int t = 0;
+       t < 400000 && !(upload.all_sent() && app.state() == MachineState::Idle && !app.moving() && app.setpoint_sender().idle());
        ++t) {
-    while (next < job.size() && host.sender().can_submit(MessageType::QueueSegment)) {
-      REQUIRE(host.sender().submit(Message(job[next++])).has_value());
-    }
-    if (!started && host.sender().can_submit(MessageType::Start)) {
-      REQUIRE(host.sender().submit(Message(Start{})).has_value());
-      started = true;
-    }
-    if (t % 100 == 99 && host.sender().can_submit(MessageType::StatusRequest)) {
-      REQUIRE(host.sender().submit(Message(StatusRequest{})).has_value());
-    }
+    REQUIRE(upload.step(host.sender(), t));
     host.reading = (t / 37) % 5 == 0;  // the host reads only a fifth of the time, in bursts
     app.on_tick();
     ++board.clock_ms;
@@ -981,23 +959,13 @@ TEST_CASE("firmware: a lost setpoint frame is resent after the host's Nak and th
   connect_and_configure(host);
   const auto job = mixed_job();
   const auto expected = reference(machine(), job);
-  std::size_t next = 0;
-  bool started = false;
+  JobUpload upload(job);
   std::mt19937 rng(curvestep::testing::test_seed());
   int damaged = 0;
-  for (int t = 0; t < 400000 && !(started && next == job.size() && app.state() == MachineState::Idle && !app.moving() &&
-                                  app.setpoint_sender().idle());
+  for (int t = 0;
+       t < 400000 && !(upload.all_sent() && app.state() == MachineState::Idle && !app.moving() && app.setpoint_sender().idle());
        ++t) {
-    while (next < job.size() && host.sender().can_submit(MessageType::QueueSegment)) {
-      REQUIRE(host.sender().submit(Message(job[next++])).has_value());
-    }
-    if (!started && host.sender().can_submit(MessageType::Start)) {
-      REQUIRE(host.sender().submit(Message(Start{})).has_value());
-      started = true;
-    }
-    if (t % 100 == 99 && host.sender().can_submit(MessageType::StatusRequest)) {
-      REQUIRE(host.sender().submit(Message(StatusRequest{})).has_value());
-    }
+    REQUIRE(upload.step(host.sender(), t));
     app.on_tick();
     ++board.clock_ms;
     app.poll();

@@ -196,4 +196,39 @@ class Host {
   protocol::FrameDecoder<> decoder_;
 };
 
+/// The host's side of streaming a job while the App runs, one step per control tick: every segment
+/// the window and the credit allow, Start once it fits, and a StatusRequest every 100 ticks (a host
+/// polls the status now and then; that traffic also keeps the link watchdog quiet).
+class JobUpload {
+ public:
+  explicit JobUpload(const std::vector<protocol::QueueSegment>& job) : job_(job) {}
+
+  /// This tick's submissions; false if the sender refused one it said it had room for.
+  template <class Sender>
+  [[nodiscard]] bool step(Sender& sender, int tick) {
+    while (next_ < job_.size() && sender.can_submit(protocol::MessageType::QueueSegment)) {
+      if (!sender.submit(protocol::Message(job_[next_])).has_value()) return false;
+      ++next_;
+    }
+    if (!started_ && sender.can_submit(protocol::MessageType::Start)) {
+      if (!sender.submit(protocol::Message(protocol::Start{})).has_value()) return false;
+      started_ = true;
+    }
+    if (tick % 100 == 99 && sender.can_submit(protocol::MessageType::StatusRequest)) {
+      if (!sender.submit(protocol::Message(protocol::StatusRequest{})).has_value()) return false;
+    }
+    return true;
+  }
+
+  /// Segments submitted so far.
+  [[nodiscard]] std::size_t segments_sent() const { return next_; }
+  /// Every segment and the Start were submitted.
+  [[nodiscard]] bool all_sent() const { return started_ && next_ == job_.size(); }
+
+ private:
+  const std::vector<protocol::QueueSegment>& job_;
+  std::size_t next_ = 0;
+  bool started_ = false;
+};
+
 }  // namespace curvestep::firmware::testing

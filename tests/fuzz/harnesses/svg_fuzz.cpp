@@ -17,17 +17,7 @@
 #include "fuzz_support.hpp"
 #include "wire_grid.hpp"
 
-namespace {
-
-bool inside(const curvestep::MachinePoint& p, double limit) {
-  for (std::size_t a = 0; a < curvestep::motion_axes; ++a) {
-    if (!std::isfinite(p[a]) || std::fabs(p[a]) > limit) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
+using curvestep::fuzz::inside;
 using curvestep::fuzz::wire_exact;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

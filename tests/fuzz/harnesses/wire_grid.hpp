@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Fuzz checks shared by the job, G-code and SVG harnesses: every number the wire carries
-// (host_tools/src/link/wire.cpp) of a loaded job is finite and on the Q16.16 grid.
+// Fuzz checks shared by the job, G-code and SVG harnesses: points inside a bound, and every number
+// the wire carries (host_tools/src/link/wire.cpp) of a loaded job finite and on the Q16.16 grid.
 #pragma once
 
 #include <cmath>
@@ -9,6 +9,14 @@
 #include <curvestep/host/job.hpp>
 
 namespace curvestep::fuzz {
+
+/// Every coordinate finite and within ±limit.
+inline bool inside(const curvestep::MachinePoint& p, double limit) {
+  for (std::size_t a = 0; a < curvestep::motion_axes; ++a) {
+    if (!std::isfinite(p[a]) || std::fabs(p[a]) > limit) return false;
+  }
+  return true;
+}
 
 /// Finite and on the Q16.16 grid (value · 65536, exact in double, is an integer): a number the
 /// wire carries without rounding.

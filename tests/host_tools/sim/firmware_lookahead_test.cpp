@@ -31,6 +31,7 @@ using namespace curvestep::firmware;
 using namespace curvestep::protocol;
 using curvestep::firmware::testing::FakeBoard;
 using curvestep::firmware::testing::Host;
+using curvestep::firmware::testing::JobUpload;
 
 namespace {
 
@@ -180,25 +181,14 @@ RawStream streamed(const std::vector<QueueSegment>& job) {
   Host<AppType> host(board, app);
   REQUIRE(host.connect());
   REQUIRE(host.send(Message(machine())));
-  std::size_t next = 0;
-  bool started = false;
+  JobUpload upload(job);
   bool done = false;
   for (int t = 0; t < 200000 && !done; ++t) {
-    while (next < job.size() && host.sender().can_submit(MessageType::QueueSegment)) {
-      REQUIRE(host.sender().submit(Message(job[next])).has_value());
-      ++next;
-    }
-    if (!started && host.sender().can_submit(MessageType::Start)) {
-      REQUIRE(host.sender().submit(Message(Start{})).has_value());
-      started = true;
-    }
-    if (t % 100 == 99 && host.sender().can_submit(MessageType::StatusRequest)) {
-      REQUIRE(host.sender().submit(Message(StatusRequest{})).has_value());
-    }
+    REQUIRE(upload.step(host.sender(), t));
     app.on_tick();
     ++board.clock_ms;
     host.pump();
-    done = started && next == job.size() && !app.moving() && app.state() == MachineState::Idle && host.sender().idle();
+    done = upload.all_sent() && !app.moving() && app.state() == MachineState::Idle && host.sender().idle();
   }
   REQUIRE(done);
   REQUIRE(host.received.errors.empty());
