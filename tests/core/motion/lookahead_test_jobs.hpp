@@ -14,15 +14,6 @@
 
 namespace curvestep::testing::lookahead {
 
-inline PathSegment line(MachinePoint a, MachinePoint b) { return PathSegment::make_line(a, b).value(); }
-inline PathSegment cubic(MachinePoint a, MachinePoint b, MachinePoint c, MachinePoint d) {
-  const std::array<MachinePoint, 4> pts{a, b, c, d};
-  return PathSegment::make_bezier(pts).value();
-}
-inline PathSegment arc(MachinePoint a, MachinePoint b, MachinePoint c, ArcDirection dir) {
-  return PathSegment::make_arc(a, b, c, dir, 0, 1e-6).value();
-}
-
 /// A machine fast enough that the braking distance (v²/2a = 10 mm at 200 mm/s) spans many short
 /// segments: the window length then decides the speeds.
 inline MachineLimits fast_machine() {
