@@ -154,7 +154,7 @@ std::string join_steps(const auto& values) {
 template <class Inner>
 int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimits& machine, const Plan& plan, Inner* inner,
                  const std::string& where) {
-  CountingOutput<Inner> output(inner, boards::host::SystemClock::step_timer_hz, machine.rate_hz);
+  CountingOutput<Inner> output(inner);
   link::StreamOptions options;
   options.link.link_timeout_ms = o.link_timeout_ms;
   // What the wire rounds: the first few lines, then a count (an SVG's arcs can give dozens).
@@ -199,7 +199,7 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
   if constexpr (requires(Inner& i) { i.write_errors(); }) {
     if (inner != nullptr) {
       std::cout << "  GPIO write errors:   " << inner->write_errors() << "\n"
-                << "  edge clock restarts: " << output.rebases() << " (1: at the start; more: the loop fell behind)\n";
+                << "  edge clock restarts: " << inner->rebases() << " (1: at the start; more: a pause or the loop fell behind)\n";
     }
   }
   if (!failure.empty()) {

@@ -12,7 +12,8 @@ constexpr const char* consumer = "curvestep";
 
 }  // namespace
 
-GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz) : timer_hz_(timer_hz) {
+GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz, std::int64_t late_limit_ns)
+    : clock_(timer_hz, late_limit_ns) {
   if (lines.chip.empty()) throw GpioError("GPIO: no chip given (machine file: \"gpio\": {\"chip\": ...})");
   chip_ = gpiod_chip_open_lookup(lines.chip.c_str());
   if (chip_ == nullptr) {
@@ -43,7 +44,9 @@ GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz)
     gpiod_chip_close(chip_);  // also releases the lines requested so far
     throw;
   }
-  clock_gettime(CLOCK_MONOTONIC, &epoch_);
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  clock_.set_epoch(to_nanoseconds(now));
 }
 
 GpiodStepOutput::~GpiodStepOutput() {
@@ -52,20 +55,17 @@ GpiodStepOutput::~GpiodStepOutput() {
 }
 
 void GpiodStepOutput::set_epoch(const timespec& epoch, bool fast) noexcept {
-  epoch_ = epoch;
+  clock_.set_epoch(to_nanoseconds(epoch));
   fast_ = fast;
 }
 
-void GpiodStepOutput::wait_until(std::uint64_t time_ticks) const noexcept {
+void GpiodStepOutput::wait_until(std::uint64_t time_ticks) noexcept {
   if (fast_) return;
-  const std::uint64_t ns = time_ticks * 1000000000ull / timer_hz_;
-  timespec deadline = epoch_;
-  deadline.tv_sec += static_cast<time_t>(ns / 1000000000ull);
-  deadline.tv_nsec += static_cast<long>(ns % 1000000000ull);
-  if (deadline.tv_nsec >= 1000000000L) {
-    deadline.tv_nsec -= 1000000000L;
-    ++deadline.tv_sec;
-  }
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  const std::int64_t due = clock_.deadline_ns(time_ticks, to_nanoseconds(now));
+  if (due <= to_nanoseconds(now)) return;
+  const timespec deadline = to_timespec(due);
   while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
   }
 }

@@ -4,8 +4,9 @@
 // It satisfies the core's StepOutput concept (set_direction, set_step with absolute step-timer
 // times), the same interface as RecordingStepOutput, so the waveform the firmware produces is
 // tested with the recorder and only the pin writes differ. Each edge is written at its time:
-// the output sleeps (clock_nanosleep, absolute CLOCK_MONOTONIC deadline) until epoch + time,
-// then sets the line; in fast mode (tests) it does not sleep. Opening fails with a GpioError
+// the output sleeps (clock_nanosleep, absolute CLOCK_MONOTONIC deadline) until the EdgeClock's
+// deadline (epoch + time, re-based after a pause: edge_clock.hpp), then sets the line; in fast
+// mode (tests) it does not sleep. Opening fails with a GpioError
 // naming the chip or the line that was not found; a failed write in the tick path is counted,
 // never thrown.
 #pragma once
@@ -16,6 +17,8 @@
 #include <ctime>
 #include <stdexcept>
 #include <string>
+
+#include <curvestep/boards/host/edge_clock.hpp>
 
 struct gpiod_chip;
 struct gpiod_line;
@@ -40,8 +43,10 @@ struct GpioLines {
 /// Step/dir output on GPIO lines.
 class GpiodStepOutput {
  public:
-  /// Opens the chip and requests every named line as an output, low. Throws GpioError.
-  GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz);
+  /// Opens the chip and requests every named line as an output, low. Throws GpioError. An edge
+  /// more than `late_limit_ns` late re-bases the edge clock (EdgeClock).
+  GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz,
+                  std::int64_t late_limit_ns = EdgeClock::default_late_limit_ns);
   ~GpiodStepOutput();
   GpiodStepOutput(const GpiodStepOutput&) = delete;
   GpiodStepOutput& operator=(const GpiodStepOutput&) = delete;
@@ -56,17 +61,18 @@ class GpiodStepOutput {
   void set_epoch(const timespec& epoch, bool fast) noexcept;
   /// Line writes that failed.
   [[nodiscard]] std::size_t write_errors() const noexcept { return write_errors_; }
+  /// Times the edge clock was re-based (an edge came late: after a pause, or the loop fell behind).
+  [[nodiscard]] std::size_t rebases() const noexcept { return clock_.rebases(); }
 
  private:
-  void wait_until(std::uint64_t time_ticks) const noexcept;
+  void wait_until(std::uint64_t time_ticks) noexcept;
   void write(gpiod_line* line, bool level) noexcept;
 
   gpiod_chip* chip_ = nullptr;
   std::array<gpiod_line*, 3> step_{};
   std::array<gpiod_line*, 3> direction_{};
   std::array<bool, 3> invert_{};
-  std::uint32_t timer_hz_ = 1000000;
-  timespec epoch_{};
+  EdgeClock clock_;
   bool fast_ = false;
   std::size_t write_errors_ = 0;
 };
