@@ -7,6 +7,7 @@
 // The simulator is given what the device receives: the job and the machine after a round trip
 // through the wire format and the firmware's own conversions, so a value the wire rounds (a weight,
 // a tolerance) cannot make the comparison fail, and a real difference still does.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -57,7 +58,6 @@ DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine,
   std::vector<std::string> notes;
   const Job job = load_job_file(file, JobFileOptions{true}, &notes);
   const auto [device_job, device_machine] = link::as_device_sees(job, machine);
-  const SimulationResult sim = simulate(device_job, device_machine);
 
   link::StreamResult streamed;
   {
@@ -66,6 +66,9 @@ DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine,
     auto transport = link::open_port(device.port(), 115200);
     streamed = link::stream_job(*transport, job, machine);
   }
+  SimulationOptions replay;  // the device's planning window, from its Capabilities
+  replay.lookahead = std::clamp<std::size_t>(streamed.lookahead, 1, SimulationOptions::max_lookahead);
+  const SimulationResult sim = simulate(device_job, device_machine, replay);
   run.setpoints = streamed.setpoints.size();
   run.expected = sim.setpoints.size();
   run.lost = run.expected > run.setpoints ? run.expected - run.setpoints : 0;

@@ -96,7 +96,9 @@ int run_stream(const StreamCommandOptions& o) {
             << "  setpoints duplicated: " << result.duplicate_setpoints << "\n"
             << "  batches resent:      " << result.batches_repeated << "\n"
             << "  damaged frames:      " << result.frames_rejected << "\n"
-            << "  device queue peak:   " << result.max_queue_depth << " segments\n"
+            << "  device queue peak:   " << result.max_queue_depth << " of " << result.queue_capacity << " segments\n"
+            << "  device look-ahead:   " << result.lookahead << " segments (curvestep sim --lookahead " << result.lookahead
+            << " plans the same setpoints)\n"
             << "  bytes sent:          " << result.bytes_sent << "\n";
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
   if (result.duplicate_setpoints != 0) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """The App<Board> firmware image in QEMU answers the protocol handshake over -serial pty:
-Hello(version 2, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
+Hello(version 3, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
 here independently of the C++ encoder (COBS, the payload's CRC-32C table-driven, the frame's
 CRC-16/CCITT-FALSE via binascii.crc_hqx).
 Usage: firmware_test.py <stm32f1|stm32f4> <firmware.elf>"""
@@ -15,6 +15,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from qemu_board import QemuBoard  # noqa: E402
 
 MACHINES = {"stm32f1": "stm32vldiscovery", "stm32f4": "netduinoplus2", "stm32f2-m3": "netduino2"}
+# Queue slots and look-ahead of each board's firmware image (boards/<board>/CMakeLists.txt, firmware_main.cpp).
+EXPECTED_QUEUE_AND_LOOKAHEAD = {"stm32f1": (16, 8), "stm32f4": (32, 16), "stm32f2-m3": (32, 16)}
 
 
 def cobs_encode(data):
@@ -61,14 +63,14 @@ def crc32c(data):
 
 def frame(message_type, sequence, message):
     body = bytes([message_type, sequence]) + message
-    body += struct.pack("<I", crc32c(body))  # every payload ends with its CRC-32C (protocol version 2)
+    body += struct.pack("<I", crc32c(body))  # every payload ends with its CRC-32C (since protocol version 2)
     return cobs_encode(body + struct.pack("<H", binascii.crc_hqx(body, 0xFFFF)))
 
 
 def main():
     board_name, elf = sys.argv[1], sys.argv[2]
-    hello = frame(0x01, 0, struct.pack("<HH", 2, 0x1234))
-    assert hello == bytes.fromhex("02010202093412 d5f0dcf8 67a100".replace(" ", "")), hello.hex()  # docs/protocol.md
+    hello = frame(0x01, 0, struct.pack("<HH", 3, 0x1234))
+    assert hello == bytes.fromhex("02010203083412 6d5a9925 120100".replace(" ", "")), hello.hex()  # docs/protocol.md
     with QemuBoard(MACHINES[board_name], elf) as board:
         deadline = time.monotonic() + 20
         while True:
@@ -86,13 +88,18 @@ def main():
                 return 1
             if body[0] != 0x02:
                 continue  # e.g. an Ack: wait for the Capabilities
+            if len(body) != 2 + 20 + 4:
+                print(f"FAIL: Capabilities of {len(body) - 6} bytes (version 3: 20)")
+                return 1
             (version, session, max_payload, queue, credit_end, total_bits, fraction_bits, axes, degree,
-             tick_rate) = struct.unpack("<HHHHHBBBBI", body[2:20])
+             tick_rate, lookahead) = struct.unpack("<HHHHHBBBBIH", body[2:22])
             print(f"Capabilities: version={version} session={session:#x} max_payload={max_payload} queue={queue} "
                   f"credit_end={credit_end} fixed={total_bits}/{fraction_bits} axes={axes} degree={degree} "
-                  f"tick_rate={tick_rate}")
-            ok = (version == 2 and session == 0x1234 and max_payload == 162 and total_bits == 32 and
-                  fraction_bits == 16 and axes == 3 and tick_rate == 1_000_000 and queue >= 8)
+                  f"tick_rate={tick_rate} lookahead={lookahead}")
+            # The image's queue and look-ahead (firmware_main.cpp): App needs queue >= look-ahead + 8.
+            ok = (version == 3 and session == 0x1234 and max_payload == 162 and total_bits == 32 and
+                  fraction_bits == 16 and axes == 3 and tick_rate == 1_000_000 and
+                  (queue, lookahead) == EXPECTED_QUEUE_AND_LOOKAHEAD[board_name])
             print("PASS" if ok else "FAIL: unexpected Capabilities")
             return 0 if ok else 1
 

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 """HIL test against an emulated board: the App<Board> firmware runs in QEMU with USART1 on a
 pseudo-terminal, `curvestep stream` uploads a job to it and captures its setpoint stream, and the
-stream is compared with `curvestep sim` of the same job: bit-identical (--exact, fixed point) or
+stream is compared with `curvestep sim` of the same job, planned with the device's look-ahead
+(from its Capabilities, as `curvestep stream` prints it): bit-identical (--exact, fixed point) or
 within a tolerance in mm (float firmware). Exit 77 (skipped) when this curvestep has no `stream`.
 Usage: hil_stream_test.py <stm32f1|stm32f4> <firmware.elf> <curvestep> <job.json> <machine.json>
                           (--exact | --tolerance MM)"""
@@ -10,6 +11,7 @@ import argparse
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -58,8 +60,13 @@ def main():
         if stream.returncode != 0:
             print(f"FAIL: curvestep stream exited with {stream.returncode}")
             return 1
-        sim = subprocess.run([args.curvestep, "sim", args.job, "-m", args.machine, "-o", simulated],
-                             capture_output=True, text=True, timeout=100)
+        # The device's planning window (its Capabilities, printed by stream): sim plans with the same.
+        lookahead = re.search(r"device look-ahead:\s+(\d+)", stream.stdout)
+        if lookahead is None:
+            print("FAIL: curvestep stream did not print the device's look-ahead")
+            return 1
+        sim = subprocess.run([args.curvestep, "sim", args.job, "-m", args.machine, "-o", simulated,
+                              "--lookahead", lookahead.group(1)], capture_output=True, text=True, timeout=100)
         if sim.returncode != 0:
             print("FAIL: curvestep sim failed:", sim.stdout + sim.stderr)
             return 1

@@ -238,6 +238,8 @@ class Upload {
     if (last_status_.setpoint_index > expected) result.standing_ticks += last_status_.setpoint_index - expected;
     result.duplicate_setpoints = duplicates_;
     result.max_queue_depth = last_status_.max_queue_depth;
+    result.queue_capacity = link_.capabilities().queue_capacity;
+    result.lookahead = link_.capabilities().lookahead;
     result.batches_repeated = link_.statistics().batches_repeated;
     result.frames_rejected = link_.statistics().frames_rejected;
     result.bytes_sent = link_.statistics().bytes_sent;

@@ -115,11 +115,13 @@ TEST_CASE("messages: every message type round-trips through encode and decode", 
     caps.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
     caps.max_degree = static_cast<std::uint8_t>(1 + rng() % 7);
     caps.tick_rate_hz = static_cast<std::uint32_t>(rng());
+    caps.lookahead = static_cast<std::uint16_t>(1 + rng() % 65535);
     const auto c = round_trip(caps).get<Capabilities>();
     CHECK((c.version == caps.version && c.session == caps.session && c.max_payload == caps.max_payload &&
            c.queue_capacity == caps.queue_capacity && c.credit_end == caps.credit_end &&
            c.fixed_total_bits == caps.fixed_total_bits && c.fixed_fraction_bits == caps.fixed_fraction_bits &&
-           c.axis_count == caps.axis_count && c.max_degree == caps.max_degree && c.tick_rate_hz == caps.tick_rate_hz));
+           c.axis_count == caps.axis_count && c.max_degree == caps.max_degree && c.tick_rate_hz == caps.tick_rate_hz &&
+           c.lookahead == caps.lookahead));
 
     Ack ack{static_cast<std::uint8_t>(rng()), static_cast<std::uint16_t>(rng())};
     const auto a = round_trip(ack).get<Ack>();
@@ -211,6 +213,22 @@ TEST_CASE("messages: a setpoint batch encodes as hand-computed zig-zag varints",
   CHECK(to_hex(payload_of(b)) ==
         "e8 03 00 00 03 03 00 00 01 00 00 00 02 00 00 80 ff ff c8 01 01 00 80 80 01 81 80 01 7e");
   CHECK(encoded_size(b, 3) == 29);
+}
+
+TEST_CASE("messages: Capabilities encodes its 20 bytes little-endian, look-ahead last", "[protocol][messages]") {
+  Capabilities c;
+  c.version = 3;
+  c.session = 0x1234;
+  c.max_payload = 162;
+  c.queue_capacity = 16;
+  c.credit_end = 16;
+  c.axis_count = 3;
+  c.max_degree = 7;
+  c.tick_rate_hz = 1000000;
+  c.lookahead = 8;
+  // docs/protocol.md, Capabilities: u16 version, session, max_payload, queue, credit; u8 32, 16,
+  // axes, degree; u32 tick rate (1000000 = 0x000f4240); u16 look-ahead.
+  CHECK(to_hex(payload_of(Message(c))) == "03 00 34 12 a2 00 10 00 10 00 20 10 03 07 40 42 0f 00 08 00");
 }
 
 TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 39 percent spare", "[protocol][messages]") {
@@ -331,7 +349,8 @@ TEST_CASE("messages: other malformed fields are BadPayload", "[protocol][message
   CHECK(decode<SetpointBatch>(hex("00000000 03 19")).where() == 5);         // 25 setpoints
   CHECK(decode<MachineConfiguration>(hex("01")).where() == 0);              // one axis
   CHECK(decode<MachineConfiguration>(hex("02 02")).where() == 1);           // reserved profile flag bit 1
-  CHECK(decode<Capabilities>(hex("0100 0000 a000 1000 1000 20 10 05 07 00000000")).where() == 12);  // 5 axes
+  CHECK(decode<Capabilities>(hex("0100 0000 a000 1000 1000 20 10 05 07 00000000 0100")).where() == 12);  // 5 axes
+  CHECK(decode<Capabilities>(hex("0300 0000 a000 1000 1000 20 10 03 07 00000000 0000")).where() == 18);  // look-ahead 0
   // a varint longer than 5 bytes, and a delta that leaves the int32 range
   CHECK(decode<SetpointBatch>(hex("00000000 02 02 00000000 00000000 ffffffffff01 00")).error() == Error::BadPayload);
   const auto overflow = decode<SetpointBatch>(hex("00000000 02 02 ffffff7f 00000000 02 00"));

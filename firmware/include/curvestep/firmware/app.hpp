@@ -284,6 +284,7 @@ class App {
     c.axis_count = static_cast<std::uint8_t>(B::axis_count);
     c.max_degree = static_cast<std::uint8_t>(protocol::max_segment_degree);
     c.tick_rate_hz = B::step_timing().timer_hz;
+    c.lookahead = static_cast<std::uint16_t>(Lookahead);
     return c;
   }
   [[nodiscard]] static constexpr protocol::ReceiverSettings make_receiver_settings(const AppSettings& s) noexcept {

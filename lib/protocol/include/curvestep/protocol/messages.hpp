@@ -105,6 +105,7 @@ struct Capabilities {
   std::uint8_t axis_count = 3;                                    ///< axes the controller drives (2 or 3)
   std::uint8_t max_degree = max_segment_degree;                   ///< highest Bézier degree accepted
   std::uint32_t tick_rate_hz = 0;                                 ///< step timer tick rate
+  std::uint16_t lookahead = 1;  ///< segments the planner looks ahead (`curvestep sim --lookahead` plans the same)
 };
 
 /// Cumulative acknowledgement: every sequence before `next_expected` arrived.
@@ -278,7 +279,7 @@ constexpr Error read_error(ByteReader& reader) noexcept {
   return w.finish();
 }
 
-/// Encodes a Capabilities payload (18 bytes).
+/// Encodes a Capabilities payload (20 bytes).
 [[nodiscard]] constexpr Result<std::size_t> encode(const Capabilities& m, std::span<std::byte> out) noexcept {
   ByteWriter w(out);
   w.u16(m.version);
@@ -291,6 +292,7 @@ constexpr Error read_error(ByteReader& reader) noexcept {
   w.u8(m.axis_count);
   w.u8(m.max_degree);
   w.u32(m.tick_rate_hz);
+  w.u16(m.lookahead);
   return w.finish();
 }
 
@@ -485,6 +487,9 @@ template <>
   m.max_degree = r.u8();
   if (m.max_degree < 1 || m.max_degree > max_segment_degree) r.reject_at(Error::BadPayload, degree_at);
   m.tick_rate_hz = r.u32();
+  const std::size_t lookahead_at = r.offset();
+  m.lookahead = r.u16();
+  if (m.lookahead == 0) r.reject_at(Error::BadPayload, lookahead_at);
   CURVESTEP_CHECK(r.finish());
   return m;
 }

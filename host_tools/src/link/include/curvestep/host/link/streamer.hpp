@@ -70,6 +70,8 @@ struct StreamResult {
   std::size_t duplicate_setpoints = 0;    ///< setpoints received twice (0 unless the link is broken)
   std::size_t batches_repeated = 0;       ///< setpoint batches the controller resent and the host had already
   std::size_t max_queue_depth = 0;        ///< deepest the controller's segment queue was (its last StatusReport)
+  std::size_t queue_capacity = 0;         ///< the controller's segment queue slots (Capabilities)
+  std::size_t lookahead = 0;              ///< the controller's planning window (Capabilities): sim --lookahead
   std::size_t frames_rejected = 0;        ///< damaged frames from the controller
   std::size_t bytes_sent = 0;             ///< bytes written, retransmissions included
 };
