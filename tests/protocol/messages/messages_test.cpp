@@ -216,16 +216,8 @@ TEST_CASE("messages: a setpoint batch encodes as hand-computed zig-zag varints",
 }
 
 TEST_CASE("messages: Capabilities encodes its 20 bytes little-endian, look-ahead last", "[protocol][messages]") {
-  Capabilities c;
-  c.version = 3;
-  c.session = 0x1234;
-  c.max_payload = 162;
-  c.queue_capacity = 16;
-  c.credit_end = 16;
-  c.axis_count = 3;
-  c.max_degree = 7;
-  c.tick_rate_hz = 1000000;
-  c.lookahead = 8;
+  const Capabilities c{.version = 3, .session = 0x1234, .max_payload = 162, .queue_capacity = 16, .credit_end = 16,
+                       .axis_count = 3, .max_degree = 7, .tick_rate_hz = 1000000, .lookahead = 8};
   // docs/protocol.md, Capabilities: u16 version, session, max_payload, queue, credit; u8 32, 16,
   // axes, degree; u32 tick rate (1000000 = 0x000f4240); u16 look-ahead.
   CHECK(to_hex(payload_of(Message(c))) == "03 00 34 12 a2 00 10 00 10 00 20 10 03 07 40 42 0f 00 08 00");
