@@ -215,7 +215,7 @@ TEST_CASE("messages: a setpoint batch encodes as hand-computed zig-zag varints",
   CHECK(encoded_size(b, 3) == 29);
 }
 
-TEST_CASE("messages: Capabilities encodes its 20 bytes little-endian, look-ahead last", "[protocol][messages]") {
+TEST_CASE("messages: Capabilities encodes its 20 bytes little-endian with the look-ahead last", "[protocol][messages]") {
   const Capabilities c{.version = 3, .session = 0x1234, .max_payload = 162, .queue_capacity = 16, .credit_end = 16,
                        .axis_count = 3, .max_degree = 7, .tick_rate_hz = 1000000, .lookahead = 8};
   // docs/protocol.md, Capabilities: u16 version, session, max_payload, queue, credit; u8 32, 16,
