@@ -226,6 +226,7 @@ class App {
     } else {
       if (auto advanced = steps_.advance(setpoint, batch_); !advanced) return raise_fault(advanced.failure());
       play(batch_, board_);
+      if (edges_lost()) return raise_fault(fail(Error::StepsLost, setpoint.segment));
     }
     position_ = wire;
     setpoint_index_ = static_cast<std::uint32_t>(job_tick);
@@ -514,6 +515,19 @@ class App {
 
   // --- tick events, start rule, link watch ----------------------------------------------------
 
+  /// True when the board dropped step/dir edges since the last check (a board that buffers edges
+  /// reports edges_dropped(); a lost edge is a lost step, so the position is no longer known).
+  [[nodiscard]] bool edges_lost() noexcept {
+    if constexpr (requires { board_.edges_dropped(); }) {
+      const std::uint32_t dropped = board_.edges_dropped();
+      if (dropped == edges_dropped_seen_) return false;
+      edges_dropped_seen_ = dropped;
+      return true;
+    } else {
+      return false;
+    }
+  }
+
   void raise_fault(Failure failure) noexcept {
     board_.fault_stop();
     controller_.abort();
@@ -722,6 +736,7 @@ class App {
   std::uint32_t setpoint_index_ = 0;
   std::uint32_t job_segments_ = 0;
   std::uint32_t stalled_since_ms_ = 0;
+  std::uint32_t edges_dropped_seen_ = 0;  ///< the board's edges_dropped() at the last check
   std::uint32_t seen_go_backs_ = 0;
   std::size_t batch_limit_ = protocol::max_setpoints_per_batch;
   protocol::MachineState state_ = protocol::MachineState::Idle;

@@ -17,6 +17,7 @@
 //     void set_direction(std::uint64_t time_ticks, std::uint8_t axis, bool positive);
 //     void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high);
 //     void fault_stop();                                         // drop scheduled edges now
+//     std::uint32_t edges_dropped();  // optional: edges that found the board's edge buffer full
 //   };
 //
 // Timing contract:
@@ -31,6 +32,9 @@
 //   * fault_stop() is called on Abort and on a fault: forget every edge not yet on the pins
 //     and leave the step lines low. It must return at once.
 //   * now_ms() wraps at 2^32 ms; the App uses differences only.
+//   * edges_dropped() (optional, for boards that buffer edges): a running count of edges the
+//     board could not keep. Any increase after a tick's edges were handed over is a fault
+//     (StepsLost, with the segment's index): a lost edge is a lost step.
 #pragma once
 
 #include <concepts>

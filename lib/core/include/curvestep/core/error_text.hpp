@@ -49,6 +49,7 @@ namespace curvestep {
     case Error::InvalidMachine: return "InvalidMachine";
     case Error::PlannerBusy: return "PlannerBusy";
     case Error::NothingQueued: return "NothingQueued";
+    case Error::StepsLost: return "StepsLost";
     case Error::BadCrc: return "BadCrc";
     case Error::BadFraming: return "BadFraming";
     case Error::FrameTooLong: return "FrameTooLong";
@@ -119,6 +120,7 @@ namespace curvestep {
     case Error::InvalidMachine: return "machine file malformed (the message names the field)";
     case Error::PlannerBusy: return "operation not allowed while the planner is running";
     case Error::NothingQueued: return "start requested with an empty queue";
+    case Error::StepsLost: return "step/dir edges were lost (the board's edge buffer was full): the machine position is unknown";
     case Error::BadCrc: return "frame CRC does not match";
     case Error::BadFraming: return "COBS decoding failed";
     case Error::FrameTooLong: return "frame exceeds the maximum frame size";
@@ -188,6 +190,7 @@ inline constexpr Error all_errors[] = {
     Error::InvalidMachine,
     Error::PlannerBusy,
     Error::NothingQueued,
+    Error::StepsLost,
     Error::BadCrc,
     Error::BadFraming,
     Error::FrameTooLong,

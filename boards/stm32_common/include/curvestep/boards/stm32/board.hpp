@@ -114,9 +114,9 @@ class Board {
     const std::uint32_t timer_clock = clocks_.pclk1_hz == clocks_.hclk_hz ? clocks_.pclk1_hz : 2 * clocks_.pclk1_hz;
     const std::uint32_t timer_hz = step_timing().timer_hz;
     edges_.start(timer_clock, timer_hz, control_rate_hz == 0 ? timer_hz / 1000 : timer_hz / control_rate_hz,
-                 step_pin_numbers, dir_pin_numbers);
+                 step_pin_numbers, dir_pin_numbers, clocks_.emulated);
   }
-  /// Edges lost to a full edge ring.
+  /// Edges lost to a full edge ring (App faults with StepsLost when this grows; 0 in an emulator).
   [[nodiscard]] std::uint32_t edges_dropped() const noexcept { return edges_.edges_dropped(); }
 
   /// Clocks measured by init().

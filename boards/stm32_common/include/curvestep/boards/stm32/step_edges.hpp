@@ -9,10 +9,12 @@
 // edge (one BSRR write each) and sets CCR1 to the next one. Registers: RM0008 §15.4 (F1),
 // RM0090 §18.4 (F4), identical for CR1, DIER, SR, CNT, PSC, ARR, CCR1.
 //
-// QEMU 7.2: the F100 model has no TIM2 (an unimplemented device: reads 0, no interrupt), so edges
-// are not played there and edges_dropped() counts the ones that find the ring full; the F405
-// model has a stm32f2xx_timer whose compare timing was not verified. The setpoint stream does not
-// depend on it.
+// A full ring on silicon loses the edge: edges_dropped() counts it and App faults (StepsLost), as
+// a lost edge is a lost step. In an emulator (RCC absent: Clocks::emulated) the timer does not
+// keep time — QEMU 7.2's F100 has no TIM2; its F2/F4 timer model never raises the compare
+// interrupt and raises the update interrupt late (docs/boards.md, "Step edges in QEMU") — so
+// there a full ring plays its oldest edge at once instead: order and counts stay exact, timing
+// is meaningless anyway. The setpoint stream does not depend on it.
 #pragma once
 
 #include <cstddef>
@@ -32,8 +34,10 @@ class StepEdges {
 
   /// Starts TIM2 at `timer_hz` from its kernel clock `timer_clock_hz`; `period_ticks` = P.
   /// Step pins `step_pins[a]`, direction pins `dir_pins[a]` (pin numbers on the port).
+  /// `emulated`: an emulator's timer that does not keep time (a full ring plays, never drops).
   void start(std::uint32_t timer_clock_hz, std::uint32_t timer_hz, std::uint32_t period_ticks,
-             const std::uint8_t (&step_pins)[3], const std::uint8_t (&dir_pins)[3]) noexcept {
+             const std::uint8_t (&step_pins)[3], const std::uint8_t (&dir_pins)[3], bool emulated) noexcept {
+    play_when_full_ = emulated;
     for (std::size_t a = 0; a < 3; ++a) {
       step_bits_[a] = static_cast<std::uint16_t>(1u << step_pins[a]);
       dir_bits_[a] = static_cast<std::uint16_t>(1u << dir_pins[a]);
@@ -59,8 +63,12 @@ class StepEdges {
     const std::uint32_t count = head_ - tail_;
     if (count == 0) offset_ = now() + period_ - time_ticks;
     if (count == Capacity) {
-      edges_dropped_ = edges_dropped_ + 1;
-      return;
+      if (!play_when_full_) {
+        edges_dropped_ = edges_dropped_ + 1;
+        return;
+      }
+      reg(Bsrr) = ring_[tail_ % Capacity].bsrr;  // emulator: the oldest edge goes out now
+      tail_ = tail_ + 1;
     }
     const std::uint16_t bit = direction ? dir_bits_[axis] : step_bits_[axis];
     ring_[head_ % Capacity] = Edge{time_ticks + offset_, high ? bit : static_cast<std::uint32_t>(bit) << 16};
@@ -142,6 +150,7 @@ class StepEdges {
   volatile std::uint32_t edges_dropped_ = 0;
   std::uint64_t offset_ = 0;
   std::uint32_t period_ = 0;
+  bool play_when_full_ = false;  ///< emulator: a full ring plays its oldest edge instead of dropping one
   std::uint16_t step_bits_[3] = {};
   std::uint16_t dir_bits_[3] = {};
 };
