@@ -184,13 +184,15 @@ def main():
             if stream.returncode != 0:
                 print(f"FAIL: curvestep stream exited with {stream.returncode}")
                 return 1
-            # QEMU plays the edges late (below): wait until TIM2 has interrupted --quiet-interrupts
-            # times without a BSRR write, i.e. the ring has drained.
+            # QEMU plays the edges late (docs/boards.md): wait until TIM2 has interrupted
+            # --quiet-interrupts times since the stream ended and since the last BSRR write.
             streamed = time.monotonic()
+            log.poll()
+            at_stream_end = log.tim2_interrupts
             while True:
                 log.poll()
                 last_write = log.interrupts_at_write[-1] if log.writes else 0
-                if log.tim2_interrupts - last_write >= args.quiet_interrupts:
+                if log.tim2_interrupts - max(last_write, at_stream_end) >= args.quiet_interrupts:
                     break
                 if time.monotonic() - started > args.deadline:
                     print(f"FAIL: edges still arriving after {args.deadline} s "
