@@ -17,7 +17,7 @@
  * CNT is not reloaded at ARR (it reads 0x122a57 > 0xFFFF after 100 ms) and counts at
  * 11.9 MHz = 1 GHz / (PSC + 1) whatever RCC says; UIF comes every t0 + 65535 x 84 ns, t0 being the
  * virtual time of the last PSC/EGR write (the model arms its alarm at now + the absolute time of
- * the wrap): 6.19 ms here, where t0 is 0.7 ms, about 1 s in the firmware, which starts TIM2 again
+ * the wrap): 6.19 ms here, where t0 is 0.7 ms; 0.1 to 1 s in the firmware, which starts TIM2 again
  * when the machine configuration arrives.
  */
 #include <stdint.h>
