@@ -28,6 +28,7 @@ import tempfile
 import time
 from fractions import Fraction
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from hil_stream_test import MACHINES, read_csv  # noqa: E402
 from qemu_board import QemuBoard  # noqa: E402
