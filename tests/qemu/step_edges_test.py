@@ -13,8 +13,10 @@ writes (logged by QEMU's unimplemented-device log, `-d unimp`) are checked per a
 Only order and counts are checked, not pulse widths: QEMU 7.2's TIM2 model (stm32f2xx_timer) has
 no compare interrupts and raises its update interrupt at a period unrelated to the counter, so
 when an edge reaches the pins in QEMU says nothing about the firmware's schedule (docs/boards.md,
-"Step edges in QEMU"). Because QEMU plays the edges only at those update interrupts, the job must
-fit the 256-edge ring (--steps-per-mm writes a coarser copy of the machine file).
+"Step edges in QEMU"). QEMU plays the edges only at those update interrupts; the board, seeing an
+emulator, plays its oldest edge at once when its 256-edge ring is full (on silicon that would be
+a lost edge and a StepsLost fault), so jobs of any length keep order and counts.
+--steps-per-mm writes a copy of the machine file with other resolutions (a shorter run).
 Exit 77 (skipped) when this curvestep has no `stream`.
 Usage: step_edges_test.py <board> <firmware.elf> <curvestep> <job.json> <machine.json>
                           [--steps-per-mm X,Y,Z] [--feed MM_PER_S]"""
@@ -224,7 +226,7 @@ def main():
     print(f"job {job_name}{feed}, steps/mm {','.join(scale)}: {len(rows)} setpoints, "
           f"about {total_edges} edges expected")
     if total_edges >= EDGE_RING:
-        print(f"NOTE: {total_edges} edges >= the {EDGE_RING}-edge ring: QEMU's TIM2 cannot drain it in time")
+        print(f"NOTE: {total_edges} edges >= the {EDGE_RING}-edge ring: in QEMU the board plays the oldest when it is full")
 
     # Every BSRR write is an edge of the job: the firmware writes none before (its set-up uses
     # MODER, OSPEEDR and AFRH only).
