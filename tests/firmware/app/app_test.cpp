@@ -603,7 +603,11 @@ TEST_CASE_METHOD(Bench, "firmware: a Bézier with a cusp takes two queue slots a
   host.received = {};
   const std::vector<QueueSegment> job{cusp, last};
   stream_job(host, app, board, std::vector<QueueSegment>{last});
-  require_reference_stream(host, machine(), job);
+  const auto got = require_reference_stream(host, machine(), job);
+  // independent of the reference: the job ends at (3, 0), 240 steps along x
+  REQUIRE_FALSE(got.empty());
+  CHECK(got.back().second == p(3, 0));
+  CHECK(board.steps == std::array<std::int64_t, 3>{steps_of(3), 0, 0});
 }
 
 TEST_CASE_METHOD(Bench, "firmware: a malformed payload is answered with BadPayload at its byte offset", "[firmware][app]") {
@@ -629,6 +633,10 @@ TEST_CASE_METHOD(Bench, "firmware: a slow transmitter gets every frame in order,
   host.pump(50);
   const auto expected = reference(machine(), job);
   CHECK(host.setpoints() == expected);
+  // independent of the reference: the job's end point, in position and in steps
+  REQUIRE_FALSE(host.setpoints().empty());
+  CHECK(host.setpoints().back().second == p(0, 0, 0));
+  CHECK(board.steps == std::array<std::int64_t, 3>{0, 0, 0});
   CHECK(app.statistics().dropped_frames == 0);
   CHECK(app.statistics().dropped_setpoints == 0);
 }
