@@ -13,10 +13,7 @@
 #include "random_curves.hpp"
 
 using namespace curvestep;
-using curvestep::testing::max_error;
-using curvestep::testing::point;
-using curvestep::testing::scalar;
-using curvestep::testing::tolerance;
+using namespace curvestep::testing;  // support/numeric.hpp and the folder's helpers
 
 namespace {
 template <class S>
@@ -113,6 +110,10 @@ TEMPLATE_TEST_CASE("bspline: extracted pieces by de Casteljau match de Boor on r
         const S at = scalar<S>(to_double(piece.start) + k / 8.0 * (to_double(piece.end) - to_double(piece.start)));
         const auto expected = curve.evaluate(at).value();
         CHECK(max_error(piece.curve.point_at(t), to_doubles(expected)) <=
+              tolerance<S>(100, 4 * static_cast<int>(data.degree) + 4));
+        // independent anchor: the Cox–de Boor recursion written in the test (long double)
+        const auto reference = curvestep::testing::cox_de_boor_point<S, 2>(curve.control_points(), curve.knots(), curve.degree(), at);
+        CHECK(curvestep::testing::max_error_long(piece.curve.point_at(t), reference) <=
               tolerance<S>(100, 4 * static_cast<int>(data.degree) + 4));
       }
     }

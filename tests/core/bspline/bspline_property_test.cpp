@@ -19,9 +19,7 @@
 #include "random_curves.hpp"
 
 using namespace curvestep;
-using curvestep::testing::max_error;
-using curvestep::testing::scalar;
-using curvestep::testing::tolerance;
+using namespace curvestep::testing;  // support/numeric.hpp and the folder's helpers
 
 namespace {
 template <class S>
@@ -80,6 +78,9 @@ TEMPLATE_TEST_CASE("bspline: de Boor agrees with the Cox-de Boor sum on random c
       // Fixed: p roundings in de Boor, p(p+1)/2 in the basis values times |P| <= 100, summed.
       const double bound = FixedPoint<S> ? (p + 100.0 * p * (p + 1)) * to_double(resolution<S>()) : tolerance<S>(100, 8 * p);
       CHECK(max_error(curve.evaluate(u).value(), basis_sum(curve, u, 0)) <= bound);
+      // independent anchor: the Cox–de Boor recursion written in the test (long double)
+      const auto reference = curvestep::testing::cox_de_boor_point<S, 2>(curve.control_points(), curve.knots(), curve.degree(), u);
+      CHECK(curvestep::testing::max_error_long(curve.evaluate(u).value(), reference) <= bound);
     }
     // Partition of unity and the convex hull (bounding box) on the whole domain.
     const auto box = curve.bounding_box();

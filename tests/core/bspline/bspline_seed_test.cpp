@@ -17,13 +17,7 @@
 #include "random_curves.hpp"
 
 using namespace curvestep;
-using curvestep::testing::make_spline;
-using curvestep::testing::max_error;
-using curvestep::testing::point;
-using curvestep::testing::points;
-using curvestep::testing::scalar;
-using curvestep::testing::scalars;
-using curvestep::testing::tolerance;
+using namespace curvestep::testing;  // support/numeric.hpp and the folder's helpers
 
 namespace {
 template <class S>

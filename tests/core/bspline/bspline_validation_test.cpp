@@ -17,10 +17,7 @@
 #include "random_curves.hpp"
 
 using namespace curvestep;
-using curvestep::testing::point;
-using curvestep::testing::points;
-using curvestep::testing::scalar;
-using curvestep::testing::scalars;
+using namespace curvestep::testing;  // support/numeric.hpp and the folder's helpers
 
 namespace {
 template <class S>

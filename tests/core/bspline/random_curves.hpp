@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <initializer_list>
 #include <span>
@@ -14,6 +15,42 @@
 #include <support/numeric.hpp>
 
 namespace curvestep::testing {
+
+/// The curve's point at u by the Cox–de Boor recursion of the basis, written here in long double
+/// (no library code): N_{i,0} is 1 on [U_i, U_{i+1}) — on (U_i, U_{i+1}] at the domain's end —
+/// and N_{i,k} = (u − U_i)/(U_{i+k} − U_i) N_{i,k−1} + (U_{i+k+1} − u)/(U_{i+k+1} − U_{i+1}) N_{i+1,k−1}
+/// with 0/0 = 0; the point is Σ N_{i,p}(u) P_i.
+template <Scalar S, std::size_t Dim>
+std::array<long double, Dim> cox_de_boor_point(std::span<const Vec<S, Dim>> control, std::span<const S> knot_values, std::size_t degree,
+                                               S u_value) {
+  std::vector<long double> knots;
+  for (const S k : knot_values) knots.push_back(static_cast<long double>(to_double(k)));
+  const auto u = static_cast<long double>(to_double(u_value));
+  const bool at_end = u == knots[control.size()];
+  std::vector<long double> n(knots.size() - 1);
+  for (std::size_t i = 0; i + 1 < knots.size(); ++i) {
+    n[i] = (at_end ? knots[i] < u && u <= knots[i + 1] : knots[i] <= u && u < knots[i + 1]) ? 1.0L : 0.0L;
+  }
+  const auto ratio = [](long double num, long double den) { return den == 0 ? 0.0L : num / den; };
+  for (std::size_t k = 1; k <= degree; ++k) {
+    for (std::size_t i = 0; i + k + 1 < knots.size(); ++i) {
+      n[i] = ratio(u - knots[i], knots[i + k] - knots[i]) * n[i] + ratio(knots[i + k + 1] - u, knots[i + k + 1] - knots[i + 1]) * n[i + 1];
+    }
+  }
+  std::array<long double, Dim> point{};
+  for (std::size_t i = 0; i < control.size(); ++i) {
+    for (std::size_t a = 0; a < Dim; ++a) point[a] += n[i] * static_cast<long double>(to_double(control[i][a]));
+  }
+  return point;
+}
+
+/// Largest coordinate difference between a point and a long double reference.
+template <Scalar S, std::size_t Dim>
+double max_error_long(const Vec<S, Dim>& actual, const std::array<long double, Dim>& expected) {
+  double m = 0;
+  for (std::size_t i = 0; i < Dim; ++i) m = std::fmax(m, static_cast<double>(std::fabs(static_cast<long double>(to_double(actual[i])) - expected[i])));
+  return m;
+}
 
 /// Control points, knots and degree of one random curve.
 template <Scalar S, std::size_t Dim>

@@ -33,6 +33,31 @@ std::vector<Vec<S, Dim>> random_polygon(Random& random, double range = coordinat
   return random.polygon<S, Dim>(random.integer(2, 8), range);
 }
 
+/// A random curve: its polygon, the curve and the polygon in long double.
+template <class S, std::size_t Dim>
+struct RandomCurve {
+  std::vector<Vec<S, Dim>> points;
+  Curve<S, Dim> curve;
+  std::vector<RealPoint<Dim>> b;
+};
+template <class S, std::size_t Dim>
+RandomCurve<S, Dim> random_curve(Random& random) {
+  auto points = random_polygon<S, Dim>(random);
+  const auto curve = make_curve(points);
+  auto b = to_real<S, Dim>(points);
+  return {std::move(points), curve, std::move(b)};
+}
+
+/// Runs a check in 2D and then in 3D with one Random(salt) and test_count(fallback) cases each:
+/// `check(random, count, dim)` with dim a std::integral_constant.
+template <class Check>
+void in_2d_and_3d(std::uint32_t salt, int fallback, Check check) {
+  Random random(salt);
+  const int count = test_count(fallback);
+  check(random, count, std::integral_constant<std::size_t, 2>{});
+  check(random, count, std::integral_constant<std::size_t, 3>{});
+}
+
 template <class S, std::size_t Dim>
 void check_end_points(Random& random, int count) {
   for (int c = 0; c < count; ++c) {
@@ -59,18 +84,13 @@ void check_end_points(Random& random, int count) {
 
 TEMPLATE_TEST_CASE("bezier: random curves interpolate their end points and end tangents", "[core][bezier][property]", double,
                    float, Q16_16) {
-  Random random(1);
-  const int count = test_count(300);
-  check_end_points<TestType, 2>(random, count);
-  check_end_points<TestType, 3>(random, count);
+  in_2d_and_3d(1, 300, [](Random& random, int count, auto dim) { check_end_points<TestType, decltype(dim)::value>(random, count); });
 }
 
 template <class S, std::size_t Dim>
 void check_convex_hull(Random& random, int count) {
   for (int c = 0; c < count; ++c) {
-    const auto points = random_polygon<S, Dim>(random);
-    const auto curve = make_curve(points);
-    const auto b = to_real<S, Dim>(points);
+    const auto [points, curve, b] = random_curve<S, Dim>(random);
     const auto box = curve.bounding_box();
     // Independent hull of the (projected) control points: a convex combination projects to a
     // convex combination, so in 3D every coordinate plane must contain the projected point.
@@ -111,10 +131,7 @@ void check_convex_hull(Random& random, int count) {
 
 TEMPLATE_TEST_CASE("bezier: every point is a convex combination of the control points", "[core][bezier][property]", double, float,
                    Q16_16) {
-  Random random(2);
-  const int count = test_count(300);
-  check_convex_hull<TestType, 2>(random, count);
-  check_convex_hull<TestType, 3>(random, count);
+  in_2d_and_3d(2, 300, [](Random& random, int count, auto dim) { check_convex_hull<TestType, decltype(dim)::value>(random, count); });
 }
 
 TEMPLATE_TEST_CASE("bezier: P-1 affine map of TV-04 commutes with evaluation exactly", "[core][bezier][property][seed]", double,
@@ -173,18 +190,13 @@ void check_affine(Random& random, int count) {
 }
 
 TEMPLATE_TEST_CASE("bezier: random affine maps commute with evaluation", "[core][bezier][property]", double, float, Q16_16) {
-  Random random(3);
-  const int count = test_count(200);
-  check_affine<TestType, 2>(random, count);
-  check_affine<TestType, 3>(random, count);
+  in_2d_and_3d(3, 200, [](Random& random, int count, auto dim) { check_affine<TestType, decltype(dim)::value>(random, count); });
 }
 
 template <class S, std::size_t Dim>
 void check_split(Random& random, int count) {
   for (int c = 0; c < count; ++c) {
-    const auto points = random_polygon<S, Dim>(random);
-    const auto curve = make_curve(points);
-    const auto b = to_real<S, Dim>(points);
+    const auto [points, curve, b] = random_curve<S, Dim>(random);
     const S t = random.parameter<S>();
     const auto halves = must(curve.split(t));
     const auto n = curve.degree();
@@ -221,10 +233,7 @@ void check_split(Random& random, int count) {
 }
 
 TEMPLATE_TEST_CASE("bezier: split halves reproduce the curve", "[core][bezier][property]", double, float, Q16_16) {
-  Random random(4);
-  const int count = test_count(300);
-  check_split<TestType, 2>(random, count);
-  check_split<TestType, 3>(random, count);
+  in_2d_and_3d(4, 300, [](Random& random, int count, auto dim) { check_split<TestType, decltype(dim)::value>(random, count); });
 }
 
 template <class S, std::size_t Dim>
@@ -252,43 +261,19 @@ void check_elevation(Random& random, int count) {
 }
 
 TEMPLATE_TEST_CASE("bezier: degree elevation leaves the curve unchanged", "[core][bezier][property]", double, float, Q16_16) {
-  Random random(5);
-  const int count = test_count(300);
-  check_elevation<TestType, 2>(random, count);
-  check_elevation<TestType, 3>(random, count);
+  in_2d_and_3d(5, 300, [](Random& random, int count, auto dim) { check_elevation<TestType, decltype(dim)::value>(random, count); });
 }
 
-/// Eighth-order central differences in long double. For a polynomial of degree <= 7 they are
-/// exact up to rounding (the truncation error involves the 9th derivative), with h = 1/16.
+/// Eighth-order central differences of the Bernstein sum in long double, h = 1/16.
 template <std::size_t Dim>
 std::array<RealPoint<Dim>, 2> central_differences(const std::vector<RealPoint<Dim>>& b, Real t) {
-  constexpr Real h = 1.0L / 16;
-  constexpr std::array<Real, 4> first{4.0L / 5, -1.0L / 5, 4.0L / 105, -1.0L / 280};
-  constexpr std::array<Real, 5> second{-205.0L / 72, 8.0L / 5, -1.0L / 5, 8.0L / 315, -1.0L / 560};
-  std::array<RealPoint<Dim>, 2> d{};
-  const auto centre = bernstein_sum(b, t);
-  for (std::size_t a = 0; a < Dim; ++a) d[1][a] = second[0] * centre[a];
-  for (std::size_t k = 1; k <= 4; ++k) {
-    const auto plus = bernstein_sum(b, t + static_cast<Real>(k) * h);
-    const auto minus = bernstein_sum(b, t - static_cast<Real>(k) * h);
-    for (std::size_t a = 0; a < Dim; ++a) {
-      d[0][a] += first[k - 1] * (plus[a] - minus[a]);
-      d[1][a] += second[k] * (plus[a] + minus[a]);
-    }
-  }
-  for (std::size_t a = 0; a < Dim; ++a) {
-    d[0][a] /= h;
-    d[1][a] /= h * h;
-  }
-  return d;
+  return curvestep::testing::central_differences<Dim>([&](Real u) { return bernstein_sum(b, u); }, t, 1.0L / 16);
 }
 
 template <class S, std::size_t Dim>
 void check_derivatives(Random& random, int count) {
   for (int c = 0; c < count; ++c) {
-    const auto points = random_polygon<S, Dim>(random);
-    const auto curve = make_curve(points);
-    const auto b = to_real<S, Dim>(points);
+    const auto [points, curve, b] = random_curve<S, Dim>(random);
     const auto n = curve.degree();
     const auto nd = static_cast<double>(n);
     INFO("case " << c << " degree " << n << " dim " << Dim);
@@ -320,18 +305,13 @@ void check_derivatives(Random& random, int count) {
 
 TEMPLATE_TEST_CASE("derivative: matches an eighth-order central finite difference", "[core][bezier][property]", double, float,
                    Q16_16) {
-  Random random(6);
-  const int count = test_count(250);
-  check_derivatives<TestType, 2>(random, count);
-  check_derivatives<TestType, 3>(random, count);
+  in_2d_and_3d(6, 250, [](Random& random, int count, auto dim) { check_derivatives<TestType, decltype(dim)::value>(random, count); });
 }
 
 template <class S, std::size_t Dim>
 void check_blossom(Random& random, int count) {
   for (int c = 0; c < count; ++c) {
-    const auto points = random_polygon<S, Dim>(random);
-    const auto curve = make_curve(points);
-    const auto b = to_real<S, Dim>(points);
+    const auto [points, curve, b] = random_curve<S, Dim>(random);
     const auto n = curve.degree();
     INFO("case " << c << " degree " << n << " dim " << Dim);
     std::vector<S> u(n);
@@ -377,10 +357,7 @@ void check_blossom(Random& random, int count) {
 
 TEMPLATE_TEST_CASE("blossom: symmetric in its arguments and the curve on the diagonal", "[core][bezier][property]", double, float,
                    Q16_16) {
-  Random random(7);
-  const int count = test_count(200);
-  check_blossom<TestType, 2>(random, count);
-  check_blossom<TestType, 3>(random, count);
+  in_2d_and_3d(7, 200, [](Random& random, int count, auto dim) { check_blossom<TestType, decltype(dim)::value>(random, count); });
 }
 
 TEMPLATE_TEST_CASE("bezier: P-2 reversed TV-04 at 1/4 equals the original at 3/4", "[core][bezier][property][seed]", double, float,
@@ -412,10 +389,7 @@ void check_reversal(Random& random, int count) {
 }
 
 TEMPLATE_TEST_CASE("bezier: the reversed polygon traces the curve backwards", "[core][bezier][property]", double, float, Q16_16) {
-  Random random(8);
-  const int count = test_count(300);
-  check_reversal<TestType, 2>(random, count);
-  check_reversal<TestType, 3>(random, count);
+  in_2d_and_3d(8, 300, [](Random& random, int count, auto dim) { check_reversal<TestType, decltype(dim)::value>(random, count); });
 }
 
 template <class S, std::size_t Dim>
@@ -458,10 +432,7 @@ void check_power_basis(Random& random, int count) {
 
 TEMPLATE_TEST_CASE("power basis: round trip and Horner agree with the Bernstein form", "[core][bezier][property]", double, float,
                    Q16_16) {
-  Random random(9);
-  const int count = test_count(250);
-  check_power_basis<TestType, 2>(random, count);
-  check_power_basis<TestType, 3>(random, count);
+  in_2d_and_3d(9, 250, [](Random& random, int count, auto dim) { check_power_basis<TestType, decltype(dim)::value>(random, count); });
 }
 
 TEMPLATE_TEST_CASE("bernstein: partition of unity, symmetry and the closed form", "[core][bezier][property]", double, float,

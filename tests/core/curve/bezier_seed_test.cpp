@@ -8,6 +8,7 @@
 
 #include <curvestep/core.hpp>
 #include <support/numeric.hpp>
+#include <support/seed_vectors.hpp>
 
 using namespace curvestep;
 using curvestep::testing::max_error;
@@ -108,15 +109,7 @@ TEMPLATE_TEST_CASE("de_casteljau: seed 001 Example 1.2 values at eighths (TV-03,
                    Q16_16) {
   using S = TestType;
   const auto c = example_1_2<S>();
-  const std::array<std::array<double, 2>, 9> expected{{{0, 1},
-                                                       {7 / 32., 259 / 128.},
-                                                       {13 / 16., 45 / 16.},
-                                                       {27 / 16., 425 / 128.},
-                                                       {11 / 4., 7 / 2.},
-                                                       {125 / 32., 423 / 128.},
-                                                       {81 / 16., 43 / 16.},
-                                                       {49 / 8., 205 / 128.},
-                                                       {7, 0}}};
+  const auto& expected = curvestep::testing::example_1_2_eighths;  // TV-03, TV-05
   for (int k = 0; k <= 8; ++k) {
     CHECK(max_error(c.point_at(scalar<S>(k / 8.0)), expected[static_cast<std::size_t>(k)]) == 0.0);
   }

@@ -102,6 +102,31 @@ RealPoint<Dim> blossom_subset_sum(const std::vector<RealPoint<Dim>>& b, const st
   return r;
 }
 
+/// Eighth-order central differences of f (a long double curve) at t with step h: the first and
+/// the second derivative. For a polynomial of degree <= 7 they are exact up to rounding (the
+/// truncation error involves the 9th derivative).
+template <std::size_t Dim, class F>
+std::array<RealPoint<Dim>, 2> central_differences(F f, Real t, Real h) {
+  constexpr std::array<Real, 4> first{4.0L / 5, -1.0L / 5, 4.0L / 105, -1.0L / 280};
+  constexpr std::array<Real, 5> second{-205.0L / 72, 8.0L / 5, -1.0L / 5, 8.0L / 315, -1.0L / 560};
+  std::array<RealPoint<Dim>, 2> d{};
+  const RealPoint<Dim> centre = f(t);
+  for (std::size_t a = 0; a < Dim; ++a) d[1][a] = second[0] * centre[a];
+  for (std::size_t k = 1; k <= 4; ++k) {
+    const RealPoint<Dim> plus = f(t + static_cast<Real>(k) * h);
+    const RealPoint<Dim> minus = f(t - static_cast<Real>(k) * h);
+    for (std::size_t a = 0; a < Dim; ++a) {
+      d[0][a] += first[k - 1] * (plus[a] - minus[a]);
+      d[1][a] += second[k] * (plus[a] + minus[a]);
+    }
+  }
+  for (std::size_t a = 0; a < Dim; ++a) {
+    d[0][a] /= h;
+    d[1][a] /= h * h;
+  }
+  return d;
+}
+
 template <Scalar S, std::size_t Dim>
 double max_error_real(const Vec<S, Dim>& actual, const RealPoint<Dim>& expected) {
   double m = 0;

@@ -49,6 +49,32 @@ double rational_tolerance(double extent, double smallest_weight, double largest_
   }
 }
 
+/// A rational curve on `points` with random weights in [low, high], and both in long double.
+template <class S>
+struct WeightedCurve {
+  std::vector<Vec<S, 2>> points;
+  std::vector<S> weights;
+  Rational<S> curve;
+  std::vector<RealPoint<2>> b;
+  std::vector<Real> wr;
+};
+template <class S>
+WeightedCurve<S> random_weights(Random& random, const std::vector<Vec<S, 2>>& points, double low, double high) {
+  WeightedCurve<S> out;
+  out.points = points;
+  out.weights.resize(points.size());
+  for (auto& w : out.weights) w = random.coordinate<S>(low, high);
+  out.curve = must(Rational<S>::create(points, out.weights));
+  out.b = to_real<S, 2>(points);
+  for (S w : out.weights) out.wr.push_back(to_real(w));
+  return out;
+}
+/// The same on a random polygon of `point_count` points with coordinates in [-range, range].
+template <class S>
+WeightedCurve<S> random_rational(Random& random, std::size_t point_count, double range, double low, double high) {
+  return random_weights<S>(random, random.polygon<S, 2>(point_count, range), low, high);
+}
+
 }  // namespace
 
 TEMPLATE_TEST_CASE("rational bezier: TV-15 quartic with weights 1 1 3 5 1", "[core][rational][seed]", double, float, Q16_16) {
@@ -139,25 +165,7 @@ TEMPLATE_TEST_CASE("rational bezier: equal weights give the polynomial curve", "
 /// Eighth-order central differences of the long double rational curve, h = 1/1024.
 template <std::size_t Dim>
 std::array<RealPoint<Dim>, 2> rational_differences(const std::vector<RealPoint<Dim>>& b, const std::vector<Real>& w, Real t) {
-  constexpr Real h = 1.0L / 1024;
-  constexpr std::array<Real, 4> first{4.0L / 5, -1.0L / 5, 4.0L / 105, -1.0L / 280};
-  constexpr std::array<Real, 5> second{-205.0L / 72, 8.0L / 5, -1.0L / 5, 8.0L / 315, -1.0L / 560};
-  std::array<RealPoint<Dim>, 2> d{};
-  const auto centre = rational_reference(b, w, t);
-  for (std::size_t a = 0; a < Dim; ++a) d[1][a] = second[0] * centre[a];
-  for (std::size_t k = 1; k <= 4; ++k) {
-    const auto plus = rational_reference(b, w, t + static_cast<Real>(k) * h);
-    const auto minus = rational_reference(b, w, t - static_cast<Real>(k) * h);
-    for (std::size_t a = 0; a < Dim; ++a) {
-      d[0][a] += first[k - 1] * (plus[a] - minus[a]);
-      d[1][a] += second[k] * (plus[a] + minus[a]);
-    }
-  }
-  for (std::size_t a = 0; a < Dim; ++a) {
-    d[0][a] /= h;
-    d[1][a] /= h * h;
-  }
-  return d;
+  return central_differences<Dim>([&](Real u) { return rational_reference(b, w, u); }, t, 1.0L / 1024);
 }
 
 TEMPLATE_TEST_CASE("rational bezier: derivatives match a central finite difference", "[core][rational][property]", double, float,
@@ -168,13 +176,7 @@ TEMPLATE_TEST_CASE("rational bezier: derivatives match a central finite differen
   for (int c = 0; c < count; ++c) {
     // Q16.16: coordinates within 10 keep r'' and the Leibniz products 2 w' r' in range.
     const double range = FixedPoint<S> ? 10 : 50;
-    const auto points = random.polygon<S, 2>(random.integer(2, 6), range);
-    std::vector<S> weights(points.size());
-    for (auto& w : weights) w = random.coordinate<S>(0.5, 2);
-    const auto curve = must(Rational<S>::create(points, weights));
-    const auto b = to_real<S, 2>(points);
-    std::vector<Real> wr;
-    for (S w : weights) wr.push_back(to_real(w));
+    const auto [points, weights, curve, b, wr] = random_rational<S>(random, random.integer(2, 6), range, 0.5, 2);
     const auto n = curve.degree();
     const auto nd = static_cast<double>(n);
     INFO("case " << c << " degree " << n);
@@ -208,13 +210,7 @@ TEMPLATE_TEST_CASE("rational bezier: random curves stay in the control box and s
   Random random(23);
   const int count = test_count(300);
   for (int c = 0; c < count; ++c) {
-    const auto points = random.polygon<S, 2>(random.integer(2, 8), 100);
-    std::vector<S> weights(points.size());
-    for (auto& w : weights) w = random.coordinate<S>(0.25, 4);
-    const auto curve = must(Rational<S>::create(points, weights));
-    const auto b = to_real<S, 2>(points);
-    std::vector<Real> wr;
-    for (S w : weights) wr.push_back(to_real(w));
+    const auto [points, weights, curve, b, wr] = random_rational<S>(random, random.integer(2, 8), 100, 0.25, 4);
     const auto n = curve.degree();
     INFO("case " << c << " degree " << n);
     const auto box = curve.bounding_box();
@@ -380,12 +376,7 @@ TEMPLATE_TEST_CASE("rational bezier: evaluation error does not grow with the dis
       p = must(vec_from_doubles<S, 2>({ox + random.uniform(-1, 1), oy + random.uniform(-1, 1)}));
     }
     // Weights <= 1: create() documents FixedOverflow when w b leaves the range.
-    std::vector<S> weights(points.size());
-    for (auto& w : weights) w = random.coordinate<S>(0.5, 1);
-    const auto curve = must(Rational<S>::create(points, weights));
-    const auto b = to_real<S, 2>(points);
-    std::vector<Real> wr;
-    for (S w : weights) wr.push_back(to_real(w));
+    const auto [polygon, weights, curve, b, wr] = random_weights<S>(random, points, 0.5, 1);
     INFO("case " << c << " offset " << ox << ", " << oy << " degree " << curve.degree());
     // The bound depends on the extent (2√2) and the coordinate scale (floats: 30000), not on the
     // offset itself for Fixed, whose units are absolute.
@@ -442,13 +433,7 @@ TEMPLATE_TEST_CASE("rational bezier: 200 mm curves with moderate weights evaluat
   Random random(28);
   const int count = test_count(300);
   for (int c = 0; c < count; ++c) {
-    const auto points = random.polygon<S, 2>(random.integer(2, 8), 100);
-    std::vector<S> weights(points.size());
-    for (auto& w : weights) w = random.coordinate<S>(0.5, 1);
-    const auto curve = must(Rational<S>::create(points, weights));
-    const auto b = to_real<S, 2>(points);
-    std::vector<Real> wr;
-    for (S w : weights) wr.push_back(to_real(w));
+    const auto [points, weights, curve, b, wr] = random_rational<S>(random, random.integer(2, 8), 100, 0.5, 1);
     INFO("case " << c << " degree " << curve.degree());
     const double tol = rational_tolerance<S>(200 * std::sqrt(2.0), 0.5, 1, 100, curve.degree());
     double worst = 0;

@@ -13,11 +13,7 @@
 #include "interpolation_support.hpp"
 
 using namespace curvestep;
-using curvestep::testing::max_error;
-using curvestep::testing::point;
-using curvestep::testing::scalar;
-using curvestep::testing::scalars;
-using curvestep::testing::solve_tolerance;
+using namespace curvestep::testing;  // support/numeric.hpp and the folder's helpers
 
 namespace {
 template <class S>

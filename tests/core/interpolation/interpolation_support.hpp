@@ -47,6 +47,16 @@ std::array<S, N> scalars(const std::array<double, N>& values) {
   return s;
 }
 
+/// Spans over the test's arrays (the interpolation functions take spans).
+template <Scalar S, std::size_t N>
+std::span<const Vec2<S>> view(const std::array<Vec2<S>, N>& a) {
+  return std::span<const Vec2<S>>(a);
+}
+template <Scalar S, std::size_t N>
+std::span<const S> view(const std::array<S, N>& a) {
+  return std::span<const S>(a);
+}
+
 /// The curve passes through points[i] at breakpoint i (both the segment before and after).
 template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegments, std::size_t N>
 void check_passes_through(const CompositeBezier<S, Dim, MaxDegree, MaxSegments>& curve, const std::array<Vec<S, Dim>, N>& points,

@@ -14,27 +14,11 @@
 #include "interpolation_support.hpp"
 
 using namespace curvestep;
-using curvestep::testing::check_passes_through;
-using curvestep::testing::joint_jump;
-using curvestep::testing::max_error;
-using curvestep::testing::point;
-using curvestep::testing::points2;
-using curvestep::testing::scalar;
-using curvestep::testing::scalars;
-using curvestep::testing::solve_tolerance;
+using namespace curvestep::testing;  // interpolation_support.hpp, support/numeric.hpp
 
 namespace {
 template <class S>
 using Quadratic = CompositeBezier<S, 2, 3, 8>;
-
-template <class S, std::size_t N>
-std::span<const Vec2<S>> view(const std::array<Vec2<S>, N>& a) {
-  return std::span<const Vec2<S>>(a);
-}
-template <class S, std::size_t N>
-std::span<const S> view(const std::array<S, N>& a) {
-  return std::span<const S>(a);
-}
 }  // namespace
 
 TEMPLATE_TEST_CASE("interpolation: TV-29 C1 quadratic with end tangent directions, uniform knots", "[core][interpolation][seed]",

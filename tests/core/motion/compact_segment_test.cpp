@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // CompactSegment (the motion queue's form of a PathSegment): a round trip through compact() and
 // expand() gives a segment that evaluates, differentiates and splits bit for bit like the
-// original, for every kind, including the pieces of a split; split_off() gives split()'s pieces;
+// original, for every kind, including the pieces of a split; split_off() gives split()'s pieces
+// (split() is written with split_off(), so both are also held to a de Casteljau written in the test);
 // and a queue of segments with two cusps runs like the pieces pushed one by one.
 #include <array>
 #include <cstring>
@@ -11,6 +12,8 @@
 
 #include <curvestep/core/motion/cusps.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
+
+#include <support/de_casteljau.hpp>
 
 #include "motion_test_support.hpp"
 
@@ -108,6 +111,53 @@ TEST_CASE("compact_segment: split_off gives split's pieces and rejects what spli
   PathSegment left;
   CHECK(s.split_off(0, left).error() == Error::InvalidArgument);
   CHECK(s.split_off(1, left).error() == Error::InvalidArgument);
+}
+
+TEST_CASE("compact_segment: split_off cuts the Bezier kinds where a de Casteljau written in the test does", "[core][motion]") {
+  // lines and arcs are not split (InvalidArgument); the Bézier kinds' pieces have the reference's
+  // control points: bit for bit at u = 1/2 (integer points, seven halvings, weights with few
+  // bits), within a few roundings of the coordinate scale at u = 0.4
+  using curvestep::testing::de_casteljau_split;
+  for (const auto& s : one_of_each_kind()) {
+    for (const double u : {0.4, 0.5}) {
+      PathSegment right = s;
+      PathSegment left;
+      const auto cut = right.split_off(u, left);
+      if (s.kind() == SegmentKind::Line || s.kind() == SegmentKind::Arc) {
+        CHECK(cut.error() == Error::InvalidArgument);
+        continue;
+      }
+      REQUIRE(cut.has_value());
+      CHECK(left.kind() == s.kind());
+      CHECK(right.kind() == s.kind());
+      const bool rational = s.kind() == SegmentKind::RationalBezier;
+      // homogeneous points (w·P, w); w = 1 for the polynomial kind
+      const auto points = rational ? s.rational().control_points() : s.polynomial().control_points();
+      std::vector<std::array<long double, 4>> h;
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const long double w = rational ? s.rational().weight(i) : 1.0L;
+        h.push_back({w * points[i][0], w * points[i][1], w * points[i][2], w});
+      }
+      const auto reference = de_casteljau_split(h, u);
+      const auto check_piece = [&](const PathSegment& piece, const std::vector<std::array<long double, 4>>& expected) {
+        const auto actual = rational ? piece.rational().control_points() : piece.polynomial().control_points();
+        REQUIRE(actual.size() == expected.size());
+        for (std::size_t i = 0; i < actual.size(); ++i) {
+          if (rational) CHECK(std::fabs(piece.rational().weight(i) - static_cast<double>(expected[i][3])) <= 1e-14);
+          for (std::size_t a = 0; a < 3; ++a) {
+            const double want = static_cast<double>(expected[i][a] / expected[i][3]);
+            if (u == 0.5 && !rational) {
+              CHECK(same_bits(actual[i][a], want));
+            } else {
+              CHECK(std::fabs(actual[i][a] - want) <= 1e-13 * 32);  // coordinates below 32
+            }
+          }
+        }
+      };
+      check_piece(left, reference.left);
+      check_piece(right, reference.right);
+    }
+  }
 }
 
 TEST_CASE("compact_segment: expand rejects numbers no PathSegment holds", "[core][motion]") {

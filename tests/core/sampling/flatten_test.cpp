@@ -17,11 +17,7 @@
 #include "sampling_reference.hpp"
 
 using namespace curvestep;
-using curvestep::testing::distance_to_segment;
-using curvestep::testing::point;
-using curvestep::testing::reference_point;
-using curvestep::testing::reference_polygon;
-using curvestep::testing::scalar;
+using namespace curvestep::testing;  // support/numeric.hpp, sampling_reference.hpp
 
 namespace {
 

@@ -11,14 +11,12 @@
 #include <curvestep/core/bspline/bspline.hpp>
 #include <curvestep/core/sampling/forward_difference.hpp>
 #include <support/numeric.hpp>
+#include <support/seed_vectors.hpp>
 
 #include "sampling_reference.hpp"
 
 using namespace curvestep;
-using curvestep::testing::point;
-using curvestep::testing::reference_point;
-using curvestep::testing::reference_polygon;
-using curvestep::testing::scalar;
+using namespace curvestep::testing;  // support/numeric.hpp, sampling_reference.hpp
 
 namespace {
 
@@ -91,15 +89,7 @@ TEMPLATE_TEST_CASE("forward_difference: TV-08 steps seed 001 Example 1.2 at h = 
   SECTION("h = 1/8 gives the nine TV-05 points") {
     auto fd = ForwardDifference<S, 2>::create_with_step(curve, scalar<S>(0.125)).value();
     REQUIRE(fd.steps() == 8);
-    const std::array<std::array<double, 2>, 9> expected{{{0, 1},
-                                                         {7 / 32., 259 / 128.},
-                                                         {13 / 16., 45 / 16.},
-                                                         {27 / 16., 425 / 128.},
-                                                         {11 / 4., 7 / 2.},
-                                                         {125 / 32., 423 / 128.},
-                                                         {81 / 16., 43 / 16.},
-                                                         {49 / 8., 205 / 128.},
-                                                         {7, 0}}};
+    const auto& expected = curvestep::testing::example_1_2_eighths;  // TV-03, TV-05
     for (const auto& e : expected) {
       CHECK(to_double(fd.point()[0]) == e[0]);
       CHECK(to_double(fd.point()[1]) == e[1]);

@@ -21,68 +21,48 @@
 using namespace curvestep;
 using namespace curvestep::firmware;
 using namespace curvestep::protocol;
-using curvestep::firmware::testing::FakeBoard;
-using curvestep::firmware::testing::Host;
-using curvestep::firmware::testing::JobUpload;
+using namespace curvestep::firmware::testing;  // fake_board.hpp: the board, the host, the wire helpers
 
 namespace {
 
 using TestApp = App<FakeBoard>;
 
-constexpr std::int32_t q(double mm) { return static_cast<std::int32_t>(mm * 65536.0); }
+MachineConfiguration machine() { return curvestep::firmware::testing::machine(50); }
 
-MachineConfiguration machine() {
-  MachineConfiguration c;
-  c.axis_count = 3;
-  c.max_velocity_mm_per_s = 100;
-  c.max_acceleration_mm_per_s2 = 1000;
-  c.max_jerk_mm_per_s3 = 10000;
-  c.default_feed_mm_per_s = q(50);
-  c.tolerance_mm = 0.01;
-  c.junction_deviation_mm = 0.05;
-  c.max_step_rate_hz = 100000;
-  c.control_rate_hz = 1000;
-  for (auto& axis : c.axes) {
-    axis.steps_per_mm = 80;
-    axis.min_position_mm = q(-100);
-    axis.max_position_mm = q(100);
+/// A FakeBoard, an App on it and the scripted host (a fixture: the test sees board, app and host).
+template <class AppType>
+struct Rig {
+  FakeBoard board;
+  AppType app{board};
+  Host<AppType> host{board, app};
+
+  /// Connects, sends `config` (without waiting for its acknowledgement) and streams `job` to its end.
+  void stream(const MachineConfiguration& config, const std::vector<QueueSegment>& job) {
+    REQUIRE(host.connect());
+    REQUIRE(host.send(Message(config)));
+    stream_job(host, app, board, job);
   }
-  return c;
-}
+};
+using Bench = Rig<TestApp>;
+using SmallBench = Rig<App<FakeBoard, Q16_16, 16, 2>>;  // a queue of 16 slots, look-ahead 2
+using FloatBench = Rig<App<FakeBoard, float>>;           // float setpoints
 
-WirePoint p(double x, double y, double z = 0) { return WirePoint{q(x), q(y), q(z)}; }
-
-QueueSegment line(WirePoint a, WirePoint b, std::uint8_t axes = 3) {
-  QueueSegment s;
-  s.kind = protocol::SegmentKind::Line;
-  s.axis_count = axes;
-  s.points[0] = a;
-  s.points[1] = b;
+/// The segment (or the job with its last segment) marked as the end of the job.
+QueueSegment ending(QueueSegment s) {
+  s.end_of_job = true;
   return s;
+}
+std::vector<QueueSegment> ending(std::vector<QueueSegment> job) {
+  job.back().end_of_job = true;
+  return job;
 }
 
 /// Line, arc, cubic Bézier, rational quadratic and a line with its own feed ending the job.
 std::vector<QueueSegment> mixed_job() {
   std::vector<QueueSegment> job;
   job.push_back(line(p(0, 0), p(5, 0)));
-  QueueSegment arc;
-  arc.kind = protocol::SegmentKind::Arc;
-  arc.axis_count = 3;
-  arc.degree = 2;
-  arc.points[0] = p(5, 0);
-  arc.points[1] = p(5, 4);
-  arc.points[2] = p(5, 2);
-  arc.direction = ArcDirection::CounterClockwise;
-  job.push_back(arc);
-  QueueSegment cubic;
-  cubic.kind = protocol::SegmentKind::Bezier;
-  cubic.axis_count = 3;
-  cubic.degree = 3;
-  cubic.points[0] = p(5, 4);
-  cubic.points[1] = p(4, 5);
-  cubic.points[2] = p(2, 5, 1);
-  cubic.points[3] = p(1, 4, 1);
-  job.push_back(cubic);
+  job.push_back(arc(p(5, 0), p(5, 4), p(5, 2), ArcDirection::CounterClockwise));
+  job.push_back(cubic(p(5, 4), p(4, 5), p(2, 5, 1), p(1, 4, 1)));
   QueueSegment rational;
   rational.kind = protocol::SegmentKind::RationalBezier;
   rational.axis_count = 3;
@@ -103,63 +83,23 @@ std::vector<QueueSegment> mixed_job() {
 /// The reference: MotionController<Q16_16> run directly on the same segments, as curvestep sim does.
 std::vector<std::pair<std::uint32_t, WirePoint>> reference(const MachineConfiguration& config,
                                                            const std::vector<QueueSegment>& job) {
-  MotionController<Q16_16, 32, 16> controller;
-  REQUIRE(controller.configure(to_machine_limits(config).value()).has_value());
-  std::size_t next = 0;
-  const auto fill = [&] {
-    while (next < job.size() && !controller.queue_full()) {
-      const auto segment = to_path_segment(job[next]);
-      REQUIRE(segment.has_value());
-      const auto pushed = controller.try_push(segment.value(), static_cast<std::uint32_t>(next));
-      if (!pushed && pushed.error() == Error::QueueFull) return;
-      REQUIRE(pushed.has_value());
-      ++next;
-    }
-    if (next == job.size()) controller.end_of_job();
-  };
-  fill();
-  REQUIRE(controller.start().has_value());
-  std::vector<std::pair<std::uint32_t, WirePoint>> out;
-  while (!controller.finished()) {
-    const auto sp = controller.next_setpoint();
-    REQUIRE(sp.has_value());
-    WirePoint w{};
-    for (std::size_t a = 0; a < 3; ++a) w[a] = sp.value().position[a].raw();
-    out.emplace_back(static_cast<std::uint32_t>(sp.value().tick), w);
-    fill();
-  }
-  return out;
+  return curvestep::firmware::testing::controller_reference<MotionController<Q16_16, 32, 16>>(config, job);
 }
 
-/// Streams `job` to the App while it runs, one submission attempt per tick, until the App is idle again.
+/// The host received no error and the reference's stream for `job`, bit for bit; returns what it received.
 template <class AppType>
-void stream_job(Host<AppType>& host, AppType& app, FakeBoard& board, const std::vector<QueueSegment>& job,
-                int max_ticks = 200000) {
-  JobUpload upload(job);
-  for (int t = 0; t < max_ticks; ++t) {
-    REQUIRE(upload.step(host.sender(), t));
-    app.on_tick();
-    ++board.clock_ms;
-    host.pump();
-    if (upload.all_sent() && !app.moving() && app.state() == MachineState::Idle && host.sender().idle()) {
-      return;
-    }
-  }
-  INFO("state " << static_cast<int>(app.state()) << " moving " << app.moving() << " queued "
-                 << app.controller().queued() << " controller " << static_cast<int>(app.controller().state())
-                 << " sent " << upload.segments_sent() << " errors " << host.received.errors.size() << " credit "
-                 << host.sender().credit() << " in flight " << host.sender().in_flight());
-  INFO("first error " << (host.received.errors.empty() ? 0 : static_cast<int>(host.received.errors[0].code)) << " at "
-                       << (host.received.errors.empty() ? 0 : host.received.errors[0].index) << " clock " << board.clock_ms);
-  FAIL("the job did not finish");
+std::vector<std::pair<std::uint32_t, WirePoint>> require_reference_stream(const Host<AppType>& host, const MachineConfiguration& config,
+                                                                          const std::vector<QueueSegment>& job) {
+  const auto expected = reference(config, job);
+  const auto got = host.setpoints();
+  REQUIRE(host.received.errors.empty());
+  check_same_stream(got, expected);
+  return got;
 }
 
 }  // namespace
 
-TEST_CASE("firmware: the handshake answers Capabilities with the App's limits", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: the handshake answers Capabilities with the App's limits", "[firmware][app]") {
   REQUIRE(host.connect());
   const Capabilities& c = host.received.last_capabilities;
   CHECK(c.version == protocol_version);
@@ -174,13 +114,10 @@ TEST_CASE("firmware: the handshake answers Capabilities with the App's limits", 
   CHECK(app.state() == MachineState::Idle);
 }
 
-TEST_CASE("firmware: a configuration is applied and opens the credit", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a configuration is applied and opens the credit", "[firmware][app]") {
   REQUIRE(host.connect());
   REQUIRE(host.send(Message(machine())));
-  for (int i = 0; i < 5; ++i) host.pump();
+  host.pump(5);
   CHECK(app.configured());
   CHECK(app.control_rate_hz() == 1000);
   CHECK(app.controller().machine().a_max_mm_per_s2 == 1000.0);
@@ -190,15 +127,12 @@ TEST_CASE("firmware: a configuration is applied and opens the credit", "[firmwar
   CHECK(host.sender().credit() == 4);
 }
 
-TEST_CASE("firmware: an invalid configuration is answered with its error and index", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: an invalid configuration is answered with its error and index", "[firmware][app]") {
   REQUIRE(host.connect());
   MachineConfiguration bad = machine();
   bad.control_rate_hz = 50;  // below 100 Hz
   REQUIRE(host.send(Message(bad)));
-  for (int i = 0; i < 5; ++i) host.pump();
+  host.pump(5);
   REQUIRE(host.received.errors.size() == 1);
   CHECK(host.received.errors[0].code == Error::InvalidRate);
   CHECK(host.received.errors[0].index == static_cast<std::uint16_t>(LimitField::RateHz));
@@ -207,31 +141,18 @@ TEST_CASE("firmware: an invalid configuration is answered with its error and ind
   bad = machine();
   bad.max_jerk_mm_per_s3 = 0;
   REQUIRE(host.send(Message(bad)));
-  for (int i = 0; i < 5; ++i) host.pump();
+  host.pump(5);
   REQUIRE(host.received.errors.size() == 2);
   CHECK(host.received.errors[1].code == Error::InvalidLimit);
   CHECK(host.received.errors[1].index == static_cast<std::uint16_t>(LimitField::JMax));
   CHECK(host.received.errors[1].sequence == 1);
 }
 
-TEST_CASE("firmware: segments of every kind stream setpoints bit-identical to the motion controller",
+TEST_CASE_METHOD(Bench, "firmware: segments of every kind stream setpoints bit-identical to the motion controller",
           "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(machine())));
   const auto job = mixed_job();
-  stream_job(host, app, board, job);
-  const auto expected = reference(machine(), job);
-  const auto got = host.setpoints();
-  REQUIRE(host.received.errors.empty());
-  REQUIRE(got.size() == expected.size());
-  std::size_t mismatches = 0;
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    if (got[i] != expected[i]) ++mismatches;
-  }
-  CHECK(mismatches == 0);
+  stream(machine(), job);
+  const auto got = require_reference_stream(host, machine(), job);
   CHECK(app.statistics().dropped_setpoints == 0);
   // The last setpoint is the job's end, and the step counts are the end position in steps.
   CHECK(got.back().second == p(0, 0, 0));
@@ -240,13 +161,8 @@ TEST_CASE("firmware: segments of every kind stream setpoints bit-identical to th
   CHECK(host.received.status.back().state == MachineState::Idle);
 }
 
-TEST_CASE("firmware: a job longer than the queue is topped up while running and stays bit-identical",
+TEST_CASE_METHOD(Bench, "firmware: a job longer than the queue is topped up while running and stays bit-identical",
           "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(machine())));
   std::vector<QueueSegment> job;
   for (int k = 0; k < 60; ++k) {
     const double x0 = k * 1.0;
@@ -255,16 +171,8 @@ TEST_CASE("firmware: a job longer than the queue is topped up while running and 
     job.push_back(line(p(x0, y0), p(x0 + 1.0, y1)));
   }
   job.back().end_of_job = true;
-  stream_job(host, app, board, job);
-  const auto expected = reference(machine(), job);
-  const auto got = host.setpoints();
-  REQUIRE(host.received.errors.empty());
-  REQUIRE(got.size() == expected.size());
-  std::size_t mismatches = 0;
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    if (got[i] != expected[i]) ++mismatches;
-  }
-  CHECK(mismatches == 0);
+  stream(machine(), job);
+  require_reference_stream(host, machine(), job);
   CHECK(board.steps == std::array<std::int64_t, 3>{60 * 80, 0, 0});
 }
 
@@ -275,7 +183,7 @@ template <class AppType>
 void connect_and_configure(Host<AppType>& host, const MachineConfiguration& config = machine()) {
   REQUIRE(host.connect());
   REQUIRE(host.send(Message(config)));
-  for (int i = 0; i < 5; ++i) host.pump();
+  host.pump(5);
   REQUIRE(host.received.errors.empty());
 }
 
@@ -284,51 +192,43 @@ template <class AppType>
 void queue_and_start(Host<AppType>& host, const std::vector<QueueSegment>& job) {
   for (const auto& s : job) REQUIRE(host.send(Message(s)));
   REQUIRE(host.send(Message(Start{})));
-  for (int i = 0; i < 5; ++i) host.pump();
+  host.pump(5);
 }
 
 std::int64_t steps_of(double mm) { return static_cast<std::int64_t>(mm * 80.0); }
 
+/// The whole job is uploaded and the App stands idle with every setpoint acknowledged.
+template <class AppType>
+bool job_finished(const JobUpload& upload, const AppType& app) {
+  return upload.all_sent() && app.state() == MachineState::Idle && !app.moving() && app.setpoint_sender().idle();
+}
+
+/// Every setpoint arrived once and in order: the reference's stream, checked setpoint by setpoint.
+void require_each_setpoint(const std::vector<std::pair<std::uint32_t, WirePoint>>& got,
+                           const std::vector<std::pair<std::uint32_t, WirePoint>>& expected) {
+  REQUIRE(got.size() == expected.size());
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    INFO("setpoint " << i);
+    REQUIRE(got[i] == expected[i]);
+  }
+}
+
 }  // namespace
 
-TEST_CASE("firmware: a two-axis job is bit-identical to the motion controller too", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a two-axis job is bit-identical to the motion controller too", "[firmware][app]") {
   MachineConfiguration config = machine();
   config.axis_count = 2;
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(config)));
-  std::vector<QueueSegment> job;
-  job.push_back(line(p(0, 0), p(3, 0), 2));
-  QueueSegment arc;
-  arc.kind = protocol::SegmentKind::Arc;
-  arc.axis_count = 2;
-  arc.degree = 2;
-  arc.points[0] = p(3, 0);
-  arc.points[1] = p(3, 2);
-  arc.points[2] = p(3, 1);
-  arc.direction = ArcDirection::Clockwise;
-  job.push_back(arc);
-  job.push_back(line(p(3, 2), p(0, 2), 2));
-  job.back().end_of_job = true;
-  stream_job(host, app, board, job);
-  const auto expected = reference(config, job);
-  const auto got = host.setpoints();
-  REQUIRE(host.received.errors.empty());
-  REQUIRE(got.size() == expected.size());
-  CHECK(got == expected);
+  const auto job = ending(std::vector<QueueSegment>{line(p(0, 0), p(3, 0), 2),
+                                                     arc(p(3, 0), p(3, 2), p(3, 1), ArcDirection::Clockwise, 2),
+                                                     line(p(3, 2), p(0, 2), 2)});
+  stream(config, job);
+  require_reference_stream(host, config, job);
   CHECK(board.steps == std::array<std::int64_t, 3>{0, steps_of(2), 0});
 }
 
-TEST_CASE("firmware: feed hold stops on the path and resume finishes the job", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: feed hold stops on the path and resume finishes the job", "[firmware][app]") {
   connect_and_configure(host);
-  QueueSegment s = line(p(0, 0), p(40, 0));
-  s.end_of_job = true;
-  queue_and_start(host, {s});
+  queue_and_start(host, {ending(line(p(0, 0), p(40, 0)))});
   host.run_ticks(200);
   REQUIRE(app.moving());
   REQUIRE(host.send(Message(FeedHold{})));
@@ -351,13 +251,9 @@ TEST_CASE("firmware: feed hold stops on the path and resume finishes the job", "
   CHECK(host.received.errors.empty());
 }
 
-TEST_CASE("firmware: abort stops at once, flushes the queue and allows a new job", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: abort stops at once, flushes the queue and allows a new job", "[firmware][app]") {
   connect_and_configure(host);
-  std::vector<QueueSegment> job{line(p(0, 0), p(20, 0)), line(p(20, 0), p(20, 20))};
-  job.back().end_of_job = true;
+  const auto job = ending(std::vector<QueueSegment>{line(p(0, 0), p(20, 0)), line(p(20, 0), p(20, 20))});
   queue_and_start(host, job);
   host.run_ticks(150);
   REQUIRE(app.moving());
@@ -379,9 +275,7 @@ TEST_CASE("firmware: abort stops at once, flushes the queue and allows a new job
   CHECK(host.received.errors[0].code == Error::SegmentsNotConnected);
   host.received.errors.clear();
   // A new job from where the machine stopped runs to its end.
-  QueueSegment back = line(stopped_at, p(0, 0));
-  back.end_of_job = true;
-  queue_and_start(host, {back});
+  queue_and_start(host, {ending(line(stopped_at, p(0, 0)))});
   host.run_ticks(2000);
   CHECK(app.state() == MachineState::Idle);
   CHECK(board.steps == std::array<std::int64_t, 3>{0, 0, 0});
@@ -396,9 +290,7 @@ TEST_CASE("firmware: losing the host link holds the machine and Resume continues
   TestApp app(board, settings);
   Host<TestApp> host(board, app);
   connect_and_configure(host);
-  QueueSegment s = line(p(0, 0), p(30, 0));
-  s.end_of_job = true;
-  queue_and_start(host, {s});
+  queue_and_start(host, {ending(line(p(0, 0), p(30, 0)))});
   REQUIRE(app.moving());
   host.run_ticks(49);  // the host sends nothing while the job runs
   CHECK(app.state() == MachineState::Running);
@@ -416,10 +308,7 @@ TEST_CASE("firmware: losing the host link holds the machine and Resume continues
   CHECK(app.position() == p(30, 0));
 }
 
-TEST_CASE("firmware: a corrupted frame is Nak-ed and the queue is not disturbed", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a corrupted frame is Nak-ed and the queue is not disturbed", "[firmware][app]") {
   connect_and_configure(host);
   REQUIRE(host.sender().submit(Message(line(p(0, 0), p(1, 0)))).has_value());
   std::array<std::byte, max_encoded_frame_size> frame{};
@@ -433,16 +322,13 @@ TEST_CASE("firmware: a corrupted frame is Nak-ed and the queue is not disturbed"
   REQUIRE(host.received.naks.size() == 1);
   CHECK((host.received.naks[0].reason == Error::BadCrc || host.received.naks[0].reason == Error::BadFraming));
   CHECK(app.controller().queued() == 0);
-  for (int i = 0; i < 5; ++i) host.pump();  // the Nak made the host resend at once
+  host.pump(5);  // the Nak made the host resend at once
   CHECK(app.controller().queued() == 1);
   CHECK(host.sender().idle());
   CHECK(host.received.errors.empty());
 }
 
-TEST_CASE("firmware: a segment beyond the granted credit is refused with QueueFull", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a segment beyond the granted credit is refused with QueueFull", "[firmware][app]") {
   connect_and_configure(host);
   std::uint8_t sequence = 1;  // the configuration took sequence 0
   double x = 0;
@@ -450,7 +336,7 @@ TEST_CASE("firmware: a segment beyond the granted credit is refused with QueueFu
     REQUIRE(host.send(Message(line(p(x, 0), p(x + 1, 0)))));
     x += 1;
     ++sequence;
-    for (int i = 0; i < 3; ++i) host.pump();
+    host.pump(3);
   }
   const std::size_t queued = app.controller().queued();
   // Credit lasts while 7 slots (the worst-case split) are free: 32 - 7 + 1 = 26 one-slot segments.
@@ -467,10 +353,7 @@ TEST_CASE("firmware: a segment beyond the granted credit is refused with QueueFu
   CHECK(app.controller().queued() == queued);
 }
 
-TEST_CASE("firmware: a step rate the drivers cannot follow faults with its error and axis", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a step rate the drivers cannot follow faults with its error and axis", "[firmware][app]") {
   MachineConfiguration config = machine();
   config.axes[0].steps_per_mm = 2000;  // 100 mm/s would need 200 000 steps/s
   connect_and_configure(host, config);
@@ -504,14 +387,11 @@ TEST_CASE("firmware: a step rate the drivers cannot follow faults with its error
   CHECK(app.state() == MachineState::Idle);
 }
 
-TEST_CASE("firmware: a segment that does not start at the previous end is refused", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a segment that does not start at the previous end is refused", "[firmware][app]") {
   connect_and_configure(host);
   REQUIRE(host.send(Message(line(p(0, 0), p(1, 0)))));
   REQUIRE(host.send(Message(line(p(1, 0.5), p(2, 0)))));
-  for (int i = 0; i < 5; ++i) host.pump();
+  host.pump(5);
   REQUIRE(host.received.errors.size() == 1);
   CHECK(host.received.errors[0].code == Error::SegmentsNotConnected);
   CHECK(host.received.errors[0].index == 1);
@@ -519,11 +399,7 @@ TEST_CASE("firmware: a segment that does not start at the previous end is refuse
   CHECK(app.controller().queued() == 1);
 }
 
-TEST_CASE("firmware: a queue underrun stops on the path, is reported, and the job goes on", "[firmware][app]") {
-  using SmallApp = App<FakeBoard, Q16_16, 16, 2>;
-  FakeBoard board;
-  SmallApp app(board);
-  Host<SmallApp> host(board, app);
+TEST_CASE_METHOD(SmallBench, "firmware: a queue underrun stops on the path, is reported, and the job goes on", "[firmware][app]") {
   connect_and_configure(host);
   queue_and_start(host, {line(p(0, 0), p(2, 0)), line(p(2, 0), p(4, 0)), line(p(4, 0), p(6, 0))});
   REQUIRE(app.moving());
@@ -533,8 +409,7 @@ TEST_CASE("firmware: a queue underrun stops on the path, is reported, and the jo
   CHECK(app.position() == p(6, 0));
   REQUIRE_FALSE(host.received.status.empty());
   CHECK(host.received.status.back().error == static_cast<std::uint8_t>(Error::QueueUnderrun));
-  std::vector<QueueSegment> rest{line(p(6, 0), p(6, 2)), line(p(6, 2), p(6, 4))};
-  rest.back().end_of_job = true;
+  const auto rest = ending(std::vector<QueueSegment>{line(p(6, 0), p(6, 2)), line(p(6, 2), p(6, 4))});
   for (const auto& s : rest) REQUIRE(host.send(Message(s)));
   host.run_ticks(1500);
   CHECK(app.state() == MachineState::Idle);
@@ -591,11 +466,7 @@ TEST_CASE("firmware: wire values convert exactly to planner values", "[firmware]
   CHECK(to_path_segment(no_feed).error() == Error::InvalidLimit);
 }
 
-TEST_CASE("firmware: a feed hold during an underrun keeps the machine still until Resume", "[firmware][app]") {
-  using SmallApp = App<FakeBoard, Q16_16, 16, 2>;
-  FakeBoard board;
-  SmallApp app(board);
-  Host<SmallApp> host(board, app);
+TEST_CASE_METHOD(SmallBench, "firmware: a feed hold during an underrun keeps the machine still until Resume", "[firmware][app]") {
   connect_and_configure(host);
   queue_and_start(host, {line(p(0, 0), p(2, 0)), line(p(2, 0), p(4, 0)), line(p(4, 0), p(6, 0))});
   host.run_ticks(1500);
@@ -603,8 +474,7 @@ TEST_CASE("firmware: a feed hold during an underrun keeps the machine still unti
   REQUIRE(host.send(Message(FeedHold{})));
   host.pump();
   CHECK(app.state() == MachineState::Holding);
-  std::vector<QueueSegment> rest{line(p(6, 0), p(6, 2)), line(p(6, 2), p(6, 4))};
-  rest.back().end_of_job = true;
+  const auto rest = ending(std::vector<QueueSegment>{line(p(6, 0), p(6, 2)), line(p(6, 2), p(6, 4))});
   for (const auto& s : rest) REQUIRE(host.send(Message(s)));
   host.run_ticks(300);
   CHECK(app.position() == p(6, 0));  // held: the new segments wait
@@ -615,27 +485,19 @@ TEST_CASE("firmware: a feed hold during an underrun keeps the machine still unti
   CHECK(host.received.errors.empty());
 }
 
-TEST_CASE("firmware: a new configuration is refused while segments are queued", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a new configuration is refused while segments are queued", "[firmware][app]") {
   connect_and_configure(host);
   REQUIRE(host.send(Message(line(p(0, 0), p(1, 0)))));
   REQUIRE(host.send(Message(machine())));
-  for (int i = 0; i < 5; ++i) host.pump();
+  host.pump(5);
   REQUIRE(host.received.errors.size() == 1);
   CHECK(host.received.errors[0].code == Error::PlannerBusy);
   CHECK(app.controller().queued() == 1);
 }
 
-TEST_CASE("firmware: a StatusReport follows a feed hold once the machine stands", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a StatusReport follows a feed hold once the machine stands", "[firmware][app]") {
   connect_and_configure(host);
-  QueueSegment s = line(p(0, 0), p(40, 0));
-  s.end_of_job = true;
-  queue_and_start(host, {s});
+  queue_and_start(host, {ending(line(p(0, 0), p(40, 0)))});
   host.run_ticks(200);
   REQUIRE(host.send(Message(FeedHold{})));
   host.pump();
@@ -650,14 +512,9 @@ TEST_CASE("firmware: a StatusReport follows a feed hold once the machine stands"
   CHECK(app.state() == MachineState::Running);
 }
 
-TEST_CASE("firmware: Resume while still braking continues from the stop", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: Resume while still braking continues from the stop", "[firmware][app]") {
   connect_and_configure(host);
-  QueueSegment s = line(p(0, 0), p(40, 0));
-  s.end_of_job = true;
-  queue_and_start(host, {s});
+  queue_and_start(host, {ending(line(p(0, 0), p(40, 0)))});
   host.run_ticks(200);
   REQUIRE(host.send(Message(FeedHold{})));
   host.pump();
@@ -672,33 +529,24 @@ TEST_CASE("firmware: Resume while still braking continues from the stop", "[firm
   CHECK(host.received.errors.empty());
 }
 
-TEST_CASE("firmware: segments that leave the travel range are refused with the axis", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: segments that leave the travel range are refused with the axis", "[firmware][app]") {
   connect_and_configure(host);  // travel -100 .. 100 mm on every axis
   REQUIRE(host.send(Message(line(p(0, 0), p(150, 0)))));
-  for (int i = 0; i < 3; ++i) host.pump();
+  host.pump(3);
   REQUIRE(host.received.errors.size() == 1);
   CHECK(host.received.errors[0].code == Error::OutsideTravel);
   CHECK(host.received.errors[0].index == 0);
   // A counter-clockwise half circle about (0, 96) of radius 5 from (5, 96) passes (0, 101) ...
-  QueueSegment arc;
-  arc.kind = protocol::SegmentKind::Arc;
-  arc.axis_count = 3;
-  arc.points[0] = p(5, 96);
-  arc.points[1] = p(-5, 96);
-  arc.points[2] = p(0, 96);
-  arc.direction = ArcDirection::CounterClockwise;
-  REQUIRE(host.send(Message(arc)));
-  for (int i = 0; i < 3; ++i) host.pump();
+  QueueSegment half = arc(p(5, 96), p(-5, 96), p(0, 96), ArcDirection::CounterClockwise);
+  REQUIRE(host.send(Message(half)));
+  host.pump(3);
   REQUIRE(host.received.errors.size() == 2);
   CHECK(host.received.errors[1].code == Error::OutsideTravel);
   CHECK(host.received.errors[1].index == 1);
   // ... the clockwise one passes (0, 91) and stays inside: accepted.
-  arc.direction = ArcDirection::Clockwise;
-  REQUIRE(host.send(Message(arc)));
-  for (int i = 0; i < 3; ++i) host.pump();
+  half.direction = ArcDirection::Clockwise;
+  REQUIRE(host.send(Message(half)));
+  host.pump(3);
   CHECK(host.received.errors.size() == 2);
   CHECK(app.controller().queued() == 1);
   // A reversed travel range is refused at configuration (index: byte offset of axis 1's minimum).
@@ -731,9 +579,7 @@ TEST_CASE("firmware: the next job's first segment is accepted in the poll right 
   TestApp app(board, settings);
   Host<TestApp> host(board, app);
   connect_and_configure(host);
-  QueueSegment first = line(p(0, 0), p(2, 0));
-  first.end_of_job = true;
-  queue_and_start(host, {first});
+  queue_and_start(host, {ending(line(p(0, 0), p(2, 0)))});
   REQUIRE(app.moving());
   for (int t = 0; t < 5000 && app.moving(); ++t) app.on_tick();  // no poll in between
   REQUIRE_FALSE(app.moving());
@@ -746,39 +592,25 @@ TEST_CASE("firmware: the next job's first segment is accepted in the poll right 
   CHECK(app.controller().queued() == 1);
 }
 
-TEST_CASE("firmware: a Bézier with a cusp takes two queue slots and stays bit-identical", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a Bézier with a cusp takes two queue slots and stays bit-identical", "[firmware][app]") {
   connect_and_configure(host);
   // B'(1/2) = 3 (1/4 (1, 1) + 1/2 (-1, 0) + 1/4 (1, -1)) = 0: a cusp in the middle.
-  QueueSegment cusp;
-  cusp.kind = protocol::SegmentKind::Bezier;
-  cusp.axis_count = 2;
-  cusp.degree = 3;
-  cusp.points[0] = p(0, 0);
-  cusp.points[1] = p(1, 1);
-  cusp.points[2] = p(0, 1);
-  cusp.points[3] = p(1, 0);
-  QueueSegment last = line(p(1, 0), p(3, 0), 2);
-  last.end_of_job = true;
+  const QueueSegment cusp = cubic(p(0, 0), p(1, 1), p(0, 1), p(1, 0), 2);
+  const QueueSegment last = ending(line(p(1, 0), p(3, 0), 2));
   REQUIRE(host.send(Message(cusp)));
-  for (int i = 0; i < 3; ++i) host.pump();
+  host.pump(3);
   CHECK(app.controller().queued() == 2);
   host.received = {};
   const std::vector<QueueSegment> job{cusp, last};
   stream_job(host, app, board, std::vector<QueueSegment>{last});
-  const auto expected = reference(machine(), job);
-  const auto got = host.setpoints();
-  REQUIRE(host.received.errors.empty());
-  REQUIRE(got.size() == expected.size());
-  CHECK(got == expected);
+  const auto got = require_reference_stream(host, machine(), job);
+  // independent of the reference: the job ends at (3, 0), 240 steps along x
+  REQUIRE_FALSE(got.empty());
+  CHECK(got.back().second == p(3, 0));
+  CHECK(board.steps == std::array<std::int64_t, 3>{steps_of(3), 0, 0});
 }
 
-TEST_CASE("firmware: a malformed payload is answered with BadPayload at its byte offset", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a malformed payload is answered with BadPayload at its byte offset", "[firmware][app]") {
   connect_and_configure(host);
   const std::array<std::byte, 2> payload{std::byte{4}, std::byte{0}};  // segment kind 4 does not exist
   std::array<std::byte, max_encoded_frame_size> frame{};
@@ -794,31 +626,24 @@ TEST_CASE("firmware: a malformed payload is answered with BadPayload at its byte
   CHECK(app.controller().queued() == 0);
 }
 
-TEST_CASE("firmware: a slow transmitter gets every frame in order, later", "[firmware][app]") {
-  FakeBoard board;
+TEST_CASE_METHOD(Bench, "firmware: a slow transmitter gets every frame in order, later", "[firmware][app]") {
   board.write_limit = 24;  // bytes accepted per write: 24 kB/s at one poll per millisecond
-  TestApp app(board);
-  Host<TestApp> host(board, app);
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(machine())));
   const auto job = mixed_job();
-  stream_job(host, app, board, job);
-  for (int i = 0; i < 50; ++i) host.pump();
+  stream(machine(), job);
+  host.pump(50);
   const auto expected = reference(machine(), job);
   CHECK(host.setpoints() == expected);
+  // independent of the reference: the job's end point, in position and in steps
+  REQUIRE_FALSE(host.setpoints().empty());
+  CHECK(host.setpoints().back().second == p(0, 0, 0));
+  CHECK(board.steps == std::array<std::int64_t, 3>{0, 0, 0});
   CHECK(app.statistics().dropped_frames == 0);
   CHECK(app.statistics().dropped_setpoints == 0);
 }
 
-TEST_CASE("firmware: with float setpoints the job runs to its exact end point", "[firmware][app]") {
-  using FloatApp = App<FakeBoard, float>;
-  FakeBoard board;
-  FloatApp app(board);
-  Host<FloatApp> host(board, app);
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(machine())));
+TEST_CASE_METHOD(FloatBench, "firmware: with float setpoints the job runs to its exact end point", "[firmware][app]") {
   const auto job = mixed_job();
-  stream_job(host, app, board, job);
+  stream(machine(), job);
   const auto got = host.setpoints();
   const auto expected = reference(machine(), job);
   REQUIRE(host.received.errors.empty());
@@ -836,10 +661,7 @@ TEST_CASE("firmware: with float setpoints the job runs to its exact end point", 
   CHECK(worst <= 1);
 }
 
-TEST_CASE("firmware: random line noise never queues anything and the link recovers", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: random line noise never queues anything and the link recovers", "[firmware][app]") {
   connect_and_configure(host);
   std::mt19937 random(curvestep::testing::test_seed());
   std::uniform_int_distribution<int> byte(0, 255);
@@ -865,22 +687,15 @@ TEST_CASE("firmware: random line noise never queues anything and the link recove
   CHECK(app.controller().queued() == 1);
 }
 
-TEST_CASE("firmware: a new session declares the position afresh with its first job", "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
+TEST_CASE_METHOD(Bench, "firmware: a new session declares the position afresh with its first job", "[firmware][app]") {
   connect_and_configure(host);
-  QueueSegment first = line(p(0, 0), p(2, 0));
-  first.end_of_job = true;
-  queue_and_start(host, {first});
+  queue_and_start(host, {ending(line(p(0, 0), p(2, 0)))});
   host.run_ticks(1000);
   REQUIRE(app.state() == MachineState::Idle);
   REQUIRE(app.position() == p(2, 0));
   Host<TestApp> second_host(board, app);
   REQUIRE(second_host.connect(0x4321));
-  QueueSegment elsewhere = line(p(10, 10), p(12, 10));
-  elsewhere.end_of_job = true;
-  queue_and_start(second_host, {elsewhere});
+  queue_and_start(second_host, {ending(line(p(10, 10), p(12, 10)))});
   second_host.run_ticks(1000);
   CHECK(second_host.received.errors.empty());
   CHECK(app.position() == p(12, 10));
@@ -897,9 +712,7 @@ TEST_CASE("firmware: a host that stops acknowledging setpoints pauses the interp
   TestApp app(board, settings);
   Host<TestApp> host(board, app);
   connect_and_configure(host);
-  QueueSegment s = line(p(0, 0), p(30, 0));
-  s.end_of_job = true;
-  queue_and_start(host, {s});
+  queue_and_start(host, {ending(line(p(0, 0), p(30, 0)))});
   REQUIRE(app.moving());
   host.acknowledge_setpoints = false;
   host.run_ticks(200);
@@ -928,9 +741,7 @@ TEST_CASE("firmware: a slow host gets every setpoint exactly once because the Ap
   const auto job = mixed_job();
   const auto expected = reference(machine(), job);
   JobUpload upload(job);
-  for (int t = 0;
-       t < 400000 && !(upload.all_sent() && app.state() == MachineState::Idle && !app.moving() && app.setpoint_sender().idle());
-       ++t) {
+  for (int t = 0; t < 400000 && !job_finished(upload, app); ++t) {
     REQUIRE(upload.step(host.sender(), t));
     host.reading = (t / 37) % 5 == 0;  // the host reads only a fifth of the time, in bursts
     app.on_tick();
@@ -944,27 +755,18 @@ TEST_CASE("firmware: a slow host gets every setpoint exactly once because the Ap
                 << " sender state " << static_cast<int>(app.setpoint_sender().state()) << " in flight "
                 << app.setpoint_sender().in_flight() << " go-backs " << app.setpoint_sender().go_backs() << " clock "
                 << board.clock_ms << " repeated " << host.repeated_batches);
-  REQUIRE(got.size() == expected.size());
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    INFO("setpoint " << i);
-    REQUIRE(got[i] == expected[i]);
-  }
+  require_each_setpoint(got, expected);
 }
 
-TEST_CASE("firmware: a lost setpoint frame is resent after the host's Nak and the batches shrink on a noisy line",
+TEST_CASE_METHOD(Bench, "firmware: a lost setpoint frame is resent after the host's Nak and the batches shrink on a noisy line",
           "[firmware][app]") {
-  FakeBoard board;
-  TestApp app(board);
-  Host<TestApp> host(board, app);
   connect_and_configure(host);
   const auto job = mixed_job();
   const auto expected = reference(machine(), job);
   JobUpload upload(job);
   std::mt19937 rng(curvestep::testing::test_seed());
   int damaged = 0;
-  for (int t = 0;
-       t < 400000 && !(upload.all_sent() && app.state() == MachineState::Idle && !app.moving() && app.setpoint_sender().idle());
-       ++t) {
+  for (int t = 0; t < 400000 && !job_finished(upload, app); ++t) {
     REQUIRE(upload.step(host.sender(), t));
     app.on_tick();
     ++board.clock_ms;
@@ -982,11 +784,7 @@ TEST_CASE("firmware: a lost setpoint frame is resent after the host's Nak and th
   CHECK(damaged > 0);
   CHECK(app.statistics().setpoint_go_backs > 0);
   const auto got = host.setpoints();
-  REQUIRE(got.size() == expected.size());
-  for (std::size_t i = 0; i < got.size(); ++i) {
-    INFO("setpoint " << i);
-    REQUIRE(got[i] == expected[i]);
-  }
+  require_each_setpoint(got, expected);
   bool small = false;
   for (const auto& b : host.received.batches) small = small || b.count < max_setpoints_per_batch / 2;
   CHECK(small);

@@ -7,9 +7,13 @@
 #include <cstdint>
 #include <deque>
 #include <span>
+#include <utility>
 #include <vector>
 
+#include <catch2/catch.hpp>
+
 #include <curvestep/core/motion/step_generator.hpp>
+#include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/app.hpp>
 #include <curvestep/firmware/board.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
@@ -118,6 +122,11 @@ class Host {
     }
     app_.poll();
     take_output();
+  }
+
+  /// `times` exchanges.
+  void pump(int times) {
+    for (int i = 0; i < times; ++i) pump();
   }
 
   /// Runs `ticks` control ticks, pumping the link every tick.
@@ -230,5 +239,135 @@ class JobUpload {
   std::size_t next_ = 0;
   bool started_ = false;
 };
+
+/// Millimetres as Q16.16 (exact for the binary fractions the tests use).
+constexpr std::int32_t q(double mm) { return static_cast<std::int32_t>(mm * 65536.0); }
+
+inline protocol::WirePoint p(double x, double y, double z = 0) { return protocol::WirePoint{q(x), q(y), q(z)}; }
+
+/// The test machine: 3 axes, 100 mm/s, 1000 mm/s², 10000 mm/s³, 80 steps/mm, travel ±100 mm,
+/// 1 kHz control rate and the given default feed.
+inline protocol::MachineConfiguration machine(double default_feed_mm_per_s) {
+  protocol::MachineConfiguration c;
+  c.axis_count = 3;
+  c.max_velocity_mm_per_s = 100;  // protocol version 2: limits travel as binary64
+  c.max_acceleration_mm_per_s2 = 1000;
+  c.max_jerk_mm_per_s3 = 10000;
+  c.default_feed_mm_per_s = q(default_feed_mm_per_s);
+  c.tolerance_mm = 0.01;
+  c.junction_deviation_mm = 0.05;
+  c.max_step_rate_hz = 100000;
+  c.control_rate_hz = 1000;
+  for (auto& axis : c.axes) {
+    axis.steps_per_mm = 80;
+    axis.min_position_mm = q(-100);
+    axis.max_position_mm = q(100);
+  }
+  return c;
+}
+
+inline protocol::QueueSegment line(protocol::WirePoint a, protocol::WirePoint b, std::uint8_t axes = 3) {
+  protocol::QueueSegment s;
+  s.kind = protocol::SegmentKind::Line;
+  s.axis_count = axes;
+  s.points[0] = a;
+  s.points[1] = b;
+  return s;
+}
+
+inline protocol::QueueSegment cubic(protocol::WirePoint a, protocol::WirePoint b, protocol::WirePoint c, protocol::WirePoint d,
+                                    std::uint8_t axes = 3) {
+  protocol::QueueSegment s;
+  s.kind = protocol::SegmentKind::Bezier;
+  s.axis_count = axes;
+  s.degree = 3;
+  s.points[0] = a;
+  s.points[1] = b;
+  s.points[2] = c;
+  s.points[3] = d;
+  return s;
+}
+
+/// An arc about `center` from `start` to `end`.
+inline protocol::QueueSegment arc(protocol::WirePoint start, protocol::WirePoint end, protocol::WirePoint center,
+                                  ArcDirection direction, std::uint8_t axes = 3) {
+  protocol::QueueSegment s;
+  s.kind = protocol::SegmentKind::Arc;
+  s.axis_count = axes;
+  s.degree = 2;  // fixed by the kind (the decoder sets it too)
+  s.points[0] = start;
+  s.points[1] = end;
+  s.points[2] = center;
+  s.direction = direction;
+  return s;
+}
+
+using Setpoints = std::vector<std::pair<std::uint32_t, protocol::WirePoint>>;
+
+/// The reference: a MotionController (Q16.16) run directly on the same wire segments, as curvestep
+/// sim does, fed whenever there is room.
+template <class Controller>
+Setpoints controller_reference(const protocol::MachineConfiguration& config, const std::vector<protocol::QueueSegment>& job) {
+  Controller controller;
+  REQUIRE(controller.configure(to_machine_limits(config).value()).has_value());
+  std::size_t next = 0;
+  const auto fill = [&] {
+    while (next < job.size() && !controller.queue_full()) {
+      const auto segment = to_path_segment(job[next]);
+      REQUIRE(segment.has_value());
+      const auto pushed = controller.try_push(segment.value(), static_cast<std::uint32_t>(next));
+      if (!pushed && pushed.error() == Error::QueueFull) return;
+      REQUIRE(pushed.has_value());
+      ++next;
+    }
+    if (next == job.size()) controller.end_of_job();
+  };
+  fill();
+  REQUIRE(controller.start().has_value());
+  Setpoints out;
+  while (!controller.finished()) {
+    const auto sp = controller.next_setpoint();
+    REQUIRE(sp.has_value());
+    protocol::WirePoint w{};
+    for (std::size_t a = 0; a < 3; ++a) w[a] = sp.value().position[a].raw();
+    out.emplace_back(static_cast<std::uint32_t>(sp.value().tick), w);
+    fill();
+  }
+  return out;
+}
+
+/// The App's stream is the reference's: as long, and no setpoint (index and position) differs.
+inline void check_same_stream(const Setpoints& got, const Setpoints& expected) {
+  REQUIRE(got.size() == expected.size());
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    if (got[i] != expected[i]) ++mismatches;
+  }
+  CHECK(mismatches == 0);
+}
+
+/// Streams `job` to the App while it runs, one submission attempt per tick, until the App is idle
+/// again (the test fails, with the App's state, if it is not within `max_ticks`).
+template <class AppType>
+void stream_job(Host<AppType>& host, AppType& app, FakeBoard& board, const std::vector<protocol::QueueSegment>& job,
+                int max_ticks = 200000) {
+  JobUpload upload(job);
+  for (int t = 0; t < max_ticks; ++t) {
+    REQUIRE(upload.step(host.sender(), t));
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+    if (upload.all_sent() && !app.moving() && app.state() == protocol::MachineState::Idle && host.sender().idle()) {
+      return;
+    }
+  }
+  INFO("state " << static_cast<int>(app.state()) << " moving " << app.moving() << " queued "
+                 << app.controller().queued() << " controller " << static_cast<int>(app.controller().state())
+                 << " sent " << upload.segments_sent() << " errors " << host.received.errors.size() << " credit "
+                 << host.sender().credit() << " in flight " << host.sender().in_flight());
+  INFO("first error " << (host.received.errors.empty() ? 0 : static_cast<int>(host.received.errors[0].code)) << " at "
+                       << (host.received.errors.empty() ? 0 : host.received.errors[0].index) << " clock " << board.clock_ms);
+  FAIL("the job did not finish");
+}
 
 }  // namespace curvestep::firmware::testing

@@ -9,10 +9,14 @@
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/machine_file.hpp>
 
+#include <support/load_error_checks.hpp>
+
 #include "jobs_test_support.hpp"
 
 using namespace curvestep;
 using namespace curvestep::host;
+using curvestep::testing::check_bad_files;
+using curvestep::testing::contains;
 using curvestep::testing::job_data;
 
 namespace {
@@ -25,8 +29,6 @@ struct BadFile {
   Error code;
   const char* cause;  ///< a phrase of the message
 };
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 }  // namespace
 
@@ -54,31 +56,18 @@ TEST_CASE("jobs: each bad job file names the file, line, segment and field", "[h
       {"bad_points_shape.json", 5, "segment 1 (line)", "\"points\"[1]", Error::InvalidJob, "got 4"},
       {"bad_version.json", 2, "", "\"version\"", Error::InvalidJob, "unsupported version 2"},
   };
-  for (const auto& bad : cases) {
-    INFO(bad.file);
-    const auto path = job_data(bad.file);
-    try {
-      (void)load_job(path);
-      FAIL("the file loaded");
-    } catch (const LoadError& e) {
-      const std::string what = e.what();
-      INFO(what);
-      CHECK(e.code() == bad.code);
-      CHECK(e.location().file == path.string());
-      CHECK(e.location().line == bad.line);
-      CHECK(e.location().field == bad.field);
-      CHECK(what.rfind(path.string() + ":" + std::to_string(bad.line) + ":", 0) == 0);
-      CHECK(contains(what, std::string(": ") + bad.field + ": "));
-      CHECK(contains(what, bad.cause));
-      if (std::string(bad.segment).empty()) {
-        CHECK_FALSE(e.location().segment.has_value());
-        CHECK_FALSE(contains(what, "segment"));
-      } else {
-        CHECK(contains(what, std::string(": ") + bad.segment + ": "));
-      }
-      CHECK_FALSE(contains(what, "\n"));
-    }
-  }
+  check_bad_files(cases, job_data, [](const auto& path) { return load_job(path); },
+                  [](const BadFile& bad, const LoadError& e, const std::string&, const std::string& what) {
+                    CHECK(contains(what, std::string(": ") + bad.field + ": "));
+                    CHECK(contains(what, bad.cause));
+                    if (std::string(bad.segment).empty()) {
+                      CHECK_FALSE(e.location().segment.has_value());
+                      CHECK_FALSE(contains(what, "segment"));
+                    } else {
+                      CHECK(contains(what, std::string(": ") + bad.segment + ": "));
+                    }
+                    CHECK_FALSE(contains(what, "\n"));
+                  });
 }
 
 TEST_CASE("jobs: a JSON syntax error gives line and column", "[host_tools][jobs]") {
@@ -102,22 +91,11 @@ TEST_CASE("jobs: each bad machine file names the file, line and field", "[host_t
       {"machine_wrong_type.json", 5, "", "\"feed\"", Error::InvalidMachine, "expected a number, got a string"},
       {"machine_bad_profile.json", 8, "", "\"profile\"", Error::InvalidMachine, "unknown profile \"sine\""},
   };
-  for (const auto& bad : cases) {
-    INFO(bad.file);
-    const auto path = job_data(bad.file);
-    try {
-      (void)load_machine(path);
-      FAIL("the file loaded");
-    } catch (const LoadError& e) {
-      const std::string what = e.what();
-      INFO(what);
-      CHECK(e.code() == bad.code);
-      CHECK(e.location().line == bad.line);
-      CHECK(e.location().field == bad.field);
-      CHECK(what.rfind(path.string() + ":" + std::to_string(bad.line) + ": " + bad.field + ": ", 0) == 0);
-      CHECK(contains(what, bad.cause));
-    }
-  }
+  check_bad_files(cases, job_data, [](const auto& path) { return load_machine(path); },
+                  [](const BadFile& bad, const LoadError&, const std::string& path, const std::string& what) {
+                    CHECK(what.rfind(path + ":" + std::to_string(bad.line) + ": " + bad.field + ": ", 0) == 0);
+                    CHECK(contains(what, bad.cause));
+                  });
 }
 
 TEST_CASE("jobs: the example machine file maps onto MachineLimits", "[host_tools][jobs]") {

@@ -29,58 +29,14 @@
 using namespace curvestep;
 using namespace curvestep::firmware;
 using namespace curvestep::protocol;
-using curvestep::firmware::testing::FakeBoard;
-using curvestep::firmware::testing::Host;
-using curvestep::firmware::testing::JobUpload;
+using namespace curvestep::firmware::testing;  // fake_board.hpp: the board, the host, the wire helpers
 
 namespace {
 
 using F1App = App<FakeBoard, Q16_16, 16, 8>;      // boards/stm32f1: 16 slots, look-ahead 8
 using WindowApp = App<FakeBoard, Q16_16, 17, 9>;  // the smallest queue that keeps a window of 9
 
-constexpr std::int32_t q(double mm) { return static_cast<std::int32_t>(mm * 65536.0); }
-
-MachineConfiguration machine() {
-  MachineConfiguration c;
-  c.axis_count = 3;
-  c.max_velocity_mm_per_s = 100;  // protocol version 2: limits travel as binary64
-  c.max_acceleration_mm_per_s2 = 1000;
-  c.max_jerk_mm_per_s3 = 10000;
-  c.default_feed_mm_per_s = q(100);
-  c.tolerance_mm = 0.01;
-  c.junction_deviation_mm = 0.05;
-  c.max_step_rate_hz = 100000;
-  c.control_rate_hz = 1000;
-  for (auto& axis : c.axes) {
-    axis.steps_per_mm = 80;
-    axis.min_position_mm = q(-100);
-    axis.max_position_mm = q(100);
-  }
-  return c;
-}
-
-WirePoint p(double x, double y, double z = 0) { return WirePoint{q(x), q(y), q(z)}; }
-
-QueueSegment line(WirePoint a, WirePoint b) {
-  QueueSegment s;
-  s.kind = protocol::SegmentKind::Line;
-  s.axis_count = 3;
-  s.points[0] = a;
-  s.points[1] = b;
-  return s;
-}
-
-QueueSegment cubic(WirePoint a, WirePoint b, WirePoint c, WirePoint d) {
-  QueueSegment s;
-  s.kind = protocol::SegmentKind::Bezier;
-  s.axis_count = 3;
-  s.degree = 3;
-  s.points[0] = a;
-  s.points[1] = b;
-  s.points[2] = c;
-  s.points[3] = d;
-  return s;
-}
+MachineConfiguration machine() { return curvestep::firmware::testing::machine(100); }
 
 /// 40 collinear lines of 0.8 mm: the braking distance from 100 mm/s (v²/2a + va/2j = 10 mm) is
 /// longer than 9 segments and shorter than 16, so the window decides the cruise speed. (Segments
@@ -105,15 +61,7 @@ std::vector<QueueSegment> mixed_short() {
   }
   job.push_back(cubic(p(x, 0), p(x + 3, 3), p(x, 3), p(x + 3, 0)));  // cusp
   x += 3;
-  QueueSegment arc;
-  arc.kind = protocol::SegmentKind::Arc;
-  arc.axis_count = 3;
-  arc.degree = 2;
-  arc.points[0] = p(x, 0);
-  arc.points[1] = p(x, 4);
-  arc.points[2] = p(x, 2);
-  arc.direction = ArcDirection::CounterClockwise;
-  job.push_back(arc);
+  job.push_back(arc(p(x, 0), p(x, 4), p(x, 2), ArcDirection::CounterClockwise));
   job.push_back(line(p(x, 4), p(0, 4)));
   job.back().end_of_job = true;
   return job;
@@ -131,7 +79,7 @@ host::Job to_host_job(const std::vector<QueueSegment>& wire) {
   return job;
 }
 
-using RawStream = std::vector<std::pair<std::uint32_t, WirePoint>>;
+using RawStream = curvestep::firmware::testing::Setpoints;
 
 RawStream simulated(const std::vector<QueueSegment>& wire, std::size_t lookahead) {
   host::SimulationOptions options;
@@ -147,29 +95,7 @@ RawStream simulated(const std::vector<QueueSegment>& wire, std::size_t lookahead
 
 /// An independent reference: MotionController<Q16_16, 16, 9>, fed whenever there is room.
 RawStream controller_16_9(const std::vector<QueueSegment>& wire) {
-  MotionController<Q16_16, 16, 9> c;
-  REQUIRE(c.configure(to_machine_limits(machine()).value()).has_value());
-  std::size_t next = 0;
-  const auto fill = [&] {
-    while (next < wire.size() && !c.queue_full()) {
-      const auto pushed = c.try_push(to_path_segment(wire[next]).value(), static_cast<std::uint32_t>(next));
-      if (!pushed && pushed.error() == Error::QueueFull) return;
-      REQUIRE(pushed.has_value());
-      ++next;
-    }
-    if (next == wire.size()) c.end_of_job();
-  };
-  fill();
-  REQUIRE(c.start().has_value());
-  RawStream out;
-  while (!c.finished()) {
-    const auto sp = c.next_setpoint();
-    REQUIRE(sp.has_value());
-    out.emplace_back(static_cast<std::uint32_t>(sp.value().tick),
-                     WirePoint{sp.value().position[0].raw(), sp.value().position[1].raw(), sp.value().position[2].raw()});
-    fill();
-  }
-  return out;
+  return curvestep::firmware::testing::controller_reference<MotionController<Q16_16, 16, 9>>(machine(), wire);
 }
 
 /// Streams the job to an AppType over the FakeBoard link (as tests/firmware/app does), one
@@ -181,16 +107,7 @@ RawStream streamed(const std::vector<QueueSegment>& job) {
   Host<AppType> host(board, app);
   REQUIRE(host.connect());
   REQUIRE(host.send(Message(machine())));
-  JobUpload upload(job);
-  bool done = false;
-  for (int t = 0; t < 200000 && !done; ++t) {
-    REQUIRE(upload.step(host.sender(), t));
-    app.on_tick();
-    ++board.clock_ms;
-    host.pump();
-    done = upload.all_sent() && !app.moving() && app.state() == MachineState::Idle && host.sender().idle();
-  }
-  REQUIRE(done);
+  stream_job(host, app, board, job);
   REQUIRE(host.received.errors.empty());
   CHECK(app.statistics().dropped_setpoints == 0);
   return host.setpoints();
@@ -207,12 +124,7 @@ TEST_CASE("sim lookahead: simulate with lookahead 9 equals a firmware App with L
     const auto& job = jobs[j];
     const RawStream device = streamed<WindowApp>(job);
     const RawStream sim9 = simulated(job, 9);
-    REQUIRE(device.size() == sim9.size());
-    std::size_t mismatches = 0;
-    for (std::size_t i = 0; i < device.size(); ++i) {
-      if (device[i] != sim9[i]) ++mismatches;
-    }
-    CHECK(mismatches == 0);
+    check_same_stream(device, sim9);
     // An independent second instantiation agrees too.
     const bool reference_agrees = controller_16_9(job) == sim9;
     CHECK(reference_agrees);

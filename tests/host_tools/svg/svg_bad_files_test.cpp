@@ -7,10 +7,14 @@
 #include <curvestep/core/error.hpp>
 #include <curvestep/host/svg_import.hpp>
 
+#include <support/load_error_checks.hpp>
+
 #include "svg_test_support.hpp"
 
 using namespace curvestep;
 using namespace curvestep::host;
+using curvestep::testing::check_bad_files;
+using curvestep::testing::contains;
 using curvestep::testing::svg_data;
 
 namespace {
@@ -22,8 +26,6 @@ struct BadFile {
   Error code;
   const char* cause;  ///< a phrase of the message
 };
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 }  // namespace
 
@@ -53,24 +55,11 @@ TEST_CASE("svg: each malformed file names the file, line, element and what is wr
       {"bad_viewbox.svg", 1, "<svg> \"viewBox\"", Error::InvalidJob, "expected 4 numbers (min-x min-y width height), got 3"},
       {"bad_nothing_to_draw.svg", 2, "<svg>", Error::InvalidJob, "the drawing has no paths or shapes to draw"},
   };
-  for (const auto& bad : cases) {
-    INFO(bad.file);
-    const auto path = svg_data(bad.file);
-    try {
-      (void)load_svg(path);
-      FAIL("no error for " << bad.file);
-    } catch (const LoadError& error) {
-      const std::string what = error.what();
-      INFO(what);
-      const std::string prefix = path.string() + (bad.line > 0 ? ":" + std::to_string(bad.line) : std::string()) + ": ";
-      CHECK(what.rfind(prefix, 0) == 0);
-      CHECK(error.location().file == path.string());
-      CHECK(error.location().line == bad.line);
-      CHECK(error.location().field == bad.field);
-      CHECK(error.code() == bad.code);
-      CHECK(contains(error.message(), bad.cause));
-    }
-  }
+  check_bad_files(cases, svg_data, [](const auto& path) { return load_svg(path); },
+                  [](const BadFile& bad, const LoadError&, const std::string& path, const std::string& what) {
+                    const std::string prefix = path + (bad.line > 0 ? ":" + std::to_string(bad.line) : std::string()) + ": ";
+                    CHECK(what.rfind(prefix, 0) == 0);
+                  });
 }
 
 TEST_CASE("svg: a missing file is a runtime error naming it", "[host_tools][svg]") {
