@@ -30,9 +30,9 @@ using TestApp = App<FakeBoard>;
 MachineConfiguration machine() { return curvestep::firmware::testing::machine(50); }
 
 /// A FakeBoard, an App on it and the scripted host (a fixture: the test sees board, app and host).
-template <class AppType>
+template <class AppType, class BoardType = FakeBoard>
 struct Rig {
-  FakeBoard board;
+  BoardType board;
   AppType app{board};
   Host<AppType> host{board, app};
 
@@ -46,6 +46,13 @@ struct Rig {
 using Bench = Rig<TestApp>;
 using SmallBench = Rig<App<FakeBoard, Q16_16, 16, 2>>;  // a queue of 16 slots, look-ahead 2
 using FloatBench = Rig<App<FakeBoard, float>>;           // float setpoints
+
+/// A board that buffers edges and can lose them (as the STM32 edge ring does when it is full).
+struct LossyBoard : FakeBoard {
+  std::uint32_t dropped = 0;  ///< edges lost so far (set by the test)
+  [[nodiscard]] std::uint32_t edges_dropped() const { return dropped; }
+};
+using LossyBench = Rig<App<LossyBoard>, LossyBoard>;
 
 /// The segment (or the job with its last segment) marked as the end of the job.
 QueueSegment ending(QueueSegment s) {
@@ -110,6 +117,7 @@ TEST_CASE_METHOD(Bench, "firmware: the handshake answers Capabilities with the A
   CHECK(c.axis_count == 3);
   CHECK(c.max_degree == 7);
   CHECK(c.tick_rate_hz == 1000000);
+  CHECK(c.lookahead == 16);  // App<FakeBoard>'s default window
   CHECK(c.credit_end == 0);  // no credit before a configuration
   CHECK(app.state() == MachineState::Idle);
 }
@@ -385,6 +393,33 @@ TEST_CASE_METHOD(Bench, "firmware: a step rate the drivers cannot follow faults 
   REQUIRE(host.send(Message(Abort{})));
   host.pump();
   CHECK(app.state() == MachineState::Idle);
+}
+
+TEST_CASE_METHOD(LossyBench, "firmware: step edges the board lost are a StepsLost fault naming the segment",
+                 "[firmware][app]") {
+  connect_and_configure(host);
+  queue_and_start(host, {line(p(0, 0), p(10, 0)), ending(line(p(10, 0), p(40, 0)))});
+  host.run_ticks(100);  // well inside the first segment (10 mm at 50 mm/s take over 200 ticks)
+  REQUIRE(app.moving());
+  REQUIRE(host.received.errors.empty());
+  board.dropped = 1;  // the edge ring overflowed
+  host.run_ticks(1);
+  CHECK(app.state() == MachineState::Fault);
+  CHECK_FALSE(app.moving());
+  CHECK(board.fault_stops == 1);
+  REQUIRE(host.received.errors.size() == 1);
+  CHECK(host.received.errors[0].code == Error::StepsLost);
+  CHECK(host.received.errors[0].index == 0);
+  // After Abort the next job runs: the loss was reported once, not again.
+  REQUIRE(host.send(Message(Abort{})));
+  host.pump(5);
+  REQUIRE(app.state() == MachineState::Idle);
+  const WirePoint here = app.position();
+  queue_and_start(host, {ending(line(here, p(0, 0)))});
+  host.run_ticks(3000);
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(host.received.errors.size() == 1);
+  CHECK(board.steps == std::array<std::int64_t, 3>{0, 0, 0});  // back at the origin: 0 steps
 }
 
 TEST_CASE_METHOD(Bench, "firmware: a segment that does not start at the previous end is refused", "[firmware][app]") {
