@@ -216,6 +216,17 @@ enum class MachineState : std::uint8_t {
   Fault = 3,    ///< stopped by an error (see StatusReport::error), needs Abort
 };
 
+/// Name of a state, for logs ("idle", "running", "holding", "fault"; "unknown" for another value).
+[[nodiscard]] constexpr const char* machine_state_name(MachineState state) noexcept {
+  switch (state) {
+    case MachineState::Idle: return "idle";
+    case MachineState::Running: return "running";
+    case MachineState::Holding: return "holding";
+    case MachineState::Fault: return "fault";
+  }
+  return "unknown";
+}
+
 /// The controller's state.
 struct StatusReport {
   static constexpr MessageType type = MessageType::StatusReport;  ///< message type
