@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <optional>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/gcode.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/wire_value.hpp>
 
 namespace curvestep::host {
 namespace {
@@ -174,15 +176,11 @@ class GcodeLoader {
     return q;
   }
 
-  /// A weight or a feed on the Q16.16 grid, as the wire carries it (the job loader does the same).
-  double wire_value(double value, const char* what, std::size_t column) {
-    const auto fixed = Q16_16::from_double(value);
-    if (!fixed) fail_message(column, std::string(what) + " " + format_number(value) + " is outside the Q16.16 range", Error::FixedOverflow);
-    if (value > 0 && fixed.value().raw() <= 0) {
-      fail_message(column, std::string(what) + " " + format_number(value) + " rounds to 0 in Q16.16 (the smallest positive value is 2^-16)",
-                   Error::InvalidArgument);
-    }
-    return fixed.value().to_double();
+  /// A weight or a feed on the Q16.16 grid, as the wire carries it (round_for_wire, as the job loader).
+  double wire_value(double value, WireQuantity quantity, std::size_t column, std::string_view name = {}) {
+    const auto rounded = round_for_wire(value, quantity, name);
+    if (!rounded) fail_message(column, rounded.problem, rounded.code);
+    return rounded.value;
   }
 
   /// The column of the block's F word, or `fallback`.
@@ -206,7 +204,7 @@ class GcodeLoader {
     const std::size_t column = motion.column;
     source.feed_mm_per_s = motion.kind == gcode::MotionKind::Rapid
                                ? 0.0
-                               : wire_value(motion.feed_mm_per_min / seconds_per_minute, "feed (mm/s)", feed_column(column));
+                               : wire_value(motion.feed_mm_per_min / seconds_per_minute, WireQuantity::Feed, feed_column(column), "feed (mm/s)");
     std::vector<PathSegment> pieces;
     const MachinePoint start = grid(motion.start, column);
     const MachinePoint end = grid(motion.end, column);
@@ -259,7 +257,7 @@ class GcodeLoader {
     const auto points = interpreter_.nurbs_points();
     const auto weights = interpreter_.nurbs_weights();
     for (const auto& p : points) source.points.push_back(grid(p, column));
-    for (const double w : weights) source.weights.push_back(wire_value(w, "weight", column));
+    for (const double w : weights) source.weights.push_back(wire_value(w, WireQuantity::Weight, column));
     const std::size_t n = points.size();
     const std::size_t p = motion.nurbs_order - 1;
     source.degree = p;
@@ -273,7 +271,7 @@ class GcodeLoader {
       std::vector<MachinePoint> control;
       std::vector<double> piece_weights;
       for (const auto& c : piece.curve.control_points()) control.push_back(grid(c, column));
-      for (std::size_t i = 0; i <= piece.curve.degree(); ++i) piece_weights.push_back(wire_value(piece.curve.weight(i), "weight", column));
+      for (std::size_t i = 0; i <= piece.curve.degree(); ++i) piece_weights.push_back(wire_value(piece.curve.weight(i), WireQuantity::Weight, column));
       const auto segment = PathSegment::make_rational_bezier(control, piece_weights);
       if (!segment) {
         fail_message(column, "NURBS block: the piece on knot span [" + format_number(piece.start) + ", " + format_number(piece.end) +

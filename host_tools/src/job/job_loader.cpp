@@ -14,6 +14,7 @@
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/wire_value.hpp>
 
 #include "json_document.hpp"
 
@@ -124,7 +125,7 @@ class JobParser {
   std::vector<double> weights(const Node& segment, std::size_t count) {
     std::vector<double> result;
     for (const auto& entry : reader_.array(reader_.require(segment, "weights"), count, count)) {
-      result.push_back(wire_positive(entry, "weight"));
+      result.push_back(wire_positive(entry, WireQuantity::Weight));
     }
     return result;
   }
@@ -132,20 +133,10 @@ class JobParser {
   /// A weight or feed: a finite number > 0, rounded to the nearest Q16.16 value as the wire
   /// carries it (so the simulator sees what a device receives). Out of range, or rounding to 0, is
   /// an error naming the value.
-  double wire_positive(const Node& node, const std::string& what) {
-    const double value = reader_.positive(node);
-    const auto q = quantise(value);
-    if (!q) {
-      reader_.fail(node, what + " " + format_number(value) + " is outside the Q16.16 range (at most 32767.99998)",
-                   Error::FixedOverflow);
-    }
-    if (*q == 0) {
-      reader_.fail(node,
-                   what + " " + format_number(value) +
-                       " rounds to 0 in Q16.16 (the smallest positive value is 2^-16 = 1.52588e-05)",
-                   what == "weight" ? Error::NonPositiveWeight : Error::InvalidArgument);
-    }
-    return *q;
+  double wire_positive(const Node& node, WireQuantity quantity) {
+    const auto rounded = round_for_wire(reader_.positive(node), quantity);
+    if (!rounded) reader_.fail(node, rounded.problem, rounded.code);
+    return rounded.value;
   }
 
   /// Fails with the core's description of `failure`, at `node`.
@@ -217,7 +208,7 @@ class JobParser {
     }
     if (source.breaks.empty() && !pieces.empty()) source.breaks = {0.0, 1.0};
     if (const auto feed = reader_.optional(segment, "feed")) {
-      source.feed_mm_per_s = wire_positive(*feed, "feed");
+      source.feed_mm_per_s = wire_positive(*feed, WireQuantity::Feed);
       for (auto& piece : pieces) piece.set_feed_mm_per_s(source.feed_mm_per_s);
     }
 

@@ -8,19 +8,10 @@
 
 #include <curvestep/host/link/host_link.hpp>
 #include <curvestep/host/link/wire.hpp>
+#include <curvestep/protocol/messages.hpp>
 
 namespace curvestep::host::link {
 namespace {
-
-const char* state_name(protocol::MachineState state) {
-  switch (state) {
-    case protocol::MachineState::Idle: return "idle";
-    case protocol::MachineState::Running: return "running";
-    case protocol::MachineState::Holding: return "holding";
-    case protocol::MachineState::Fault: return "fault";
-  }
-  return "unknown";
-}
 
 class Upload {
  public:
@@ -97,7 +88,7 @@ class Upload {
 
   std::string last_state_text() const {
     if (!have_status_) return "";
-    return "; last controller state: " + std::string(state_name(last_status_.state)) + " at setpoint " +
+    return "; last controller state: " + std::string(protocol::machine_state_name(last_status_.state)) + " at setpoint " +
            std::to_string(last_status_.setpoint_index);
   }
 

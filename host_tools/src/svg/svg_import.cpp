@@ -28,6 +28,7 @@
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/wire_value.hpp>
 
 #include "svg_geometry.hpp"
 
@@ -515,19 +516,16 @@ class SvgReader {
   /// for a weight out of range or rounding to 0, at the element (and the path command) of the piece.
   double wire_weight(const tinyxml2::XMLElement& element, const char* attribute, const Piece& piece) const {
     const double weight = piece.weight;
-    const auto q = Q16_16::from_double(weight);
     std::string cause;
     Error code = Error::NonPositiveWeight;
     if (!(weight > 0) || !std::isfinite(weight)) {
       cause = "weight " + format_number(weight) + " is not a finite positive number";
       if (!std::isfinite(weight)) code = Error::NotFinite;
-    } else if (!q) {
-      cause = "weight " + format_number(weight) + " is outside the Q16.16 range (at most 32767.99998)";
-      code = Error::FixedOverflow;
-    } else if (q.value().raw() == 0) {
-      cause = "weight " + format_number(weight) + " rounds to 0 in Q16.16 (the smallest positive value is 2^-16 = 1.52588e-05)";
     } else {
-      return q.value().to_double();
+      auto rounded = round_for_wire(weight, WireQuantity::Weight);
+      if (rounded) return rounded.value;
+      cause = std::move(rounded.problem);
+      code = rounded.code;
     }
     const Point2 from = piece.points[0];
     const Point2 to = piece.points[piece.count - 1];
@@ -631,13 +629,9 @@ class SvgReader {
       throw LoadError(location, "feed " + format_number(feed) + " must be a finite number > 0 (or 0 for the machine default)",
                       Error::InvalidArgument);
     }
-    const auto q = Q16_16::from_double(feed);
-    if (!q) throw LoadError(location, "feed " + format_number(feed) + " is outside the Q16.16 range (at most 32767.99998)", Error::FixedOverflow);
-    if (q.value().raw() == 0) {
-      throw LoadError(location, "feed " + format_number(feed) + " rounds to 0 in Q16.16 (the smallest positive value is 2^-16 = 1.52588e-05)",
-                      Error::InvalidArgument);
-    }
-    return q.value().to_double();
+    const auto rounded = round_for_wire(feed, WireQuantity::Feed);
+    if (!rounded) throw LoadError(location, rounded.problem, rounded.code);
+    return rounded.value;
   }
 
   SvgImport build() {

@@ -217,6 +217,17 @@ enum class MachineState : std::uint8_t {
   Fault = 3,    ///< stopped by an error (see StatusReport::error), needs Abort
 };
 
+/// Name of a state, for logs ("idle", "running", "holding", "fault"; "unknown" for another value).
+[[nodiscard]] constexpr const char* machine_state_name(MachineState state) noexcept {
+  switch (state) {
+    case MachineState::Idle: return "idle";
+    case MachineState::Running: return "running";
+    case MachineState::Holding: return "holding";
+    case MachineState::Fault: return "fault";
+  }
+  return "unknown";
+}
+
 /// The controller's state.
 struct StatusReport {
   static constexpr MessageType type = MessageType::StatusReport;  ///< message type
@@ -390,10 +401,13 @@ inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u
   return w.finish();
 }
 
+/// The messages with an empty payload.
+template <class M>
+concept EmptyMessage = std::is_same_v<M, Start> || std::is_same_v<M, FeedHold> || std::is_same_v<M, Resume> ||
+                       std::is_same_v<M, Abort> || std::is_same_v<M, StatusRequest>;
+
 /// Encodes an empty payload (Start, FeedHold, Resume, Abort, StatusRequest).
-template <class Empty>
-  requires(std::is_same_v<Empty, Start> || std::is_same_v<Empty, FeedHold> || std::is_same_v<Empty, Resume> ||
-           std::is_same_v<Empty, Abort> || std::is_same_v<Empty, StatusRequest>)
+template <EmptyMessage Empty>
 [[nodiscard]] constexpr Result<std::size_t> encode(const Empty&, std::span<std::byte>) noexcept {
   return std::size_t{0};
 }
@@ -453,9 +467,14 @@ template <class Empty>
 
 // --- decoders: each reads a whole payload; BadPayload (index = byte offset) if malformed ---
 
-/// Decodes the payload of message type T.
+/// Decodes the payload of message type T. This primary template decodes the empty payloads
+/// (Start, FeedHold, Resume, Abort, StatusRequest); the other types have their specialisations below.
 template <class T>
-[[nodiscard]] constexpr Result<T> decode(std::span<const std::byte> payload) noexcept;
+[[nodiscard]] constexpr Result<T> decode(std::span<const std::byte> payload) noexcept {
+  static_assert(EmptyMessage<T>, "decode<T>: T is not a message type");
+  if (!payload.empty()) return fail(Error::BadPayload, 0);
+  return T{};
+}
 
 /// Decodes a Hello payload.
 template <>
@@ -596,40 +615,6 @@ template <>
   }
   CURVESTEP_CHECK(r.finish());
   return m;
-}
-
-namespace detail {
-template <class Empty>
-[[nodiscard]] constexpr Result<Empty> decode_empty(std::span<const std::byte> payload) noexcept {
-  if (!payload.empty()) return fail(Error::BadPayload, 0);
-  return Empty{};
-}
-}  // namespace detail
-
-/// Decodes a Start payload (empty).
-template <>
-[[nodiscard]] constexpr Result<Start> decode<Start>(std::span<const std::byte> payload) noexcept {
-  return detail::decode_empty<Start>(payload);
-}
-/// Decodes a FeedHold payload (empty).
-template <>
-[[nodiscard]] constexpr Result<FeedHold> decode<FeedHold>(std::span<const std::byte> payload) noexcept {
-  return detail::decode_empty<FeedHold>(payload);
-}
-/// Decodes a Resume payload (empty).
-template <>
-[[nodiscard]] constexpr Result<Resume> decode<Resume>(std::span<const std::byte> payload) noexcept {
-  return detail::decode_empty<Resume>(payload);
-}
-/// Decodes an Abort payload (empty).
-template <>
-[[nodiscard]] constexpr Result<Abort> decode<Abort>(std::span<const std::byte> payload) noexcept {
-  return detail::decode_empty<Abort>(payload);
-}
-/// Decodes a StatusRequest payload (empty).
-template <>
-[[nodiscard]] constexpr Result<StatusRequest> decode<StatusRequest>(std::span<const std::byte> payload) noexcept {
-  return detail::decode_empty<StatusRequest>(payload);
 }
 
 /// Decodes a StatusReport payload.

@@ -47,17 +47,6 @@ struct DeviceOptions {
   firmware::AppSettings app{};     ///< link timeout, heartbeat, setpoint streaming
 };
 
-/// Name of a reported state, for the log.
-[[nodiscard]] constexpr const char* state_name(protocol::MachineState state) noexcept {
-  switch (state) {
-    case protocol::MachineState::Idle: return "idle";
-    case protocol::MachineState::Running: return "running";
-    case protocol::MachineState::Holding: return "holding";
-    case protocol::MachineState::Fault: return "fault";
-  }
-  return "unknown";
-}
-
 /// Serves the firmware on the non-blocking descriptor `fd` until `stop` is set. State changes
 /// are logged to `log` (one line each, may be null). Returns 0.
 template <StepOutput Output>
@@ -85,7 +74,7 @@ int run_device(int fd, Output& output, const DeviceOptions& options, const std::
     if (log != nullptr && (app->state() != reported || app->last_error() != reported_error)) {
       reported = app->state();
       reported_error = app->last_error();
-      std::fprintf(log, "curvestep device: %s at tick %u", state_name(reported), static_cast<unsigned>(last_index));
+      std::fprintf(log, "curvestep device: %s at tick %u", protocol::machine_state_name(reported), static_cast<unsigned>(last_index));
       if (reported_error != 0) {
         const auto code = static_cast<Error>(reported_error);
         std::fprintf(log, " (last error: %s, %s)", describe(code).data(), error_name(code).data());

@@ -102,6 +102,22 @@ constexpr void boehm_insert(std::span<Item> items, std::size_t count, std::span<
   for (std::size_t j = knot_total; j > s + 1; --j) knots[j] = knots[j - 1];
   knots[s + 1] = u;
 }
+
+/// curve(u) by knot span for BSpline and Nurbs: find_span(u), then point_in_span.
+/// EmptyControlPolygon, NotFinite, ParameterOutOfRange.
+template <class Curve, Scalar S>
+[[nodiscard]] constexpr auto evaluate_in_span(const Curve& curve, S u) -> Result<decltype(curve.point_in_span(0, u))> {
+  CURVESTEP_TRY(const std::size_t span, curve.find_span(u));
+  return curve.point_in_span(span, u);
+}
+
+/// curve(u) by knot span; contract: u in the domain (the hot path).
+template <class Curve, Scalar S>
+[[nodiscard]] constexpr auto point_in_found_span(const Curve& curve, S u) {
+  const auto span = curve.find_span(u);
+  CURVESTEP_EXPECTS(span.has_value());
+  return curve.point_in_span(span.value(), u);
+}
 }  // namespace detail
 
 /// A B-spline curve of runtime degree 1..MaxDegree with up to MaxControlPoints control points in
@@ -232,17 +248,10 @@ class BSpline {
   }
 
   /// s(u) by de Boor. EmptyControlPolygon, NotFinite, ParameterOutOfRange.
-  [[nodiscard]] constexpr Result<Point> evaluate(S u) const {
-    CURVESTEP_TRY(const std::size_t span, find_span(u));
-    return point_in_span(span, u);
-  }
+  [[nodiscard]] constexpr Result<Point> evaluate(S u) const { return detail::evaluate_in_span(*this, u); }
 
   /// s(u); contract: u in the domain (the hot path).
-  [[nodiscard]] constexpr Point point_at(S u) const {
-    const auto span = find_span(u);
-    CURVESTEP_EXPECTS(span.has_value());
-    return point_in_span(span.value(), u);
-  }
+  [[nodiscard]] constexpr Point point_at(S u) const { return detail::point_in_found_span(*this, u); }
 
   /// s(u) for u in knot span `span` (contract: u_span <= u <= u_{span+1}, span a non-empty
   /// span of the domain). Skips the span search when the caller already knows it.

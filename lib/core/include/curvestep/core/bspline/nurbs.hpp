@@ -124,17 +124,10 @@ class Nurbs {
   [[nodiscard]] constexpr Result<std::size_t> find_span(S u) const noexcept { return spline_.find_span(u); }
 
   /// r(u). EmptyControlPolygon, NotFinite, ParameterOutOfRange.
-  [[nodiscard]] constexpr Result<Point> evaluate(S u) const {
-    CURVESTEP_TRY(const std::size_t span, find_span(u));
-    return point_in_span(span, u);
-  }
+  [[nodiscard]] constexpr Result<Point> evaluate(S u) const { return detail::evaluate_in_span(*this, u); }
 
   /// r(u); contract: u in the domain.
-  [[nodiscard]] constexpr Point point_at(S u) const {
-    const auto span = find_span(u);
-    CURVESTEP_EXPECTS(span.has_value());
-    return point_in_span(span.value(), u);
-  }
+  [[nodiscard]] constexpr Point point_at(S u) const { return detail::point_in_found_span(*this, u); }
 
   /// r(u) for u in knot span `span` (contract as BSpline::point_in_span).
   [[nodiscard]] constexpr Point point_in_span(std::size_t span, S u) const {

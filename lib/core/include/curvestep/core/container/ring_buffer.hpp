@@ -5,25 +5,20 @@
 #include <array>
 #include <cstddef>
 
+#include <curvestep/core/container/fixed_capacity.hpp>
 #include <curvestep/core/contract.hpp>
 
 namespace curvestep {
 
 /// A first-in first-out queue of at most Capacity elements, stored inline.
 template <class T, std::size_t Capacity>
-class RingBuffer {
-  static_assert(Capacity > 0, "a ring buffer needs room for at least one element");
+class RingBuffer : public detail::FixedCapacity<Capacity> {
+  using detail::FixedCapacity<Capacity>::size_;
 
  public:
-  [[nodiscard]] static constexpr std::size_t capacity() noexcept { return Capacity; }
-  [[nodiscard]] constexpr std::size_t size() const noexcept { return size_; }
-  [[nodiscard]] constexpr bool empty() const noexcept { return size_ == 0; }
-  [[nodiscard]] constexpr bool full() const noexcept { return size_ == Capacity; }
-  [[nodiscard]] constexpr std::size_t available() const noexcept { return Capacity - size_; }
-
   /// Appends a copy of `value`; false (and no change) when full.
   [[nodiscard]] constexpr bool try_push(const T& value) noexcept(noexcept(T(value))) {
-    if (full()) return false;
+    if (this->full()) return false;
     items_[(head_ + size_) % Capacity] = value;
     ++size_;
     return true;
@@ -54,7 +49,6 @@ class RingBuffer {
  private:
   std::array<T, Capacity> items_{};
   std::size_t head_ = 0;
-  std::size_t size_ = 0;
 };
 
 }  // namespace curvestep

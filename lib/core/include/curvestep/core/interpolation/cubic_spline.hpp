@@ -201,9 +201,9 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
 [[nodiscard]] constexpr Result<void> interpolate_natural_cubic(std::span<const Vec<S, Dim>> points, Parametrization kind,
                                                                CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   if (points.size() > MaxSegments + 1) return fail(Error::CapacityExceeded, points.size());
-  std::array<S, MaxSegments + 1> knots{};
-  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots)));
-  return interpolate_natural_cubic(points, std::span<const S>(knots.data(), count), out);
+  return detail::with_parametrized_knots<MaxSegments>(points, kind, Closure::Open, [&](std::span<const S> knots) {
+    return interpolate_natural_cubic(points, knots, out);
+  });
 }
 
 /// Clamped spline with knots from a parametrization (u_0 = 0); tangents are derivatives in u.
@@ -213,9 +213,9 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
                                                                const Vec<S, Dim>& start_tangent, const Vec<S, Dim>& end_tangent,
                                                                CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   if (points.size() > MaxSegments + 1) return fail(Error::CapacityExceeded, points.size());
-  std::array<S, MaxSegments + 1> knots{};
-  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots)));
-  return interpolate_clamped_cubic(points, std::span<const S>(knots.data(), count), start_tangent, end_tangent, out);
+  return detail::with_parametrized_knots<MaxSegments>(points, kind, Closure::Open, [&](std::span<const S> knots) {
+    return interpolate_clamped_cubic(points, knots, start_tangent, end_tangent, out);
+  });
 }
 
 /// Closed spline with knots from a parametrization, including the closing chord.
@@ -224,9 +224,9 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
 [[nodiscard]] constexpr Result<void> interpolate_closed_cubic(std::span<const Vec<S, Dim>> points, Parametrization kind,
                                                               CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   if (points.size() > MaxSegments) return fail(Error::CapacityExceeded, points.size());
-  std::array<S, MaxSegments + 1> knots{};
-  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots), Closure::Closed));
-  return interpolate_closed_cubic(points, std::span<const S>(knots.data(), count), out);
+  return detail::with_parametrized_knots<MaxSegments>(points, kind, Closure::Closed, [&](std::span<const S> knots) {
+    return interpolate_closed_cubic(points, knots, out);
+  });
 }
 
 }  // namespace curvestep

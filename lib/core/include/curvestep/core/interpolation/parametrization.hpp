@@ -122,4 +122,16 @@ template <Scalar S, std::size_t Dim>
   return count;
 }
 
+namespace detail {
+/// For the interpolators that take a Parametrization: the knots of `points` from `kind` (at most
+/// MaxSegments + 1, on the stack), handed to `interpolate` as a span; parametrize's errors.
+template <std::size_t MaxSegments, Scalar S, std::size_t Dim, class Interpolate>
+[[nodiscard]] constexpr Result<void> with_parametrized_knots(std::span<const Vec<S, Dim>> points, Parametrization kind,
+                                                             Closure closure, const Interpolate& interpolate) noexcept {
+  std::array<S, MaxSegments + 1> knots{};
+  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots), closure));
+  return interpolate(std::span<const S>(knots.data(), count));
+}
+}  // namespace detail
+
 }  // namespace curvestep

@@ -184,9 +184,9 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
                                                            const Vec<S, Dim>& start_tangent,
                                                            CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   if (points.size() > MaxSegments + 1) return fail(Error::CapacityExceeded, points.size() - 1);
-  std::array<S, MaxSegments + 1> knots{};
-  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots)));
-  return interpolate_quadratic(points, std::span<const S>(knots.data(), count), start_tangent, out);
+  return detail::with_parametrized_knots<MaxSegments>(points, kind, Closure::Open, [&](std::span<const S> knots) {
+    return interpolate_quadratic(points, knots, start_tangent, out);
+  });
 }
 
 /// Plane quadratic spline with end directions and knots from a parametrization (u_0 = 0).
@@ -196,9 +196,9 @@ template <Scalar S, std::size_t MaxDegree, std::size_t MaxSegments>
                                                            const Vec<S, 2>& start_direction, const Vec<S, 2>& end_direction,
                                                            CompositeBezier<S, 2, MaxDegree, MaxSegments>& out) noexcept {
   if (points.size() > MaxSegments + 1) return fail(Error::CapacityExceeded, points.size() - 1);
-  std::array<S, MaxSegments + 1> knots{};
-  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots)));
-  return interpolate_quadratic(points, std::span<const S>(knots.data(), count), start_direction, end_direction, out);
+  return detail::with_parametrized_knots<MaxSegments>(points, kind, Closure::Open, [&](std::span<const S> knots) {
+    return interpolate_quadratic(points, knots, start_direction, end_direction, out);
+  });
 }
 
 /// Closed quadratic spline with knots from a parametrization (closing chord included).
@@ -207,9 +207,9 @@ template <Scalar S, std::size_t Dim, std::size_t MaxDegree, std::size_t MaxSegme
 [[nodiscard]] constexpr Result<void> interpolate_closed_quadratic(std::span<const Vec<S, Dim>> points, Parametrization kind,
                                                                   CompositeBezier<S, Dim, MaxDegree, MaxSegments>& out) noexcept {
   if (points.size() > MaxSegments) return fail(Error::CapacityExceeded, points.size());
-  std::array<S, MaxSegments + 1> knots{};
-  CURVESTEP_TRY(const std::size_t count, parametrize(points, kind, std::span<S>(knots), Closure::Closed));
-  return interpolate_closed_quadratic(points, std::span<const S>(knots.data(), count), out);
+  return detail::with_parametrized_knots<MaxSegments>(points, kind, Closure::Closed, [&](std::span<const S> knots) {
+    return interpolate_closed_quadratic(points, knots, out);
+  });
 }
 
 }  // namespace curvestep

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include <curvestep/core/container/inline_vector.hpp>
 #include <curvestep/core/contract.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 
@@ -44,49 +45,18 @@ struct StepEvent {
 /// time in step-timer ticks. Capacity is the most edges one tick may hold (see
 /// StepConfig::max_events_per_tick()).
 template <std::size_t Capacity>
-class StepBatch {
-  static_assert(Capacity > 0, "a StepBatch needs room for at least one edge");
-
+class StepBatch : public InlineVector<StepEvent, Capacity> {
  public:
-  /// Room for this many edges.
-  [[nodiscard]] static constexpr std::size_t capacity() noexcept { return Capacity; }
-  /// Number of edges held.
-  [[nodiscard]] constexpr std::size_t size() const noexcept { return size_; }
-  /// True if no edges are held.
-  [[nodiscard]] constexpr bool empty() const noexcept { return size_ == 0; }
-  /// True if no more edges fit.
-  [[nodiscard]] constexpr bool full() const noexcept { return size_ == Capacity; }
-  /// Free room in edges.
-  [[nodiscard]] constexpr std::size_t available() const noexcept { return Capacity - size_; }
-
-  /// The edge at `index` (contract: index < size()).
-  [[nodiscard]] constexpr const StepEvent& operator[](std::size_t index) const {
-    CURVESTEP_EXPECTS(index < size_);
-    return events_[index];
-  }
-  /// Iteration over the held edges.
-  [[nodiscard]] constexpr const StepEvent* begin() const noexcept { return events_.data(); }
-  /// One past the last held edge.
-  [[nodiscard]] constexpr const StepEvent* end() const noexcept { return events_.data() + size_; }
-
   /// Step-timer time of the start of the tick (offsets are relative to it).
   [[nodiscard]] constexpr std::uint64_t start_ticks() const noexcept { return start_ticks_; }
 
   /// Empties the batch and sets the start time of the next tick.
   constexpr void clear(std::uint64_t start_ticks = 0) noexcept {
-    size_ = 0;
+    InlineVector<StepEvent, Capacity>::clear();
     start_ticks_ = start_ticks;
-  }
-  /// Appends an edge; false (and nothing stored) if full.
-  [[nodiscard]] constexpr bool try_push(const StepEvent& event) noexcept {
-    if (size_ == Capacity) return false;
-    events_[size_++] = event;
-    return true;
   }
 
  private:
-  std::array<StepEvent, Capacity> events_{};
-  std::size_t size_ = 0;
   std::uint64_t start_ticks_ = 0;
 };
 
@@ -125,8 +95,8 @@ struct RecordedEdge {
 /// A StepOutput that records up to Capacity edges with their times (for tests and the simulator).
 /// Edges beyond the capacity are counted in dropped(), not stored.
 template <std::size_t Capacity>
-class RecordingStepOutput {
-  static_assert(Capacity > 0, "a RecordingStepOutput needs room for at least one edge");
+class RecordingStepOutput : private InlineVector<RecordedEdge, Capacity> {
+  using Edges = InlineVector<RecordedEdge, Capacity>;
 
  public:
   /// Records a direction edge.
@@ -138,38 +108,24 @@ class RecordingStepOutput {
     record(RecordedEdge{time_ticks, axis, high ? StepEdge::StepHigh : StepEdge::StepLow});
   }
 
-  /// Room for this many edges.
-  [[nodiscard]] static constexpr std::size_t capacity() noexcept { return Capacity; }
-  /// Number of edges recorded.
-  [[nodiscard]] constexpr std::size_t size() const noexcept { return size_; }
+  using Edges::begin;      ///< iteration over the recorded edges
+  using Edges::capacity;   ///< room for this many edges
+  using Edges::end;        ///< one past the last recorded edge
+  using Edges::operator[]; ///< the edge at `index` (contract: index < size())
+  using Edges::size;       ///< number of edges recorded
   /// Edges that arrived while full (0 in a valid recording).
   [[nodiscard]] constexpr std::size_t dropped() const noexcept { return dropped_; }
-  /// The edge at `index` (contract: index < size()).
-  [[nodiscard]] constexpr const RecordedEdge& operator[](std::size_t index) const {
-    CURVESTEP_EXPECTS(index < size_);
-    return edges_[index];
-  }
-  /// Iteration over the recorded edges.
-  [[nodiscard]] constexpr const RecordedEdge* begin() const noexcept { return edges_.data(); }
-  /// One past the last recorded edge.
-  [[nodiscard]] constexpr const RecordedEdge* end() const noexcept { return edges_.data() + size_; }
   /// Forgets every edge.
   constexpr void clear() noexcept {
-    size_ = 0;
+    Edges::clear();
     dropped_ = 0;
   }
 
  private:
   constexpr void record(const RecordedEdge& edge) noexcept {
-    if (size_ == Capacity) {
-      ++dropped_;
-      return;
-    }
-    edges_[size_++] = edge;
+    if (!Edges::try_push(edge)) ++dropped_;
   }
 
-  std::array<RecordedEdge, Capacity> edges_{};
-  std::size_t size_ = 0;
   std::size_t dropped_ = 0;
 };
 
