@@ -7,7 +7,6 @@
 // The simulator is given what the device receives: the job and the machine after a round trip
 // through the wire format and the firmware's own conversions, so a value the wire rounds (a weight,
 // a tolerance) cannot make the comparison fail, and a real difference still does.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -67,7 +66,8 @@ DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine,
     streamed = link::stream_job(*transport, job, machine);
   }
   SimulationOptions replay;  // the device's planning window, from its Capabilities
-  replay.lookahead = std::clamp<std::size_t>(streamed.lookahead, 1, SimulationOptions::max_lookahead);
+  const bool replayable = streamed.lookahead >= 1 && streamed.lookahead <= SimulationOptions::max_lookahead;
+  if (replayable) replay.lookahead = streamed.lookahead;
   const SimulationResult sim = simulate(device_job, device_machine, replay);
   run.setpoints = streamed.setpoints.size();
   run.expected = sim.setpoints.size();
@@ -88,6 +88,11 @@ DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine,
   if (run.identical && streamed.setpoints.back().raw_q16 != sim.setpoints.back().raw_q16) {
     run.identical = false;
     run.difference = "the device did not end where the simulator did";
+  }
+  if (!replayable) {
+    run.identical = false;
+    run.difference = "the device's look-ahead " + std::to_string(streamed.lookahead) + " is beyond the simulator's " +
+                     std::to_string(SimulationOptions::max_lookahead);
   }
 
   const std::string stem = out + "/" + file.stem().string();

@@ -13,6 +13,7 @@
 // capacity (lib/core motion/step_generator.hpp: check_step_rate over peak axis speeds and over the
 // setpoints). --dry-run drives no lines: ticks run as fast as the link allows (as `device --fast`)
 // and the edges are only counted, so the summary's step counts can be checked without hardware.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -244,7 +245,11 @@ int run_gpio(const GpioCommandOptions& o) {
   std::unique_ptr<boards::host::GpiodStepOutput> gpio;
   if (!o.dry_run) {
     try {
-      gpio = std::make_unique<boards::host::GpiodStepOutput>(lines, boards::host::SystemClock::step_timer_hz);
+      // A tick that stood still (a stalled stream) makes the next edges one period late: re-base then.
+      const auto half_period_ns = static_cast<std::int64_t>(5e8 / machine.rate_hz);
+      gpio = std::make_unique<boards::host::GpiodStepOutput>(
+          lines, boards::host::SystemClock::step_timer_hz,
+          std::min(boards::host::EdgeClock::default_late_limit_ns, half_period_ns));
     } catch (const boards::host::GpioError& e) {
       std::cerr << "curvestep gpio: " << e.what() << "\n";
       return exit_gpio_unavailable;

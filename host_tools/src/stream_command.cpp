@@ -97,8 +97,12 @@ int run_stream(const StreamCommandOptions& o) {
             << "  batches resent:      " << result.batches_repeated << "\n"
             << "  damaged frames:      " << result.frames_rejected << "\n"
             << "  device queue peak:   " << result.max_queue_depth << " of " << result.queue_capacity << " segments\n"
-            << "  device look-ahead:   " << result.lookahead << " segments (curvestep sim --lookahead " << result.lookahead
-            << " plans the same setpoints)\n"
+            << "  device look-ahead:   " << result.lookahead << " segments ("
+            << (result.lookahead <= SimulationOptions::max_lookahead
+                    ? "curvestep sim --lookahead " + std::to_string(result.lookahead) + " plans the same setpoints"
+                    : "above curvestep sim's largest window, " + std::to_string(SimulationOptions::max_lookahead) +
+                          ": no simulation replays it")
+            << ")\n"
             << "  bytes sent:          " << result.bytes_sent << "\n";
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
   if (result.duplicate_setpoints != 0) {

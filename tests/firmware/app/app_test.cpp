@@ -422,6 +422,19 @@ TEST_CASE_METHOD(LossyBench, "firmware: step edges the board lost are a StepsLos
   CHECK(board.steps == std::array<std::int64_t, 3>{0, 0, 0});  // back at the origin: 0 steps
 }
 
+TEST_CASE("firmware: edges a board lost before the App was built are not a fault", "[firmware][app]") {
+  LossyBoard board;
+  board.dropped = 5;  // e.g. an earlier image or App on the same static edge ring
+  App<LossyBoard> app(board);
+  Host<App<LossyBoard>> host(board, app);
+  connect_and_configure(host);
+  queue_and_start(host, {ending(line(p(0, 0), p(5, 0)))});
+  host.run_ticks(2000);
+  CHECK(host.received.errors.empty());
+  CHECK(app.state() == MachineState::Idle);
+  CHECK(board.steps == std::array<std::int64_t, 3>{400, 0, 0});  // 5 mm at 80 steps/mm
+}
+
 TEST_CASE_METHOD(Bench, "firmware: a segment that does not start at the previous end is refused", "[firmware][app]") {
   connect_and_configure(host);
   REQUIRE(host.send(Message(line(p(0, 0), p(1, 0)))));

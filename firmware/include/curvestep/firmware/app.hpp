@@ -160,6 +160,7 @@ class App {
   // simulator's --lookahead assumes) is therefore there only if Queue >= Lookahead + slots + 1.
   static_assert(Queue >= Lookahead + slots_per_segment + 1,
                 "the queue must keep Lookahead segments behind the one being planned (bit-identity with the simulator)");
+  static_assert(Lookahead >= 1 && Lookahead <= 0xFFFF, "Capabilities carries the look-ahead as a u16 >= 1");
 
  public:
   /// The motion controller type.
@@ -175,7 +176,10 @@ class App {
       : board_(board),
         settings_(settings),
         receiver_(make_capabilities(), make_receiver_settings(settings)),
-        sender_(protocol::SenderSettings{settings.retransmit_timeout_ms, 255, 0}, protocol::Endpoint::Controller) {}
+        sender_(protocol::SenderSettings{settings.retransmit_timeout_ms, 255, 0}, protocol::Endpoint::Controller) {
+    // Edges the board lost before this App existed are not this App's to report.
+    if constexpr (requires { board.edges_dropped(); }) edges_dropped_seen_ = board.edges_dropped();
+  }
 
   /// Main-loop work: reads serial bytes, runs the link and the commands, reports, writes bytes.
   void poll() noexcept {
@@ -226,7 +230,10 @@ class App {
     } else {
       if (auto advanced = steps_.advance(setpoint, batch_); !advanced) return raise_fault(advanced.failure());
       play(batch_, board_);
-      if (edges_lost()) return raise_fault(fail(Error::StepsLost, setpoint.segment));
+      if (edges_lost()) {
+        position_ = wire;  // the step generator and the board have moved to this setpoint
+        return raise_fault(fail(Error::StepsLost, setpoint.segment));
+      }
     }
     position_ = wire;
     setpoint_index_ = static_cast<std::uint32_t>(job_tick);

@@ -32,9 +32,11 @@ namespace curvestep::boards::host {
 /// Step-timer time to CLOCK_MONOTONIC deadlines, re-based when an edge comes too late.
 class EdgeClock {
  public:
-  /// How late an edge may be before the clock re-bases: 2 ms, longer than a scheduling hiccup
-  /// of a loop that keeps up, far shorter than an upload or a hold.
-  static constexpr std::int64_t default_late_limit_ns = 2'000'000;
+  /// How late an edge may be before the clock re-bases: 0.5 ms, longer than the wake-up latency
+  /// of a loop that keeps up (re-basing on that would make every edge later than the last and
+  /// slow the machine down), shorter than one stalled tick at 1 kHz (1 ms), an upload or a hold.
+  /// A caller that knows the control period P passes min(0.5 ms, P / 2).
+  static constexpr std::int64_t default_late_limit_ns = 500'000;
 
   /// Step-timer ticks at `timer_hz` (> 0).
   explicit EdgeClock(std::uint32_t timer_hz, std::int64_t late_limit_ns = default_late_limit_ns) noexcept

@@ -83,6 +83,9 @@ class Board {
   static constexpr std::uint8_t axis_count = 3;                                     ///< driven axes
   static constexpr std::size_t step_events_per_tick = Chip::step_events_per_tick;  ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = Chip::edge_ring;  ///< timed edges waiting for TIM2 (two ticks)
+  // Edges of tick k are played during tick k + 1 while tick k + 1's are queued: a ring of two
+  // full ticks never overflows while TIM2 keeps up (a full ring is a StepsLost fault).
+  static_assert(edge_ring >= 2 * step_events_per_tick, "the edge ring must hold two ticks of edges");
   /// 1 MHz step timer (TIM2), 2 µs pulses and gaps, 1 µs direction set-up and hold.
   static constexpr StepTiming step_timing() noexcept { return StepTiming{1'000'000, 2000, 2000, 1000, 1000}; }
   /// Milliseconds since init() (from SysTick, whatever its rate).
