@@ -5,6 +5,8 @@
 #include <cstring>
 #include <gpiod.h>
 
+#include <curvestep/boards/host/monotonic_time.hpp>
+
 namespace curvestep::boards::host {
 namespace {
 
@@ -44,9 +46,7 @@ GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz,
     gpiod_chip_close(chip_);  // also releases the lines requested so far
     throw;
   }
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  clock_.set_epoch(to_nanoseconds(now));
+  clock_.set_epoch(to_nanoseconds(monotonic_now()));
 }
 
 GpiodStepOutput::~GpiodStepOutput() {
@@ -61,13 +61,9 @@ void GpiodStepOutput::set_epoch(const timespec& epoch, bool fast) noexcept {
 
 void GpiodStepOutput::wait_until(std::uint64_t time_ticks) noexcept {
   if (fast_) return;
-  timespec now{};
-  clock_gettime(CLOCK_MONOTONIC, &now);
-  const std::int64_t due = clock_.deadline_ns(time_ticks, to_nanoseconds(now));
-  if (due <= to_nanoseconds(now)) return;
-  const timespec deadline = to_timespec(due);
-  while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &deadline, nullptr) == EINTR) {
-  }
+  const std::int64_t now = to_nanoseconds(monotonic_now());
+  const std::int64_t due = clock_.deadline_ns(time_ticks, now);
+  if (due > now) sleep_until(to_timespec(due));
 }
 
 void GpiodStepOutput::write(gpiod_line* line, bool level) noexcept {

@@ -13,10 +13,10 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
-#include <ctime>
 #include <span>
 #include <unistd.h>
 
+#include <curvestep/boards/host/monotonic_time.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/core/motion/step_output.hpp>
 #include <curvestep/firmware/board.hpp>
@@ -63,16 +63,12 @@ class HostBoard {
   }
 
   /// A board on the non-blocking descriptor `serial_fd` (not owned) driving `output`.
-  HostBoard(int serial_fd, Output& output) noexcept : fd_(serial_fd), output_(output) {
-    clock_gettime(CLOCK_MONOTONIC, &epoch_);
-  }
+  HostBoard(int serial_fd, Output& output) noexcept
+      : fd_(serial_fd), output_(output), epoch_ns_(to_nanoseconds(monotonic_now())) {}
 
   /// Milliseconds since the board was made (wraps at 2^32).
   [[nodiscard]] std::uint32_t now_ms() const noexcept {
-    timespec now{};
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    const std::int64_t ms = (now.tv_sec - epoch_.tv_sec) * 1000 + (now.tv_nsec - epoch_.tv_nsec) / 1000000;
-    return static_cast<std::uint32_t>(ms);
+    return static_cast<std::uint32_t>((to_nanoseconds(monotonic_now()) - epoch_ns_) / 1'000'000);
   }
   /// Bytes already received (0 if none); never waits.
   std::size_t read(std::span<std::byte> into) noexcept {
@@ -116,7 +112,7 @@ class HostBoard {
  private:
   int fd_;
   Output& output_;
-  timespec epoch_{};
+  std::int64_t epoch_ns_;  ///< CLOCK_MONOTONIC when the board was made
   bool backed_up_ = false;
   void (*observer_)(void*, std::span<const std::byte>) = nullptr;
   void* observer_context_ = nullptr;

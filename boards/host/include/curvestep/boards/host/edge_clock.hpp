@@ -12,22 +12,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <ctime>
 
 namespace curvestep::boards::host {
-
-/// Nanoseconds of a CLOCK_MONOTONIC reading.
-[[nodiscard]] constexpr std::int64_t to_nanoseconds(const timespec& t) noexcept {
-  return std::int64_t{t.tv_sec} * 1'000'000'000 + t.tv_nsec;
-}
-
-/// The timespec of `ns` nanoseconds (ns >= 0).
-[[nodiscard]] constexpr timespec to_timespec(std::int64_t ns) noexcept {
-  timespec t{};
-  t.tv_sec = static_cast<time_t>(ns / 1'000'000'000);
-  t.tv_nsec = static_cast<long>(ns % 1'000'000'000);
-  return t;
-}
 
 /// Step-timer time to CLOCK_MONOTONIC deadlines, re-based when an edge comes too late.
 class EdgeClock {
