@@ -17,16 +17,6 @@ using namespace std::chrono_literals;
 
 namespace {
 
-/// Runs `curvestep sim` and returns its setpoints.
-std::vector<ct::RawSetpoint> simulate(const std::filesystem::path& job, const std::filesystem::path& machine) {
-  const auto csv = ct::scratch_dir() / ("sim_" + job.stem().string() + ".csv");
-  std::string errors;
-  const int status = ct::run_program({"sim", job.string(), "--machine", machine.string(), "-o", csv.string()}, errors, "sim");
-  INFO(errors);
-  REQUIRE((status == 0 || status == 3));  // 3: limits exceeded, the CSV is still written
-  return ct::read_raw_setpoints(csv);
-}
-
 /// Runs `curvestep stream` to `port`; returns its exit status, stderr in `errors` (stdout in `output`).
 int stream(const std::filesystem::path& job, const std::filesystem::path& machine, const std::string& port,
            const std::filesystem::path& capture, std::string& errors, const std::vector<std::string>& extra = {},
@@ -60,15 +50,13 @@ TEST_CASE("hil: every example job streamed to curvestep device gives the setpoin
     if (path.extension() != ".json" || path.filename() == "machine.json") continue;
     const auto job = ct::wire_exact_job(path);
     INFO("job " << path.filename().string());
-    const auto expected = simulate(job, machine);
+    const auto expected = ct::simulate(job, machine);
     const auto capture = ct::scratch_dir() / ("device_" + path.stem().string() + ".csv");
     std::string errors;
     const int status = stream(job, machine, port, capture, errors);
     INFO(errors);
     REQUIRE(status == 0);
-    const auto actual = ct::read_raw_setpoints(capture);
-    CHECK(actual.size() == expected.size());
-    CHECK(ct::first_difference(expected, actual) == -1);
+    ct::check_same_setpoints(expected, capture);
     ++jobs;
   }
   CHECK(jobs >= 4);
@@ -79,13 +67,13 @@ TEST_CASE("hil: every example job streamed to curvestep device gives the setpoin
 TEST_CASE("hil: a long job of many segments runs with the queue topped up and matches curvestep sim", "[integration][hil]") {
   const auto machine = ct::wire_exact_machine();
   const auto job = ct::zigzag_job(120);
-  const auto expected = simulate(job, machine);
+  const auto expected = ct::simulate(job, machine);
   ct::Process device({"device", "--fast"}, "device_long.stderr");
   const std::string port = device.first_line();
   const auto capture = ct::scratch_dir() / "device_long.csv";
   std::string errors;
   REQUIRE(stream(job, machine, port, capture, errors) == 0);
-  CHECK(ct::first_difference(expected, ct::read_raw_setpoints(capture)) == -1);
+  ct::check_same_setpoints(expected, capture);
 }
 
 TEST_CASE("hil: a helix of several turns streams as one arc and matches curvestep sim bit for bit",
@@ -96,14 +84,12 @@ TEST_CASE("hil: a helix of several turns streams as one arc and matches curveste
   std::string errors;
   const auto job = std::filesystem::path(CURVESTEP_EXAMPLE_JOBS) / "helix.json";
   REQUIRE(has_turns(job));
-  const auto expected = simulate(job, machine);
+  const auto expected = ct::simulate(job, machine);
   const auto capture = ct::scratch_dir() / "helix.csv";
   const int status = stream(job, machine, port, capture, errors);
   INFO(errors);
   REQUIRE(status == 0);
-  const auto actual = ct::read_raw_setpoints(capture);
-  CHECK(actual.size() == expected.size());
-  CHECK(ct::first_difference(expected, actual) == -1);
+  const auto actual = ct::check_same_setpoints(expected, capture);
   // two turns rising 5 mm: the stream ends where it started in XY, 5 mm up
   REQUIRE(!actual.empty());
   CHECK(actual.back().raw == std::array<std::int64_t, 3>{10 * 65536, 0, 5 * 65536});
@@ -113,7 +99,7 @@ TEST_CASE("hil: with 1 percent corrupted and 1 percent dropped bytes to the devi
           "[integration][hil][faults]") {
   const auto machine = ct::wire_exact_machine();
   const auto job = ct::wire_exact_job(std::filesystem::path(CURVESTEP_EXAMPLE_JOBS) / "every_type.json");
-  const auto expected = simulate(job, machine);
+  const auto expected = ct::simulate(job, machine);
   ct::Process device({"device", "--fast"}, "device_faults.stderr");
   const std::string device_port = device.first_line();
   ct::Process proxy({"proxy", "--device", device_port, "--corrupt", "0.01", "--drop", "0.01", "--duplicate", "0.005",
@@ -125,7 +111,7 @@ TEST_CASE("hil: with 1 percent corrupted and 1 percent dropped bytes to the devi
   const int status = stream(job, machine, port, capture, errors);
   INFO(errors);
   REQUIRE(status == 0);
-  CHECK(ct::first_difference(expected, ct::read_raw_setpoints(capture)) == -1);
+  ct::check_same_setpoints(expected, capture);
   proxy.stop();
   INFO(proxy.stderr_text());
   CHECK_THAT(proxy.stderr_text(), !Catch::Contains("corrupted 0,") && !Catch::Contains("dropped 0,"));
@@ -135,7 +121,7 @@ TEST_CASE("hil: with 1 percent corrupted and 1 percent dropped bytes in both dir
           "[integration][hil][faults]") {
   const auto machine = ct::wire_exact_machine();
   const auto job = ct::zigzag_job(40);
-  const auto expected = simulate(job, machine);
+  const auto expected = ct::simulate(job, machine);
   ct::Process device({"device", "--fast"}, "device_both.stderr");
   const std::string device_port = device.first_line();
   ct::Process proxy({"proxy", "--device", device_port, "--corrupt", "0.01", "--drop", "0.01", "--seed", "11"},
@@ -149,9 +135,7 @@ TEST_CASE("hil: with 1 percent corrupted and 1 percent dropped bytes in both dir
   INFO(output);
   REQUIRE(status == 0);
   // None lost, none duplicated, every one equal to the simulator's at the same index.
-  const auto actual = ct::read_raw_setpoints(capture);
-  CHECK(actual.size() == expected.size());
-  CHECK(ct::first_difference(expected, actual) == -1);
+  ct::check_same_setpoints(expected, capture);
   CHECK_THAT(output, Catch::Contains("ticks standing:      0 ") && Catch::Contains("setpoints duplicated: 0"));
   // The faults reached the host: frames from the controller were damaged (and resent).
   CHECK_THAT(output, !Catch::Contains("damaged frames:      0\n"));

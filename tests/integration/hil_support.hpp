@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// HIL test helpers: wire-exact job and machine files, and raw Q16.16 setpoints read from CSV.
+// HIL test helpers: wire-exact job and machine files, raw Q16.16 setpoints read from CSV, and
+// `curvestep sim`'s setpoints to compare a device's stream with.
 #pragma once
 
 #include <array>
@@ -12,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include "process.hpp"
@@ -104,6 +106,25 @@ inline long first_difference(const std::vector<RawSetpoint>& a, const std::vecto
     if (!(a[i] == b[i])) return static_cast<long>(i);
   }
   return a.size() == b.size() ? -1 : static_cast<long>(n);
+}
+
+/// Runs `curvestep sim` on `job` with `machine` and returns its setpoints (exit status 3, limits
+/// exceeded, still writes them).
+inline std::vector<RawSetpoint> simulate(const std::filesystem::path& job, const std::filesystem::path& machine) {
+  const auto csv = scratch_dir() / ("sim_" + job.stem().string() + ".csv");
+  std::string errors;
+  const int status = run_program({"sim", job.string(), "--machine", machine.string(), "-o", csv.string()}, errors, "sim");
+  INFO(errors);
+  REQUIRE((status == 0 || status == 3));
+  return read_raw_setpoints(csv);
+}
+
+/// The setpoints captured in `csv` are `expected`, every one, bit for bit; returns them.
+inline std::vector<RawSetpoint> check_same_setpoints(const std::vector<RawSetpoint>& expected, const std::filesystem::path& csv) {
+  auto actual = read_raw_setpoints(csv);
+  CHECK(actual.size() == expected.size());
+  CHECK(first_difference(expected, actual) == -1);
+  return actual;
 }
 
 }  // namespace curvestep::test

@@ -48,15 +48,6 @@ long number_after(const std::string& text, const std::string& label) {
   return std::stol(text.substr(at + label.size()));
 }
 
-std::vector<ct::RawSetpoint> simulate(const std::filesystem::path& job, const std::filesystem::path& machine) {
-  const auto csv = ct::scratch_dir() / ("sim_" + job.stem().string() + ".csv");
-  std::string errors;
-  const int status = ct::run_program({"sim", job.string(), "--machine", machine.string(), "-o", csv.string()}, errors, "sim");
-  INFO(errors);
-  REQUIRE((status == 0 || status == 3));
-  return ct::read_raw_setpoints(csv);
-}
-
 /// Segments of the soak job: CURVESTEP_SOAK_SEGMENTS, or 360 (about 100 000 setpoints).
 int soak_segments() {
   if (const char* env = std::getenv("CURVESTEP_SOAK_SEGMENTS")) return std::atoi(env);
@@ -113,7 +104,7 @@ TEST_CASE("soak: a long job through faults in both directions arrives bit-identi
           "[integration][hil][soak]") {
   const auto machine = ct::wire_exact_machine();
   const auto job = ct::zigzag_job(soak_segments());
-  const auto expected = simulate(job, machine);
+  const auto expected = ct::simulate(job, machine);
   ct::Process device({"device", "--fast"}, "device_soak.stderr");
   const std::string device_port = device.first_line();
   // A short job first: the device's peak memory after it is the baseline.
@@ -139,9 +130,7 @@ TEST_CASE("soak: a long job through faults in both directions arrives bit-identi
   INFO(errors);
   INFO(output);
   REQUIRE(status == 0);
-  const auto actual = ct::read_raw_setpoints(capture);
-  CHECK(actual.size() == expected.size());
-  CHECK(ct::first_difference(expected, actual) == -1);
+  const auto actual = ct::check_same_setpoints(expected, capture);
   CHECK(number_after(output, "ticks standing:") == 0);
   CHECK(number_after(output, "setpoints duplicated:") == 0);
   const long queue_peak = number_after(output, "device queue peak:");
