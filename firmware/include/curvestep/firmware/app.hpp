@@ -177,8 +177,7 @@ class App {
         settings_(settings),
         receiver_(make_capabilities(), make_receiver_settings(settings)),
         sender_(protocol::SenderSettings{settings.retransmit_timeout_ms, 255, 0}, protocol::Endpoint::Controller) {
-    // Edges the board lost before this App existed are not this App's to report.
-    if constexpr (requires { board.edges_dropped(); }) edges_dropped_seen_ = board.edges_dropped();
+    edges_dropped_seen_ = edges_dropped_by(board);  // edges lost before this App existed are not its to report
   }
 
   /// Main-loop work: reads serial bytes, runs the link and the commands, reports, writes bytes.
@@ -522,17 +521,23 @@ class App {
 
   // --- tick events, start rule, link watch ----------------------------------------------------
 
-  /// True when the board dropped step/dir edges since the last check (a board that buffers edges
-  /// reports edges_dropped(); a lost edge is a lost step, so the position is no longer known).
-  [[nodiscard]] bool edges_lost() noexcept {
-    if constexpr (requires { board_.edges_dropped(); }) {
-      const std::uint32_t dropped = board_.edges_dropped();
-      if (dropped == edges_dropped_seen_) return false;
-      edges_dropped_seen_ = dropped;
-      return true;
+  /// The board's running count of lost step/dir edges (a board that buffers edges reports
+  /// edges_dropped(); one that does not loses none).
+  [[nodiscard]] static std::uint32_t edges_dropped_by(B& board) noexcept {
+    if constexpr (requires { board.edges_dropped(); }) {
+      return board.edges_dropped();
     } else {
-      return false;
+      return 0;
     }
+  }
+
+  /// True when the board lost edges since the last check: a lost edge is a lost step, so the
+  /// position is no longer known.
+  [[nodiscard]] bool edges_lost() noexcept {
+    const std::uint32_t dropped = edges_dropped_by(board_);
+    if (dropped == edges_dropped_seen_) return false;
+    edges_dropped_seen_ = dropped;
+    return true;
   }
 
   void raise_fault(Failure failure) noexcept {
