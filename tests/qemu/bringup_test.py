@@ -9,9 +9,8 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from qemu_board import QemuBoard  # noqa: E402
+from qemu_board import MACHINES, QemuBoard  # noqa: E402
 
-MACHINES = {"stm32f1": "stm32vldiscovery", "stm32f4": "netduinoplus2", "stm32f2-m3": "netduino2"}
 # GPIOA BSRR offset from the reference manuals: RM0008 §9.2.5 (F1), RM0090 §8.4.7 (F4).
 BSRR_OFFSET = {"stm32f1": 0x10, "stm32f4": 0x18}
 STEP_PINS, DIR_PINS = (0, 1, 2), (3, 4, 5)  # PA0-PA2, PA3-PA5 (boards/*/README.md)

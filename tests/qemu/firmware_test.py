@@ -12,9 +12,8 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from qemu_board import QemuBoard  # noqa: E402
+from qemu_board import MACHINES, QemuBoard  # noqa: E402
 
-MACHINES = {"stm32f1": "stm32vldiscovery", "stm32f4": "netduinoplus2", "stm32f2-m3": "netduino2"}
 # Queue slots and look-ahead of each board's firmware image (boards/<board>/CMakeLists.txt, firmware_main.cpp).
 EXPECTED_QUEUE_AND_LOOKAHEAD = {"stm32f1": (16, 8), "stm32f4": (32, 16), "stm32f2-m3": (32, 16)}
 

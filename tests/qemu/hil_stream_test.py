@@ -17,9 +17,8 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from qemu_board import QemuBoard  # noqa: E402
+from qemu_board import MACHINES, QemuBoard  # noqa: E402
 
-MACHINES = {"stm32f1": "stm32vldiscovery", "stm32f4": "netduinoplus2", "stm32f2-m3": "netduino2"}
 
 
 def read_csv(path):

@@ -13,6 +13,9 @@ import termios
 import time
 import tty
 
+# The QEMU machine each board's images run on (stm32f2-m3: the Cortex-M3 build on the F205).
+MACHINES = {"stm32f1": "stm32vldiscovery", "stm32f4": "netduinoplus2", "stm32f2-m3": "netduino2"}
+
 
 class QemuBoard:
     """One emulated board. Use as a context manager; QEMU is always killed on exit."""

@@ -32,8 +32,8 @@ from fractions import Fraction
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from hil_stream_test import MACHINES, read_csv  # noqa: E402
-from qemu_board import QemuBoard  # noqa: E402
+from hil_stream_test import read_csv  # noqa: E402
+from qemu_board import MACHINES, QemuBoard  # noqa: E402
 
 AXES = "xyz"
 STEP_PINS, DIR_PINS = (0, 1, 2), (3, 4, 5)  # PA0..PA2, PA3..PA5 (boards/stm32_common/.../board.hpp)
