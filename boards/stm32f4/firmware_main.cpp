@@ -15,7 +15,8 @@
 #define CURVESTEP_LOOKAHEAD_SEGMENTS 16
 #endif
 
-// Float setpoints on the Cortex-M4F; Q16.16 when built for a Cortex-M3 STM32F2 (CMakeLists.txt).
+// Float setpoints on the Cortex-M4F; built for a Cortex-M3 STM32F2, Q16.16 with the STM32F1
+// firmware's queue and look-ahead (CMakeLists.txt).
 #ifndef CURVESTEP_FIXED_POINT_SETPOINTS
 #define CURVESTEP_FIXED_POINT_SETPOINTS 0
 #endif

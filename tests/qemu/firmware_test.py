@@ -15,7 +15,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from qemu_board import MACHINES, QemuBoard  # noqa: E402
 
 # Queue slots and look-ahead of each board's firmware image (boards/<board>/CMakeLists.txt, firmware_main.cpp).
-EXPECTED_QUEUE_AND_LOOKAHEAD = {"stm32f1": (16, 8), "stm32f4": (32, 16), "stm32f2-m3": (32, 16)}
+EXPECTED_QUEUE_AND_LOOKAHEAD = {"stm32f1": (16, 8), "stm32f4": (32, 16), "stm32f2-m3": (16, 8)}
 
 
 def cobs_encode(data):
