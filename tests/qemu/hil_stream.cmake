@@ -3,7 +3,8 @@
 # match `curvestep sim` within 1 µm (float firmware). Skipped (77) while curvestep has no `stream`.
 # The STM32F1 (Q16.16, bit-identical) variant cannot run: its firmware needs 20 KiB of SRAM with its
 # worst-case stack, QEMU's STM32F100 has 8 KiB (docs/boards.md, "Footprint"). In its place the same Cortex-M3 + Q16.16 firmware runs on QEMU's
-# netduino2 (STM32F205: Cortex-M3, F2/F4 peripheral map) and must match sim bit for bit.
+# netduino2 (STM32F205: Cortex-M3, F2/F4 peripheral map), with the F1 firmware's application
+# (App<Board, Q16_16, 16, 8>: boards/stm32f4/CMakeLists.txt), and must match sim bit for bit.
 if(TARGET curvestep)
   # wire_exact_machine.json: the example machine with no rapid field (the protocol has none: the
   # device runs rapids at v_max) and tolerance / junction deviation exact in Q16.16; with
@@ -15,6 +16,12 @@ if(TARGET curvestep)
                    curvestep_stm32f4_firmware)
   set_tests_properties("qemu: stm32f2-m3 images cross-build (Cortex-M3, Q16.16 firmware)" PROPERTIES
                        LABELS qemu TIMEOUT 900 FIXTURES_SETUP qemu_stm32f2-m3_images)
+  # It announces the F1's queue and look-ahead (16, 8), which the streams below replay.
+  set(name "qemu: Cortex-M3 Q16.16 firmware answers Hello with the F1 queue and look-ahead")
+  add_test(NAME "${name}"
+           COMMAND ${Python3_EXECUTABLE} ${qemu_dir}/firmware_test.py stm32f2-m3
+                   ${PROJECT_BINARY_DIR}/qemu-stm32f2-m3/bin/curvestep_stm32f4_firmware.elf)
+  set_tests_properties("${name}" PROPERTIES LABELS qemu TIMEOUT 90 FIXTURES_REQUIRED qemu_stm32f2-m3_images)
   foreach(job seed_cubic inch_square every_type)
     set(name "qemu: stm32f4 firmware streams ${job} within 1 um of curvestep sim")
     add_test(NAME "${name}"
