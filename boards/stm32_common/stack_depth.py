@@ -64,6 +64,17 @@ def load(files):
                 m = edge_re.match(line)
                 if m:
                     calls.setdefault(m.group(1), []).append(m.group(2))
+    # The LTRANS unit of an LTO link labels functions by their short names ("poll.constprop"): name
+    # them by their demangled symbols instead (c++filt, if there is one), as the objects' graphs do.
+    short = [t for t, name in display.items() if "(" not in name and bare(t).startswith("_Z")]
+    if short:
+        try:
+            out = subprocess.run(["c++filt"], input="\n".join(bare(t) for t in short), capture_output=True,
+                                 text=True, check=True).stdout.splitlines()
+            if len(out) == len(short):
+                display.update(zip(short, out))
+        except (OSError, subprocess.CalledProcessError):
+            pass
     by_name = {}
     for title in frames:
         by_name.setdefault(bare(title), title)
