@@ -82,13 +82,14 @@ def load(files):
 
 
 def image_functions(elf):
-    """{name: address} of the image's functions and {address: [(branch target name, address)]}."""
+    """{name: [addresses]} of the image's functions (local ones may share a name) and
+    {address: [(branch target name, target address)]} of the direct branches out of each."""
     symtab = subprocess.run(["arm-none-eabi-readelf", "-sW", elf], capture_output=True, text=True, check=True)
     functions = {}
     for line in symtab.stdout.splitlines():
         f = line.split()
         if len(f) == 8 and f[3] == "FUNC" and f[6] != "UND":
-            functions[f[7]] = int(f[1], 16) & ~1
+            functions.setdefault(f[7], []).append(int(f[1], 16) & ~1)
     dis = subprocess.run(["arm-none-eabi-objdump", "-d", "--no-show-raw-insn", elf],
                          capture_output=True, text=True, check=True)
     branches = {}
@@ -105,27 +106,35 @@ def image_functions(elf):
 
 
 def check_against_image(elf, frames, calls, by_name):
-    """Alias resolution, edges from the disassembly and the functions without a graph (see --elf)."""
+    """Alias resolution, edges from the disassembly and the functions without a graph (see --elf).
+    A name at several addresses (local functions of different units) matches all its graph nodes:
+    each of its bodies is checked against the edges of all of them, and missing ones go to all."""
     functions, branches = image_functions(elf)
+    entries = {address for addresses in functions.values() for address in addresses}
     framed_at = {}
     for title in frames:
-        address = functions.get(bare(title))
-        if address is not None:
-            framed_at.setdefault(address, title)
-    aliases = {name: framed_at[address] for name, address in functions.items() if address in framed_at}
+        for address in functions.get(bare(title), []):
+            framed_at.setdefault(address, []).append(title)
+    aliases = {}
+    for name, addresses in functions.items():
+        titles = {t for address in addresses for t in framed_at.get(address, [])}
+        if len(titles) == 1:
+            aliases[name] = titles.pop()
     added = []
-    for address, title in framed_at.items():
-        covered = {functions.get(bare(callee)) for callee in calls.get(title, [])}
-        covered |= {bare(callee) for callee in calls.get(title, [])}
+    for address, titles in framed_at.items():
+        callees = [bare(callee) for title in titles for callee in calls.get(title, [])]
+        covered = set(callees) | {a for callee in callees for a in functions.get(callee, [])}
         for name, target in branches.get(address, []):
-            if target in functions.values() and target not in covered and name not in covered:
-                calls.setdefault(title, []).append(name)
+            if target in entries and target not in covered and name not in covered:
+                for title in titles:
+                    calls.setdefault(title, []).append(name)
                 covered.add(target)
-                added.append("%s -> %s" % (bare(title), name))
+                added.append("%s -> %s" % (bare(titles[0]), name))
     missing = [name for name in INTERRUPTS if name in functions and name not in by_name]
     if missing:
         raise RuntimeError("no call graph for the interrupt handler(s) " + ", ".join(missing))
-    without = sorted({name for name, address in functions.items() if address not in framed_at})
+    without = sorted({name for name, addresses in functions.items()
+                      if not any(address in framed_at for address in addresses)})
     return aliases, added, without
 
 
