@@ -5,7 +5,8 @@
 # needs more stack than its linker script reserves.
 # Usage: check_image.sh <image.elf> <flash-limit> <ram-limit> <enforce|report> <fpu|nofpu>
 #                       <goal-flash> <goal-ram> <out.json> <call-graph-dir>...
-# (limits in bytes; goal 0 0: none; the call-graph dirs hold the .ci files of -fcallgraph-info=su)
+# (limits in bytes; goal 0 0: none; the call-graph dirs hold the .ci files of -fcallgraph-info=su: the
+# objects' or, for an LTO image, the LTRANS unit's; stack_depth.py checks them against the image, --elf)
 set -euo pipefail
 elf=$1 flash_limit=$2 ram_limit=$3 stack_policy=$4 fpu=$5 goal_flash=$6 goal_ram=$7 json=$8
 shift 8
@@ -39,7 +40,7 @@ if command -v python3 >/dev/null 2>&1; then
   fpu_flag=()
   [ "$fpu" = fpu ] && fpu_flag=(--fpu)
   if [ ${#cis[@]} -gt 0 ]; then
-    if python3 "$here/stack_depth.py" "${fpu_flag[@]}" --json "$stack_json" "${cis[@]}" >"$stack_text"; then
+    if python3 "$here/stack_depth.py" "${fpu_flag[@]}" --elf "$elf" --json "$stack_json" "${cis[@]}" >"$stack_text"; then
       worst=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["worst_case_bytes"])' "$stack_json")
       echo "$name: $(head -n 1 "$stack_text")"
     else

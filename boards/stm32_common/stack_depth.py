@@ -11,12 +11,22 @@ soft-float routines, newlib's sqrt/memcpy: leaves with small frames) count as UN
 and so does every indirect call (the fault handlers' report and SysTick's counter callback: small).
 Recursion makes the depth unbounded and fails the analysis.
 
-Usage: stack_depth.py [--fpu] [--json OUT] [--limit BYTES] CI_FILE...
+With --elf IMAGE the graphs are checked against the linked image (arm-none-eabi-readelf/objdump):
+a callee the graphs name without a frame but that shares its address with a function that has one
+(identical code folding makes such aliases) resolves to that function; every direct branch (bl, or
+a tail-call b) from a function with a graph to another function's entry that no edge of the graphs
+covers is added as an edge (and listed); an interrupt handler of the image without a graph fails
+the analysis; and the image's functions without a graph are listed (they should be only libgcc's
+and newlib's). This is what keeps the analysis sound for link-time-optimised images, whose graphs
+come from the LTRANS unit instead of the objects (docs/boards.md).
+
+Usage: stack_depth.py [--fpu] [--elf IMAGE] [--json OUT] [--limit BYTES] CI_FILE...
 Prints the depth and the deepest call chain; exits 1 if the depth exceeds --limit.
 """
 import argparse
 import json
 import re
+import subprocess
 import sys
 
 UNKNOWN_BYTES = 64          # a libgcc/newlib leaf or an indirect call (they use 0-40 bytes)
@@ -54,14 +64,85 @@ def load(files):
                 m = edge_re.match(line)
                 if m:
                     calls.setdefault(m.group(1), []).append(m.group(2))
+    # The LTRANS unit of an LTO link labels functions by their short names ("poll.constprop"): name
+    # them by their demangled symbols instead (c++filt, if there is one), as the objects' graphs do.
+    short = [t for t, name in display.items() if "(" not in name and bare(t).startswith("_Z")]
+    if short:
+        try:
+            out = subprocess.run(["c++filt"], input="\n".join(bare(t) for t in short), capture_output=True,
+                                 text=True, check=True).stdout.splitlines()
+            if len(out) == len(short):
+                display.update(zip(short, out))
+        except (OSError, subprocess.CalledProcessError):
+            pass
     by_name = {}
     for title in frames:
         by_name.setdefault(bare(title), title)
     return frames, display, calls, by_name, dynamic
 
 
-def analyse(files, fpu):
+def image_functions(elf):
+    """{name: [addresses]} of the image's functions (local ones may share a name) and
+    {address: [(branch target name, target address)]} of the direct branches out of each."""
+    symtab = subprocess.run(["arm-none-eabi-readelf", "-sW", elf], capture_output=True, text=True, check=True)
+    functions = {}
+    for line in symtab.stdout.splitlines():
+        f = line.split()
+        if len(f) == 8 and f[3] == "FUNC" and f[6] != "UND":
+            functions.setdefault(f[7], []).append(int(f[1], 16) & ~1)
+    dis = subprocess.run(["arm-none-eabi-objdump", "-d", "--no-show-raw-insn", elf],
+                         capture_output=True, text=True, check=True)
+    branches = {}
+    current = None
+    for line in dis.stdout.splitlines():
+        m = re.match(r"^([0-9a-f]+) <[^>]+>:", line)
+        if m:
+            current = int(m.group(1), 16)
+            continue
+        m = re.search(r"\tb[a-z]*(?:\.[wn])?\s+([0-9a-f]+) <([^>+]+)>", line)
+        if m and current is not None and int(m.group(1), 16) != current:
+            branches.setdefault(current, []).append((m.group(2), int(m.group(1), 16)))
+    return functions, branches
+
+
+def check_against_image(elf, frames, calls, by_name):
+    """Alias resolution, edges from the disassembly and the functions without a graph (see --elf).
+    A name at several addresses (local functions of different units) matches all its graph nodes:
+    each of its bodies is checked against the edges of all of them, and missing ones go to all."""
+    functions, branches = image_functions(elf)
+    entries = {address for addresses in functions.values() for address in addresses}
+    framed_at = {}
+    for title in frames:
+        for address in functions.get(bare(title), []):
+            framed_at.setdefault(address, []).append(title)
+    aliases = {}
+    for name, addresses in functions.items():
+        titles = {t for address in addresses for t in framed_at.get(address, [])}
+        if len(titles) == 1:
+            aliases[name] = titles.pop()
+    added = []
+    for address, titles in framed_at.items():
+        callees = [bare(callee) for title in titles for callee in calls.get(title, [])]
+        covered = set(callees) | {a for callee in callees for a in functions.get(callee, [])}
+        for name, target in branches.get(address, []):
+            if target in entries and target not in covered and name not in covered:
+                for title in titles:
+                    calls.setdefault(title, []).append(name)
+                covered.add(target)
+                added.append("%s -> %s" % (bare(titles[0]), name))
+    missing = [name for name in INTERRUPTS if name in functions and name not in by_name]
+    if missing:
+        raise RuntimeError("no call graph for the interrupt handler(s) " + ", ".join(missing))
+    without = sorted({name for name, addresses in functions.items()
+                      if not any(address in framed_at for address in addresses)})
+    return aliases, added, without
+
+
+def analyse(files, fpu, elf=None):
     frames, display, calls, by_name, dynamic = load(files)
+    aliases, added, without = ({}, None, None)
+    if elf:
+        aliases, added, without = check_against_image(elf, frames, calls, by_name)
     unknown = set()
     memo = {}
     active = set()
@@ -74,7 +155,7 @@ def analyse(files, fpu):
                 return candidate
             if bare(candidate) in by_name:
                 return by_name[bare(candidate)]
-        return None
+        return aliases.get(bare(title))
 
     def depth(title):
         """(bytes, chain) of the deepest path from the function `title`."""
@@ -110,7 +191,7 @@ def analyse(files, fpu):
         if title is not None:
             interrupts[name] = depth(title)[0] + frame
     total = main_bytes + sum(interrupts.values())
-    return {
+    result = {
         "worst_case_bytes": total,
         "main_bytes": main_bytes,
         "interrupt_bytes": interrupts,
@@ -120,17 +201,22 @@ def analyse(files, fpu):
         "unknown_callees": sorted(unknown),
         "dynamic_frames": dynamic,
     }
+    if elf:
+        result["edges_from_disassembly"] = added
+        result["image_functions_without_call_graph"] = without
+    return result
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("ci", nargs="+")
     parser.add_argument("--fpu", action="store_true", help="Cortex-M4F: extended exception frames")
+    parser.add_argument("--elf", help="check the graphs against this linked image (see above)")
     parser.add_argument("--json", help="write the result as JSON")
     parser.add_argument("--limit", type=int, help="fail if the worst case exceeds this many bytes")
     args = parser.parse_args()
     try:
-        result = analyse(args.ci, args.fpu)
+        result = analyse(args.ci, args.fpu, args.elf)
     except RuntimeError as e:
         print("FAIL: stack analysis:", e)
         return 1
