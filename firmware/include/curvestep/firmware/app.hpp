@@ -390,7 +390,7 @@ class App {
 
   // --- commands --------------------------------------------------------------------------
 
-  [[nodiscard]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
+  [[nodiscard, gnu::noinline]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
     // Queued segments were planned with the old limits: a new configuration needs an empty queue.
     if (moving_ || start_pending_ || held_before_start_ || controller_.queued() > 0) return fail(Error::PlannerBusy);
     if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
@@ -425,7 +425,7 @@ class App {
     return fail(Error::BufferTooSmall, B::step_events_per_tick);
   }
 
-  [[nodiscard]] Result<void> queue_segment(const protocol::QueueSegment& s) noexcept {
+  [[nodiscard, gnu::noinline]] Result<void> queue_segment(const protocol::QueueSegment& s) noexcept {
     if (!configured_) return fail(Error::ConfigurationMissing);
     if (state_ == protocol::MachineState::Fault || job_end_known_) return fail(Error::InvalidState);
     if (s.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);

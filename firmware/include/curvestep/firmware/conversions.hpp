@@ -72,7 +72,7 @@ inline constexpr double arc_radius_tolerance_mm = 0.002;
 /// The planner's segment for a wire segment: geometry, rapid flag and feed. Errors from the
 /// PathSegment::make_* validators (DegenerateCurve, InvalidArgument for arc radii that differ by
 /// more than arc_radius_tolerance_mm, ...); InvalidLimit (LimitField::Feed) for a feed <= 0.
-[[nodiscard]] inline Result<PathSegment> to_path_segment(const protocol::QueueSegment& s) noexcept {
+[[nodiscard, gnu::noinline]] inline Result<PathSegment> to_path_segment(const protocol::QueueSegment& s) noexcept {
   const std::size_t axes = s.axis_count;
   std::array<MachinePoint, protocol::max_segment_degree + 1> points{};
   const std::size_t count = s.point_count();
