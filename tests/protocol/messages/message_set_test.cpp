@@ -123,6 +123,16 @@ static_assert(!ControllerToHost::contains<Hello> && !ControllerToHost::contains<
               !ControllerToHost::contains<StatusRequest>);
 static_assert(!MessageSet<>::contains<Hello> && !MessageSet<>::contains_type(0x01));
 
+/// AllMessages holds exactly the types is_known() names.
+constexpr bool all_messages_are_the_known_types() {
+  for (int t = 0; t < 256; ++t) {
+    const auto type = static_cast<std::uint8_t>(t);
+    if (AllMessages::contains_type(type) != is_known(type)) return false;
+  }
+  return true;
+}
+static_assert(all_messages_are_the_known_types());
+
 /// Every type of `set` is sequenced toward `receiver` or travels outside both streams: a set
 /// never contains a type of the other direction's stream.
 template <class... Ts>

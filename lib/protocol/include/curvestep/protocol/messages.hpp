@@ -286,6 +286,8 @@ constexpr decltype(auto) select_type(std::uint8_t type, OnType& on_type, Otherwi
 /// (index = type) when decoding, InvalidArgument (index = type) when encoding.
 template <class... Ts>
 struct MessageSet {
+  static_assert((std::is_same_v<decltype(Ts::type), const MessageType> && ...), "MessageSet holds message structs");
+
   /// True if message struct T is in the set.
   template <class T>
   static constexpr bool contains = (std::is_same_v<T, Ts> || ...);
