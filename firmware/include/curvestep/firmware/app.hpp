@@ -87,6 +87,12 @@
 // The tick that crosses into a new segment also plans it (arc-length table and speed profile,
 // MotionController::begin_segment): that is the worst-case tick. Segment analysis (try_push:
 // cusps, caps, junction speed) runs in poll().
+// Code size: the App links only the codecs of what a controller receives and sends
+// (protocol::HostToController, protocol::ControllerToHost): dispatch() decodes each command with
+// its own decode<T>, the host's Ack / Nak of the setpoint stream go through
+// decode_message<MessageSet<Ack, Nak>>, and the setpoint stream encodes SetpointBatch only. A
+// command type it does not take (a report, or one a newer host defines) is answered, as ever,
+// with ErrorReport(UnknownMessage, index = type).
 // Nothing allocates; all buffers are members sized at compile time (see docs/firmware.md).
 #pragma once
 
@@ -168,8 +174,9 @@ class App {
 
   /// Frames of setpoint batches that may be unacknowledged at once.
   static constexpr std::size_t setpoint_window = board_setpoint_window<B>();
-  /// The sender of the setpoint stream.
-  using SetpointSender = protocol::LinkSender<setpoint_window>;
+  /// The sender of the setpoint stream: it sends SetpointBatch only (so links only its encoder)
+  /// and has no handshake of its own.
+  using SetpointSender = protocol::LinkSender<setpoint_window, protocol::MessageSet<protocol::SetpointBatch>>;
 
   /// An App driving `board` (which must outlive it), idle and unconfigured.
   explicit App(B& board, AppSettings settings = {}) noexcept
@@ -348,10 +355,12 @@ class App {
     }
   }
 
-  /// The host's Ack or Nak of the setpoint stream.
-  void on_stream_reply(const protocol::Frame& frame, std::uint32_t now) noexcept {
+  /// The host's Ack or Nak of the setpoint stream (decoded with those two decoders only). Not
+  /// inlined: its decoded Message (about 300 bytes) must not sit in receive()'s frame, under
+  /// the deepest call chain (dispatch -> queue_segment -> planning).
+  [[gnu::noinline]] void on_stream_reply(const protocol::Frame& frame, std::uint32_t now) noexcept {
     if (!receiver_.connected()) return;
-    const auto m = protocol::decode_message(frame);
+    const auto m = protocol::decode_message<protocol::MessageSet<protocol::Ack, protocol::Nak>>(frame);
     if (!m) return;
     if (auto handled = sender_.on_message(m.value(), now); !handled) raise_fault(handled.failure());
   }

@@ -24,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/cobs.hpp>
@@ -65,13 +66,27 @@ struct Frame {
   return encoded + 1;
 }
 
-/// Builds the frame carrying message `m` with `sequence` into `out` (see the overload above).
-[[nodiscard]] constexpr Result<std::size_t> encode_frame(const Message& m, std::uint8_t sequence,
+/// Builds the frame carrying message struct `m` (Ack, SetpointBatch, ...) with `sequence` into
+/// `out` (see the overload above); links the encoder of M only.
+template <class M>
+  requires(AllMessages::contains<M>)
+[[nodiscard]] constexpr Result<std::size_t> encode_frame(const M& m, std::uint8_t sequence,
                                                          std::span<std::byte> out) noexcept {
   std::array<std::byte, max_message_size> payload{};
   CURVESTEP_TRY(const std::size_t size, encode(m, payload));
-  return encode_frame(static_cast<std::uint8_t>(m.type()), sequence, std::span<const std::byte>(payload.data(), size),
+  return encode_frame(static_cast<std::uint8_t>(M::type), sequence, std::span<const std::byte>(payload.data(), size),
                       out);
+}
+
+/// Builds the frame carrying the message `m` holds, if its type is in `Set` (only the set's
+/// encoders are instantiated); InvalidArgument (index = type) for a type outside the set.
+template <class Set = AllMessages>
+[[nodiscard]] constexpr Result<std::size_t> encode_frame(const Message& m, std::uint8_t sequence,
+                                                         std::span<std::byte> out) noexcept {
+  const auto type = static_cast<std::uint8_t>(m.type());
+  return Set::select(
+      type, [&]<class T>(std::type_identity<T>) { return encode_frame(m.get<T>(), sequence, out); },
+      [type]() -> Result<std::size_t> { return fail(Error::InvalidArgument, type); });
 }
 
 /// Checks a COBS-decoded frame (without delimiter): FrameTooShort below 8 bytes, FrameTooLong
@@ -96,9 +111,11 @@ struct Frame {
   return frame;
 }
 
-/// Decodes the message a checked frame carries (UnknownMessage, BadPayload).
+/// Decodes the message a checked frame carries if its type is in `Set` (UnknownMessage,
+/// BadPayload; see decode_message(type, payload)).
+template <class Set = AllMessages>
 [[nodiscard]] constexpr Result<Message> decode_message(const Frame& frame) noexcept {
-  return decode_message(frame.type, frame.payload);
+  return decode_message<Set>(frame.type, frame.payload);
 }
 
 }  // namespace curvestep::protocol

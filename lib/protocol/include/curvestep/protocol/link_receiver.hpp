@@ -36,6 +36,8 @@
 // credit_end 0 (the host takes whatever the controller sends; the controller ignores it).
 // The controller also sends an Ack when credit grows and, if configured, every ack_interval_ms
 // as a heartbeat, so a lost credit update cannot deadlock the link.
+// It decodes only Hello and encodes only Capabilities, Ack and Nak (each through its own typed
+// codec, so no all-types codec is linked).
 // Cost: no buffers; a handful of bytes of state; every call is O(1).
 #pragma once
 
@@ -175,11 +177,11 @@ class LinkReceiver {
   [[nodiscard]] constexpr Result<std::size_t> encode_reply(const Reception& r, std::span<std::byte> out) noexcept {
     switch (r.reply) {
       case ReplyKind::None: return std::size_t{0};
-      case ReplyKind::Ack: return encode_frame(Message(r.ack), next_outgoing_sequence(), out);
-      case ReplyKind::Nak: return encode_frame(Message(r.nak), next_outgoing_sequence(), out);
+      case ReplyKind::Ack: return encode_frame(r.ack, next_outgoing_sequence(), out);
+      case ReplyKind::Nak: return encode_frame(r.nak, next_outgoing_sequence(), out);
       case ReplyKind::Capabilities: break;
     }
-    return encode_frame(Message(capabilities_), next_outgoing_sequence(), out);
+    return encode_frame(capabilities_, next_outgoing_sequence(), out);
   }
 
   /// Sequence number for the next controller-to-host frame (a free-running diagnostic counter).

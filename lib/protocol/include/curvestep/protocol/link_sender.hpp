@@ -31,6 +31,9 @@
 // VersionMismatch. Once connected, Nak(NotConnected) means the controller restarted:
 // DeviceRestarted. With link_timeout_ms set, a connected host that hears nothing (the
 // controller's heartbeat Acks included) for that long fails with LinkTimeout.
+// Code size: the `Sends` parameter is the MessageSet this end submits (the host: commands and
+// Hello; the controller: MessageSet<SetpointBatch>); only their encoders are linked, and a set
+// without Hello has no handshake (no connect(), Capabilities ignored).
 // Time is passed in (now_ms, wrapping uint32 arithmetic); nothing allocates. Memory is
 // Window * (max_encoded_frame_size + 2) bytes plus counters: 8 slots take about 1.3 KiB.
 #pragma once
@@ -61,10 +64,13 @@ struct SenderSettings {
   std::uint32_t link_timeout_ms = 0;          ///< connected and nothing heard for this long: LinkTimeout (0: never)
 };
 
-/// A sending link end; `Window` frames may be unacknowledged at once.
-template <std::size_t Window = 8>
+/// A sending link end; `Window` frames may be unacknowledged at once; `Sends` (a MessageSet) is
+/// what it may submit, plus Hello if it opens the link with a handshake.
+template <std::size_t Window = 8, class Sends = AllMessages>
 class LinkSender {
   static_assert(Window > 0 && Window <= 127, "Window must be 1..127 so 8-bit sequence numbers stay unambiguous");
+  /// True if this end opens its link with Hello (the host); else open() starts the stream.
+  static constexpr bool handshake = Sends::template contains<Hello>;
 
  public:
   /// A disconnected sender at `local` (the host by default) that sends toward the other end.
@@ -72,7 +78,9 @@ class LinkSender {
       : settings_(settings), peer_(local == Endpoint::Host ? Endpoint::Controller : Endpoint::Host) {}
 
   /// Starts (or restarts) the handshake with a fresh, preferably random, `session` number.
-  constexpr void connect(std::uint16_t session, std::uint32_t now_ms) noexcept {
+  constexpr void connect(std::uint16_t session, std::uint32_t now_ms) noexcept
+    requires handshake
+  {
     reset(now_ms);
     state_ = LinkState::Connecting;
     session_ = session;
@@ -95,18 +103,19 @@ class LinkSender {
   }
 
   /// Queues a sequenced message toward the peer for sending; returns its sequence number.
-  /// NotConnected, QueueFull (window full or no credit), InvalidArgument for a message that
-  /// does not travel in the sequenced stream toward the peer, or the encoder's error.
+  /// NotConnected, QueueFull (window full or no credit), InvalidArgument (index = type) for a
+  /// message outside `Sends` or one that does not travel in the sequenced stream toward the
+  /// peer, or the encoder's error.
   [[nodiscard]] constexpr Result<std::uint8_t> submit(const Message& m) noexcept {
     if (state_ != LinkState::Connected) return fail(Error::NotConnected);
-    if (!is_known(static_cast<std::uint8_t>(m.type())) ||
+    if (!Sends::contains_type(static_cast<std::uint8_t>(m.type())) ||
         !is_sequenced_toward(peer_, static_cast<std::uint8_t>(m.type()))) {
       return fail(Error::InvalidArgument, static_cast<std::uint8_t>(m.type()));
     }
     if (!can_submit(m.type())) return fail(Error::QueueFull, count_);
     const auto sequence = static_cast<std::uint8_t>(first_sequence_ + count_);
     Slot& slot = slots_[(oldest_ + count_) % Window];
-    CURVESTEP_TRY(const std::size_t size, encode_frame(m, sequence, slot.bytes));
+    CURVESTEP_TRY(const std::size_t size, encode_frame<Sends>(m, sequence, slot.bytes));
     slot.size = static_cast<std::uint16_t>(size);
     ++count_;
     if (consumes_credit(m.type())) ++segments_sent_;
@@ -116,14 +125,16 @@ class LinkSender {
   /// Next bytes to transmit into `out` (one whole frame), or 0 if nothing is due. Fails with
   /// LinkTimeout or RetransmitLimit when the link gives up (state becomes Failed).
   [[nodiscard]] constexpr Result<std::size_t> poll(std::uint32_t now_ms, std::span<std::byte> out) noexcept {
-    if (state_ == LinkState::Connecting) {
-      if (!hello_due_ && now_ms - timer_ms_ < settings_.retransmit_timeout_ms) return std::size_t{0};
-      if (hello_attempts_ > settings_.max_retransmits) return give_up(Error::LinkTimeout, session_);
-      CURVESTEP_TRY(const std::size_t size, encode_frame(Message(Hello{protocol_version, session_}), 0, out));
-      ++hello_attempts_;
-      hello_due_ = false;
-      timer_ms_ = now_ms;
-      return size;
+    if constexpr (handshake) {
+      if (state_ == LinkState::Connecting) {
+        if (!hello_due_ && now_ms - timer_ms_ < settings_.retransmit_timeout_ms) return std::size_t{0};
+        if (hello_attempts_ > settings_.max_retransmits) return give_up(Error::LinkTimeout, session_);
+        CURVESTEP_TRY(const std::size_t size, encode_frame(Hello{protocol_version, session_}, 0, out));
+        ++hello_attempts_;
+        hello_due_ = false;
+        timer_ms_ = now_ms;
+        return size;
+      }
     }
     if (state_ != LinkState::Connected) return std::size_t{0};
     if (settings_.link_timeout_ms != 0 && now_ms - heard_ms_ >= settings_.link_timeout_ms) {
@@ -148,13 +159,15 @@ class LinkSender {
     return std::size_t{slot.size};
   }
 
-  /// Handles a message from the controller: Capabilities, Ack and Nak drive the link; other
-  /// messages are the application's and ignored here. Fails with VersionMismatch,
+  /// Handles a message from the peer: Capabilities (with a handshake), Ack and Nak drive the
+  /// link; other messages are the application's and ignored here. Fails with VersionMismatch,
   /// DeviceRestarted or RetransmitLimit (state becomes Failed).
   [[nodiscard]] constexpr Result<void> on_message(const Message& m, std::uint32_t now_ms) noexcept {
     heard_ms_ = now_ms;
     switch (m.type()) {
-      case MessageType::Capabilities: return on_capabilities(m.get<Capabilities>(), now_ms);
+      case MessageType::Capabilities:
+        if constexpr (handshake) return on_capabilities(m.get<Capabilities>(), now_ms);
+        return ok();
       case MessageType::Ack: on_ack(m.get<Ack>().next_expected, m.get<Ack>().credit_end, true, now_ms); return ok();
       case MessageType::Nak: return on_nak(m.get<Nak>(), now_ms);
       default: return ok();

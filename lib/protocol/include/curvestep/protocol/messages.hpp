@@ -12,6 +12,11 @@
 // Memory: a Message is about 300 bytes (the union's largest member is SetpointBatch). A
 // controller short of stack can check Frame::type and call decode<QueueSegment> (140 bytes)
 // directly instead of decode_message.
+// Code size: each endpoint names the messages it receives or sends as a MessageSet
+// (HostToController, ControllerToHost, or a smaller set of its own), and decode_message<Set>,
+// encode<Set>(const Message&) and encode_frame<Set> instantiate only those codecs; the
+// defaults (AllMessages) take every type. The firmware thus links no decoder of a report and no
+// encoder of a command. A type outside the set is refused like an undefined one.
 #pragma once
 
 #include <array>
@@ -256,6 +261,68 @@ struct ErrorReport {
   std::uint16_t index = no_index;                                ///< input at fault (point, byte offset), or no_index
   std::uint8_t sequence = 0;                                     ///< sequence number of the offending frame
 };
+
+namespace detail {
+
+/// The member of `T, Rest...` whose type byte is `type`: `on_type(std::type_identity<T>{})`, or
+/// `otherwise()` if none has it (an if-chain the compiler turns into a switch).
+template <class T, class... Rest, class OnType, class Otherwise>
+constexpr decltype(auto) select_type(std::uint8_t type, OnType& on_type, Otherwise& otherwise) {
+  if (type == static_cast<std::uint8_t>(T::type)) return on_type(std::type_identity<T>{});
+  if constexpr (sizeof...(Rest) == 0) {
+    return otherwise();
+  } else {
+    return select_type<Rest...>(type, on_type, otherwise);
+  }
+}
+
+}  // namespace detail
+
+/// A compile-time set of message types (the structs above): the messages one endpoint
+/// receives or sends. decode_message<Set>, encode<Set>(const Message&) and
+/// encode_frame<Set>(const Message&) instantiate the decoders or encoders of the set's types
+/// only, so a firmware image links no code for messages it never receives or sends. A type
+/// outside the set is refused as if this protocol version did not define it: UnknownMessage
+/// (index = type) when decoding, InvalidArgument (index = type) when encoding.
+template <class... Ts>
+struct MessageSet {
+  static_assert((std::is_same_v<decltype(Ts::type), const MessageType> && ...), "MessageSet holds message structs");
+
+  /// True if message struct T is in the set.
+  template <class T>
+  static constexpr bool contains = (std::is_same_v<T, Ts> || ...);
+
+  /// True if the raw type byte names a type in the set.
+  [[nodiscard]] static constexpr bool contains_type(std::uint8_t type) noexcept {
+    return ((type == static_cast<std::uint8_t>(Ts::type)) || ...);
+  }
+
+  /// Calls `on_type(std::type_identity<T>{})` for the T of the set whose type byte is `type`
+  /// and returns its result, or returns `otherwise()` if the set has no such type. Only the
+  /// set's types instantiate `on_type`.
+  template <class OnType, class Otherwise>
+  static constexpr decltype(auto) select(std::uint8_t type, OnType&& on_type, Otherwise&& otherwise) {
+    if constexpr (sizeof...(Ts) == 0) {
+      return otherwise();
+    } else {
+      return detail::select_type<Ts...>(type, on_type, otherwise);
+    }
+  }
+};
+
+/// Every message of this protocol version (the default of the set-taking functions; host
+/// tools, tests and fuzzers).
+using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
+                               Resume, Abort, StatusRequest, StatusReport, SetpointBatch, ErrorReport>;
+
+/// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
+/// the controller's setpoint stream.
+using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold, Resume,
+                                    Abort, StatusRequest>;
+
+/// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
+/// commands, reports, and the setpoint stream.
+using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport>;
 
 namespace detail {
 
@@ -772,53 +839,36 @@ static_assert(std::is_trivially_copyable_v<Message>, "Message is copied as bytes
 /// Calls `visitor(const T&)` with the message held by `m`; returns what the visitor returns.
 template <class Visitor>
 constexpr decltype(auto) visit(Visitor&& visitor, const Message& m) {
-  switch (m.type()) {
-    case MessageType::Hello: return visitor(m.get<Hello>());
-    case MessageType::Capabilities: return visitor(m.get<Capabilities>());
-    case MessageType::Ack: return visitor(m.get<Ack>());
-    case MessageType::Nak: return visitor(m.get<Nak>());
-    case MessageType::MachineConfiguration: return visitor(m.get<MachineConfiguration>());
-    case MessageType::QueueSegment: return visitor(m.get<QueueSegment>());
-    case MessageType::Start: return visitor(m.get<Start>());
-    case MessageType::FeedHold: return visitor(m.get<FeedHold>());
-    case MessageType::Resume: return visitor(m.get<Resume>());
-    case MessageType::Abort: return visitor(m.get<Abort>());
-    case MessageType::StatusRequest: return visitor(m.get<StatusRequest>());
-    case MessageType::StatusReport: return visitor(m.get<StatusReport>());
-    case MessageType::SetpointBatch: return visitor(m.get<SetpointBatch>());
-    case MessageType::ErrorReport: break;
-  }
-  return visitor(m.get<ErrorReport>());
+  return AllMessages::select(
+      static_cast<std::uint8_t>(m.type()),
+      [&]<class T>(std::type_identity<T>) -> decltype(auto) { return visitor(m.get<T>()); },
+      [&]() -> decltype(auto) { return visitor(m.get<ErrorReport>()); });  // not reached: a Message holds a known type
 }
 
-/// Encodes the payload of whatever `m` holds.
+/// Encodes the payload of whatever `m` holds, if its type is in `Set` (only the encoders of the
+/// set's types are instantiated); InvalidArgument (index = type) for a type outside the set.
+template <class Set = AllMessages>
 [[nodiscard]] constexpr Result<std::size_t> encode(const Message& m, std::span<std::byte> out) noexcept {
-  return visit([out](const auto& held) { return encode(held, out); }, m);
+  const auto type = static_cast<std::uint8_t>(m.type());
+  return Set::select(
+      type, [&]<class T>(std::type_identity<T>) -> Result<std::size_t> { return encode(m.get<T>(), out); },
+      [type]() -> Result<std::size_t> { return fail(Error::InvalidArgument, type); });
 }
 
-/// Decodes a payload of the given raw message type; UnknownMessage (index = type) if not defined.
+/// Decodes a payload of the given raw message type if the type is in `Set` (only the decoders
+/// of the set's types are instantiated); UnknownMessage (index = type) for a type outside the
+/// set, as for a type this version does not define. A controller decodes HostToController, a
+/// host ControllerToHost; the default decodes every type.
+template <class Set = AllMessages>
 [[nodiscard]] constexpr Result<Message> decode_message(std::uint8_t type, std::span<const std::byte> payload) noexcept {
-  const auto convert = [](auto result) -> Result<Message> {
-    if (!result) return result.failure();
-    return Message(result.value());
-  };
-  switch (static_cast<MessageType>(type)) {
-    case MessageType::Hello: return convert(decode<Hello>(payload));
-    case MessageType::Capabilities: return convert(decode<Capabilities>(payload));
-    case MessageType::Ack: return convert(decode<Ack>(payload));
-    case MessageType::Nak: return convert(decode<Nak>(payload));
-    case MessageType::MachineConfiguration: return convert(decode<MachineConfiguration>(payload));
-    case MessageType::QueueSegment: return convert(decode<QueueSegment>(payload));
-    case MessageType::Start: return convert(decode<Start>(payload));
-    case MessageType::FeedHold: return convert(decode<FeedHold>(payload));
-    case MessageType::Resume: return convert(decode<Resume>(payload));
-    case MessageType::Abort: return convert(decode<Abort>(payload));
-    case MessageType::StatusRequest: return convert(decode<StatusRequest>(payload));
-    case MessageType::StatusReport: return convert(decode<StatusReport>(payload));
-    case MessageType::SetpointBatch: return convert(decode<SetpointBatch>(payload));
-    case MessageType::ErrorReport: return convert(decode<ErrorReport>(payload));
-  }
-  return fail(Error::UnknownMessage, type);
+  return Set::select(
+      type,
+      [payload]<class T>(std::type_identity<T>) -> Result<Message> {
+        const Result<T> result = decode<T>(payload);
+        if (!result) return result.failure();
+        return Message(result.value());
+      },
+      [type]() -> Result<Message> { return fail(Error::UnknownMessage, type); });
 }
 
 }  // namespace curvestep::protocol
