@@ -365,19 +365,14 @@ class App {
     if (auto handled = sender_.on_message(m.value(), now); !handled) raise_fault(handled.failure());
   }
 
-  void dispatch(const protocol::Frame& frame) noexcept {
+  // dispatch and the two decoding handlers are separate frames (noinline): with LTO, a decoded
+  // MachineConfiguration and a decoded QueueSegment would otherwise share one frame on the
+  // deepest call chain (receive -> dispatch -> queue_segment -> planning), docs/boards.md.
+  [[gnu::noinline]] void dispatch(const protocol::Frame& frame) noexcept {
     using protocol::MessageType;
     switch (static_cast<MessageType>(frame.type)) {
-      case MessageType::MachineConfiguration: {
-        const auto m = protocol::decode<protocol::MachineConfiguration>(frame.payload);
-        if (!m) return report(m.failure());
-        return report_if_failed(configure(m.value()));
-      }
-      case MessageType::QueueSegment: {
-        const auto m = protocol::decode<protocol::QueueSegment>(frame.payload);
-        if (!m) return report(m.failure());
-        return report_if_failed(queue_segment(m.value()));
-      }
+      case MessageType::MachineConfiguration: return on_machine_configuration(frame.payload);
+      case MessageType::QueueSegment: return on_queue_segment(frame.payload);
       case MessageType::Start:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return report_if_failed(start());
@@ -395,6 +390,18 @@ class App {
         return send_status();
       default: return report(fail(Error::UnknownMessage, frame.type));
     }
+  }
+
+  [[gnu::noinline]] void on_machine_configuration(std::span<const std::byte> payload) noexcept {
+    const auto m = protocol::decode<protocol::MachineConfiguration>(payload);
+    if (!m) return report(m.failure());
+    report_if_failed(configure(m.value()));
+  }
+
+  [[gnu::noinline]] void on_queue_segment(std::span<const std::byte> payload) noexcept {
+    const auto m = protocol::decode<protocol::QueueSegment>(payload);
+    if (!m) return report(m.failure());
+    report_if_failed(queue_segment(m.value()));
   }
 
   // --- commands --------------------------------------------------------------------------
