@@ -16,8 +16,8 @@ a callee the graphs name without a frame but that shares its address with a func
 (identical code folding makes such aliases) resolves to that function; every direct branch (bl, or
 a tail-call b) from a function with a graph to another function's entry that no edge of the graphs
 covers is added as an edge (and listed); an interrupt handler of the image without a graph fails
-the analysis; and the image's functions without a graph are listed (they should be only libgcc's
-and newlib's). This is what keeps the analysis sound for link-time-optimised images, whose graphs
+the analysis; and the image's functions without a graph are listed and must be libgcc's and
+newlib's C routines (a C++ function, a curvestep_* entry point or a *_Handler without one fails). This is what keeps the analysis sound for link-time-optimised images, whose graphs
 come from the LTRANS unit instead of the objects (docs/boards.md).
 
 Usage: stack_depth.py [--fpu] [--elf IMAGE] [--json OUT] [--limit BYTES] CI_FILE...
@@ -135,7 +135,17 @@ def check_against_image(elf, frames, calls, by_name):
         raise RuntimeError("no call graph for the interrupt handler(s) " + ", ".join(missing))
     without = sorted({name for name, addresses in functions.items()
                       if not any(address in framed_at for address in addresses)})
+    ours = [name for name in without if is_project_function(name)]
+    if ours:
+        raise RuntimeError("no call graph for the image's own function(s) " + ", ".join(ours[:8]) +
+                           " (only libgcc's and newlib's C routines may lack one)")
     return aliases, added, without
+
+
+def is_project_function(symbol):
+    """True for a function of this project's code: C++ (mangled; libgcc and newlib are C), a
+    curvestep_* entry point, or a handler of the vector table."""
+    return symbol.startswith("_Z") or symbol.startswith("curvestep") or symbol.endswith("Handler")
 
 
 def analyse(files, fpu, elf=None):
