@@ -4,7 +4,7 @@
 Hello(version 3, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
 here independently of the C++ encoder (COBS, the payload's CRC-32C table-driven, the frame's
 CRC-16/CCITT-FALSE via binascii.crc_hqx).
-Usage: firmware_test.py <stm32f1|stm32f4> <firmware.elf>"""
+Usage: firmware_test.py <stm32f1|stm32f4|stm32f2-m3> <firmware.elf>"""
 import binascii
 import os
 import struct

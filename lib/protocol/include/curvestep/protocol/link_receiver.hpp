@@ -54,7 +54,7 @@ namespace curvestep::protocol {
 /// What the application should do with a received frame.
 enum class Disposition : std::uint8_t {
   Ignore,   ///< nothing to deliver (duplicate, gap, link-control frame, refused)
-  Deliver,  ///< new in-order frame: decode it with decode_message(frame) and act on it
+  Deliver,  ///< new in-order frame: decode it (decode_message<HostToController>(frame), or decode<T> by its type) and act on it
   Connect,  ///< a new session started: the application should reset its job state
 };
 
