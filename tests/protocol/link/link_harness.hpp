@@ -18,6 +18,20 @@ namespace curvestep::protocol::testing {
 
 using Bytes = std::vector<std::byte>;
 
+/// Every frame `sender` (a LinkSender) has due at `now_ms`; a poll error fails the test.
+template <class Sender>
+std::vector<Bytes> due_frames(Sender& sender, std::uint32_t now_ms) {
+  std::vector<Bytes> frames;
+  for (;;) {
+    Bytes out(max_encoded_frame_size);
+    const auto size = sender.poll(now_ms, out);
+    REQUIRE(size.has_value());
+    if (size.value() == 0) return frames;
+    out.resize(size.value());
+    frames.push_back(out);
+  }
+}
+
 /// Capabilities of a test controller with `queue_capacity` segment slots.
 inline Capabilities controller_capabilities(std::uint16_t queue_capacity, std::uint16_t version = protocol_version) {
   Capabilities c;

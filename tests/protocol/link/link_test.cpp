@@ -456,17 +456,7 @@ struct SetpointStream {
     return b;
   }
 
-  std::vector<Bytes> transmit(std::uint32_t now) {
-    std::vector<Bytes> frames;
-    for (;;) {
-      Bytes out(max_encoded_frame_size);
-      const auto size = sender.poll(now, out);
-      REQUIRE(size.has_value());
-      if (size.value() == 0) return frames;
-      out.resize(size.value());
-      frames.push_back(out);
-    }
-  }
+  std::vector<Bytes> transmit(std::uint32_t now) { return due_frames(sender, now); }
 
   /// The host takes `frame`; returns its reply (Ack or Nak) as a message, if any.
   std::vector<Message> host_receives(const Bytes& frame, std::uint32_t now) {

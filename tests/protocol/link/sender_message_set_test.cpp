@@ -8,12 +8,15 @@
 
 #include <curvestep/protocol/link_sender.hpp>
 
+#include "link_harness.hpp"
+
 using namespace curvestep;
 using namespace curvestep::protocol;
 
 namespace {
 
-using Bytes = std::vector<std::byte>;
+using testing::Bytes;
+using testing::due_frames;
 using SetpointOnly = LinkSender<4, MessageSet<SetpointBatch>>;
 
 template <class Sender>
@@ -34,20 +37,6 @@ SetpointBatch batch(std::uint32_t first) {
   return b;
 }
 
-/// Every frame `sender` has due at `now`.
-template <class Sender>
-std::vector<Bytes> transmit(Sender& sender, std::uint32_t now) {
-  std::vector<Bytes> frames;
-  for (;;) {
-    Bytes out(max_encoded_frame_size);
-    const auto size = sender.poll(now, out);
-    REQUIRE(size.has_value());
-    if (size.value() == 0) return frames;
-    out.resize(size.value());
-    frames.push_back(out);
-  }
-}
-
 }  // namespace
 
 TEST_CASE("link: a sender of setpoint batches only sends the all-types sender's bytes and refuses other types",
@@ -63,19 +52,19 @@ TEST_CASE("link: a sender of setpoint batches only sends the all-types sender's 
     REQUIRE(b.has_value());
     CHECK(a.value() == b.value());
   }
-  const auto all_frames = transmit(all, 1);
+  const auto all_frames = due_frames(all, 1);
   REQUIRE(all_frames.size() == 3);
-  CHECK(transmit(mine, 1) == all_frames);
+  CHECK(due_frames(mine, 1) == all_frames);
   // A Nak of the second batch: both go back and resend the same two frames.
   const Message nak(Nak{1, Error::SequenceError});
   REQUIRE(all.on_message(Message(Ack{1, 0}), 2).has_value());
   REQUIRE(mine.on_message(Message(Ack{1, 0}), 2).has_value());
   REQUIRE(all.on_message(nak, 2).has_value());
   REQUIRE(mine.on_message(nak, 2).has_value());
-  const auto resent = transmit(all, 3);
+  const auto resent = due_frames(all, 3);
   REQUIRE(resent.size() == 2);
   CHECK(resent[0] == all_frames[1]);
-  CHECK(transmit(mine, 3) == resent);
+  CHECK(due_frames(mine, 3) == resent);
   // Types outside the set: InvalidArgument with the type as index, nothing queued.
   for (const Message& m : {Message(Start{}), Message(StatusReport{}), Message(Ack{}), Message(Capabilities{})}) {
     const auto r = mine.submit(m);
@@ -95,9 +84,9 @@ TEST_CASE("link: a host sender of the host's messages sends the all-types sender
   LinkSender<4, HostToController> mine;
   all.connect(0xBEEF, 0);
   mine.connect(0xBEEF, 0);
-  const auto hello = transmit(all, 0);
+  const auto hello = due_frames(all, 0);
   REQUIRE(hello.size() == 1);
-  CHECK(transmit(mine, 0) == hello);
+  CHECK(due_frames(mine, 0) == hello);
   Capabilities caps;
   caps.session = 0xBEEF;
   caps.credit_end = 2;
@@ -110,8 +99,8 @@ TEST_CASE("link: a host sender of the host's messages sends the all-types sender
     REQUIRE(all.submit(m).has_value());
     REQUIRE(mine.submit(m).has_value());
   }
-  const auto frames = transmit(all, 2);
+  const auto frames = due_frames(all, 2);
   REQUIRE(frames.size() == 3);
-  CHECK(transmit(mine, 2) == frames);
+  CHECK(due_frames(mine, 2) == frames);
   CHECK(mine.submit(Message(batch(0))).error() == Error::InvalidArgument);
 }

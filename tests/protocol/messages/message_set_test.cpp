@@ -14,6 +14,7 @@
 #include <curvestep/protocol/messages.hpp>
 
 #include "../support/bytes.hpp"
+#include "../support/payload.hpp"
 
 using namespace curvestep;
 using namespace curvestep::protocol;
@@ -67,13 +68,7 @@ std::vector<Vector> vectors() {
 bool toward_controller(Direction d) { return d != Direction::ToHost; }
 bool toward_host(Direction d) { return d != Direction::ToController; }
 
-std::vector<std::byte> payload_of(const Message& m) {
-  std::vector<std::byte> out(max_payload_size);
-  const auto r = encode(m, out);
-  REQUIRE(r.has_value());
-  out.resize(r.value());
-  return out;
-}
+using curvestep::protocol::testing::payload_of;
 
 /// `Set`'s decoder on every vector: the types `in_set` names decode exactly as the all-types
 /// decoder does (same type, and the payload encodes back to the same bytes); the others are

@@ -13,6 +13,7 @@
 #include <support/numeric.hpp>
 
 #include "../support/bytes.hpp"
+#include "../support/payload.hpp"
 
 using namespace curvestep;
 using namespace curvestep::protocol;
@@ -21,13 +22,7 @@ using curvestep::protocol::testing::to_hex;
 
 namespace {
 
-std::vector<std::byte> payload_of(const Message& m) {
-  std::vector<std::byte> out(max_payload_size);
-  const auto r = encode(m, out);
-  REQUIRE(r.has_value());
-  out.resize(r.value());
-  return out;
-}
+using curvestep::protocol::testing::payload_of;
 
 Message round_trip(const Message& m) {
   const auto payload = payload_of(m);
