@@ -24,7 +24,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <type_traits>
 
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/cobs.hpp>
@@ -83,10 +82,10 @@ template <class M>
 template <class Set = AllMessages>
 [[nodiscard]] constexpr Result<std::size_t> encode_frame(const Message& m, std::uint8_t sequence,
                                                          std::span<std::byte> out) noexcept {
-  const auto type = static_cast<std::uint8_t>(m.type());
-  return Set::select(
-      type, [&]<class T>(std::type_identity<T>) { return encode_frame(m.get<T>(), sequence, out); },
-      [type]() -> Result<std::size_t> { return fail(Error::InvalidArgument, type); });
+  std::array<std::byte, max_message_size> payload{};
+  CURVESTEP_TRY(const std::size_t size, encode<Set>(m, payload));
+  return encode_frame(static_cast<std::uint8_t>(m.type()), sequence, std::span<const std::byte>(payload.data(), size),
+                      out);
 }
 
 /// Checks a COBS-decoded frame (without delimiter): FrameTooShort below 8 bytes, FrameTooLong
