@@ -324,7 +324,7 @@ TEST_CASE_METHOD(Bench, "firmware: a corrupted frame is Nak-ed and the queue is 
   REQUIRE(size.has_value());
   REQUIRE(size.value() > 10);
   frame[8] = frame[8] == std::byte{0x55} ? std::byte{0x56} : std::byte{0x55};  // one damaged data byte
-  for (std::size_t i = 0; i < size.value(); ++i) board.incoming.push_back(frame[i]);
+  board.put_incoming(std::span<const std::byte>(frame.data(), size.value()));
   app.poll();
   host.take_output();
   REQUIRE(host.received.naks.size() == 1);
@@ -349,10 +349,7 @@ TEST_CASE_METHOD(Bench, "firmware: a segment beyond the granted credit is refuse
   const std::size_t queued = app.controller().queued();
   // Credit lasts while 7 slots (the worst-case split) are free: 32 - 7 + 1 = 26 one-slot segments.
   CHECK(queued == 26);
-  std::array<std::byte, max_encoded_frame_size> frame{};
-  const auto size = encode_frame(Message(line(p(x, 0), p(x + 1, 0))), sequence, frame);
-  REQUIRE(size.has_value());
-  for (std::size_t i = 0; i < size.value(); ++i) board.incoming.push_back(frame[i]);
+  send_raw(board, line(p(x, 0), p(x + 1, 0)), sequence);
   app.poll();
   host.take_output();
   REQUIRE_FALSE(host.received.naks.empty());
@@ -661,10 +658,7 @@ TEST_CASE_METHOD(Bench, "firmware: a Bézier with a cusp takes two queue slots a
 TEST_CASE_METHOD(Bench, "firmware: a malformed payload is answered with BadPayload at its byte offset", "[firmware][app]") {
   connect_and_configure(host);
   const std::array<std::byte, 2> payload{std::byte{4}, std::byte{0}};  // segment kind 4 does not exist
-  std::array<std::byte, max_encoded_frame_size> frame{};
-  const auto size = encode_frame(static_cast<std::uint8_t>(MessageType::QueueSegment), 1, payload, frame);
-  REQUIRE(size.has_value());
-  for (std::size_t i = 0; i < size.value(); ++i) board.incoming.push_back(frame[i]);
+  send_raw(board, static_cast<std::uint8_t>(MessageType::QueueSegment), 1, payload);
   app.poll();
   host.take_output();
   REQUIRE(host.received.errors.size() == 1);

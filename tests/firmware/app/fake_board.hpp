@@ -52,6 +52,8 @@ class FakeBoard {
     if (high) steps[axis] += direction[axis] ? 1 : -1;
   }
   void fault_stop() { ++fault_stops; }
+  /// Puts `bytes` on the line toward the App (what the host's serial port would send).
+  void put_incoming(std::span<const std::byte> bytes) { incoming.insert(incoming.end(), bytes.begin(), bytes.end()); }
 
   std::uint32_t clock_ms = 0;
   std::size_t write_limit = 1u << 20;
@@ -64,6 +66,25 @@ class FakeBoard {
 };
 
 static_assert(Board<FakeBoard>);
+
+/// Puts the frame of `type`, `sequence` and `message` on the line toward the App, bypassing the
+/// host's link (any type, any sequence number).
+inline void send_raw(FakeBoard& board, std::uint8_t type, std::uint8_t sequence, std::span<const std::byte> message) {
+  std::array<std::byte, protocol::max_encoded_frame_size> frame{};
+  const auto size = protocol::encode_frame(type, sequence, message, frame);
+  REQUIRE(size.has_value());
+  board.put_incoming(std::span<const std::byte>(frame.data(), size.value()));
+}
+
+/// Puts the frame of message struct `m` with `sequence` on the line toward the App, bypassing
+/// the host's link.
+template <class M>
+void send_raw(FakeBoard& board, const M& m, std::uint8_t sequence) {
+  std::array<std::byte, protocol::max_encoded_frame_size> frame{};
+  const auto size = protocol::encode_frame(m, sequence, frame);
+  REQUIRE(size.has_value());
+  board.put_incoming(std::span<const std::byte>(frame.data(), size.value()));
+}
 
 /// What the host received, decoded.
 struct Received {
@@ -118,7 +139,7 @@ class Host {
     for (;;) {
       const auto r = sender_.poll(board_.clock_ms, frame);
       if (!r || r.value() == 0) break;
-      for (std::size_t i = 0; i < r.value(); ++i) board_.incoming.push_back(frame[i]);
+      board_.put_incoming(std::span<const std::byte>(frame.data(), r.value()));
     }
     app_.poll();
     take_output();
@@ -195,7 +216,7 @@ class Host {
     std::array<std::byte, protocol::max_encoded_frame_size> frame{};
     const auto size = receiver_.encode_reply(r, frame);
     if (!size) return;
-    for (std::size_t i = 0; i < size.value(); ++i) board_.incoming.push_back(frame[i]);
+    board_.put_incoming(std::span<const std::byte>(frame.data(), size.value()));
   }
 
   FakeBoard& board_;

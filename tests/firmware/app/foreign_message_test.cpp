@@ -17,27 +17,6 @@ using namespace curvestep::firmware;
 using namespace curvestep::protocol;
 using namespace curvestep::firmware::testing;
 
-namespace {
-
-/// Puts the frame of `type`, `sequence` and `message` on the line toward the App.
-void send_raw(FakeBoard& board, std::uint8_t type, std::uint8_t sequence, std::span<const std::byte> message) {
-  std::array<std::byte, max_encoded_frame_size> frame{};
-  const auto size = encode_frame(type, sequence, message, frame);
-  REQUIRE(size.has_value());
-  for (std::size_t i = 0; i < size.value(); ++i) board.incoming.push_back(frame[i]);
-}
-
-/// Puts the frame of message struct `m` on the line toward the App.
-template <class M>
-void send_raw(FakeBoard& board, const M& m, std::uint8_t sequence) {
-  std::array<std::byte, max_message_size> payload{};
-  const auto size = encode(m, payload);
-  REQUIRE(size.has_value());
-  send_raw(board, static_cast<std::uint8_t>(M::type), sequence, std::span<const std::byte>(payload.data(), size.value()));
-}
-
-}  // namespace
-
 TEST_CASE("firmware: the controller's own messages sent to it are ignored without an answer", "[firmware][app]") {
   FakeBoard board;
   App<FakeBoard> app{board};
