@@ -83,10 +83,11 @@ enum class Error : std::uint8_t {
 
   // --- firmware (170-199) ---
   InvalidState = 170,      ///< command not allowed in the current machine state
-  QueueUnderrun = 171,     ///< planner ran out of segments while moving
+  QueueUnderrun = 171,     ///< the queue ran out of segments (or planned pieces) while moving
   HardFault = 172,         ///< the controller faulted and reported it
   ConfigurationMissing = 173, ///< motion requested before machine configuration
   OutsideTravel = 174,     ///< a segment leaves the configured travel range of an axis (index = axis)
+  NotSupported = 175,      ///< this controller cannot do that (a feed hold without an on-board planner)
 };
 
 /// The index of the offending input (control point, weight, knot, segment); `no_index` if none.

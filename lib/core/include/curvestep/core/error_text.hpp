@@ -76,6 +76,7 @@ namespace curvestep {
     case Error::HardFault: return "HardFault";
     case Error::ConfigurationMissing: return "ConfigurationMissing";
     case Error::OutsideTravel: return "OutsideTravel";
+    case Error::NotSupported: return "NotSupported";
   }
   return "Unknown";
 }
@@ -143,10 +144,11 @@ namespace curvestep {
     case Error::GcodeConflictingWords: return "words that cannot appear together";
     case Error::GcodeNurbsBlock: return "G5.2/G5.3 block malformed";
     case Error::InvalidState: return "command not allowed in the current machine state";
-    case Error::QueueUnderrun: return "planner ran out of segments while moving";
+    case Error::QueueUnderrun: return "the queue ran out of segments (or planned pieces) while moving";
     case Error::HardFault: return "the controller faulted and reported it";
     case Error::ConfigurationMissing: return "motion requested before machine configuration";
     case Error::OutsideTravel: return "a segment leaves the configured travel range of an axis (index = axis)";
+    case Error::NotSupported: return "this controller cannot do that (a feed hold without an on-board planner)";
   }
   return "unknown error";
 }
@@ -217,6 +219,7 @@ inline constexpr Error all_errors[] = {
     Error::HardFault,
     Error::ConfigurationMissing,
     Error::OutsideTravel,
+    Error::NotSupported,
 };
 
 }  // namespace curvestep

@@ -44,6 +44,7 @@
 #include <curvestep/core/container/ring_buffer.hpp>
 #include <curvestep/core/motion/hermite_chunk.hpp>
 #include <curvestep/core/motion/path_length_table.hpp>
+#include <curvestep/core/motion/controller_state.hpp>
 #include <curvestep/core/motion/cusps.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
@@ -52,18 +53,6 @@
 #include <curvestep/core/motion/velocity_profile.hpp>
 
 namespace curvestep {
-
-/// Progress states of a MotionController (never errors: those are Result values).
-enum class ControllerState : std::uint8_t {
-  Idle = 0,      ///< configured, not started
-  Running = 1,   ///< following the path
-  Holding = 2,   ///< braking for a feed hold
-  Held = 3,      ///< stopped on the path by a feed hold; resume() continues
-  Starved = 4,   ///< the queue ran out before the end of the job; stopped on the path
-  Finished = 5,  ///< the last setpoint (the job's end point) has been produced
-  Aborted = 6,   ///< stopped at once, queue flushed
-  Fault = 7,     ///< an error stopped the controller (see fault())
-};
 
 /// Queue, planner and interpolator for one machine. S is the position scalar of the setpoints.
 template <Scalar S, std::size_t QueueCapacity = 32, std::size_t Lookahead = 16, std::size_t TableIntervals = 64>
@@ -218,6 +207,19 @@ class MotionController {
   /// The length in ticks of the chunk the last setpoint was stepped in, 1 if it was evaluated
   /// exactly (tests check each stepped setpoint against chunk_error_bound of its chunk).
   [[nodiscard]] std::uint32_t last_chunk_ticks() const noexcept { return last_chunk_ticks_; }
+
+  // What a PieceRecorder (piece_recorder.hpp) needs to hand the stream to a PieceExecutor:
+  /// The unrounded position (mm) of the last setpoint.
+  [[nodiscard]] const MachinePoint& last_unrounded_position() const noexcept { return last_position_; }
+  /// True if a chunk begins at the last setpoint: its next chunk_ticks() setpoints are the chunk's
+  /// (chunk_ticks() - 1 stepped from chunk_controls(), relative to the last setpoint, then
+  /// chunk_end_position() exactly).
+  [[nodiscard]] bool chunk_begins_at_last_setpoint() const noexcept {
+    return chunk_end_tick_ != no_chunk && chunk_begin_tick_ + 1 == tick_;
+  }
+  [[nodiscard]] std::uint32_t chunk_ticks() const noexcept { return chunk_ticks_; }
+  [[nodiscard]] const HermiteChunk::Controls& chunk_controls() const noexcept { return chunk_controls_; }
+  [[nodiscard]] const MachinePoint& chunk_end_position() const noexcept { return chunk_end_state_.position; }
 
   /// Longest chunk in ticks (a power of two, 1..HermiteChunk::max_ticks, the default). 1 evaluates
   /// the path exactly at every tick (the reference the stepped stream is tested against).
@@ -482,6 +484,8 @@ class MotionController {
       if (passed && chunk_.start(start.position, q, n)) {
         ++stats_.chunks;
         chunk_ticks_ = n;
+        chunk_begin_tick_ = k0;
+        chunk_controls_ = q;
         chunk_end_tick_ = k0 + n;
         chunk_end_state_ = end;
         chunk_span_ = span;
@@ -628,6 +632,8 @@ class MotionController {
   std::uint32_t preferred_chunk_ticks_ = HermiteChunk::max_ticks;
   std::uint64_t chunk_end_tick_ = no_chunk;
   std::uint32_t chunk_ticks_ = 1;       ///< N of the chunk being stepped
+  std::uint64_t chunk_begin_tick_ = no_chunk;  ///< the tick the chunk being stepped began at
+  HermiteChunk::Controls chunk_controls_{};    ///< its control points (chunk_controls())
   std::uint32_t last_chunk_ticks_ = 1;  ///< N of the chunk of the last setpoint (1: exact)
   std::uint64_t retry_tick_ = 0;     ///< no chunk is planned before this tick (back-off)
   std::uint32_t backoff_ticks_ = 1;  ///< the next back-off after a failed plan

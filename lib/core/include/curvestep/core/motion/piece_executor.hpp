@@ -1,0 +1,188 @@
+// SPDX-License-Identifier: MIT
+// PieceExecutor: the setpoints of a job planned elsewhere, for a controller without a planner
+// (the STM32F1 executor image). It queues PlannedPieces (planned_piece.hpp) and replays them one
+// tick at a time: an exact piece is its end point, a chunk steps HermiteChunk from the previous
+// setpoint's unrounded position and ends on its end point. The pieces a PieceRecorder took from a
+// MotionController give that controller's setpoints bit for bit (the same HermiteChunk code on the
+// same doubles, the same rounding to S); no curve, profile or look-ahead code is linked.
+//
+// It has the MotionController's interface where a firmware App uses one (configure, start, abort,
+// reset, next_setpoint, state, fault, queued), with these differences:
+//   * the queue holds pieces, not segments; the job's first piece must be exact (ticks 1): a
+//     chunk needs the setpoint before it;
+//   * it cannot brake: hold() is refused (NotSupported) and an empty queue before the job's last
+//     piece is a fault (QueueUnderrun), an immediate stop, not a controlled one. The host keeps
+//     the queue filled (docs/firmware.md, "Executing host-planned motion");
+//   * Setpoint::speed_mm_per_s is 0 (the planned speed stays on the host).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include <curvestep/core/container/ring_buffer.hpp>
+#include <curvestep/core/motion/hermite_chunk.hpp>
+#include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/core/motion/controller_state.hpp>
+#include <curvestep/core/motion/planned_piece.hpp>
+#include <curvestep/core/motion/setpoint.hpp>
+#include <curvestep/core/result.hpp>
+#include <curvestep/core/scalar.hpp>
+
+namespace curvestep {
+
+/// Queue and replay of planned pieces; S is the position scalar of the setpoints.
+template <Scalar S, std::size_t Capacity = 16>
+class PieceExecutor {
+  static_assert(Capacity >= 1, "the queue needs a slot");
+
+ public:
+  /// Checks the machine (MachineLimits::validate: InvalidLimit, InvalidRate); InvalidState while moving.
+  [[nodiscard]] Result<void> configure(const MachineLimits& machine) noexcept {
+    if (!stopped()) return fail(Error::InvalidState);
+    CURVESTEP_CHECK(machine.validate());
+    configured_ = true;
+    return ok();
+  }
+
+  /// Queues a piece. ConfigurationMissing before configure; InvalidState after the job's last
+  /// piece, an abort or a fault; QueueFull; InvalidArgument (index 0) for ticks that are not 1 or
+  /// a power of two up to HermiteChunk::max_ticks, (index 1) for a chunk as the job's first piece;
+  /// NotFinite for a NaN or infinite coordinate. A refused piece leaves the queue unchanged.
+  [[nodiscard]] Result<void> push(const PlannedPiece& piece) noexcept {
+    if (!configured_) return fail(Error::ConfigurationMissing, piece.segment);
+    if (end_of_job_ || state_ == ControllerState::Aborted || state_ == ControllerState::Fault) {
+      return fail(Error::InvalidState, piece.segment);
+    }
+    if (queue_.full()) return fail(Error::QueueFull, piece.segment);
+    if (!valid_piece_ticks(piece.ticks)) return fail(Error::InvalidArgument, 0);
+    if (piece.ticks > 1 && first_of_job()) return fail(Error::InvalidArgument, 1);
+    if (!finite(piece)) return fail(Error::NotFinite, piece.segment);
+    [[maybe_unused]] const bool pushed = queue_.try_push(piece);  // room checked above
+    if (piece.end_of_job) end_of_job_ = true;
+    if (state_ == ControllerState::Finished) state_ = ControllerState::Idle;
+    return ok();
+  }
+
+  /// No more pieces will come (also set by a piece with end_of_job).
+  void end_of_job() noexcept { end_of_job_ = true; }
+
+  /// Starts replaying the queue. ConfigurationMissing, InvalidState (not idle), NothingQueued.
+  [[nodiscard]] Result<void> start() noexcept {
+    if (!configured_) return fail(Error::ConfigurationMissing);
+    if (state_ != ControllerState::Idle) return fail(Error::InvalidState);
+    if (queue_.empty()) return fail(Error::NothingQueued);
+    tick_ = 0;
+    stepped_left_ = 0;
+    end_pending_ = false;
+    state_ = ControllerState::Running;
+    return ok();
+  }
+
+  /// A feed hold needs a plan to brake along: not possible here (NotSupported, state unchanged).
+  [[nodiscard]] Result<void> hold() noexcept { return fail(Error::NotSupported); }
+  /// Nothing to resume (see hold): InvalidState.
+  [[nodiscard]] Result<void> resume() noexcept { return fail(Error::InvalidState); }
+
+  /// Stops at once and flushes the queue.
+  void abort() noexcept {
+    queue_.clear();
+    state_ = ControllerState::Aborted;
+  }
+
+  /// Back to Idle after Finished or Aborted (configuration kept); the next job starts afresh.
+  void reset() noexcept {
+    queue_.clear();
+    state_ = ControllerState::Idle;
+    end_of_job_ = false;
+    tick_ = 0;
+    stepped_left_ = 0;
+    end_pending_ = false;
+  }
+
+  /// The next setpoint. InvalidState unless running; QueueUnderrun (a fault) if the queue ran
+  /// dry before the job's last piece; OutOfRange (a fault) for a position S cannot hold.
+  [[nodiscard]] Result<Setpoint<S>> next_setpoint() noexcept {
+    if (state_ != ControllerState::Running) return fail(Error::InvalidState);
+    if (stepped_left_ == 0 && !end_pending_) {
+      if (queue_.empty()) return fault(fail(Error::QueueUnderrun, current_.segment));
+      current_ = queue_.front();
+      queue_.pop_front();
+      if (current_.ticks > 1) {
+        if (auto started = chunk_.start(last_position_, current_.controls, current_.ticks); !started) {
+          return fault(fail(started.error(), current_.segment));
+        }
+        stepped_left_ = current_.ticks - 1;
+      }
+      end_pending_ = true;
+    }
+    if (stepped_left_ > 0) {
+      --stepped_left_;
+      return emit(chunk_.next());
+    }
+    end_pending_ = false;
+    auto setpoint = emit(current_.end);
+    if (setpoint && current_.end_of_job) state_ = ControllerState::Finished;
+    return setpoint;
+  }
+
+  [[nodiscard]] ControllerState state() const noexcept { return state_; }
+  [[nodiscard]] bool finished() const noexcept { return state_ == ControllerState::Finished; }
+  /// The error that put the executor into Fault.
+  [[nodiscard]] Failure fault() const noexcept { return fault_; }
+  /// Pieces waiting (the one being replayed is not counted).
+  [[nodiscard]] std::size_t queued() const noexcept { return queue_.size(); }
+  [[nodiscard]] static constexpr std::size_t queue_capacity() noexcept { return Capacity; }
+  [[nodiscard]] bool queue_full() const noexcept { return queue_.full(); }
+  [[nodiscard]] std::uint64_t tick() const noexcept { return tick_; }
+
+ private:
+  [[nodiscard]] bool stopped() const noexcept { return state_ != ControllerState::Running; }
+
+  /// True if a piece pushed now would be the job's first.
+  [[nodiscard]] bool first_of_job() const noexcept { return state_ != ControllerState::Running && queue_.empty(); }
+
+  [[nodiscard]] static bool finite(const PlannedPiece& piece) noexcept {
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      if (!std::isfinite(piece.end[axis])) return false;
+      for (const MachinePoint& q : piece.controls) {
+        if (!std::isfinite(q[axis])) return false;
+      }
+    }
+    return true;
+  }
+
+  [[nodiscard]] Result<Setpoint<S>> emit(const MachinePoint& p) noexcept {
+    Setpoint<S> sp;
+    sp.tick = tick_;
+    sp.segment = current_.segment;
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      auto c = from_double<S>(p[axis]);
+      if (!c) return fault(fail(c.error(), current_.segment));
+      sp.position[axis] = c.value();
+    }
+    last_position_ = p;
+    ++tick_;
+    return sp;
+  }
+
+  [[nodiscard]] Failure fault(Failure f) noexcept {
+    fault_ = f;
+    state_ = ControllerState::Fault;
+    return f;
+  }
+
+  RingBuffer<PlannedPiece, Capacity> queue_{};
+  PlannedPiece current_{};
+  HermiteChunk chunk_{};
+  MachinePoint last_position_{};
+  Failure fault_{Error::InvalidState, no_index};
+  std::uint64_t tick_ = 0;
+  std::uint32_t stepped_left_ = 0;
+  ControllerState state_ = ControllerState::Idle;
+  bool configured_ = false;
+  bool end_of_job_ = false;
+  bool end_pending_ = false;
+};
+
+}  // namespace curvestep

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: MIT
+// PieceRecorder: turns a MotionController's setpoint stream into the PlannedPieces a PieceExecutor
+// replays (planned_piece.hpp). Call record() after every next_setpoint() of a job and finish()
+// after its last: each exact tick becomes a piece of one tick, each chunk the controller begins a
+// piece of its length (its stepped setpoints and its exact end), so the pieces reproduce the
+// controller's setpoints bit for bit. The sink is called with each finished piece, in order; the
+// last one (finish) carries end_of_job.
+#pragma once
+
+#include <cstdint>
+
+#include <curvestep/core/motion/planned_piece.hpp>
+#include <curvestep/core/motion/setpoint.hpp>
+
+namespace curvestep {
+
+class PieceRecorder {
+ public:
+  /// Records the setpoint `setpoint` that `controller` (a MotionController) just produced.
+  template <class Controller, class S, class Sink>
+  void record(const Controller& controller, const Setpoint<S>& setpoint, Sink&& sink) {
+    const bool inside_chunk = covered_ && setpoint.tick <= covered_until_;
+    if (!inside_chunk) {
+      PlannedPiece exact;
+      exact.end = controller.last_unrounded_position();
+      exact.segment = setpoint.segment;
+      hand_over(exact, sink);
+    }
+    if (controller.chunk_begins_at_last_setpoint()) {
+      PlannedPiece chunk;
+      chunk.ticks = controller.chunk_ticks();
+      chunk.controls = controller.chunk_controls();
+      chunk.end = controller.chunk_end_position();
+      chunk.segment = setpoint.segment;
+      hand_over(chunk, sink);
+      covered_ = true;
+      covered_until_ = setpoint.tick + chunk.ticks;
+    }
+  }
+
+  /// The job ended: hands over the last piece, marked end_of_job. Nothing if nothing was recorded.
+  template <class Sink>
+  void finish(Sink&& sink) {
+    if (!pending_) return;
+    last_.end_of_job = true;
+    sink(static_cast<const PlannedPiece&>(last_));
+    pending_ = false;
+    covered_ = false;
+  }
+
+ private:
+  template <class Sink>
+  void hand_over(const PlannedPiece& piece, Sink& sink) {
+    if (pending_) sink(static_cast<const PlannedPiece&>(last_));
+    last_ = piece;
+    pending_ = true;
+  }
+
+  PlannedPiece last_{};
+  std::uint64_t covered_until_ = 0;  ///< the last tick of the latest chunk
+  bool covered_ = false;
+  bool pending_ = false;
+};
+
+}  // namespace curvestep
