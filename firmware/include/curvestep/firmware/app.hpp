@@ -169,7 +169,7 @@ template <class B>
 inline constexpr std::size_t slots_per_segment = CuspList<>::capacity + 1;
 
 /// The controller application for board B; S is the setpoint scalar (Q16.16 for bit-identity).
-/// Lookahead 0: no planner on board; the App replays pieces the host planned (PieceExecutor).
+/// Lookahead == 0: no planner on board; the App replays pieces the host planned (PieceExecutor).
 template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16>
 class App {
   /// True if the board plans (QueueSegment); false: it replays host-planned pieces (QueuePiece).
