@@ -18,9 +18,11 @@ struct ChunkRun {
   typename MotionController<S>::InterpolatorStats stats;
 };
 
-/// Runs `job` (pushing as the queue drains) with chunks of at most `max_chunk` ticks.
-template <class S>
-ChunkRun<S> run_chunked(const std::vector<PathSegment>& job, const MachineLimits& machine, std::uint32_t max_chunk) {
+/// Runs `job` (pushing as the queue drains) with chunks of at most `max_chunk` ticks; calls
+/// on_setpoint(controller, setpoint) after each setpoint.
+template <class S, class OnSetpoint = void (*)(const MotionController<S>&, const Setpoint<S>&)>
+ChunkRun<S> run_chunked(const std::vector<PathSegment>& job, const MachineLimits& machine, std::uint32_t max_chunk,
+                        OnSetpoint on_setpoint = [](const MotionController<S>&, const Setpoint<S>&) {}) {
   MotionController<S> controller;
   REQUIRE(controller.configure(machine).has_value());
   REQUIRE(controller.set_max_chunk_ticks(max_chunk).has_value());
@@ -41,6 +43,7 @@ ChunkRun<S> run_chunked(const std::vector<PathSegment>& job, const MachineLimits
     REQUIRE(sp.has_value());
     r.setpoints.push_back(sp.value());
     r.chunk_ticks.push_back(controller.last_chunk_ticks());
+    on_setpoint(controller, sp.value());
   }
   REQUIRE(controller.finished());
   r.stats = controller.interpolator_stats();

@@ -13,7 +13,7 @@
 #include <curvestep/core/motion/piece_executor.hpp>
 #include <curvestep/core/motion/piece_recorder.hpp>
 
-#include "motion_test_support.hpp"
+#include "chunk_test_support.hpp"
 
 #ifdef CURVESTEP_MOTION_EXAMPLE_JOBS
 #include <curvestep/host/job.hpp>
@@ -34,29 +34,12 @@ struct RecordedRun {
 /// The controller's setpoints and the pieces recorded from them.
 template <class S>
 RecordedRun<S> record(const std::vector<PathSegment>& job, const MachineLimits& machine) {
-  MotionController<S> controller;
-  REQUIRE(controller.configure(machine).has_value());
-  std::size_t next = 0;
-  auto fill = [&] {
-    while (next < job.size() && !controller.queue_full()) {
-      REQUIRE(controller.try_push(job[next], static_cast<std::uint32_t>(next)).has_value());
-      ++next;
-    }
-    if (next == job.size()) controller.end_of_job();
-  };
-  fill();
-  REQUIRE(controller.start().has_value());
   RecordedRun<S> run;
   PieceRecorder recorder;
   const auto sink = [&](const PlannedPiece& p) { run.pieces.push_back(p); };
-  while (!controller.finished() && run.setpoints.size() < 3000000) {
-    fill();
-    const auto sp = controller.next_setpoint();
-    REQUIRE(sp.has_value());
-    run.setpoints.push_back(sp.value());
-    recorder.record(controller, sp.value(), sink);
-  }
-  REQUIRE(controller.finished());
+  run.setpoints = run_chunked<S>(job, machine, HermiteChunk::max_ticks, [&](const MotionController<S>& c, const Setpoint<S>& sp) {
+                    recorder.record(c, sp, sink);
+                  }).setpoints;
   recorder.finish(sink);
   return run;
 }

@@ -584,15 +584,8 @@ class MotionController {
   }
 
   [[nodiscard]] Result<Setpoint<S>> emit(const MachinePoint& p, double speed, std::uint32_t segment) noexcept {
-    Setpoint<S> sp;
-    sp.tick = tick_;
-    sp.speed_mm_per_s = speed;
-    sp.segment = segment;
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      auto c = from_double<S>(p[axis]);
-      if (!c) return fault(fail(c.error(), segment));
-      sp.position[axis] = c.value();
-    }
+    auto sp = make_setpoint<S>(p, tick_, speed, segment);
+    if (!sp) return fault(sp.failure());
     last_position_ = p;
     last_segment_ = segment;
     ++tick_;

@@ -162,14 +162,8 @@ class PieceExecutor {
   }
 
   [[nodiscard]] Result<Setpoint<S>> emit(const MachinePoint& p) noexcept {
-    Setpoint<S> sp;
-    sp.tick = tick_;
-    sp.segment = last_segment_;
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      auto c = from_double<S>(p[axis]);
-      if (!c) return fault(fail(c.error(), last_segment_));
-      sp.position[axis] = c.value();
-    }
+    auto sp = make_setpoint<S>(p, tick_, 0, last_segment_);
+    if (!sp) return fault(sp.failure());
     last_position_ = p;
     ++tick_;
     return sp;

@@ -3,9 +3,12 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 
 #include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/core/result.hpp>
+#include <curvestep/core/scalar.hpp>
 
 namespace curvestep {
 
@@ -19,5 +22,23 @@ struct Setpoint {
 
   friend constexpr bool operator==(const Setpoint&, const Setpoint&) = default;
 };
+
+/// The setpoint of `tick` at the unrounded point `p` (x, y, z in mm), each coordinate rounded to S
+/// by from_double (the one rounding of every interpolator's output); its error, with `segment`
+/// as the index, if a coordinate does not fit S.
+template <class S, class Point>
+[[nodiscard]] constexpr Result<Setpoint<S>> make_setpoint(const Point& p, std::uint64_t tick, double speed,
+                                                          std::uint32_t segment) noexcept {
+  Setpoint<S> sp;
+  sp.tick = tick;
+  sp.speed_mm_per_s = speed;
+  sp.segment = segment;
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    auto c = from_double<S>(p[axis]);
+    if (!c) return fail(c.error(), segment);
+    sp.position[axis] = c.value();
+  }
+  return sp;
+}
 
 }  // namespace curvestep
