@@ -223,5 +223,5 @@ TEST_CASE("hil: curvestep stream refuses a controller of another protocol versio
   INFO(errors);
   CHECK(status == 4);
   CHECK_THAT(errors, Catch::Contains("VersionMismatch") &&
-                         Catch::Contains("the controller speaks protocol version 1, this host speaks version 3"));
+                         Catch::Contains("the controller speaks protocol version 1, this host speaks version 4"));
 }

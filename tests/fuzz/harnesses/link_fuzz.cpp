@@ -71,7 +71,7 @@ struct Harness {
     if (r.disposition == Disposition::Deliver) {
       CURVESTEP_FUZZ_ASSERT(frame.sequence == expected);
       const auto message = decode_message(frame);
-      if (message && message.value().holds<QueueSegment>() && free_slots > 0) --free_slots;
+      if (message && consumes_credit(message.value().type()) && free_slots > 0) --free_slots;
     }
     check_reply(r);
     check_credit();
@@ -100,7 +100,7 @@ std::size_t build_frame(curvestep::fuzz::InputReader& in, std::array<std::byte, 
                         std::array<std::byte, max_payload_size>& payload) {
   const std::uint8_t selector = in.u8();
   // Mostly the host's own types, so the state machine is reached; sometimes anything.
-  static constexpr std::array<std::uint8_t, 8> types{0x01, 0x10, 0x11, 0x11, 0x12, 0x13, 0x15, 0x16};
+  static constexpr std::array<std::uint8_t, 9> types{0x01, 0x10, 0x11, 0x11, 0x12, 0x13, 0x15, 0x16, 0x17};
   const std::uint8_t type = selector < 224 ? types[selector % types.size()] : selector;
   const std::uint8_t sequence = in.u8();
   const std::size_t length = in.u8() % (max_message_size + 1);

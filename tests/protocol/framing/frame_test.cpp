@@ -33,7 +33,7 @@ const char* const example_raw =
     "11 05 00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff 7a bb 32 e6 79 04";
 const char* const example_wire =
     "03 11 05 02 02 01 02 14 01 01 01 01 01 01 01 01 01 03 80 0a 01 0a c0 fd ff 7a bb 32 e6 79 04 00";
-const char* const hello_wire = "02 01 02 03 08 34 12 6d 5a 99 25 12 01 00";  // Hello(version 3, session 0x1234), sequence 0
+const char* const hello_wire = "02 01 02 04 09 34 12 a7 e2 99 3c 43 c8 00";  // Hello(version 4, session 0x1234), sequence 0
 const char* const ack_wire = "05 03 07 06 28 07 a6 a8 6f 27 02 fd 00";       // Ack(6, 40), sequence 7
 
 QueueSegment example_segment() {
@@ -276,7 +276,7 @@ TEST_CASE("frame: the decoder resynchronises on 0x00 after garbage", "[protocol]
 }
 
 TEST_CASE("frame: the Hello and Ack examples of docs/protocol.md encode byte for byte", "[protocol][framing]") {
-  CHECK(to_hex(wire_frame(Message(Hello{3, 0x1234}), 0)) == hello_wire);
+  CHECK(to_hex(wire_frame(Message(Hello{4, 0x1234}), 0)) == hello_wire);
   CHECK(to_hex(wire_frame(Message(Ack{6, 40}), 7)) == ack_wire);
 }
 

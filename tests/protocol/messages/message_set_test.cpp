@@ -42,10 +42,10 @@ std::string zeros(std::size_t count) {
 
 std::vector<Vector> vectors() {
   return {
-      {0x01, Direction::ToController, "03 00 34 12"},  // Hello: version 3, session 0x1234
-      // Capabilities: version 3, session 0x1234, payload 162, queue 16, credit 16, 32/16 bits,
+      {0x01, Direction::ToController, "04 00 34 12"},  // Hello: version 4, session 0x1234
+      // Capabilities: version 4, session 0x1234, payload 162, queue 16, credit 16, 32/16 bits,
       // 3 axes, degree 7, 1 MHz ticks, look-ahead 8
-      {0x02, Direction::ToHost, "03 00 34 12 a2 00 10 00 10 00 20 10 03 07 40 42 0f 00 08 00"},
+      {0x02, Direction::ToHost, "04 00 34 12 a2 00 10 00 10 00 20 10 03 07 40 42 0f 00 08 00"},
       {0x03, Direction::Both, "06 28 00"},  // Ack: next 6, credit edge 40
       {0x04, Direction::Both, "05 69"},     // Nak: expected 5, BadPayload (105)
       // MachineConfiguration: 2 axes, S-curve, max velocity 1.0 (binary64), every other field 0
@@ -57,6 +57,8 @@ std::vector<Vector> vectors() {
       {0x14, Direction::ToController, ""},  // Resume
       {0x15, Direction::ToController, ""},  // Abort
       {0x16, Direction::ToController, ""},  // StatusRequest
+      // QueuePiece: end of job, 2 axes, 1 tick (exact), segment 7, end (1.5, -2.0) mm in binary64
+      {0x17, Direction::ToController, "01 02 01 00 07 00 00 00 00 00 00 00 00 00 f8 3f 00 00 00 00 00 00 00 c0"},
       // StatusReport: running, no error, 2 axes, depth 3, deepest 5, setpoint 100, at (1, -1) mm
       {0x20, Direction::ToHost, "01 00 02 03 00 05 00 64 00 00 00 00 00 01 00 00 00 ff ff"},
       // SetpointBatch: the hand-computed zig-zag batch of messages_test.cpp
@@ -107,7 +109,7 @@ static_assert(HostToController::contains<Hello> && HostToController::contains<Ac
               HostToController::contains<MachineConfiguration> && HostToController::contains<QueueSegment> &&
               HostToController::contains<Start> && HostToController::contains<FeedHold> &&
               HostToController::contains<Resume> && HostToController::contains<Abort> &&
-              HostToController::contains<StatusRequest>);
+              HostToController::contains<StatusRequest> && HostToController::contains<QueuePiece>);
 static_assert(!HostToController::contains<Capabilities> && !HostToController::contains<StatusReport> &&
               !HostToController::contains<SetpointBatch> && !HostToController::contains<ErrorReport>);
 static_assert(ControllerToHost::contains<Capabilities> && ControllerToHost::contains<Ack> &&
@@ -115,7 +117,7 @@ static_assert(ControllerToHost::contains<Capabilities> && ControllerToHost::cont
               ControllerToHost::contains<SetpointBatch> && ControllerToHost::contains<ErrorReport>);
 static_assert(!ControllerToHost::contains<Hello> && !ControllerToHost::contains<MachineConfiguration> &&
               !ControllerToHost::contains<QueueSegment> && !ControllerToHost::contains<Start> &&
-              !ControllerToHost::contains<StatusRequest>);
+              !ControllerToHost::contains<StatusRequest> && !ControllerToHost::contains<QueuePiece>);
 static_assert(!MessageSet<>::contains<Hello> && !MessageSet<>::contains_type(0x01));
 
 /// AllMessages holds exactly the types is_known() names.

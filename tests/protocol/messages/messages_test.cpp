@@ -110,7 +110,7 @@ TEST_CASE("messages: every message type round-trips through encode and decode", 
     caps.axis_count = static_cast<std::uint8_t>(2 + rng() % 2);
     caps.max_degree = static_cast<std::uint8_t>(1 + rng() % 7);
     caps.tick_rate_hz = static_cast<std::uint32_t>(rng());
-    caps.lookahead = static_cast<std::uint16_t>(1 + rng() % 65535);
+    caps.lookahead = static_cast<std::uint16_t>(rng());  // 0 (no planner on board) included
     const auto c = round_trip(caps).get<Capabilities>();
     CHECK((c.version == caps.version && c.session == caps.session && c.max_payload == caps.max_payload &&
            c.queue_capacity == caps.queue_capacity && c.credit_end == caps.credit_end &&
@@ -211,11 +211,20 @@ TEST_CASE("messages: a setpoint batch encodes as hand-computed zig-zag varints",
 }
 
 TEST_CASE("messages: Capabilities encodes its 20 bytes little-endian with the look-ahead last", "[protocol][messages]") {
-  const Capabilities c{.version = 3, .session = 0x1234, .max_payload = 162, .queue_capacity = 16, .credit_end = 16,
+  const Capabilities c{.version = 4, .session = 0x1234, .max_payload = 162, .queue_capacity = 16, .credit_end = 16,
                        .axis_count = 3, .max_degree = 7, .tick_rate_hz = 1000000, .lookahead = 8};
   // docs/protocol.md, Capabilities: u16 version, session, max_payload, queue, credit; u8 32, 16,
   // axes, degree; u32 tick rate (1000000 = 0x000f4240); u16 look-ahead.
-  CHECK(to_hex(payload_of(Message(c))) == "03 00 34 12 a2 00 10 00 10 00 20 10 03 07 40 42 0f 00 08 00");
+  CHECK(to_hex(payload_of(Message(c))) == "04 00 34 12 a2 00 10 00 10 00 20 10 03 07 40 42 0f 00 08 00");
+}
+
+TEST_CASE("messages: Capabilities with look-ahead 0 decodes (version 4: no planner on board)", "[protocol][messages]") {
+  // version 4, session 0, payload 162, queue 16, credit 16, 32/16 bits, 3 axes, degree 7, 1 MHz, look-ahead 0
+  const auto c = decode<Capabilities>(hex("0400 0000 a200 1000 1000 20 10 03 07 40420f00 0000"));
+  REQUIRE(c.has_value());
+  CHECK(c.value().lookahead == 0);
+  CHECK(c.value().version == 4);
+  CHECK(c.value().tick_rate_hz == 1000000);
 }
 
 TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 39 percent spare", "[protocol][messages]") {
@@ -262,9 +271,16 @@ TEST_CASE("messages: every truncation of every payload is BadPayload", "[protoco
   rational.axis_count = 3;
   for (std::size_t i = 0; i < 8; ++i) rational.weights[i] = 65536;
   MachineConfiguration config;
+  QueuePiece chunk;
+  chunk.ticks = 8;
+  chunk.end = {1.5, -2.0, 0.25};
+  chunk.controls[4] = {1.0, 2.0, 3.0};
+  QueuePiece exact;
+  exact.axis_count = 2;
+  exact.end = {-2.0, 1.5, 0.0};
   const std::vector<Message> messages{Message(Hello{}),          Message(Capabilities{}), Message(Ack{}),
                                       Message(Nak{}),            Message(config),         Message(rational),
-                                      Message(StatusReport{}),
+                                      Message(chunk),            Message(exact),          Message(StatusReport{}),
                                       Message(batch(5, 2, {{1, 2, 0}, {300, -300, 0}})),
                                       Message(ErrorReport{})};
   for (const Message& m : messages) {
@@ -337,7 +353,6 @@ TEST_CASE("messages: other malformed fields are BadPayload", "[protocol][message
   CHECK(decode<MachineConfiguration>(hex("01")).where() == 0);              // one axis
   CHECK(decode<MachineConfiguration>(hex("02 02")).where() == 1);           // reserved profile flag bit 1
   CHECK(decode<Capabilities>(hex("0100 0000 a000 1000 1000 20 10 05 07 00000000 0100")).where() == 12);  // 5 axes
-  CHECK(decode<Capabilities>(hex("0300 0000 a000 1000 1000 20 10 03 07 00000000 0000")).where() == 18);  // look-ahead 0
   // a varint longer than 5 bytes, and a delta that leaves the int32 range
   CHECK(decode<SetpointBatch>(hex("00000000 02 02 00000000 00000000 ffffffffff01 00")).error() == Error::BadPayload);
   const auto overflow = decode<SetpointBatch>(hex("00000000 02 02 ffffff7f 00000000 02 00"));
@@ -434,7 +449,7 @@ TEST_CASE("messages: a StatusReport carries the deepest queue of the session", "
 TEST_CASE("messages: setpoint batches travel in the sequenced stream toward the host only", "[protocol][messages]") {
   CHECK(is_sequenced_toward(Endpoint::Host, static_cast<std::uint8_t>(MessageType::SetpointBatch)));
   CHECK_FALSE(is_sequenced_toward(Endpoint::Controller, static_cast<std::uint8_t>(MessageType::SetpointBatch)));
-  for (int t = 0x10; t <= 0x16; ++t) {
+  for (int t = 0x10; t <= 0x17; ++t) {
     CHECK(is_sequenced_toward(Endpoint::Controller, static_cast<std::uint8_t>(t)));
     CHECK_FALSE(is_sequenced_toward(Endpoint::Host, static_cast<std::uint8_t>(t)));
   }

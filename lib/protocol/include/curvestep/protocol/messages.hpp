@@ -11,7 +11,7 @@
 // (limits, rates, continuity) with the planner's own error codes.
 // Memory: a Message is about 300 bytes (the union's largest member is SetpointBatch). A
 // controller short of stack can check Frame::type and call decode<QueueSegment> (140 bytes)
-// directly instead of decode_message.
+// or decode<QueuePiece> (152 bytes) directly instead of decode_message.
 // Code size: each endpoint names the messages it receives or sends as a MessageSet
 // (HostToController, ControllerToHost, or a smaller set of its own), and decode_message<Set>,
 // encode<Set>(const Message&) and encode_frame<Set> instantiate only those codecs; the
@@ -20,6 +20,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -48,6 +49,7 @@ enum class MessageType : std::uint8_t {
   Resume = 0x14,                ///< host -> controller: continue after a feed hold
   Abort = 0x15,                 ///< host -> controller: stop at once and flush the queue
   StatusRequest = 0x16,         ///< host -> controller: ask for a status report
+  QueuePiece = 0x17,            ///< host -> controller: one host-planned piece (controller without a planner)
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
   SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints (sequenced, acknowledged)
   ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
@@ -55,7 +57,7 @@ enum class MessageType : std::uint8_t {
 
 /// True for the types this protocol version defines.
 [[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
-  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x16) || (type >= 0x20 && type <= 0x22);
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x17) || (type >= 0x20 && type <= 0x22);
 }
 
 /// The two ends of the link.
@@ -64,10 +66,10 @@ enum class Endpoint : std::uint8_t {
   Controller,  ///< the firmware
 };
 
-/// True for host commands (0x10 .. 0x16): the host-to-controller reliable stream.
+/// True for host commands (0x10 .. 0x17): the host-to-controller reliable stream.
 [[nodiscard]] constexpr bool is_command(MessageType type) noexcept {
   const auto value = static_cast<std::uint8_t>(type);
-  return value >= 0x10 && value <= 0x16;
+  return value >= 0x10 && value <= 0x17;
 }
 
 /// True for messages that travel in a reliable, sequenced stream: host commands one way,
@@ -84,8 +86,11 @@ enum class Endpoint : std::uint8_t {
   return !is_known(type) || is_command(static_cast<MessageType>(type));
 }
 
-/// True for messages that take one slot of the controller's queue (and so one credit).
-[[nodiscard]] constexpr bool consumes_credit(MessageType type) noexcept { return type == MessageType::QueueSegment; }
+/// True for messages that take one slot of the controller's queue (and so one credit):
+/// QueueSegment and QueuePiece.
+[[nodiscard]] constexpr bool consumes_credit(MessageType type) noexcept {
+  return type == MessageType::QueueSegment || type == MessageType::QueuePiece;
+}
 
 /// One point on the wire: X, Y, Z as Q16.16 raw values (Z unused with two axes).
 using WirePoint = std::array<std::int32_t, max_axes>;
@@ -110,7 +115,9 @@ struct Capabilities {
   std::uint8_t axis_count = 3;                                    ///< axes the controller drives (2 or 3)
   std::uint8_t max_degree = max_segment_degree;                   ///< highest Bézier degree accepted
   std::uint32_t tick_rate_hz = 0;                                 ///< step timer tick rate
-  std::uint16_t lookahead = 1;  ///< segments the planner looks ahead (`curvestep sim --lookahead` plans the same)
+  /// Segments the planner looks ahead (`curvestep sim --lookahead` plans the same); 0: no
+  /// planner on board, the host plans and sends QueuePiece (never QueueSegment).
+  std::uint16_t lookahead = 1;
 };
 
 /// Cumulative acknowledgement: every sequence before `next_expected` arrived.
@@ -191,6 +198,25 @@ struct QueueSegment {
       default: return static_cast<std::size_t>(degree) + 1;
     }
   }
+};
+
+/// One piece of host-planned motion (core PlannedPiece) for a controller without a planner
+/// (Capabilities::lookahead == 0), which only replays the pieces: `ticks` == 1 is one exact
+/// setpoint at `end`; `ticks` == N (a power of two, 2..256) is a chunk, the N - 1 quintic
+/// Hermite setpoints of `controls` (relative to the previous setpoint) and then `end`.
+struct QueuePiece {
+  static constexpr MessageType type = MessageType::QueuePiece;  ///< message type
+  std::uint8_t axis_count = 3;  ///< 2 or 3 coordinates per point (with 2, every z is 0)
+  std::uint16_t ticks = 1;      ///< control ticks covered: 1 (exact) or a power of two 2..256 (chunk)
+  bool end_of_job = false;      ///< the job's last piece
+  std::uint32_t segment = 0;    ///< the job segment index the piece belongs to (reports)
+  std::array<double, max_axes> end{};  ///< unrounded position of the piece's last setpoint (mm, binary64)
+  /// Chunk only (0 for an exact piece): the Hermite control points q1..q5 relative to the
+  /// previous setpoint's unrounded position (mm, binary64); q0 = 0 is not sent.
+  std::array<std::array<double, max_axes>, 5> controls{};
+
+  /// Field-wise equality (binary64 ==: a NaN is unequal to itself, -0.0 equals 0.0).
+  friend constexpr bool operator==(const QueuePiece&, const QueuePiece&) = default;
 };
 
 /// Start executing the queue.
@@ -313,12 +339,12 @@ struct MessageSet {
 /// Every message of this protocol version (the default of the set-taking functions; host
 /// tools, tests and fuzzers).
 using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
-                               Resume, Abort, StatusRequest, StatusReport, SetpointBatch, ErrorReport>;
+                               Resume, Abort, StatusRequest, QueuePiece, StatusReport, SetpointBatch, ErrorReport>;
 
 /// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
 /// the controller's setpoint stream.
 using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold, Resume,
-                                    Abort, StatusRequest>;
+                                    Abort, StatusRequest, QueuePiece>;
 
 /// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
 /// commands, reports, and the setpoint stream.
@@ -468,6 +494,86 @@ inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u
   return w.finish();
 }
 
+/// QueuePiece flag bit 0 (byte 0): the job's last piece; bits 1-7 reserved, 0.
+inline constexpr std::uint8_t piece_flag_end_of_job = 0x01;
+/// Payload bytes of a QueuePiece before its points (flags, axis_count, ticks, segment).
+inline constexpr std::size_t piece_header_size = 8;
+/// Hermite control points a chunk carries (q1..q5; q0 = 0 is not sent).
+inline constexpr std::size_t piece_control_count = 5;
+
+/// Most control ticks one QueuePiece covers (core's HermiteChunk::max_ticks).
+inline constexpr std::uint32_t max_piece_ticks = 256;
+
+/// True if `ticks` is a valid QueuePiece length: 1 or a power of two up to max_piece_ticks (the
+/// rule of core's valid_piece_ticks, which this header does not include: core's motion headers
+/// bring names such as curvestep::SegmentKind that would clash with this namespace's).
+[[nodiscard]] constexpr bool valid_queue_piece_ticks(std::uint32_t ticks) noexcept {
+  return ticks >= 1 && ticks <= max_piece_ticks && (ticks & (ticks - 1)) == 0;
+}
+
+/// Payload bytes of a QueuePiece: 8 + 8 x axes for an exact piece, 8 + 48 x axes for a chunk.
+[[nodiscard]] constexpr std::size_t queue_piece_size(std::size_t axis_count, std::uint32_t ticks) noexcept {
+  return piece_header_size + 8 * axis_count * (ticks > 1 ? 1 + piece_control_count : 1);
+}
+static_assert(queue_piece_size(max_axes, 256) == 152 && queue_piece_size(max_axes, 256) <= max_message_size,
+              "docs/protocol.md: a 3-axis chunk is 152 bytes");
+
+namespace detail {
+
+/// True unless the binary64 `value` is a NaN or an infinity (exponent bits all ones), decided on
+/// the bit pattern so it holds in constant expressions and under any floating-point flags.
+[[nodiscard]] constexpr bool finite_binary64(double value) noexcept {
+  return ((std::bit_cast<std::uint64_t>(value) >> 52) & 0x7FFu) != 0x7FFu;
+}
+
+/// Byte offset of point `k` (0 end, 1..5 q1..q5) in a QueuePiece payload.
+[[nodiscard]] constexpr std::size_t piece_point_offset(std::size_t axis_count, std::size_t k) noexcept {
+  return piece_header_size + 8 * axis_count * k;
+}
+
+/// Checks one QueuePiece point before encoding: NotFinite (index = the byte offset of the value) for
+/// a NaN or infinite coordinate, InvalidArgument (index = the point's byte offset) for a non-zero
+/// coordinate that is not sent (z with two axes, any control point of an exact piece).
+[[nodiscard]] constexpr Result<void> check_piece_point(const std::array<double, max_axes>& point, std::size_t sent_axes,
+                                                       std::size_t at) noexcept {
+  for (std::size_t a = 0; a < max_axes; ++a) {
+    const double value = point[a];
+    if (a < sent_axes && !finite_binary64(value)) return fail(Error::NotFinite, at + 8 * a);
+    if (a >= sent_axes && value != 0.0) return fail(Error::InvalidArgument, at);
+  }
+  return ok();
+}
+
+}  // namespace detail
+
+/// Encodes a QueuePiece payload (queue_piece_size bytes). It never writes what the decoder
+/// refuses: InvalidArgument for axis_count not 2 or 3 (index 1), ticks not 1 or a power of two
+/// <= 256 (index 2), or a non-zero value that would not be sent (index = the byte offset of its
+/// point: z with two axes, controls of an exact piece); NotFinite (index = the byte offset of
+/// the value) for a NaN or infinite coordinate.
+[[nodiscard]] constexpr Result<std::size_t> encode(const QueuePiece& m, std::span<std::byte> out) noexcept {
+  if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
+  if (!valid_queue_piece_ticks(m.ticks)) return fail(Error::InvalidArgument, 2);
+  const std::size_t axes = m.axis_count;
+  CURVESTEP_CHECK(detail::check_piece_point(m.end, axes, detail::piece_point_offset(axes, 0)));
+  const bool chunk = m.ticks > 1;
+  for (std::size_t k = 0; k < piece_control_count; ++k) {
+    CURVESTEP_CHECK(detail::check_piece_point(m.controls[k], chunk ? axes : 0, detail::piece_point_offset(axes, k + 1)));
+  }
+  ByteWriter w(out);
+  w.u8(m.end_of_job ? piece_flag_end_of_job : std::uint8_t{0});
+  w.u8(m.axis_count);
+  w.u16(m.ticks);
+  w.u32(m.segment);
+  for (std::size_t a = 0; a < axes; ++a) w.f64(m.end[a]);
+  if (chunk) {
+    for (std::size_t k = 0; k < piece_control_count; ++k) {
+      for (std::size_t a = 0; a < axes; ++a) w.f64(m.controls[k][a]);
+    }
+  }
+  return w.finish();
+}
+
 /// The messages with an empty payload.
 template <class M>
 concept EmptyMessage = std::is_same_v<M, Start> || std::is_same_v<M, FeedHold> || std::is_same_v<M, Resume> ||
@@ -573,9 +679,7 @@ template <>
   m.max_degree = r.u8();
   if (m.max_degree < 1 || m.max_degree > max_segment_degree) r.reject_at(Error::BadPayload, degree_at);
   m.tick_rate_hz = r.u32();
-  const std::size_t lookahead_at = r.offset();
-  m.lookahead = r.u16();
-  if (m.lookahead == 0) r.reject_at(Error::BadPayload, lookahead_at);
+  m.lookahead = r.u16();  // 0: no planner on board (version 4)
   CURVESTEP_CHECK(r.finish());
   return m;
 }
@@ -684,6 +788,42 @@ template <>
   return m;
 }
 
+/// Decodes a QueuePiece payload: BadPayload at byte 0 for a reserved flag bit, at 1 for an
+/// axis_count not 2 or 3, at 2 for ticks not 1 or a power of two <= 256, and for a length other
+/// than queue_piece_size(axis_count, ticks) at the first missing or extra byte; NotFinite (index
+/// = its byte offset) for a NaN or infinite coordinate. Unsent values (z with two axes, the
+/// controls of an exact piece) are 0.
+template <>
+[[nodiscard]] constexpr Result<QueuePiece> decode<QueuePiece>(std::span<const std::byte> payload) noexcept {
+  ByteReader r(payload);
+  QueuePiece m;
+  const std::uint8_t flags = r.u8();
+  if ((flags & ~piece_flag_end_of_job) != 0) r.reject_at(Error::BadPayload, 0);
+  m.end_of_job = (flags & piece_flag_end_of_job) != 0;
+  m.axis_count = r.u8();
+  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 1);
+  m.ticks = r.u16();
+  if (!r.failed() && !valid_queue_piece_ticks(m.ticks)) r.reject_at(Error::BadPayload, 2);
+  m.segment = r.u32();
+  if (r.failed()) return r.finish().failure();
+  const std::size_t axes = m.axis_count;
+  const std::size_t expected = queue_piece_size(axes, m.ticks);
+  if (payload.size() != expected) return fail(Error::BadPayload, payload.size() < expected ? payload.size() : expected);
+  const auto read_point = [&r, axes](std::array<double, max_axes>& point) {
+    for (std::size_t a = 0; a < axes; ++a) {
+      const std::size_t at = r.offset();
+      point[a] = r.f64();
+      if (!r.failed() && !detail::finite_binary64(point[a])) r.reject_at(Error::NotFinite, at);
+    }
+  };
+  read_point(m.end);
+  if (m.ticks > 1) {
+    for (std::array<double, max_axes>& control : m.controls) read_point(control);
+  }
+  CURVESTEP_CHECK(r.finish());
+  return m;
+}
+
 /// Decodes a StatusReport payload.
 template <>
 [[nodiscard]] constexpr Result<StatusReport> decode<StatusReport>(std::span<const std::byte> payload) noexcept {
@@ -768,6 +908,8 @@ class Message {
   constexpr Message(const Abort&) noexcept : type_(MessageType::Abort) {}  // NOLINT
   /// Holds a StatusRequest.
   constexpr Message(const StatusRequest&) noexcept : type_(MessageType::StatusRequest) {}  // NOLINT
+  /// Holds a QueuePiece.
+  constexpr Message(const QueuePiece& m) noexcept : type_(MessageType::QueuePiece), body_(m) {}  // NOLINT
   /// Holds a StatusReport.
   constexpr Message(const StatusReport& m) noexcept : type_(MessageType::StatusReport), body_(m) {}  // NOLINT
   /// Holds a SetpointBatch.
@@ -792,6 +934,7 @@ class Message {
     else if constexpr (std::is_same_v<T, Nak>) return body_.nak;
     else if constexpr (std::is_same_v<T, MachineConfiguration>) return body_.machine_configuration;
     else if constexpr (std::is_same_v<T, QueueSegment>) return body_.queue_segment;
+    else if constexpr (std::is_same_v<T, QueuePiece>) return body_.queue_piece;
     else if constexpr (std::is_same_v<T, StatusReport>) return body_.status_report;
     else if constexpr (std::is_same_v<T, SetpointBatch>) return body_.setpoint_batch;
     else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
@@ -817,6 +960,7 @@ class Message {
     constexpr explicit Body(const Nak& m) noexcept : nak(m) {}
     constexpr explicit Body(const MachineConfiguration& m) noexcept : machine_configuration(m) {}
     constexpr explicit Body(const QueueSegment& m) noexcept : queue_segment(m) {}
+    constexpr explicit Body(const QueuePiece& m) noexcept : queue_piece(m) {}
     constexpr explicit Body(const StatusReport& m) noexcept : status_report(m) {}
     constexpr explicit Body(const SetpointBatch& m) noexcept : setpoint_batch(m) {}
     constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
@@ -826,6 +970,7 @@ class Message {
     Nak nak;
     MachineConfiguration machine_configuration;
     QueueSegment queue_segment;
+    QueuePiece queue_piece;
     StatusReport status_report;
     SetpointBatch setpoint_batch;
     ErrorReport error_report;
