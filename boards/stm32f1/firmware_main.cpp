@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// STM32F1 firmware image: App<Stm32F1Board> (firmware/include/curvestep/firmware/app.hpp) on USART1.
+// STM32F1 firmware images: App<Stm32F1Board> (firmware/include/curvestep/firmware/app.hpp) on USART1;
+// CURVESTEP_LOOKAHEAD_SEGMENTS 0 builds the executor (no planner: it replays host-planned pieces).
 #include <curvestep/boards/stm32/firmware_loop.hpp>
 #include <curvestep/boards/stm32/startup.hpp>
 #include <curvestep/firmware/app.hpp>

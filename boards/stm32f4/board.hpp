@@ -28,6 +28,9 @@ struct Stm32F4Chip {
   static constexpr std::uintptr_t gpioa_bsrr = 0x40020000 + 0x18;  ///< GPIOA bit set/reset register
   static constexpr std::size_t step_events_per_tick = 128;      ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = 256;                 ///< timed edges waiting for TIM2 (two ticks)
+  static constexpr std::size_t setpoint_window = 4;             ///< setpoint frames in flight (firmware::App)
+  static constexpr std::size_t setpoint_buffer = 48;            ///< setpoints waiting for a batch (two batches)
+  static constexpr std::size_t console_tx_buffer = 256;         ///< USART1 transmit ring
   static constexpr Clocks fallback_clocks{16'000'000, 16'000'000, 16'000'000, false};  ///< HSI 16 MHz
 
   /// HSE 25 MHz -> PLL 168 MHz, or HSI 16 MHz if a ready flag does not come; QEMU: 168 MHz.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// `curvestep device [--port PATH] [--machine MACHINE.json --gpio] [--fast]`: runs the firmware as a
-// Linux process (boards/host). Without --port it creates a pseudo-terminal and prints its path as
+// `curvestep device [--port PATH] [--machine MACHINE.json --gpio] [--fast] [--executor]`: runs the
+// firmware as a Linux process (boards/host); --executor without a planner (it replays pieces the
+// host planned, as the STM32F1 executor image does). Without --port it creates a pseudo-terminal and prints its path as
 // the first line on standard output, then serves until stopped (SIGINT, SIGTERM).
 #include <atomic>
 #include <csignal>
@@ -33,6 +34,7 @@ struct DeviceCommandOptions {
   std::string machine;
   bool gpio = false;
   bool fast = false;
+  bool executor = false;
   unsigned link_timeout_ms = 1000;
 };
 
@@ -61,6 +63,7 @@ int serve(int fd, Output& output, const DeviceCommandOptions& o) {
   boards::host::DeviceOptions options;
   options.fast = o.fast;
   options.app.link_timeout_ms = o.link_timeout_ms;
+  if (o.executor) return boards::host::run_device<Output, 0>(fd, output, options, stop_requested, stderr);
   return boards::host::run_device(fd, output, options, stop_requested, stderr);
 }
 
@@ -100,6 +103,8 @@ void add_device_command(CLI::App& app) {
   device->add_flag("--gpio", options->gpio, "Drive step/dir lines through libgpiod (chip and line names from --machine)");
   device->add_flag("--fast", options->fast,
                    "Tests: run ticks as fast as the link allows (flow-controlled), not in real time");
+  device->add_flag("--executor", options->executor,
+                   "No planner on the device: it replays motion planned by the host (curvestep stream plans it)");
   device->add_option("--link-timeout-ms", options->link_timeout_ms, "Feed hold after this long without a frame (0: never)");
   device->callback([options] {
     const int status = run_device_command(*options);

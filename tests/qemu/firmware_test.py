@@ -4,7 +4,9 @@
 Hello(version 4, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
 here independently of the C++ encoder (COBS, the payload's CRC-32C table-driven, the frame's
 CRC-16/CCITT-FALSE via binascii.crc_hqx).
-Usage: firmware_test.py <stm32f1|stm32f4|stm32f2-m3> <firmware.elf>"""
+Usage: firmware_test.py <stm32f1|stm32f4|stm32f2-m3> <firmware.elf> [--executor]
+--executor: the image without a planner (look-ahead 0, no Bézier degree: it takes host-planned
+pieces, not segments), which runs on the F1's own QEMU machine (8 KiB of RAM)."""
 import binascii
 import os
 import struct
@@ -16,6 +18,8 @@ from qemu_board import MACHINES, QemuBoard  # noqa: E402
 
 # Queue slots and look-ahead of each board's firmware image (boards/<board>/CMakeLists.txt, firmware_main.cpp).
 EXPECTED_QUEUE_AND_LOOKAHEAD = {"stm32f1": (16, 8), "stm32f4": (32, 16), "stm32f2-m3": (16, 8)}
+# The STM32F1 executor image (boards/stm32f1/CMakeLists.txt): 16 pieces, no planner.
+EXECUTOR_QUEUE_AND_LOOKAHEAD = (16, 0)
 
 
 def cobs_encode(data):
@@ -68,8 +72,11 @@ def frame(message_type, sequence, message):
 
 def main():
     board_name, elf = sys.argv[1], sys.argv[2]
+    executor = "--executor" in sys.argv[3:]
+    expected = EXECUTOR_QUEUE_AND_LOOKAHEAD if executor else EXPECTED_QUEUE_AND_LOOKAHEAD[board_name]
+    expected_degree = 0 if executor else 7
     hello = frame(0x01, 0, struct.pack("<HH", 4, 0x1234))
-    assert hello == bytes.fromhex("02010203083412 6d5a9925 120100".replace(" ", "")), hello.hex()  # docs/protocol.md
+    assert hello == bytes.fromhex("02010204093412 a7e2993c 43c800".replace(" ", "")), hello.hex()  # docs/protocol.md
     with QemuBoard(MACHINES[board_name], elf) as board:
         deadline = time.monotonic() + 20
         while True:
@@ -97,8 +104,8 @@ def main():
                   f"tick_rate={tick_rate} lookahead={lookahead}")
             # The image's queue and look-ahead (firmware_main.cpp): App needs queue >= look-ahead + 8.
             ok = (version == 4 and session == 0x1234 and max_payload == 162 and total_bits == 32 and
-                  fraction_bits == 16 and axes == 3 and tick_rate == 1_000_000 and
-                  (queue, lookahead) == EXPECTED_QUEUE_AND_LOOKAHEAD[board_name])
+                  fraction_bits == 16 and axes == 3 and tick_rate == 1_000_000 and degree == expected_degree and
+                  (queue, lookahead) == expected)
             print("PASS" if ok else "FAIL: unexpected Capabilities")
             return 0 if ok else 1
 

@@ -31,6 +31,14 @@ if(TARGET curvestep)
                      ${PROJECT_SOURCE_DIR}/examples/jobs/${job}.json ${machine} --round-weights --tolerance 0.001)
     set_tests_properties("${name}" PROPERTIES LABELS "qemu;integration" TIMEOUT 240 SKIP_RETURN_CODE 77
                          FIXTURES_REQUIRED qemu_stm32f4_images)
+    # The F1 executor on its own QEMU machine: the host plans (curvestep stream), the board replays.
+    set(name "qemu: stm32f1 executor streams ${job} bit-identical to curvestep sim")
+    add_test(NAME "${name}"
+             COMMAND ${Python3_EXECUTABLE} ${qemu_dir}/hil_stream_test.py stm32f1
+                     ${PROJECT_BINARY_DIR}/qemu-stm32f1/bin/curvestep_stm32f1_executor.elf $<TARGET_FILE:curvestep>
+                     ${PROJECT_SOURCE_DIR}/examples/jobs/${job}.json ${machine} --round-weights --exact)
+    set_tests_properties("${name}" PROPERTIES LABELS "qemu;integration" TIMEOUT 240 SKIP_RETURN_CODE 77
+                         FIXTURES_REQUIRED qemu_stm32f1_images)
     set(name "qemu: Cortex-M3 Q16.16 firmware streams ${job} bit-identical to curvestep sim")
     add_test(NAME "${name}"
              COMMAND ${Python3_EXECUTABLE} ${qemu_dir}/hil_stream_test.py stm32f2-m3

@@ -60,7 +60,9 @@ def main():
             print(f"FAIL: curvestep stream exited with {stream.returncode}")
             return 1
         # The device's planning window (its Capabilities, printed by stream): sim plans with the same.
-        lookahead = re.search(r"device look-ahead:\s+(\d+)", stream.stdout)
+        # A device without a planner replays what stream planned with its --lookahead (default 16).
+        lookahead = (re.search(r"device look-ahead:\s+(\d+)", stream.stdout) or
+                     re.search(r"planned here with --lookahead (\d+)", stream.stdout))
         if lookahead is None:
             print("FAIL: curvestep stream did not print the device's look-ahead")
             return 1

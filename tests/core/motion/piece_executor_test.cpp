@@ -159,8 +159,8 @@ TEST_CASE("piece executor: a chunk of a straight line steps to the exact quarter
   REQUIRE(executor.push(exact_piece(0, 0)).has_value());
   PlannedPiece chunk;
   chunk.ticks = 4;
-  for (std::size_t i = 0; i < 6; ++i) {
-    const double f = static_cast<double>(i) / 5.0;
+  for (std::size_t i = 0; i < 5; ++i) {
+    const double f = static_cast<double>(i + 1) / 5.0;
     chunk.controls[i] = mp(f, 2 * f);
   }
   chunk.end = mp(1, 2);

@@ -100,11 +100,13 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include <curvestep/core/container/ring_buffer.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/core/motion/cusps.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
+#include <curvestep/core/motion/piece_executor.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/core/motion/step_output.hpp>
 #include <curvestep/core/scalar.hpp>
@@ -152,25 +154,39 @@ inline constexpr std::size_t transmit_reserve_bytes = 64;
 
 /// Bytes of the transmit buffer (three largest frames).
 inline constexpr std::size_t transmit_buffer_bytes = 3 * protocol::max_encoded_frame_size;
-/// Setpoints buffered for SetpointBatch messages (two batches).
-inline constexpr std::size_t setpoint_buffer_size = 2 * protocol::max_setpoints_per_batch;
+/// Setpoints buffered for SetpointBatch messages: B::setpoint_buffer if the board says (at least
+/// one full batch), else two batches.
+template <class B>
+[[nodiscard]] constexpr std::size_t board_setpoint_buffer() noexcept {
+  if constexpr (requires { B::setpoint_buffer; }) {
+    static_assert(B::setpoint_buffer >= protocol::max_setpoints_per_batch, "the setpoint buffer must hold a full batch");
+    return static_cast<std::size_t>(B::setpoint_buffer);
+  } else {
+    return 2 * protocol::max_setpoints_per_batch;
+  }
+}
 /// Queue slots one wire segment may need (a Bézier split at every cusp the planner finds).
 inline constexpr std::size_t slots_per_segment = CuspList<>::capacity + 1;
 
 /// The controller application for board B; S is the setpoint scalar (Q16.16 for bit-identity).
+/// Lookahead == 0: no planner on board; the App replays pieces the host planned (PieceExecutor).
 template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16>
 class App {
+  /// True if the board plans (QueueSegment); false: it replays host-planned pieces (QueuePiece).
+  static constexpr bool plans_on_board = Lookahead > 0;
+  /// Queue slots one command may need: a segment split at every cusp, or one piece.
+  static constexpr std::size_t slots_per_command = plans_on_board ? slots_per_segment : 1;
   // Credit is granted in whole worst-case segments (slots_per_segment slots each), so at most
   // Queue - slots_per_segment + 1 segments are queued, and a segment is planned just after its
   // predecessor left the queue. The full window of Lookahead segments behind it (what the
   // simulator's --lookahead assumes) is therefore there only if Queue >= Lookahead + slots + 1.
-  static_assert(Queue >= Lookahead + slots_per_segment + 1,
+  static_assert(!plans_on_board || Queue >= Lookahead + slots_per_segment + 1,
                 "the queue must keep Lookahead segments behind the one being planned (bit-identity with the simulator)");
-  static_assert(Lookahead >= 1 && Lookahead <= 0xFFFF, "Capabilities carries the look-ahead as a u16 >= 1");
+  static_assert(Lookahead <= 0xFFFF, "Capabilities carries the look-ahead as a u16");
 
  public:
-  /// The motion controller type.
-  using Controller = MotionController<S, Queue, Lookahead>;
+  /// The motion controller type: the planner, or the replay of host-planned pieces.
+  using Controller = std::conditional_t<plans_on_board, MotionController<S, Queue, plans_on_board ? Lookahead : 1>, PieceExecutor<S, Queue>>;
 
   /// Frames of setpoint batches that may be unacknowledged at once.
   static constexpr std::size_t setpoint_window = board_setpoint_window<B>();
@@ -283,7 +299,7 @@ class App {
   /// Whole wire segments the queue can take now (the credit offered to the host).
   [[nodiscard]] std::uint16_t free_segments() const noexcept {
     if (!configured_ || state_ == protocol::MachineState::Fault) return 0;
-    return static_cast<std::uint16_t>((Queue - controller_.queued()) / slots_per_segment);
+    return static_cast<std::uint16_t>((Queue - controller_.queued()) / slots_per_command);
   }
 
  private:
@@ -296,7 +312,7 @@ class App {
     protocol::Capabilities c;
     c.queue_capacity = static_cast<std::uint16_t>(Queue);
     c.axis_count = static_cast<std::uint8_t>(B::axis_count);
-    c.max_degree = static_cast<std::uint8_t>(protocol::max_segment_degree);
+    c.max_degree = plans_on_board ? static_cast<std::uint8_t>(protocol::max_segment_degree) : 0;  // no segments without a planner
     c.tick_rate_hz = B::step_timing().timer_hz;
     c.lookahead = static_cast<std::uint16_t>(Lookahead);
     return c;
@@ -372,13 +388,28 @@ class App {
     using protocol::MessageType;
     switch (static_cast<MessageType>(frame.type)) {
       case MessageType::MachineConfiguration: return on_machine_configuration(frame.payload);
-      case MessageType::QueueSegment: return on_queue_segment(frame.payload);
+      case MessageType::QueueSegment:
+        if constexpr (plans_on_board) {
+          return on_queue_segment(frame.payload);
+        } else {
+          return report(fail(Error::UnknownMessage, frame.type));
+        }
+      case MessageType::QueuePiece:
+        if constexpr (plans_on_board) {
+          return report(fail(Error::UnknownMessage, frame.type));
+        } else {
+          return on_queue_piece(frame.payload);
+        }
       case MessageType::Start:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return report_if_failed(start());
       case MessageType::FeedHold:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
-        return feed_hold();
+        if constexpr (plans_on_board) {
+          return feed_hold();
+        } else {
+          return report(fail(Error::NotSupported));  // no plan to brake along
+        }
       case MessageType::Resume:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return report_if_failed(resume());
@@ -393,9 +424,19 @@ class App {
   }
 
   [[gnu::noinline]] void on_machine_configuration(std::span<const std::byte> payload) noexcept {
-    const auto m = protocol::decode<protocol::MachineConfiguration>(payload);
+    const auto m = decode_configuration(payload);
     if (!m) return report(m.failure());
     report_if_failed(configure(m.value()));
+  }
+
+  /// Not inlined: the decoder's working copy must not sit under queue_piece() on the stack.
+  [[nodiscard, gnu::noinline]] static Result<protocol::QueuePiece> decode_piece(std::span<const std::byte> payload) noexcept {
+    return protocol::decode<protocol::QueuePiece>(payload);
+  }
+
+  /// Not inlined: the decoder's working copy must not sit under configure() on the stack.
+  [[nodiscard, gnu::noinline]] static Result<protocol::MachineConfiguration> decode_configuration(std::span<const std::byte> payload) noexcept {
+    return protocol::decode<protocol::MachineConfiguration>(payload);
   }
 
   [[gnu::noinline]] void on_queue_segment(std::span<const std::byte> payload) noexcept {
@@ -404,19 +445,30 @@ class App {
     report_if_failed(queue_segment(m.value()));
   }
 
+  [[gnu::noinline]] void on_queue_piece(std::span<const std::byte> payload) noexcept {
+    const auto m = decode_piece(payload);
+    if (!m) return report(m.failure());
+    report_if_failed(queue_piece(m.value()));
+  }
+
   // --- commands --------------------------------------------------------------------------
 
   [[nodiscard, gnu::noinline]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
     // Queued segments were planned with the old limits: a new configuration needs an empty queue.
     if (moving_ || start_pending_ || held_before_start_ || controller_.queued() > 0) return fail(Error::PlannerBusy);
     if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
-    CURVESTEP_TRY(MachineLimits limits, to_machine_limits(m));
-    CURVESTEP_TRY(const TravelLimits travel, to_travel_limits(m));
-    CURVESTEP_TRY(const StepConfig step_config, fit_step_config(limits));
+    // The Results are used in place (no CURVESTEP_TRY copies): this frame is on the deepest
+    // call chain of a small board's stack (docs/boards.md, "Footprint").
+    auto limits = to_machine_limits(m);
+    if (!limits) return limits.failure();
+    const auto travel = to_travel_limits(m);
+    if (!travel) return travel.failure();
+    const auto step_config = fit_step_config(limits.value());
+    if (!step_config) return step_config.failure();
     if (controller_.state() != ControllerState::Idle) controller_.reset();
-    CURVESTEP_CHECK(controller_.configure(limits));
-    steps_ = StepGenerator(step_config);
-    travel_ = travel;
+    CURVESTEP_CHECK(controller_.configure(limits.value()));
+    steps_ = StepGenerator(step_config.value());
+    travel_ = travel.value();
     positioned_ = false;
     has_last_end_ = false;
     configured_ = true;
@@ -460,6 +512,36 @@ class App {
     if (s.end_of_job) {
       controller_.end_of_job();
       job_end_known_ = true;
+    }
+    return ok();
+  }
+
+  /// A host-planned piece (no planner on board). The job's first piece must be where the machine
+  /// stands (SegmentsNotConnected, as a segment's start); every piece's end must be inside the
+  /// travel range (OutsideTravel, index = axis). The stepped setpoints of a chunk stay within
+  /// chunk_error_bound of the host's exact path, which ends on the checked end points.
+  [[nodiscard, gnu::noinline]] Result<void> queue_piece(const protocol::QueuePiece& m) noexcept {
+    if (!configured_) return fail(Error::ConfigurationMissing);
+    if (state_ == protocol::MachineState::Fault || job_end_known_) return fail(Error::InvalidState);
+    if (m.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
+    const PlannedPiece piece = to_planned_piece(m);
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      if (travel_[axis].limited() && (piece.end[axis] < travel_[axis].min_mm || piece.end[axis] > travel_[axis].max_mm)) {
+        return fail(Error::OutsideTravel, static_cast<std::uint16_t>(axis));
+      }
+    }
+    if (job_segments_ == 0 && has_last_end_) {
+      CURVESTEP_TRY(const protocol::WirePoint start, to_wire_point(piece.end));
+      if (start != last_end_) return fail(Error::SegmentsNotConnected, 0);
+    }
+    CURVESTEP_CHECK(controller_.push(piece));
+    const auto depth = static_cast<std::uint16_t>(controller_.queued());
+    if (depth > statistics_.max_queue_depth) statistics_.max_queue_depth = depth;
+    ++job_segments_;
+    if (m.end_of_job) {
+      job_end_known_ = true;
+      CURVESTEP_TRY(last_end_, to_wire_point(piece.end));  // where the next job must start
+      has_last_end_ = true;
     }
     return ok();
   }
@@ -602,6 +684,7 @@ class App {
   [[nodiscard]] bool window_ready(std::size_t ahead_of_front) const noexcept {
     const std::size_t queued = controller_.queued();
     if (job_end_known_) return queued >= 1 + ahead_of_front;
+    if constexpr (!plans_on_board) return queued == Queue;  // the host keeps it full from here on
     return queued >= Lookahead + 1 + ahead_of_front || (free_segments() == 0 && queued > ahead_of_front);
   }
 
@@ -634,14 +717,19 @@ class App {
     if (link_hold_latched_ || receiver_.check_link(now)) return;
     link_hold_latched_ = true;
     if (!(moving_ && controller_.state() == ControllerState::Running) && !start_pending_) return;
-    feed_hold();
+    // Without a planner there is no braking: the queued pieces run out (QueueUnderrun).
+    if constexpr (plans_on_board) feed_hold();
     report(fail(Error::LinkTimeout));
   }
 
   // --- sending -------------------------------------------------------------------------------
 
   void send_reply(const protocol::Reception& r) noexcept {
-    if (r.reply == protocol::ReplyKind::None) return;
+    if (r.reply != protocol::ReplyKind::None) encode_reply(r);
+  }
+
+  /// Not inlined: its frame buffer must not sit in poll()'s frame, under the command handlers.
+  [[gnu::noinline]] void encode_reply(const protocol::Reception& r) noexcept {
     std::array<std::byte, protocol::max_encoded_frame_size> frame{};
     const auto size = receiver_.encode_reply(r, frame);
     if (size) queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
@@ -649,12 +737,8 @@ class App {
 
   template <class M>
   void send_message(const M& m) noexcept {
-    std::array<std::byte, protocol::max_payload_size> payload{};
-    const auto length = protocol::encode(m, payload);
-    if (!length) return;
     std::array<std::byte, protocol::max_encoded_frame_size> frame{};
-    const auto size = protocol::encode_frame(static_cast<std::uint8_t>(M::type), receiver_.next_outgoing_sequence(),
-                                             std::span<const std::byte>(payload.data(), length.value()), frame);
+    const auto size = protocol::encode_frame(m, receiver_.next_outgoing_sequence(), frame);
     if (size) queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
   }
 
@@ -705,7 +789,7 @@ class App {
       // Fast axes take up to 5 varint bytes per delta: keep the batch within one payload.
       while (count > 1 && protocol::encoded_size(batch, count) > protocol::max_message_size) --count;
       batch.count = static_cast<std::uint8_t>(count);
-      if (!sender_.submit(protocol::Message(batch))) return;  // cannot happen: checked can_submit and size
+      if (!sender_.submit(batch)) return;  // cannot happen: checked can_submit and size
       for (std::size_t i = 0; i < count; ++i) setpoints_.pop_front();
       if (batch_limit_ < protocol::max_setpoints_per_batch && sender_.go_backs() == seen_go_backs_) ++batch_limit_;
     }
@@ -720,7 +804,8 @@ class App {
   }
 
   /// Hands due setpoint frames (new or resent) to the transmit buffer, keeping room for replies.
-  void transmit_setpoints(std::uint32_t now) noexcept {
+  /// Not inlined: its frame buffer must not sit in poll()'s frame, under the command handlers.
+  [[gnu::noinline]] void transmit_setpoints(std::uint32_t now) noexcept {
     if (sender_.state() != protocol::LinkState::Connected) return;
     std::array<std::byte, protocol::max_encoded_frame_size> frame{};
     while (transmit_.available() >= protocol::max_encoded_frame_size + transmit_reserve_bytes) {
@@ -754,7 +839,7 @@ class App {
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
   RingBuffer<std::byte, transmit_buffer_bytes> transmit_{};
-  RingBuffer<IndexedSetpoint, setpoint_buffer_size> setpoints_{};
+  RingBuffer<IndexedSetpoint, board_setpoint_buffer<B>()> setpoints_{};
   AppStatistics statistics_{};
   protocol::WirePoint position_{};
   protocol::WirePoint last_end_{};

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Wire messages to planner inputs: MachineConfiguration -> MachineLimits, QueueSegment -> PathSegment.
+// Wire messages to planner inputs: MachineConfiguration -> MachineLimits, QueueSegment -> PathSegment,
+// QueuePiece -> PlannedPiece (a board without a planner).
 //
 // Both conversions are exact: a Q16.16 raw value r becomes the double r / 65536, which a double
 // holds exactly, and the configuration's binary64 limits are the host's doubles bit for bit. A host that
@@ -15,7 +16,9 @@
 
 #include <curvestep/core/motion/deterministic_math.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
+#include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/messages.hpp>
 
@@ -32,6 +35,32 @@ inline constexpr double arc_radius_tolerance_mm = 0.002;
   MachinePoint out{};
   for (std::size_t a = 0; a < axes && a < motion_axes; ++a) out[a] = wire_to_mm(p[a]);
   return out;
+}
+
+/// A machine point as a wire point (Q16.16 raw, rounded as a Q16.16 setpoint is); the error of
+/// from_double<Q16_16> (index = axis) if a coordinate does not fit.
+[[nodiscard]] inline Result<protocol::WirePoint> to_wire_point(const MachinePoint& p) noexcept {
+  protocol::WirePoint out{};
+  for (std::size_t a = 0; a < motion_axes && a < protocol::max_axes; ++a) {
+    const auto q = from_double<Q16_16>(p[a]);
+    if (!q) return fail(q.error(), static_cast<std::uint16_t>(a));
+    out[a] = q.value().raw();
+  }
+  return out;
+}
+
+/// A decoded QueuePiece as the executor's PlannedPiece (the binary64 values are the host's doubles,
+/// so the replay is the host's plan bit for bit).
+[[nodiscard]] constexpr PlannedPiece to_planned_piece(const protocol::QueuePiece& m) noexcept {
+  PlannedPiece piece;
+  piece.ticks = m.ticks;
+  piece.segment = m.segment;
+  piece.end_of_job = m.end_of_job;
+  for (std::size_t a = 0; a < motion_axes && a < protocol::max_axes; ++a) {
+    piece.end[a] = m.end[a];
+    for (std::size_t i = 0; i < m.controls.size(); ++i) piece.controls[i][a] = m.controls[i][a];
+  }
+  return piece;
 }
 
 /// The planner's limits from a MachineConfiguration; every value is checked by MachineLimits::validate

@@ -41,18 +41,12 @@ struct Frame {
   std::span<const std::byte> payload{};   ///< the message bytes (its CRC-32C checked and removed), 0..max_message_size
 };
 
-/// Builds the frame for `type`, `sequence` and `message` into `out`: the message's CRC-32C and
-/// the frame's CRC-16 are appended, then COBS bytes and 0x00. FrameTooLong if the message
-/// exceeds max_message_size; BufferTooSmall if `out` is too short.
-[[nodiscard]] constexpr Result<std::size_t> encode_frame(std::uint8_t type, std::uint8_t sequence,
-                                                         std::span<const std::byte> message,
+namespace detail {
+
+/// Completes a frame whose header and message fill raw[0, body): appends the message's CRC-32C
+/// and the frame's CRC-16, COBS-encodes it into `out` and ends it with 0x00.
+[[nodiscard]] constexpr Result<std::size_t> finish_frame(std::array<std::byte, max_frame_size>& raw, std::size_t body,
                                                          std::span<std::byte> out) noexcept {
-  if (message.size() > max_message_size) return fail(Error::FrameTooLong, message.size());
-  std::array<std::byte, max_frame_size> raw{};
-  raw[0] = std::byte{type};
-  raw[1] = std::byte{sequence};
-  for (std::size_t i = 0; i < message.size(); ++i) raw[frame_header_size + i] = message[i];
-  std::size_t body = frame_header_size + message.size();
   const std::uint32_t check = crc32c(std::span<const std::byte>(raw.data(), body));
   for (std::size_t i = 0; i < message_crc_size; ++i) raw[body + i] = std::byte{static_cast<std::uint8_t>(check >> (8 * i))};
   body += message_crc_size;
@@ -65,16 +59,33 @@ struct Frame {
   return encoded + 1;
 }
 
+}  // namespace detail
+
+/// Builds the frame for `type`, `sequence` and `message` into `out`: the message's CRC-32C and
+/// the frame's CRC-16 are appended, then COBS bytes and 0x00. FrameTooLong if the message
+/// exceeds max_message_size; BufferTooSmall if `out` is too short.
+[[nodiscard]] constexpr Result<std::size_t> encode_frame(std::uint8_t type, std::uint8_t sequence,
+                                                         std::span<const std::byte> message,
+                                                         std::span<std::byte> out) noexcept {
+  if (message.size() > max_message_size) return fail(Error::FrameTooLong, message.size());
+  std::array<std::byte, max_frame_size> raw{};
+  raw[0] = std::byte{type};
+  raw[1] = std::byte{sequence};
+  for (std::size_t i = 0; i < message.size(); ++i) raw[frame_header_size + i] = message[i];
+  return detail::finish_frame(raw, frame_header_size + message.size(), out);
+}
+
 /// Builds the frame carrying message struct `m` (Ack, SetpointBatch, ...) with `sequence` into
 /// `out` (see the overload above); links the encoder of M only.
 template <class M>
   requires(AllMessages::contains<M>)
 [[nodiscard]] constexpr Result<std::size_t> encode_frame(const M& m, std::uint8_t sequence,
                                                          std::span<std::byte> out) noexcept {
-  std::array<std::byte, max_message_size> payload{};
-  CURVESTEP_TRY(const std::size_t size, encode(m, payload));
-  return encode_frame(static_cast<std::uint8_t>(M::type), sequence, std::span<const std::byte>(payload.data(), size),
-                      out);
+  std::array<std::byte, max_frame_size> raw{};  // the message is encoded in place, after the header
+  raw[0] = std::byte{static_cast<std::uint8_t>(M::type)};
+  raw[1] = std::byte{sequence};
+  CURVESTEP_TRY(const std::size_t size, encode(m, std::span<std::byte>(raw).subspan(frame_header_size, max_message_size)));
+  return detail::finish_frame(raw, frame_header_size + size, out);
 }
 
 /// Builds the frame carrying the message `m` holds, if its type is in `Set` (only the set's

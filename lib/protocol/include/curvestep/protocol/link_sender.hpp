@@ -107,19 +107,17 @@ class LinkSender {
   /// message outside `Sends` or one that does not travel in the sequenced stream toward the
   /// peer, or the encoder's error.
   [[nodiscard]] constexpr Result<std::uint8_t> submit(const Message& m) noexcept {
-    if (state_ != LinkState::Connected) return fail(Error::NotConnected);
-    if (!Sends::contains_type(static_cast<std::uint8_t>(m.type())) ||
-        !is_sequenced_toward(peer_, static_cast<std::uint8_t>(m.type()))) {
-      return fail(Error::InvalidArgument, static_cast<std::uint8_t>(m.type()));
-    }
-    if (!can_submit(m.type())) return fail(Error::QueueFull, count_);
-    const auto sequence = static_cast<std::uint8_t>(first_sequence_ + count_);
-    Slot& slot = slots_[(oldest_ + count_) % Window];
-    CURVESTEP_TRY(const std::size_t size, encode_frame<Sends>(m, sequence, slot.bytes));
-    slot.size = static_cast<std::uint16_t>(size);
-    ++count_;
-    if (consumes_credit(m.type())) ++segments_sent_;
-    return sequence;
+    return submit_as(m.type(), [&m](std::uint8_t sequence, std::span<std::byte> out) {
+      return encode_frame<Sends>(m, sequence, out);
+    });
+  }
+
+  /// submit() for a message struct of `Sends` (SetpointBatch, ...): encoded straight from `m`,
+  /// without a Message copy of it on the stack.
+  template <class M>
+    requires(Sends::template contains<M>)
+  [[nodiscard]] constexpr Result<std::uint8_t> submit(const M& m) noexcept {
+    return submit_as(M::type, [&m](std::uint8_t sequence, std::span<std::byte> out) { return encode_frame(m, sequence, out); });
   }
 
   /// Next bytes to transmit into `out` (one whole frame), or 0 if nothing is due. Fails with
@@ -205,6 +203,23 @@ class LinkSender {
   [[nodiscard]] constexpr std::uint8_t timeouts_without_progress() const noexcept { return timeouts_; }
 
  private:
+  /// Checks and takes the next window slot for a message of `type`; `encode(sequence, out)` writes its frame.
+  template <class Encode>
+  [[nodiscard]] constexpr Result<std::uint8_t> submit_as(MessageType type, Encode&& encode) noexcept {
+    if (state_ != LinkState::Connected) return fail(Error::NotConnected);
+    if (!Sends::contains_type(static_cast<std::uint8_t>(type)) || !is_sequenced_toward(peer_, static_cast<std::uint8_t>(type))) {
+      return fail(Error::InvalidArgument, static_cast<std::uint8_t>(type));
+    }
+    if (!can_submit(type)) return fail(Error::QueueFull, count_);
+    const auto sequence = static_cast<std::uint8_t>(first_sequence_ + count_);
+    Slot& slot = slots_[(oldest_ + count_) % Window];
+    CURVESTEP_TRY(const std::size_t size, encode(sequence, std::span<std::byte>(slot.bytes)));
+    slot.size = static_cast<std::uint16_t>(size);
+    ++count_;
+    if (consumes_credit(type)) ++segments_sent_;
+    return sequence;
+  }
+
   struct Slot {
     std::array<std::byte, max_encoded_frame_size> bytes{};
     std::uint16_t size = 0;

@@ -11,7 +11,7 @@
 // (limits, rates, continuity) with the planner's own error codes.
 // Memory: a Message is about 300 bytes (the union's largest member is SetpointBatch). A
 // controller short of stack can check Frame::type and call decode<QueueSegment> (140 bytes)
-// or decode<QueuePiece> (152 bytes) directly instead of decode_message.
+// or decode<QueuePiece> (160 bytes) directly instead of decode_message.
 // Code size: each endpoint names the messages it receives or sends as a MessageSet
 // (HostToController, ControllerToHost, or a smaller set of its own), and decode_message<Set>,
 // encode<Set>(const Message&) and encode_frame<Set> instantiate only those codecs; the

@@ -16,7 +16,9 @@
 //     segment has arrived (App::job_end_known) or the controller is braking; held or starved, it
 //     waits for the host instead of spinning. A fast device thus never plans a segment with
 //     fewer segments ahead than a real-time device fed in time, and its setpoints equal
-//     `curvestep sim`'s.
+//     `curvestep sim`'s;
+//   * without a planner (Lookahead 0, `curvestep device --executor`: it replays host-planned
+//     pieces) no tick needs a piece that has not arrived yet, so a slow host never starves it.
 // Real time: a tick whose setpoint cannot be streamed does not advance (App::on_tick), and a
 // stream backed up for longer than the link timeout is a Fault (LinkTimeout).
 // Wall-clock time still drives the link (timeouts, heartbeats), so link loss is detected alike.
@@ -49,10 +51,11 @@ struct DeviceOptions {
 
 /// Serves the firmware on the non-blocking descriptor `fd` until `stop` is set. State changes
 /// are logged to `log` (one line each, may be null). Returns 0.
-template <StepOutput Output>
+/// Lookahead 0 runs the App without a planner (it replays host-planned pieces).
+template <StepOutput Output, std::size_t Lookahead = 16>
 int run_device(int fd, Output& output, const DeviceOptions& options, const std::atomic<bool>& stop, std::FILE* log) {
   using Board = HostBoard<Output>;
-  using Application = firmware::App<Board>;
+  using Application = firmware::App<Board, Q16_16, 32, Lookahead>;
   Board board(fd, output);
   firmware::AppSettings settings = options.app;
   if (options.fast) settings.stall_timeout_ms = 0;  // a slow host slows a fast device down, nothing else
@@ -103,7 +106,12 @@ int run_device(int fd, Output& output, const DeviceOptions& options, const std::
         wait_for(POLLIN, 2);  // nothing moves until the host resumes or refills: do not spin
         continue;
       }
-      const bool window_full = controller.queued() >= Application::Controller::lookahead + 2;
+      bool window_full = false;
+      if constexpr (Lookahead == 0) {
+        window_full = controller.can_step();
+      } else {
+        window_full = controller.queued() >= Application::Controller::lookahead + 2;
+      }
       const bool braking = controller.state() != ControllerState::Running;
       if (!window_full && !app->job_end_known() && !braking) {
         wait_for(POLLIN, 2);

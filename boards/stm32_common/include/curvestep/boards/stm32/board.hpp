@@ -37,7 +37,8 @@ class Board {
   static constexpr const char* name = Chip::name;                 ///< board name in reports
   static constexpr std::size_t axes = 3;                          ///< step/dir channels
   static constexpr std::uint32_t baud = 115200;                   ///< console baud rate
-  static constexpr std::size_t console_buffer = 256;              ///< bytes in each console ring
+  static constexpr std::size_t console_buffer = 256;              ///< bytes in the console's receive ring
+  static constexpr std::size_t console_tx_buffer = Chip::console_tx_buffer;  ///< bytes in its transmit ring
   static constexpr std::uint32_t hse_hz = Chip::hse_hz;           ///< crystal
   static constexpr std::uint32_t target_hclk_hz = Chip::target_hclk_hz;  ///< PLL target
 
@@ -83,6 +84,8 @@ class Board {
   static constexpr std::uint8_t axis_count = 3;                                     ///< driven axes
   static constexpr std::size_t step_events_per_tick = Chip::step_events_per_tick;  ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = Chip::edge_ring;  ///< timed edges waiting for TIM2 (two ticks)
+  static constexpr std::size_t setpoint_window = Chip::setpoint_window;  ///< setpoint frames in flight (firmware::App)
+  static constexpr std::size_t setpoint_buffer = Chip::setpoint_buffer;  ///< setpoints waiting for a batch (firmware::App)
   // Edges of tick k are played during tick k + 1 while tick k + 1's are queued: a ring of two
   // full ticks never overflows while TIM2 keeps up (a full ring is a StepsLost fault).
   static_assert(edge_ring >= 2 * step_events_per_tick, "the edge ring must hold two ticks of edges");
@@ -134,7 +137,7 @@ class Board {
   static void fault_putc(char c) noexcept { Console::write_polled(static_cast<std::uint8_t>(c)); }
 
  private:
-  using Console = Usart<Chip::usart1, Chip::usart1_irq, console_buffer, console_buffer>;
+  using Console = Usart<Chip::usart1, Chip::usart1_irq, console_buffer, console_tx_buffer>;
   using Edges = StepEdges<0x40000000, Chip::gpioa_bsrr, Chip::edge_ring>;  // TIM2
 
   static constexpr std::uint8_t step_pin_numbers[3] = {0, 1, 2};  // PA0, PA1, PA2

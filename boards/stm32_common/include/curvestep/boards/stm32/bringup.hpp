@@ -89,7 +89,7 @@ class BringUp {
       say("\r\n");
     } else if (command == "fault") {
       say("fault: executing udf\r\n");
-      while (board_.writable() < Board::console_buffer) {
+      while (board_.writable() < Board::console_tx_buffer) {
       }
       asm volatile("udf #0");
     } else {

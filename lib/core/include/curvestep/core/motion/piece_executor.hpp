@@ -87,6 +87,8 @@ class PieceExecutor {
   /// Stops at once and flushes the queue.
   void abort() noexcept {
     queue_.clear();
+    stepped_left_ = 0;
+    end_pending_ = false;
     state_ = ControllerState::Aborted;
   }
 
@@ -104,25 +106,30 @@ class PieceExecutor {
   /// dry before the job's last piece; OutOfRange (a fault) for a position S cannot hold.
   [[nodiscard]] Result<Setpoint<S>> next_setpoint() noexcept {
     if (state_ != ControllerState::Running) return fail(Error::InvalidState);
-    if (stepped_left_ == 0 && !end_pending_) {
-      if (queue_.empty()) return fault(fail(Error::QueueUnderrun, current_.segment));
-      current_ = queue_.front();
-      queue_.pop_front();
-      if (current_.ticks > 1) {
-        if (auto started = chunk_.start(last_position_, current_.controls, current_.ticks); !started) {
-          return fault(fail(started.error(), current_.segment));
+    // The piece being replayed stays at the queue's front until its end point is out.
+    if (!end_pending_) {
+      if (queue_.empty()) return fault(fail(Error::QueueUnderrun, last_segment_));
+      const PlannedPiece& piece = queue_.front();
+      if (piece.ticks > 1) {
+        if (auto started = chunk_.start(last_position_, chunk_controls(piece), piece.ticks); !started) {
+          return fault(fail(started.error(), piece.segment));
         }
-        stepped_left_ = current_.ticks - 1;
+        stepped_left_ = piece.ticks - 1;
       }
       end_pending_ = true;
     }
+    const PlannedPiece& piece = queue_.front();
+    last_segment_ = piece.segment;
     if (stepped_left_ > 0) {
       --stepped_left_;
       return emit(chunk_.next());
     }
+    auto setpoint = emit(piece.end);
+    if (!setpoint) return setpoint;
     end_pending_ = false;
-    auto setpoint = emit(current_.end);
-    if (setpoint && current_.end_of_job) state_ = ControllerState::Finished;
+    const bool last = piece.end_of_job;
+    queue_.pop_front();
+    if (last) state_ = ControllerState::Finished;
     return setpoint;
   }
 
@@ -130,11 +137,13 @@ class PieceExecutor {
   [[nodiscard]] bool finished() const noexcept { return state_ == ControllerState::Finished; }
   /// The error that put the executor into Fault.
   [[nodiscard]] Failure fault() const noexcept { return fault_; }
-  /// Pieces waiting (the one being replayed is not counted).
+  /// Pieces queued, the one being replayed included.
   [[nodiscard]] std::size_t queued() const noexcept { return queue_.size(); }
   [[nodiscard]] static constexpr std::size_t queue_capacity() noexcept { return Capacity; }
   [[nodiscard]] bool queue_full() const noexcept { return queue_.full(); }
   [[nodiscard]] std::uint64_t tick() const noexcept { return tick_; }
+  /// True if the next setpoint needs no piece beyond those queued (one is being replayed, or waits).
+  [[nodiscard]] bool can_step() const noexcept { return end_pending_ || !queue_.empty(); }
 
  private:
   [[nodiscard]] bool stopped() const noexcept { return state_ != ControllerState::Running; }
@@ -155,10 +164,10 @@ class PieceExecutor {
   [[nodiscard]] Result<Setpoint<S>> emit(const MachinePoint& p) noexcept {
     Setpoint<S> sp;
     sp.tick = tick_;
-    sp.segment = current_.segment;
+    sp.segment = last_segment_;
     for (std::size_t axis = 0; axis < motion_axes; ++axis) {
       auto c = from_double<S>(p[axis]);
-      if (!c) return fault(fail(c.error(), current_.segment));
+      if (!c) return fault(fail(c.error(), last_segment_));
       sp.position[axis] = c.value();
     }
     last_position_ = p;
@@ -173,12 +182,12 @@ class PieceExecutor {
   }
 
   RingBuffer<PlannedPiece, Capacity> queue_{};
-  PlannedPiece current_{};
   HermiteChunk chunk_{};
   MachinePoint last_position_{};
   Failure fault_{Error::InvalidState, no_index};
   std::uint64_t tick_ = 0;
   std::uint32_t stepped_left_ = 0;
+  std::uint32_t last_segment_ = 0;  ///< segment of the piece being replayed (setpoints, faults)
   ControllerState state_ = ControllerState::Idle;
   bool configured_ = false;
   bool end_of_job_ = false;

@@ -7,6 +7,7 @@
 // last one (finish) carries end_of_job.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include <curvestep/core/motion/planned_piece.hpp>
@@ -29,7 +30,8 @@ class PieceRecorder {
     if (controller.chunk_begins_at_last_setpoint()) {
       PlannedPiece chunk;
       chunk.ticks = controller.chunk_ticks();
-      chunk.controls = controller.chunk_controls();
+      const auto& q = controller.chunk_controls();  // q[0] is 0 (relative to the last setpoint)
+      for (std::size_t i = 0; i < chunk.controls.size(); ++i) chunk.controls[i] = q[i + 1];
       chunk.end = controller.chunk_end_position();
       chunk.segment = setpoint.segment;
       hand_over(chunk, sink);

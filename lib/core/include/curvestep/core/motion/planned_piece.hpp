@@ -11,6 +11,7 @@
 // PieceExecutor replays them; tests/core/motion/piece_executor_test.cpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include <curvestep/core/motion/hermite_chunk.hpp>
@@ -22,12 +23,21 @@ namespace curvestep {
 struct PlannedPiece {
   std::uint32_t ticks = 1;             ///< control ticks covered: 1 (exact) or a power of two 2..256 (chunk)
   MachinePoint end{};                  ///< unrounded position of the piece's last setpoint (mm)
-  HermiteChunk::Controls controls{};   ///< chunk only: Hermite control points relative to the previous setpoint (controls[0] = 0)
+  /// Chunk only: the Hermite control points q1..q5 relative to the previous setpoint (q0 = 0 is
+  /// implied: HermiteChunk::Controls without its first point, 24 bytes less per queued piece).
+  std::array<MachinePoint, 5> controls{};
   std::uint32_t segment = 0;           ///< the job segment it belongs to (setpoint.segment, error reports)
   bool end_of_job = false;             ///< the job's last piece
 
   friend constexpr bool operator==(const PlannedPiece&, const PlannedPiece&) = default;
 };
+
+/// The chunk's HermiteChunk control points (q0 = 0, then the piece's q1..q5).
+[[nodiscard]] constexpr HermiteChunk::Controls chunk_controls(const PlannedPiece& piece) noexcept {
+  HermiteChunk::Controls q{};
+  for (std::size_t i = 0; i < piece.controls.size(); ++i) q[i + 1] = piece.controls[i];
+  return q;
+}
 
 /// True if `ticks` is a valid piece length: 1 or a power of two up to HermiteChunk::max_ticks.
 [[nodiscard]] constexpr bool valid_piece_ticks(std::uint32_t ticks) noexcept {
