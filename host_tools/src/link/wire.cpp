@@ -167,9 +167,6 @@ protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) 
                              std::to_string(HermiteChunk::max_ticks));
   }
   const bool chunk = piece.ticks > 1;
-  for (std::size_t a = 0; a < motion_axes; ++a) {
-    if (chunk && piece.controls[0][a] != 0) throw std::runtime_error(where + "'s first control point is not 0 (it is not sent)");
-  }
   protocol::QueuePiece q;
   q.axis_count = static_cast<std::uint8_t>(axis_count);
   q.ticks = static_cast<std::uint16_t>(piece.ticks);
@@ -183,7 +180,7 @@ protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) 
   };
   put(piece.end, q.end, "end point");
   if (chunk) {
-    for (std::size_t k = 1; k < piece.controls.size(); ++k) put(piece.controls[k], q.controls[k - 1], "control point");
+    for (std::size_t k = 0; k < piece.controls.size(); ++k) put(piece.controls[k], q.controls[k], "control point");
   }
   return q;
 }

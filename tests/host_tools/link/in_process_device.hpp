@@ -2,8 +2,8 @@
 // A firmware App<FakeBoard, ...> behind a host Transport, in this process: what stream_job writes
 // goes to the App's serial input, what the App writes comes back from read(). The App ticks inside
 // read() like the host board's fast mode (boards/host/device.hpp): only when the setpoint stream
-// is not backed up and the queue holds the planner's window (Lookahead + 2 entries; 2 pieces for
-// a controller without a planner), unless the job's end has arrived or the controller is braking,
+// is not backed up and the queue holds the planner's window (Lookahead + 2 entries; for a
+// controller without a planner, Lookahead 0, the piece the next setpoint needs), unless the job's end has arrived or the controller is braking,
 // so a fast device never plans with less than a real-time one fed in time, nor underruns; held
 // or starved, it waits for the host.
 #pragma once
@@ -58,7 +58,12 @@ class InProcessDevice final : public Transport {
     if (!app_->moving() || !app_->ready_to_tick()) return false;
     const auto& controller = app_->controller();
     if (controller.state() == ControllerState::Held || controller.state() == ControllerState::Starved) return false;
-    const bool window_full = controller.queued() >= Lookahead + 2;
+    bool window_full = false;
+    if constexpr (Lookahead == 0) {
+      window_full = controller.can_step();  // no planner: the next setpoint's piece has arrived
+    } else {
+      window_full = controller.queued() >= Lookahead + 2;
+    }
     const bool braking = controller.state() != ControllerState::Running;
     return window_full || app_->job_end_known() || braking;
   }

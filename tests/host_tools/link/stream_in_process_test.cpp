@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -60,4 +61,87 @@ TEST_CASE("stream in process: a planning App with look-ahead 9 streams curvestep
   nine.lookahead = 9;
   const auto [device_job, device_machine] = hl::as_device_sees(job, machine);
   require_same_setpoints(result.setpoints, host::simulate(device_job, device_machine, nine).setpoints);
+}
+
+namespace {
+
+/// The executor App of the STM32F1 image's size: 16 pieces, no planner.
+using ExecutorApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 16, 0>;
+
+}  // namespace
+
+TEST_CASE("stream in process: an App without a planner replays the pieces planned here as curvestep sim bit for bit",
+          "[host_tools][stream][pieces]") {
+  // The example machine with 4 steps/mm: the fake board's step timing cannot make every_type.json's
+  // fastest arc at 80 steps/mm (the device refuses it, StepRateTooHigh, as curvestep sim warns).
+  // Steps per mm do not change the planned setpoints.
+  auto machine = host::load_machine(examples / "machine.json");
+  for (auto& axis : machine.axes) axis.steps_per_mm = 4;
+  std::size_t jobs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(examples)) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "machine.json") continue;
+    INFO(entry.path().filename().string());
+    const auto job = host::load_job(entry.path());
+    hl::testing::InProcessDevice<ExecutorApp, 0> device;
+    std::vector<hl::StreamProgress> progress;
+    hl::StreamOptions options;
+    options.progress = [&progress](const hl::StreamProgress& p) { progress.push_back(p); };
+    const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+    CHECK(result.lookahead == 0);
+    CHECK(result.planned_lookahead == host::SimulationOptions::max_lookahead);
+    CHECK(result.pieces_sent == host::plan_pieces(job, machine).size());
+    CHECK(result.standing_ticks == 0);
+    CHECK(result.duplicate_setpoints == 0);
+    REQUIRE_FALSE(progress.empty());
+    CHECK(std::string(progress.back().unit) == "pieces");
+    CHECK(progress.back().sent == result.pieces_sent);
+    CHECK(progress.back().total == result.pieces_sent);
+    // The reference: the simulator on the job and machine as loaded (nothing is rounded for the
+    // wire: the pieces travel as binary64).
+    require_same_setpoints(result.setpoints, host::simulate(job, machine).setpoints);
+    CHECK(device.app().statistics().dropped_setpoints == 0);
+    ++jobs;
+  }
+  CHECK(jobs >= 4);
+}
+
+TEST_CASE("stream in process: the window the pieces are planned with is StreamOptions::lookahead",
+          "[host_tools][stream][pieces]") {
+  // 40 collinear lines of 0.25 mm at 50 mm/s: braking takes about 1.6 mm, so a window of 1
+  // segment plans slower than the default 16 (checked on the simulator first).
+  const auto machine = host::load_machine(examples / "machine.json");
+  host::Job job;
+  job.name = "short lines";
+  for (int k = 0; k < 40; ++k) {
+    const auto line = PathSegment::make_line(MachinePoint{0.25 * k, 0, 0}, MachinePoint{0.25 * (k + 1), 0, 0});
+    REQUIRE(line.has_value());
+    job.segments.push_back(line.value());
+  }
+  host::SimulationOptions one;
+  one.lookahead = 1;
+  const auto narrow = host::simulate(job, machine, one).setpoints;
+  REQUIRE(narrow.size() != host::simulate(job, machine).setpoints.size());
+  hl::testing::InProcessDevice<ExecutorApp, 0> device;
+  hl::StreamOptions options;
+  options.lookahead = 1;
+  const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+  CHECK(result.planned_lookahead == 1);
+  require_same_setpoints(result.setpoints, narrow);
+}
+
+TEST_CASE("stream in process: a window outside 1..16 for a controller without a planner is refused with one line",
+          "[host_tools][stream][pieces]") {
+  const auto machine = host::load_machine(examples / "machine.json");
+  const auto job = host::load_job(examples / "seed_cubic.json");
+  hl::testing::InProcessDevice<ExecutorApp, 0> device;
+  hl::StreamOptions options;
+  options.lookahead = 17;
+  try {
+    (void)hl::stream_job(device, job, machine, options);
+    FAIL("accepted look-ahead 17");
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    CHECK(what.find("between 1 and 16") != std::string::npos);
+    CHECK(what.find('\n') == std::string::npos);
+  }
 }
