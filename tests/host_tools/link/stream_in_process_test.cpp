@@ -72,9 +72,9 @@ using ExecutorApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 16, 0>;
 
 TEST_CASE("stream in process: an App without a planner replays the pieces planned here as curvestep sim bit for bit",
           "[host_tools][stream][pieces]") {
-  // The example machine with 4 steps/mm: the fake board's step timing cannot make every_type.json's
-  // fastest arc at 80 steps/mm (the device refuses it, StepRateTooHigh, as curvestep sim warns).
-  // Steps per mm do not change the planned setpoints.
+  // The example machine with 4 steps/mm: at 80 the App refuses every_type.json's segment 8
+  // (StepRateTooHigh, a planning App on this fake board alike). Steps per mm do not change the
+  // planned setpoints.
   auto machine = host::load_machine(examples / "machine.json");
   for (auto& axis : machine.axes) axis.steps_per_mm = 4;
   std::size_t jobs = 0;
