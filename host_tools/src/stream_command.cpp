@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
-// `curvestep stream JOB --machine MACHINE.json --port PORT [--baud N] [--capture setpoints.csv]`:
+// `curvestep stream JOB --machine MACHINE.json --port PORT [--baud N] [--capture setpoints.csv] [--lookahead N]`:
 // uploads a job to a controller with flow control, shows progress on a terminal, captures the
-// controller's setpoint stream (the CSV of `curvestep sim -o`) and reports its errors.
+// controller's setpoint stream (the CSV of `curvestep sim -o`) and reports its errors. A
+// controller without a planner (look-ahead 0) gets the job planned here with --lookahead N
+// (default 16) as pieces: its stream is then `curvestep sim --lookahead N`'s.
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -32,6 +34,7 @@ struct StreamCommandOptions {
   int baud = 115200;
   std::string capture;
   unsigned link_timeout_ms = 3000;
+  std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
 };
 
 /// Exit status when the controller or the link failed.
@@ -57,17 +60,33 @@ std::string format_seconds(double s) {
   return text;
 }
 
+/// Which mode ran: the device planned with its own window, or it replayed pieces planned here.
+std::string look_ahead_text(const link::StreamResult& result) {
+  if (result.lookahead == 0) {
+    const std::string n = std::to_string(result.planned_lookahead);
+    return "none (it replays pieces planned here with --lookahead " + n + ": curvestep sim --lookahead " + n +
+           " gives the same setpoints)";
+  }
+  return std::to_string(result.lookahead) + " segments (" +
+         (result.lookahead <= SimulationOptions::max_lookahead
+              ? "curvestep sim --lookahead " + std::to_string(result.lookahead) + " plans the same setpoints"
+              : "above curvestep sim's largest window, " + std::to_string(SimulationOptions::max_lookahead) +
+                    ": no simulation replays it") +
+         ")";
+}
+
 int run_stream(const StreamCommandOptions& o) {
   const Job job = load_job_file(o.job);
   const MachineLimits machine = load_machine_for_stream(o.machine);
   auto transport = link::open_port(o.port, o.baud);
   link::StreamOptions options;
   options.link.link_timeout_ms = o.link_timeout_ms;
+  options.lookahead = o.lookahead;
   options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
   const bool terminal = isatty(STDERR_FILENO) != 0;
   if (terminal) {
     options.progress = [](const link::StreamProgress& p) {
-      std::cerr << "\r  segments " << p.segments_sent << "/" << p.segments_total << "  setpoints " << p.setpoints_received
+      std::cerr << "\r  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
                 << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s) << "   " << std::flush;
     };
   }
@@ -96,14 +115,11 @@ int run_stream(const StreamCommandOptions& o) {
             << "  setpoints duplicated: " << result.duplicate_setpoints << "\n"
             << "  batches resent:      " << result.batches_repeated << "\n"
             << "  damaged frames:      " << result.frames_rejected << "\n"
-            << "  device queue peak:   " << result.max_queue_depth << " of " << result.queue_capacity << " segments\n"
-            << "  device look-ahead:   " << result.lookahead << " segments ("
-            << (result.lookahead <= SimulationOptions::max_lookahead
-                    ? "curvestep sim --lookahead " + std::to_string(result.lookahead) + " plans the same setpoints"
-                    : "above curvestep sim's largest window, " + std::to_string(SimulationOptions::max_lookahead) +
-                          ": no simulation replays it")
-            << ")\n"
-            << "  bytes sent:          " << result.bytes_sent << "\n";
+            << "  device queue peak:   " << result.max_queue_depth << " of " << result.queue_capacity
+            << (result.lookahead == 0 ? " pieces\n" : " segments\n")
+            << "  device look-ahead:   " << look_ahead_text(result) << "\n";
+  if (result.lookahead == 0) std::cout << "  pieces sent:         " << result.pieces_sent << "\n";
+  std::cout << "  bytes sent:          " << result.bytes_sent << "\n";
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
   if (result.duplicate_setpoints != 0) {
     std::cerr << "curvestep stream: the setpoint stream is broken: " << result.duplicate_setpoints << " duplicated\n";
@@ -122,6 +138,10 @@ void add_stream_command(CLI::App& app) {
   stream->add_option("--port,-p", options->port, "Serial port or pseudo-terminal (/dev/ttyUSB0, /dev/pts/3)")->required();
   stream->add_option("--baud", options->baud, "Baud rate (real ports)");
   stream->add_option("--capture", options->capture, "Write the controller's setpoints as CSV (t,x,y,z,v)");
+  stream->add_option("--lookahead", options->lookahead,
+                     "Look-ahead window (segments) to plan with here for a controller without a planner, which replays "
+                     "the planned pieces (as curvestep sim --lookahead); a controller with a planner uses its own")
+      ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
   stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
   stream->callback([options] {
     const int status = run_stream(*options);

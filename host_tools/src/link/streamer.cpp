@@ -5,6 +5,8 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <string>
+#include <vector>
 
 #include <curvestep/host/link/host_link.hpp>
 #include <curvestep/host/link/wire.hpp>
@@ -25,10 +27,14 @@ class Upload {
       const std::size_t axes = link_.capabilities().axis_count;
       WireMachine wire_machine = to_wire(machine_, axes);
       for (const auto& note : wire_machine.notes) warn("machine: " + note);
-      wire_job_ = to_wire(job_, axes);
-      for (const auto& note : wire_job_.notes) warn(note);
       rate_hz_ = wire_machine.configuration.control_rate_hz;
-      if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
+      if (link_.capabilities().lookahead == 0) {
+        plan_here(axes);
+      } else {
+        wire_job_ = to_wire(job_, axes);
+        for (const auto& note : wire_job_.notes) warn(note);
+        if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
+      }
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
       // Start at once: the controller arms the job and begins by itself when its look-ahead
@@ -40,7 +46,7 @@ class Upload {
       last_status_ms_ = start_ms_;
       while (!finished()) {
         settle_acknowledged();
-        submit_segments();
+        submit_units();
         link_.pump(5, handler);
         request_status();
         report_progress(false);
@@ -57,17 +63,50 @@ class Upload {
     if (options_.warn) options_.warn(text);
   }
 
+  /// A controller without a planner: the job is planned here (plan_pieces, the simulator's
+  /// Q16.16 controller with options_.lookahead) and sent as pieces.
+  void plan_here(std::size_t axes) {
+    SimulationOptions planning;
+    planning.lookahead = options_.lookahead;
+    const std::vector<PlannedPiece> planned = plan_pieces(job_, machine_, planning);
+    pieces_.reserve(planned.size());
+    for (const PlannedPiece& piece : planned) {
+      try {
+        pieces_.push_back(to_wire(piece, axes));
+      } catch (const std::runtime_error& e) {
+        throw std::runtime_error(job_.name + ": piece " + std::to_string(pieces_.size() + 1) + " of " +
+                                 std::to_string(planned.size()) + ", " + e.what());
+      }
+    }
+    piece_mode_ = true;
+  }
+
+  /// What the job is sent as: queue segments, or planned pieces for a controller without a planner.
+  [[nodiscard]] std::size_t units() const { return piece_mode_ ? pieces_.size() : wire_job_.segments.size(); }
+  [[nodiscard]] protocol::Message unit(std::size_t k) const {
+    return piece_mode_ ? protocol::Message(pieces_[k]) : protocol::Message(wire_job_.segments[k]);
+  }
+  /// The job file's segment index of unit k.
+  [[nodiscard]] std::size_t file_segment(std::size_t k) const {
+    if (piece_mode_) return pieces_[k].segment;
+    return job_.source_index.empty() ? k : job_.source_index[k];
+  }
+  /// "piece 12 of 340" (1-based) in piece mode, "" otherwise.
+  [[nodiscard]] std::string piece_text(std::size_t k) const {
+    return piece_mode_ ? "piece " + std::to_string(k + 1) + " of " + std::to_string(pieces_.size()) : "";
+  }
+
   /// Where the job stopped: the last segment the controller acknowledged, the last setpoint received.
   std::string progress_text() {
     settle_acknowledged();
     std::string text = "; the job stopped after ";
-    if (acknowledged_segments_ == 0) {
-      text += "no acknowledged segment";
+    if (acknowledged_units_ == 0) {
+      text += piece_mode_ ? "no acknowledged piece" : "no acknowledged segment";
     } else {
-      const std::size_t piece = acknowledged_segments_ - 1;
-      const std::size_t file_index = job_.source_index.empty() ? piece : job_.source_index[piece];
-      text += "segment " + std::to_string(file_index) + " of " + job_.name + " (" + std::to_string(acknowledged_segments_) +
-              " of " + std::to_string(wire_job_.segments.size()) + " acknowledged)";
+      const std::size_t last = acknowledged_units_ - 1;
+      text += "segment " + std::to_string(file_segment(last)) + " of " + job_.name + " (" +
+              (piece_mode_ ? piece_text(last) : std::to_string(acknowledged_units_) + " of " + std::to_string(units())) +
+              " acknowledged)";
     }
     if (setpoints_.empty()) return text + ", no setpoint received";
     std::uint32_t last = setpoints_.begin()->first;
@@ -81,7 +120,7 @@ class Upload {
   /// Drops the oldest submissions the controller has acknowledged (they leave the window in order).
   void settle_acknowledged() {
     while (submitted_.size() > link_.in_flight()) {
-      if (submitted_.front() < status_marker) acknowledged_segments_ = submitted_.front() + 1;
+      if (submitted_.front() < status_marker) acknowledged_units_ = submitted_.front() + 1;
       submitted_.pop_front();
     }
   }
@@ -93,20 +132,21 @@ class Upload {
   }
 
   std::string segment_text(std::uint8_t sequence) const {
-    const auto found = sequence_to_segment_.find(sequence);
-    if (found == sequence_to_segment_.end()) return "";
+    const auto found = sequence_to_unit_.find(sequence);
+    if (found == sequence_to_unit_.end()) return "";
     if (found->second == configuration_marker) return " in the machine configuration";
     if (found->second == start_marker) return " in the Start command";
-    const std::size_t piece = found->second;
-    const std::size_t file_index = job_.source_index.empty() ? piece : job_.source_index[piece];
-    return " in " + job_.name + " segment " + std::to_string(file_index);
+    const std::size_t k = found->second;
+    const std::string text = " in " + job_.name + " segment " + std::to_string(file_segment(k));
+    return piece_mode_ ? text + " (" + piece_text(k) + ")" : text;
   }
 
-  void submit_segments() {
-    while (next_ < wire_job_.segments.size() && link_.can_submit(protocol::MessageType::QueueSegment)) {
-      link_.submit(protocol::Message(wire_job_.segments[next_]));
+  void submit_units() {
+    const auto type = piece_mode_ ? protocol::MessageType::QueuePiece : protocol::MessageType::QueueSegment;
+    while (next_ < units() && link_.can_submit(type)) {
+      link_.submit(unit(next_));
       submitted_.push_back(next_);
-      sequence_to_segment_[sequence_] = next_;
+      sequence_to_unit_[sequence_] = next_;
       ++sequence_;
       ++next_;
     }
@@ -119,7 +159,7 @@ class Upload {
     if (now - last_status_ms_ < interval || !link_.can_submit(protocol::MessageType::StatusRequest)) return;
     link_.submit(protocol::Message(protocol::StatusRequest{}));
     submitted_.push_back(status_marker);
-    sequence_to_segment_.erase(sequence_);
+    sequence_to_unit_.erase(sequence_);
     ++sequence_;
     last_status_ms_ = now;
   }
@@ -155,7 +195,7 @@ class Upload {
   }
 
   [[nodiscard]] bool finished() {
-    if (!started_ || next_ < wire_job_.segments.size() || !link_.idle() || !have_status_ || !seen_running_) return false;
+    if (!started_ || next_ < units() || !link_.idle() || !have_status_ || !seen_running_) return false;
     if (last_status_.state != protocol::MachineState::Idle || last_status_.queue_depth != 0) {
       idle_seen_ = false;
       return false;
@@ -186,15 +226,16 @@ class Upload {
     if (!final_call && now - last_progress_ms_ < 100) return;
     last_progress_ms_ = now;
     StreamProgress p;
-    p.segments_sent = next_;
-    p.segments_total = wire_job_.segments.size();
+    p.sent = next_;
+    p.total = units();
+    p.unit = piece_mode_ ? "pieces" : "segments";
     p.setpoints_received = setpoints_.size();
     p.elapsed_s = now / 1000.0;
     if (started_ && next_ > 0 && have_status_) {
-      // Segments done = sent - still queued; the rest take as long, per segment, as those did.
+      // Units done = sent - still queued; the rest take as long, per unit, as those did.
       const double done = static_cast<double>(next_) - last_status_.queue_depth;
       const double running_s = (now - start_ms_) / 1000.0;
-      if (done > 0) p.eta_s = running_s / done * (static_cast<double>(p.segments_total) - done);
+      if (done > 0) p.eta_s = running_s / done * (static_cast<double>(p.total) - done);
     }
     if (final_call) p.eta_s = 0;
     options_.progress(p);
@@ -231,6 +272,10 @@ class Upload {
     result.max_queue_depth = last_status_.max_queue_depth;
     result.queue_capacity = link_.capabilities().queue_capacity;
     result.lookahead = link_.capabilities().lookahead;
+    if (piece_mode_) {
+      result.pieces_sent = next_;
+      result.planned_lookahead = options_.lookahead;
+    }
     result.batches_repeated = link_.statistics().batches_repeated;
     result.frames_rejected = link_.statistics().frames_rejected;
     result.bytes_sent = link_.statistics().bytes_sent;
@@ -246,14 +291,16 @@ class Upload {
   const MachineLimits& machine_;
   const StreamOptions& options_;
   HostLink link_;
-  WireJob wire_job_;
+  WireJob wire_job_;                         // segment mode: the job's queue segments
+  std::vector<protocol::QueuePiece> pieces_;  // piece mode: the pieces planned here
+  bool piece_mode_ = false;                   // the controller has no planner (Capabilities::lookahead 0)
   std::map<std::uint32_t, protocol::WirePoint> setpoints_;
-  std::map<std::uint8_t, std::size_t> sequence_to_segment_{{0, configuration_marker}, {1, start_marker}};
+  std::map<std::uint8_t, std::size_t> sequence_to_unit_{{0, configuration_marker}, {1, start_marker}};
   protocol::StatusReport last_status_{};
   double rate_hz_ = 1000;
   std::size_t next_ = 0;
   std::deque<std::size_t> submitted_;  // what each unacknowledged frame carries, oldest first
-  std::size_t acknowledged_segments_ = 0;
+  std::size_t acknowledged_units_ = 0;
   std::size_t duplicates_ = 0;
   std::uint8_t sequence_ = 2;  // the configuration is sequence 0, Start 1
   std::uint32_t idle_since_ms_ = 0;

@@ -160,6 +160,31 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
   return out;
 }
 
+protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) {
+  const std::string where = "segment " + std::to_string(piece.segment) + ": a planned piece";
+  if (!valid_piece_ticks(piece.ticks)) {
+    throw std::runtime_error(where + " covers " + std::to_string(piece.ticks) + " ticks, not 1 or a power of two up to " +
+                             std::to_string(HermiteChunk::max_ticks));
+  }
+  const bool chunk = piece.ticks > 1;
+  protocol::QueuePiece q;
+  q.axis_count = static_cast<std::uint8_t>(axis_count);
+  q.ticks = static_cast<std::uint16_t>(piece.ticks);
+  q.end_of_job = piece.end_of_job;
+  q.segment = piece.segment;
+  const auto put = [&](const MachinePoint& p, std::array<double, protocol::max_axes>& out, const char* what) {
+    for (std::size_t a = 0; a < axis_count && a < motion_axes; ++a) out[a] = p[a];
+    if (axis_count < 3 && p[2] != 0) {
+      throw std::runtime_error(where + "'s " + what + " has z = " + format_number(p[2]) + ", but the controller has 2 axes");
+    }
+  };
+  put(piece.end, q.end, "end point");
+  if (chunk) {
+    for (std::size_t k = 0; k < piece.controls.size(); ++k) put(piece.controls[k], q.controls[k], "control point");
+  }
+  return q;
+}
+
 std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
   const auto limits = firmware::to_machine_limits(to_wire(machine, motion_axes).configuration);
   if (!limits) throw std::runtime_error("machine: " + std::string(describe(limits.error())));

@@ -7,9 +7,11 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
+#include <curvestep/core/motion/piece_recorder.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/position_differences.hpp>
@@ -28,48 +30,62 @@ std::string failure_text(const Job& job, const Failure& f) {
   return s.str();
 }
 
-/// Runs both a double and a Q16.16 controller in lockstep: the same plan, two output scalars.
+/// Runs one or more MotionControllers in lockstep over the same job: the same queue filling
+/// (cusp splits wait for room), the same start, one setpoint of each per step. The first
+/// controller decides when the queue is full; the others must take every segment it takes.
+/// simulate() runs a double and a Q16.16 controller (two output scalars, one plan), plan_pieces()
+/// the Q16.16 one alone.
+template <class... Controllers>
 class LockstepRun {
  public:
   LockstepRun(const Job& job, const MachineLimits& machine, std::size_t lookahead) : job_(job) {
-    check(exact_.configure(machine), "machine");
-    check(fixed_.configure(machine), "machine");
-    check(exact_.set_lookahead(lookahead), "lookahead");
-    check(fixed_.set_lookahead(lookahead), "lookahead");
+    std::apply([&](auto&... c) { (check(c.configure(machine), "machine"), ...); }, controllers_);
+    std::apply([&](auto&... c) { (check(c.set_lookahead(lookahead), "lookahead"), ...); }, controllers_);
   }
 
+  /// Fills the queues, starts, and calls on_tick with each step's setpoints (a tuple, one per
+  /// controller) until the first controller has finished the job.
+  template <class OnTick>
+  void run(OnTick&& on_tick) {
+    fill();
+    std::apply([&](auto&... c) { (check(c.start(), no_index), ...); }, controllers_);
+    while (!lead().finished()) {
+      fill();
+      // A braced list evaluates left to right: the controllers tick in their order.
+      on_tick(std::apply([&](auto&... c) { return std::tuple{next_of(c)...}; }, controllers_));
+    }
+  }
+
+  /// The first controller (it decides when the queue is full and when the job is over).
+  [[nodiscard]] const auto& lead() const { return std::get<0>(controllers_); }
+
+ private:
   void fill() {
-    while (next_ < job_.segments.size() && !exact_.queue_full() && !fixed_.queue_full()) {
+    auto& head = std::get<0>(controllers_);
+    while (next_ < job_.segments.size() && !queue_full()) {
       const auto index = static_cast<std::uint32_t>(job_.source_index.empty() ? next_ : job_.source_index[next_]);
-      auto pushed = exact_.try_push(job_.segments[next_], index);
+      auto pushed = head.try_push(job_.segments[next_], index);
       if (!pushed && pushed.error() == Error::QueueFull) return;  // a cusp split needs more room: later
       check(pushed, index);
-      check(fixed_.try_push(job_.segments[next_], index), index);
+      std::apply([&](auto&, auto&... others) { (check(others.try_push(job_.segments[next_], index), index), ...); }, controllers_);
       ++next_;
     }
     if (next_ == job_.segments.size()) {
-      exact_.end_of_job();
-      fixed_.end_of_job();
+      std::apply([](auto&... c) { (c.end_of_job(), ...); }, controllers_);
     }
   }
 
-  void start() {
-    check(exact_.start(), no_index);
-    check(fixed_.start(), no_index);
+  [[nodiscard]] bool queue_full() const {
+    return std::apply([](const auto&... c) { return (c.queue_full() || ...); }, controllers_);
   }
 
-  [[nodiscard]] bool finished() const { return exact_.finished(); }
-
-  /// One tick of both; returns the exact and the fixed setpoint.
-  std::pair<Setpoint<double>, Setpoint<Q16_16>> step() {
-    auto e = exact_.next_setpoint();
-    auto f = fixed_.next_setpoint();
-    if (!e) throw std::runtime_error(failure_text(job_, e.failure()));
-    if (!f) throw std::runtime_error(failure_text(job_, f.failure()));
-    return {e.value(), f.value()};
+  template <class Controller>
+  auto next_of(Controller& controller) {
+    auto setpoint = controller.next_setpoint();
+    if (!setpoint) throw std::runtime_error(failure_text(job_, setpoint.failure()));
+    return setpoint.value();
   }
 
- private:
   void check(const Result<void>& r, std::size_t index) const {
     if (!r) {
       Failure f = r.failure();
@@ -83,9 +99,24 @@ class LockstepRun {
 
   const Job& job_;
   std::size_t next_ = 0;
-  MotionController<double, queue_capacity, max_lookahead> exact_;
-  MotionController<Q16_16, queue_capacity, max_lookahead> fixed_;
+  std::tuple<Controllers...> controllers_;
 };
+
+using ExactController = MotionController<double, queue_capacity, max_lookahead>;
+using FixedController = MotionController<Q16_16, queue_capacity, max_lookahead>;
+
+/// Refuses what neither simulate() nor plan_pieces() can run: an empty job, an invalid machine, a
+/// look-ahead window outside 1..max_lookahead.
+void check_request(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
+  if (job.segments.empty()) throw std::runtime_error(job.name + ": the job has no segments");
+  if (auto valid = machine.validate(); !valid) {
+    throw std::runtime_error("machine: " + std::string(describe(valid.error())));
+  }
+  if (options.lookahead < 1 || options.lookahead > max_lookahead) {
+    throw std::runtime_error("lookahead: must be between 1 and " + std::to_string(max_lookahead) + " segments, not " +
+                             std::to_string(options.lookahead));
+  }
+}
 
 /// A path length for progress: arcs exactly (helix: √((r·sweep)² + Δz²)), curves by the chords of
 /// 16 samples (a slight underestimate). Only the fraction shown to the user depends on it.
@@ -122,18 +153,9 @@ void note_violation(SimulationSummary& s, const char* what, double measured, dou
 }  // namespace
 
 SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
-  if (job.segments.empty()) throw std::runtime_error(job.name + ": the job has no segments");
-  if (auto valid = machine.validate(); !valid) {
-    throw std::runtime_error("machine: " + std::string(describe(valid.error())));
-  }
-  if (options.lookahead < 1 || options.lookahead > max_lookahead) {
-    throw std::runtime_error("lookahead: must be between 1 and " + std::to_string(max_lookahead) + " segments, not " +
-                             std::to_string(options.lookahead));
-  }
+  check_request(job, machine, options);
   SimulationResult result;
-  LockstepRun run(job, machine, options.lookahead);
-  run.fill();
-  run.start();
+  LockstepRun<ExactController, FixedController> run(job, machine, options.lookahead);
   const double dt = 1.0 / machine.rate_hz;
   std::vector<std::array<double, 3>> exact_positions;
   std::size_t reported = 0;
@@ -141,9 +163,8 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
   // would say "done" at once for a job that fits the queue).
   const double total_length = options.progress ? approximate_length(job) : 0.0;
   double travelled = 0;
-  while (!run.finished()) {
-    run.fill();
-    const auto [exact, fixed] = run.step();
+  run.run([&](const auto& setpoints) {
+    const auto& [exact, fixed] = setpoints;
     SetpointRecord r;
     r.time_s = static_cast<double>(exact.tick) * dt;
     r.speed_mm_per_s = exact.speed_mm_per_s;
@@ -170,7 +191,7 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
       reported = result.setpoints.size();
       options.progress(total_length > 0 ? std::fmin(travelled / total_length, 0.999) : 0.0);
     }
-  }
+  });
   if (options.progress) options.progress(1.0);
 
   SimulationSummary& s = result.summary;
@@ -213,6 +234,17 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
     unchecked[axis] = 0;
   }
   return result;
+}
+
+std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
+  check_request(job, machine, options);
+  LockstepRun<FixedController> run(job, machine, options.lookahead);
+  std::vector<PlannedPiece> pieces;
+  PieceRecorder recorder;
+  const auto keep = [&pieces](const PlannedPiece& piece) { pieces.push_back(piece); };
+  run.run([&](const auto& setpoints) { recorder.record(run.lead(), std::get<0>(setpoints), keep); });
+  recorder.finish(keep);
+  return pieces;
 }
 
 void write_setpoints_csv(std::ostream& out, const std::vector<SetpointRecord>& setpoints) {

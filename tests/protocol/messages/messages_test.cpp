@@ -227,6 +227,22 @@ TEST_CASE("messages: Capabilities with look-ahead 0 decodes (version 4: no plann
   CHECK(c.value().tick_rate_hz == 1000000);
 }
 
+TEST_CASE("messages: Capabilities with degree 0 decodes only with look-ahead 0 (a controller without a planner takes no segments)",
+          "[protocol][messages]") {
+  // As above with degree 0 (byte 13): what App<_, _, _, 0> sends.
+  const auto executor = decode<Capabilities>(hex("0400 0000 a200 1000 1000 20 10 03 00 40420f00 0000"));
+  REQUIRE(executor.has_value());
+  CHECK(executor.value().max_degree == 0);
+  // Degree 0 with look-ahead 8, and degree 8 with look-ahead 0, are refused at the degree byte.
+  const auto planner = decode<Capabilities>(hex("0400 0000 a200 1000 1000 20 10 03 00 40420f00 0800"));
+  REQUIRE_FALSE(planner.has_value());
+  CHECK(planner.error() == curvestep::Error::BadPayload);
+  CHECK(planner.failure().index == 13);
+  const auto too_high = decode<Capabilities>(hex("0400 0000 a200 1000 1000 20 10 03 08 40420f00 0000"));
+  REQUIRE_FALSE(too_high.has_value());
+  CHECK(too_high.failure().index == 13);
+}
+
 TEST_CASE("messages: a 3-axis 1 kHz setpoint stream fits 115200 baud with 39 percent spare", "[protocol][messages]") {
   // Worst case of docs/protocol.md: every axis moves 8191 raw (0.125 mm) per 1 ms setpoint,
   // i.e. 125 mm/s per axis, so every delta takes two varint bytes.

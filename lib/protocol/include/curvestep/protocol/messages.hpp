@@ -677,9 +677,10 @@ template <>
   if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, axes_at);
   const std::size_t degree_at = r.offset();
   m.max_degree = r.u8();
-  if (m.max_degree < 1 || m.max_degree > max_segment_degree) r.reject_at(Error::BadPayload, degree_at);
   m.tick_rate_hz = r.u32();
   m.lookahead = r.u16();  // 0: no planner on board (version 4)
+  // Degree 0 (no segments) only from a controller without a planner, which takes none.
+  if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) r.reject_at(Error::BadPayload, degree_at);
   CURVESTEP_CHECK(r.finish());
   return m;
 }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The host simulator: replays a job through the firmware's MotionController and measures the result.
+// The host simulator: replays a job through the firmware's MotionController and measures the result,
+// or plans it into pieces for a controller that only replays them (plan_pieces).
 #pragma once
 
 #include <array>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/host/job.hpp>
 
 namespace curvestep::host {
@@ -60,6 +62,15 @@ struct SimulationResult {
 /// rejects a segment (naming the job file and segment) or faults, or if options.lookahead is
 /// outside 1..max_lookahead.
 [[nodiscard]] SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options = {});
+
+/// The job planned here for a controller without a planner (Capabilities::lookahead 0): the
+/// PlannedPieces (planned_piece.hpp) of the Q16.16 MotionController that simulate() runs, with
+/// options.lookahead as its window (the other options are not used). Replaying them
+/// (PieceExecutor<Q16_16>) gives simulate()'s raw_q16 setpoints bit for bit: their ticks add up
+/// to its setpoint count, the last piece has end_of_job, and each piece's segment is the job
+/// file's segment index (SetpointRecord::segment). Throws what simulate() throws.
+[[nodiscard]] std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machine,
+                                                    const SimulationOptions& options = {});
 
 /// Writes `t,x,y,z,v` and one line per setpoint (shortest round-trip decimals).
 void write_setpoints_csv(std::ostream& out, const std::vector<SetpointRecord>& setpoints);

@@ -6,11 +6,14 @@
 // MachineConfiguration and Start, then QueueSegments while the credit allows, the last one
 // flagged end_of_job. The controller arms on Start and begins moving by itself once its
 // look-ahead window is full or the job's end has arrived (firmware/app.hpp, "the start rule"),
-// so its plan equals `curvestep sim`'s. The job is over when a StatusReport says Idle after the controller
+// so its plan equals `curvestep sim`'s. A controller without a planner (Capabilities::lookahead 0)
+// gets the job planned here instead (plan_pieces with StreamOptions::lookahead) as QueuePieces,
+// one credit each like a segment, the last one flagged end_of_job: its setpoints are those of
+// `curvestep sim --lookahead N`. The job is over when a StatusReport says Idle after the controller
 // reported Running, every segment was sent and acknowledged, and every setpoint up to the
 // reported index has arrived (the controller's setpoint stream is reliable since protocol
 // version 2, so none may be missing); a Fault state or an ErrorReport ends it with the
-// controller's cause. A controller that restarted mid-job (it answers NotConnected) ends it with
+// controller's cause (naming the job segment, and the piece number when pieces were sent). A controller that restarted mid-job (it answers NotConnected) ends it with
 // DeviceRestarted, naming the last acknowledged segment and the last setpoint received.
 #pragma once
 
@@ -32,8 +35,9 @@ namespace curvestep::host::link {
 
 /// Where an upload is.
 struct StreamProgress {
-  std::size_t segments_sent = 0;       ///< queue segments submitted
-  std::size_t segments_total = 0;      ///< queue segments in the job
+  std::size_t sent = 0;                ///< queue messages submitted (segments or pieces, see unit)
+  std::size_t total = 0;               ///< queue messages of the job
+  const char* unit = "segments";       ///< what sent and total count: "segments", or "pieces" for a controller without a planner
   std::size_t setpoints_received = 0;  ///< setpoints captured so far
   double elapsed_s = 0;                ///< since connect
   double eta_s = -1;                   ///< estimated seconds left (-1: not known yet)
@@ -49,6 +53,10 @@ struct StreamOptions {
   std::function<void(const StreamProgress&)> progress;  ///< called about 10 times a second (may be empty)
   std::function<void(const std::string&)> warn;         ///< called for each value the wire cannot carry exactly
   double status_interval_s = 0.2;                       ///< StatusRequest period while running
+  /// The look-ahead window the job is planned with here (plan_pieces) for a controller without a
+  /// planner (Capabilities::lookahead 0); unused for one that plans. 1..max_lookahead; the default
+  /// makes its stream `curvestep sim`'s default output.
+  std::size_t lookahead = SimulationOptions::max_lookahead;
 };
 
 /// The controller stopped the job or the link died: a one-line cause naming what failed.
@@ -71,13 +79,16 @@ struct StreamResult {
   std::size_t batches_repeated = 0;       ///< setpoint batches the controller resent and the host had already
   std::size_t max_queue_depth = 0;        ///< deepest the controller's segment queue was (its last StatusReport)
   std::size_t queue_capacity = 0;         ///< the controller's segment queue slots (Capabilities)
-  std::size_t lookahead = 0;              ///< the controller's planning window (Capabilities): sim --lookahead
+  std::size_t lookahead = 0;              ///< the controller's planning window (Capabilities): sim --lookahead; 0: no planner
+  std::size_t pieces_sent = 0;            ///< planned pieces sent (a controller without a planner; 0 when it planned)
+  std::size_t planned_lookahead = 0;      ///< the window the pieces were planned with here (sim --lookahead); 0 when the controller planned
   std::size_t frames_rejected = 0;        ///< damaged frames from the controller
   std::size_t bytes_sent = 0;             ///< bytes written, retransmissions included
 };
 
 /// Runs `job` on the controller behind `transport`. Throws StreamError (controller error, link
-/// failure), TransportError (line closed) or std::runtime_error (job cannot be sent).
+/// failure), TransportError (line closed) or std::runtime_error (job cannot be sent or planned,
+/// StreamOptions::lookahead outside 1..max_lookahead for a controller without a planner).
 [[nodiscard]] StreamResult stream_job(Transport& transport, const Job& job, const MachineLimits& machine,
                                       const StreamOptions& options = {});
 

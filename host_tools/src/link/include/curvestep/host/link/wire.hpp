@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Jobs and machines as wire messages: PathSegments -> QueueSegments, MachineLimits ->
-// MachineConfiguration, with a note for every value the wire cannot carry exactly.
+// MachineConfiguration, with a note for every value the wire cannot carry exactly; and planned
+// pieces -> QueuePieces for a controller without a planner (binary64 coordinates, exact).
 //
 // Coordinates of a loaded job are already Q16.16 (job.hpp quantises them), so they travel
 // exactly. The machine's planning limits (speeds, accelerations, jerk, tolerance, junction
@@ -16,6 +17,7 @@
 #include <vector>
 
 #include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/protocol/messages.hpp>
 
@@ -40,6 +42,13 @@ struct WireJob {
 /// naming the job file and segment for what the wire cannot express (a Z move on a 2-axis
 /// controller, a coordinate outside Q16.16).
 [[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count);
+
+/// A planned piece (plan_pieces) as a QueuePiece for a controller with `axis_count` axes (2 or
+/// 3), for a controller without a planner. Coordinates travel as binary64, exactly. Throws
+/// std::runtime_error naming the piece's job segment for what the wire cannot express: a Z
+/// coordinate other than 0 on a 2-axis controller, a length that is not 1 or a power of two up
+/// to 256.
+[[nodiscard]] protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count);
 
 /// `value` in Q16.16 raw units, rounded to nearest; sets `exact` false if rounding changed it.
 /// Throws std::out_of_range outside the Q16.16 range.

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: MIT
+// A firmware App<FakeBoard, ...> behind a host Transport, in this process: what stream_job writes
+// goes to the App's serial input, what the App writes comes back from read(). The App ticks inside
+// read() like the host board's fast mode (boards/host/device.hpp): only when the setpoint stream
+// is not backed up and the queue holds the planner's window (Lookahead + 2 entries; for a
+// controller without a planner, Lookahead 0, the piece the next setpoint needs), unless the job's end has arrived or the controller is braking,
+// so a fast device never plans with less than a real-time one fed in time, nor underruns; held
+// or starved, it waits for the host.
+#pragma once
+
+#include <algorithm>
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+
+#include <curvestep/host/link/transport.hpp>
+
+#include "fake_board.hpp"  // tests/firmware/app
+
+namespace curvestep::host::link::testing {
+
+template <class AppType, std::size_t Lookahead>
+class InProcessDevice final : public Transport {
+ public:
+  InProcessDevice() : app_(std::make_unique<AppType>(board_)) {}
+
+  std::size_t read(std::span<std::byte> out, int /*timeout_ms*/) override {
+    run();
+    if (board_.outgoing.empty() && may_tick()) {
+      app_->on_tick();
+      run();
+    }
+    const std::size_t n = out.size() < board_.outgoing.size() ? out.size() : board_.outgoing.size();
+    std::copy_n(board_.outgoing.begin(), n, out.begin());
+    board_.outgoing.erase(board_.outgoing.begin(), board_.outgoing.begin() + static_cast<std::ptrdiff_t>(n));
+    return n;  // 0 at once instead of waiting: the host's loop comes back
+  }
+
+  void write(std::span<const std::byte> bytes) override { board_.put_incoming(bytes); }
+
+  [[nodiscard]] const std::string& name() const override { return name_; }
+
+  /// The App (its statistics and state, after the job).
+  [[nodiscard]] AppType& app() { return *app_; }
+
+ private:
+  void run() {
+    // The App's clock is the wall clock, as on the host board: the link's timeouts and the
+    // host's status requests run on the same time.
+    board_.clock_ms = static_cast<std::uint32_t>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - epoch_).count());
+    app_->poll();
+  }
+
+  [[nodiscard]] bool may_tick() {
+    if (!app_->moving() || !app_->ready_to_tick()) return false;
+    const auto& controller = app_->controller();
+    if (controller.state() == ControllerState::Held || controller.state() == ControllerState::Starved) return false;
+    bool window_full = false;
+    if constexpr (Lookahead == 0) {
+      window_full = controller.can_step();  // no planner: the next setpoint's piece has arrived
+    } else {
+      window_full = controller.queued() >= Lookahead + 2;
+    }
+    const bool braking = controller.state() != ControllerState::Running;
+    return window_full || app_->job_end_known() || braking;
+  }
+
+  curvestep::firmware::testing::FakeBoard board_;
+  std::unique_ptr<AppType> app_;
+  std::chrono::steady_clock::time_point epoch_ = std::chrono::steady_clock::now();
+  std::string name_ = "in-process App";
+};
+
+}  // namespace curvestep::host::link::testing

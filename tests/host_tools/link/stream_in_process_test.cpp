@@ -1,0 +1,147 @@
+// SPDX-License-Identifier: MIT
+// stream_job against a firmware App in this process (in_process_device.hpp): the real upload loop,
+// link and App, without a pseudo-terminal. The reference is the simulator: the captured setpoints
+// equal simulate()'s raw Q16.16 stream with the device's window, bit for bit.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include <curvestep/firmware/app.hpp>
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/link/streamer.hpp>
+#include <curvestep/host/link/wire.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/simulator.hpp>
+
+#include "in_process_device.hpp"
+
+using namespace curvestep;
+namespace hl = curvestep::host::link;
+
+namespace {
+
+const std::filesystem::path examples = CURVESTEP_EXAMPLE_JOBS;
+
+/// Same number of setpoints, the same raw Q16.16 positions at the same index.
+void require_same_setpoints(const std::vector<host::SetpointRecord>& got, const std::vector<host::SetpointRecord>& expected) {
+  REQUIRE(got.size() == expected.size());
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < got.size(); ++i) {
+    const bool same = got[i].raw_q16 == expected[i].raw_q16 && got[i].time_s == expected[i].time_s;
+    if (!same && differing++ == 0) {
+      INFO("first difference at setpoint " << i);
+      CHECK(same);
+    }
+  }
+  CHECK(differing == 0);
+}
+
+}  // namespace
+
+TEST_CASE("stream in process: a planning App with look-ahead 9 streams curvestep sim --lookahead 9 bit for bit",
+          "[host_tools][stream]") {
+  using WindowApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 17, 9>;
+  const auto machine = host::load_machine(examples / "machine.json");
+  const auto job = host::load_job(examples / "seed_cubic.json");
+  hl::testing::InProcessDevice<WindowApp, 9> device;
+  std::vector<std::string> warnings;
+  hl::StreamOptions options;
+  options.warn = [&warnings](const std::string& text) { warnings.push_back(text); };
+  const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+  CHECK(warnings.empty());
+  CHECK(result.lookahead == 9);
+  CHECK(result.pieces_sent == 0);
+  CHECK(result.standing_ticks == 0);
+  host::SimulationOptions nine;
+  nine.lookahead = 9;
+  const auto [device_job, device_machine] = hl::as_device_sees(job, machine);
+  require_same_setpoints(result.setpoints, host::simulate(device_job, device_machine, nine).setpoints);
+}
+
+namespace {
+
+/// The executor App of the STM32F1 image's size: 16 pieces, no planner.
+using ExecutorApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 16, 0>;
+
+}  // namespace
+
+TEST_CASE("stream in process: an App without a planner replays the pieces planned here as curvestep sim bit for bit",
+          "[host_tools][stream][pieces]") {
+  // The example machine with 4 steps/mm: at 80 the App refuses every_type.json's segment 8
+  // (StepRateTooHigh, a planning App on this fake board alike). Steps per mm do not change the
+  // planned setpoints.
+  auto machine = host::load_machine(examples / "machine.json");
+  for (auto& axis : machine.axes) axis.steps_per_mm = 4;
+  std::size_t jobs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(examples)) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "machine.json") continue;
+    INFO(entry.path().filename().string());
+    const auto job = host::load_job(entry.path());
+    hl::testing::InProcessDevice<ExecutorApp, 0> device;
+    std::vector<hl::StreamProgress> progress;
+    hl::StreamOptions options;
+    options.progress = [&progress](const hl::StreamProgress& p) { progress.push_back(p); };
+    const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+    CHECK(result.lookahead == 0);
+    CHECK(result.planned_lookahead == host::SimulationOptions::max_lookahead);
+    CHECK(result.pieces_sent == host::plan_pieces(job, machine).size());
+    CHECK(result.standing_ticks == 0);
+    CHECK(result.duplicate_setpoints == 0);
+    REQUIRE_FALSE(progress.empty());
+    CHECK(std::string(progress.back().unit) == "pieces");
+    CHECK(progress.back().sent == result.pieces_sent);
+    CHECK(progress.back().total == result.pieces_sent);
+    // The reference: the simulator on the job and machine as loaded (nothing is rounded for the
+    // wire: the pieces travel as binary64).
+    require_same_setpoints(result.setpoints, host::simulate(job, machine).setpoints);
+    CHECK(device.app().statistics().dropped_setpoints == 0);
+    ++jobs;
+  }
+  CHECK(jobs >= 4);
+}
+
+TEST_CASE("stream in process: the window the pieces are planned with is StreamOptions::lookahead",
+          "[host_tools][stream][pieces]") {
+  // 40 collinear lines of 0.25 mm at 50 mm/s: braking takes about 1.6 mm, so a window of 1
+  // segment plans slower than the default 16 (checked on the simulator first).
+  const auto machine = host::load_machine(examples / "machine.json");
+  host::Job job;
+  job.name = "short lines";
+  for (int k = 0; k < 40; ++k) {
+    const auto line = PathSegment::make_line(MachinePoint{0.25 * k, 0, 0}, MachinePoint{0.25 * (k + 1), 0, 0});
+    REQUIRE(line.has_value());
+    job.segments.push_back(line.value());
+  }
+  host::SimulationOptions one;
+  one.lookahead = 1;
+  const auto narrow = host::simulate(job, machine, one).setpoints;
+  REQUIRE(narrow.size() != host::simulate(job, machine).setpoints.size());
+  hl::testing::InProcessDevice<ExecutorApp, 0> device;
+  hl::StreamOptions options;
+  options.lookahead = 1;
+  const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+  CHECK(result.planned_lookahead == 1);
+  require_same_setpoints(result.setpoints, narrow);
+}
+
+TEST_CASE("stream in process: a window outside 1..16 for a controller without a planner is refused with one line",
+          "[host_tools][stream][pieces]") {
+  const auto machine = host::load_machine(examples / "machine.json");
+  const auto job = host::load_job(examples / "seed_cubic.json");
+  hl::testing::InProcessDevice<ExecutorApp, 0> device;
+  hl::StreamOptions options;
+  options.lookahead = 17;
+  try {
+    (void)hl::stream_job(device, job, machine, options);
+    FAIL("accepted look-ahead 17");
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    CHECK(what.find("between 1 and 16") != std::string::npos);
+    CHECK(what.find('\n') == std::string::npos);
+  }
+}
