@@ -162,12 +162,14 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
 
 protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) {
   const std::string where = "segment " + std::to_string(piece.segment) + ": a planned piece";
-  if (!valid_piece_ticks(piece.ticks)) {
-    throw std::runtime_error(where + " covers " + std::to_string(piece.ticks) + " ticks, not 1 or a power of two up to " +
-                             std::to_string(HermiteChunk::max_ticks));
+  if (!valid_piece_ticks(piece.ticks, piece.exact_run)) {
+    throw std::runtime_error(where + " covers " + std::to_string(piece.ticks) + " ticks, not " +
+                             (piece.exact_run ? "2 to " + std::to_string(max_exact_run) + " (an exact run)"
+                                              : "1 or a power of two up to " + std::to_string(HermiteChunk::max_ticks)));
   }
-  const bool chunk = piece.ticks > 1;
+  const std::size_t sent = piece.exact_run ? piece.ticks - 1 : is_chunk(piece) ? piece.controls.size() : 0;
   protocol::QueuePiece q;
+  q.exact_run = piece.exact_run;
   q.axis_count = static_cast<std::uint8_t>(axis_count);
   q.ticks = static_cast<std::uint16_t>(piece.ticks);
   q.end_of_job = piece.end_of_job;
@@ -179,9 +181,7 @@ protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) 
     }
   };
   put(piece.end, q.end, "end point");
-  if (chunk) {
-    for (std::size_t k = 0; k < piece.controls.size(); ++k) put(piece.controls[k], q.controls[k], "control point");
-  }
+  for (std::size_t k = 0; k < sent; ++k) put(piece.controls[k], q.controls[k], piece.exact_run ? "run point" : "control point");
   return q;
 }
 

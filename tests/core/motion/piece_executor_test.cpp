@@ -92,7 +92,8 @@ void check_job(const std::vector<PathSegment>& job, const MachineLimits& machine
   std::size_t chunks = 0;
   for (const PlannedPiece& p : run.pieces) {
     ticks += p.ticks;
-    if (p.ticks > 1) ++chunks;
+    if (is_chunk(p)) ++chunks;
+    CHECK(valid_piece_ticks(p.ticks, p.exact_run));
   }
   CHECK(ticks == run.setpoints.size());  // every setpoint in exactly one piece
   CHECK(chunks > 0);                     // the replay steps chunks, not only exact ticks
@@ -163,6 +164,36 @@ TEST_CASE("piece executor: a chunk of a straight line steps to the exact quarter
   }
   CHECK(executor.finished());
   CHECK(executor.next_setpoint().error() == Error::InvalidState);
+}
+
+TEST_CASE("piece executor: an exact run gives its setpoints in order then its end", "[core][motion][pieces]") {
+  PieceExecutor<Q16_16, 4> executor;
+  REQUIRE(executor.configure(test_machine()).has_value());
+  PlannedPiece run = exact_piece(3, -3, 9);
+  run.exact_run = true;
+  run.ticks = 3;
+  run.controls[0] = mp(1, -1);
+  run.controls[1] = mp(2, -2);
+  run.controls[2] = mp(100, 100);  // beyond the run's ticks: never a setpoint
+  run.end_of_job = true;
+  REQUIRE(executor.push(run).has_value());  // a run may open a job: it needs no setpoint before it
+  REQUIRE(executor.start().has_value());
+  for (int k = 1; k <= 3; ++k) {
+    const auto sp = executor.next_setpoint();
+    REQUIRE(sp.has_value());
+    CHECK(sp.value().tick == static_cast<std::uint64_t>(k - 1));
+    CHECK(sp.value().position[0] == Q16_16(k));
+    CHECK(sp.value().position[1] == Q16_16(-k));
+    CHECK(sp.value().segment == 9u);
+  }
+  CHECK(executor.finished());
+  PlannedPiece long_run = exact_piece(0, 0);
+  long_run.exact_run = true;
+  long_run.ticks = max_exact_run + 1;
+  executor.reset();
+  CHECK(executor.push(long_run).error() == Error::InvalidArgument);
+  long_run.ticks = 1;  // a run of one tick is an exact piece without the flag
+  CHECK(executor.push(long_run).error() == Error::InvalidArgument);
 }
 
 TEST_CASE("piece executor: refuses bad pieces and leaves the queue unchanged", "[core][motion][pieces]") {

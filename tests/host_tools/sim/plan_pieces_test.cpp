@@ -60,7 +60,7 @@ void check_against_simulator(const host::Job& job, const MachineLimits& machine,
   std::uint64_t ticks = 0;
   std::size_t chunks = 0;
   for (const PlannedPiece& piece : pieces) {
-    CHECK(valid_piece_ticks(piece.ticks));
+    CHECK(valid_piece_ticks(piece.ticks, piece.exact_run));
     ticks += piece.ticks;
     if (piece.ticks > 1) ++chunks;
   }

@@ -54,6 +54,10 @@ const char* const exact_3_axes = "00 03 01 00 78 56 34 12 " F_1_5 F_M2 F_0_1;
 const char* const chunk_3_axes = "00 03 00 01 29 00 00 00 " F_2 F_M0_5 F_0_25  //
     F_0_1 F_0 F_0 F_0_5 F_M1 F_0 F_1 F_M2 F_0_1 F_1_5 F_M0_5 F_0_25 F_2 F_1 F_M1;
 
+// Exact run (flag bit 1), 2 axes, 3 ticks, segment 5: end (2, -0.5), then the run's first two
+// setpoints (1.5, -2) and (0.1, 0) in time order: 8 + 3 x 16 = 56 bytes.
+const char* const exact_run_2_axes = "02 02 03 00 05 00 00 00 " F_2 F_M0_5 F_1_5 F_M2 F_0_1 F_0;
+
 QueuePiece exact_2_axes_piece() {
   QueuePiece p;
   p.axis_count = 2;
@@ -129,6 +133,7 @@ TEST_CASE("queue piece: the protocol's tick rule is core's valid_piece_ticks", "
   for (std::uint32_t ticks = 0; ticks <= 0x10000; ++ticks) {
     INFO("ticks " << ticks);
     CHECK(valid_queue_piece_ticks(ticks) == curvestep::valid_piece_ticks(ticks));
+    CHECK(valid_queue_piece_ticks(ticks, true) == curvestep::valid_piece_ticks(ticks, true));
   }
 }
 
@@ -164,6 +169,31 @@ TEST_CASE("queue piece: a 3-axis chunk of 256 ticks is 152 bytes and fits a mess
   CHECK(back.value() == chunk_3_axes_piece());
   CHECK(queue_piece_size(3, 256) == 152);
   CHECK(queue_piece_size(2, 2) == 104);
+}
+
+TEST_CASE("queue piece: an exact run of 3 ticks is 56 bytes with its setpoints in time order", "[protocol][messages]") {
+  QueuePiece p;
+  p.axis_count = 2;
+  p.ticks = 3;
+  p.exact_run = true;
+  p.segment = 5;
+  p.end = {2.0, -0.5, 0.0};
+  p.controls[0] = {1.5, -2.0, 0.0};
+  p.controls[1] = {0.1, 0.0, 0.0};
+  const auto expected = hex(exact_run_2_axes);
+  REQUIRE(expected.size() == 56);
+  CHECK(queue_piece_size(2, 3, true) == 56);
+  CHECK(queue_piece_size(3, 6, true) == 152);  // the longest run fits a message like a chunk
+  CHECK(to_hex(encoded(p)) == to_hex(expected));
+  const auto back = decode<QueuePiece>(expected);
+  REQUIRE(back.has_value());
+  CHECK(back.value() == p);
+  QueuePiece stray = p;
+  stray.controls[2] = {1.0, 0.0, 0.0};  // a third earlier point: not sent with 3 ticks
+  check_refused(stray, Error::InvalidArgument, 8 + 3 * 16);
+  QueuePiece too_long = p;
+  too_long.ticks = 7;
+  check_refused(too_long, Error::InvalidArgument, 2);
 }
 
 TEST_CASE("queue piece: a 2-axis chunk sends no z and decodes z as 0", "[protocol][messages]") {
@@ -254,10 +284,12 @@ TEST_CASE("queue piece: a host's decoder refuses it as UnknownMessage", "[protoc
 
 TEST_CASE("queue piece: reserved flag bits axis counts and tick counts are BadPayload at their byte",
           "[protocol][messages]") {
-  for (const int flags : {0x02, 0x04, 0x08, 0x10, 0x20, 0x40, 0x80, 0x03}) {
+  for (const int flags : {0x04, 0x08, 0x10, 0x20, 0x40, 0x80, 0x06, 0x07}) {
     INFO("flags " << flags);
     check_fails(with_byte(exact_2_axes, 0, flags), Error::BadPayload, 0);
   }
+  check_fails(with_byte(exact_2_axes, 0, 0x02), Error::BadPayload, 2);  // an exact run of one tick
+  check_fails(with_byte(exact_run_2_axes, 2, 7), Error::BadPayload, 2);  // a run of 7 ticks
   for (const int axes : {0, 1, 4, 255}) {
     INFO("axes " << axes);
     check_fails(with_byte(exact_2_axes, 1, axes), Error::BadPayload, 1);

@@ -207,7 +207,8 @@ struct QueueSegment {
 struct QueuePiece {
   static constexpr MessageType type = MessageType::QueuePiece;  ///< message type
   std::uint8_t axis_count = 3;  ///< 2 or 3 coordinates per point (with 2, every z is 0)
-  std::uint16_t ticks = 1;      ///< control ticks covered: 1 (exact) or a power of two 2..256 (chunk)
+  std::uint16_t ticks = 1;      ///< control ticks covered: 1 (exact), a power of two 2..256 (chunk), 2..6 (exact run)
+  bool exact_run = false;       ///< flag bit 1: `ticks` exact setpoints, controls[0..ticks-2] then `end`
   bool end_of_job = false;      ///< the job's last piece
   std::uint32_t segment = 0;    ///< the job segment index the piece belongs to (reports)
   std::array<double, max_axes> end{};  ///< unrounded position of the piece's last setpoint (mm, binary64)
@@ -494,8 +495,12 @@ inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u
   return w.finish();
 }
 
-/// QueuePiece flag bit 0 (byte 0): the job's last piece; bits 1-7 reserved, 0.
+/// QueuePiece flag bit 0 (byte 0): the job's last piece.
 inline constexpr std::uint8_t piece_flag_end_of_job = 0x01;
+/// QueuePiece flag bit 1: an exact run (ticks 2..6 exact setpoints); bits 2-7 reserved, 0.
+inline constexpr std::uint8_t piece_flag_exact_run = 0x02;
+/// Most exact setpoints one exact run carries (core's max_exact_run).
+inline constexpr std::uint32_t max_piece_exact_run = 6;
 /// Payload bytes of a QueuePiece before its points (flags, axis_count, ticks, segment).
 inline constexpr std::size_t piece_header_size = 8;
 /// Hermite control points a chunk carries (q1..q5; q0 = 0 is not sent).
@@ -507,13 +512,22 @@ inline constexpr std::uint32_t max_piece_ticks = 256;
 /// True if `ticks` is a valid QueuePiece length: 1 or a power of two up to max_piece_ticks (the
 /// rule of core's valid_piece_ticks, which this header does not include: core's motion headers
 /// bring names such as curvestep::SegmentKind that would clash with this namespace's).
-[[nodiscard]] constexpr bool valid_queue_piece_ticks(std::uint32_t ticks) noexcept {
+/// For an exact run: 2..max_piece_exact_run.
+[[nodiscard]] constexpr bool valid_queue_piece_ticks(std::uint32_t ticks, bool exact_run = false) noexcept {
+  if (exact_run) return ticks >= 2 && ticks <= max_piece_exact_run;
   return ticks >= 1 && ticks <= max_piece_ticks && (ticks & (ticks - 1)) == 0;
 }
 
-/// Payload bytes of a QueuePiece: 8 + 8 x axes for an exact piece, 8 + 48 x axes for a chunk.
-[[nodiscard]] constexpr std::size_t queue_piece_size(std::size_t axis_count, std::uint32_t ticks) noexcept {
-  return piece_header_size + 8 * axis_count * (ticks > 1 ? 1 + piece_control_count : 1);
+/// Points a QueuePiece carries after its header: 1 (exact), 6 (chunk: end, q1..q5), or ticks
+/// (exact run: end, then the earlier setpoints in time order).
+[[nodiscard]] constexpr std::size_t queue_piece_points(std::uint32_t ticks, bool exact_run) noexcept {
+  if (exact_run) return ticks;
+  return ticks > 1 ? 1 + piece_control_count : 1;
+}
+
+/// Payload bytes of a QueuePiece: 8 + 8 x axes x its points.
+[[nodiscard]] constexpr std::size_t queue_piece_size(std::size_t axis_count, std::uint32_t ticks, bool exact_run = false) noexcept {
+  return piece_header_size + 8 * axis_count * queue_piece_points(ticks, exact_run);
 }
 static_assert(queue_piece_size(max_axes, 256) == 152 && queue_piece_size(max_axes, 256) <= max_message_size,
               "docs/protocol.md: a 3-axis chunk is 152 bytes");
@@ -553,23 +567,21 @@ namespace detail {
 /// the value) for a NaN or infinite coordinate.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueuePiece& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
-  if (!valid_queue_piece_ticks(m.ticks)) return fail(Error::InvalidArgument, 2);
+  if (!valid_queue_piece_ticks(m.ticks, m.exact_run)) return fail(Error::InvalidArgument, 2);
   const std::size_t axes = m.axis_count;
+  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run) - 1;  // of the control slots
   CURVESTEP_CHECK(detail::check_piece_point(m.end, axes, detail::piece_point_offset(axes, 0)));
-  const bool chunk = m.ticks > 1;
   for (std::size_t k = 0; k < piece_control_count; ++k) {
-    CURVESTEP_CHECK(detail::check_piece_point(m.controls[k], chunk ? axes : 0, detail::piece_point_offset(axes, k + 1)));
+    CURVESTEP_CHECK(detail::check_piece_point(m.controls[k], k < sent ? axes : 0, detail::piece_point_offset(axes, k + 1)));
   }
   ByteWriter w(out);
-  w.u8(m.end_of_job ? piece_flag_end_of_job : std::uint8_t{0});
+  w.u8(static_cast<std::uint8_t>((m.end_of_job ? piece_flag_end_of_job : 0) | (m.exact_run ? piece_flag_exact_run : 0)));
   w.u8(m.axis_count);
   w.u16(m.ticks);
   w.u32(m.segment);
   for (std::size_t a = 0; a < axes; ++a) w.f64(m.end[a]);
-  if (chunk) {
-    for (std::size_t k = 0; k < piece_control_count; ++k) {
-      for (std::size_t a = 0; a < axes; ++a) w.f64(m.controls[k][a]);
-    }
+  for (std::size_t k = 0; k < sent; ++k) {
+    for (std::size_t a = 0; a < axes; ++a) w.f64(m.controls[k][a]);
   }
   return w.finish();
 }
@@ -799,16 +811,17 @@ template <>
   ByteReader r(payload);
   QueuePiece m;
   const std::uint8_t flags = r.u8();
-  if ((flags & ~piece_flag_end_of_job) != 0) r.reject_at(Error::BadPayload, 0);
+  if ((flags & ~(piece_flag_end_of_job | piece_flag_exact_run)) != 0) r.reject_at(Error::BadPayload, 0);
   m.end_of_job = (flags & piece_flag_end_of_job) != 0;
+  m.exact_run = (flags & piece_flag_exact_run) != 0;
   m.axis_count = r.u8();
   if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 1);
   m.ticks = r.u16();
-  if (!r.failed() && !valid_queue_piece_ticks(m.ticks)) r.reject_at(Error::BadPayload, 2);
+  if (!r.failed() && !valid_queue_piece_ticks(m.ticks, m.exact_run)) r.reject_at(Error::BadPayload, 2);
   m.segment = r.u32();
   if (r.failed()) return r.finish().failure();
   const std::size_t axes = m.axis_count;
-  const std::size_t expected = queue_piece_size(axes, m.ticks);
+  const std::size_t expected = queue_piece_size(axes, m.ticks, m.exact_run);
   if (payload.size() != expected) return fail(Error::BadPayload, payload.size() < expected ? payload.size() : expected);
   const auto read_point = [&r, axes](std::array<double, max_axes>& point) {
     for (std::size_t a = 0; a < axes; ++a) {
@@ -818,9 +831,8 @@ template <>
     }
   };
   read_point(m.end);
-  if (m.ticks > 1) {
-    for (std::array<double, max_axes>& control : m.controls) read_point(control);
-  }
+  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run) - 1;
+  for (std::size_t k = 0; k < sent; ++k) read_point(m.controls[k]);
   CURVESTEP_CHECK(r.finish());
   return m;
 }

@@ -55,8 +55,8 @@ class PieceExecutor {
       return fail(Error::InvalidState, piece.segment);
     }
     if (queue_.full()) return fail(Error::QueueFull, piece.segment);
-    if (!valid_piece_ticks(piece.ticks)) return fail(Error::InvalidArgument, 0);
-    if (piece.ticks > 1 && first_of_job()) return fail(Error::InvalidArgument, 1);
+    if (!valid_piece_ticks(piece.ticks, piece.exact_run)) return fail(Error::InvalidArgument, 0);
+    if (is_chunk(piece) && first_of_job()) return fail(Error::InvalidArgument, 1);
     if (!finite(piece)) return fail(Error::NotFinite, piece.segment);
     [[maybe_unused]] const bool pushed = queue_.try_push(piece);  // room checked above
     if (piece.end_of_job) end_of_job_ = true;
@@ -110,18 +110,19 @@ class PieceExecutor {
     if (!end_pending_) {
       if (queue_.empty()) return fault(fail(Error::QueueUnderrun, last_segment_));
       const PlannedPiece& piece = queue_.front();
-      if (piece.ticks > 1) {
+      if (is_chunk(piece)) {
         if (auto started = chunk_.start(last_position_, chunk_controls(piece), piece.ticks); !started) {
           return fault(fail(started.error(), piece.segment));
         }
-        stepped_left_ = piece.ticks - 1;
       }
+      stepped_left_ = piece.ticks - 1;
       end_pending_ = true;
     }
     const PlannedPiece& piece = queue_.front();
     last_segment_ = piece.segment;
     if (stepped_left_ > 0) {
       --stepped_left_;
+      if (piece.exact_run) return emit(piece.controls[piece.ticks - 2 - stepped_left_]);
       return emit(chunk_.next());
     }
     auto setpoint = emit(piece.end);

@@ -3,8 +3,9 @@
 // replays (planned_piece.hpp). Call record() after every next_setpoint() of a job and finish()
 // after its last: each exact tick becomes a piece of one tick, each chunk the controller begins a
 // piece of its length (its stepped setpoints and its exact end), so the pieces reproduce the
-// controller's setpoints bit for bit. The sink is called with each finished piece, in order; the
-// last one (finish) carries end_of_job.
+// controller's setpoints bit for bit. Consecutive exact ticks of one segment are merged into
+// exact runs of up to max_exact_run ticks. The sink is called with each finished piece, in order;
+// the last one (finish) carries end_of_job.
 #pragma once
 
 #include <cstddef>
@@ -22,10 +23,18 @@ class PieceRecorder {
   void record(const Controller& controller, const Setpoint<S>& setpoint, Sink&& sink) {
     const bool inside_chunk = covered_ && setpoint.tick <= covered_until_;
     if (!inside_chunk) {
-      PlannedPiece exact;
-      exact.end = controller.last_unrounded_position();
-      exact.segment = setpoint.segment;
-      hand_over(exact, sink);
+      const bool extends = pending_ && !is_chunk(last_) && last_.ticks < max_exact_run && last_.segment == setpoint.segment;
+      if (extends) {
+        last_.controls[last_.ticks - 1] = last_.end;  // the run's earlier ticks, in order
+        last_.end = controller.last_unrounded_position();
+        ++last_.ticks;
+        last_.exact_run = true;
+      } else {
+        PlannedPiece exact;
+        exact.end = controller.last_unrounded_position();
+        exact.segment = setpoint.segment;
+        hand_over(exact, sink);
+      }
     }
     if (controller.chunk_begins_at_last_setpoint()) {
       PlannedPiece chunk;

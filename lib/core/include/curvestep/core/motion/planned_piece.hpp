@@ -5,7 +5,9 @@
 //   ticks == 1   one setpoint at `end` (an exactly evaluated tick);
 //   ticks == N   (a power of two, 2..HermiteChunk::max_ticks) a chunk: the N - 1 setpoints of the
 //                quintic Hermite `controls` (relative to the previous setpoint's unrounded position,
-//                stepped by HermiteChunk), then `end`.
+//                stepped by HermiteChunk), then `end`;
+//   exact_run    ticks == K (2..max_exact_run) exactly evaluated ticks in a row: controls[0..K-2],
+//                then `end` (a run of exact ticks costs one queue slot and one message per K).
 // The planner's own stream is exactly this (MotionController::running_tick): its exact ticks and
 // its chunks. Replaying the pieces gives its setpoints bit for bit (PieceRecorder records them,
 // PieceExecutor replays them; tests/core/motion/piece_executor_test.cpp).
@@ -27,6 +29,7 @@ struct PlannedPiece {
   /// implied: HermiteChunk::Controls without its first point, 24 bytes less per queued piece).
   std::array<MachinePoint, 5> controls{};
   std::uint32_t segment = 0;           ///< the job segment it belongs to (setpoint.segment, error reports)
+  bool exact_run = false;              ///< ticks exact setpoints: controls[0..ticks-2], then end
   bool end_of_job = false;             ///< the job's last piece
 
   friend constexpr bool operator==(const PlannedPiece&, const PlannedPiece&) = default;
@@ -39,9 +42,17 @@ struct PlannedPiece {
   return q;
 }
 
-/// True if `ticks` is a valid piece length: 1 or a power of two up to HermiteChunk::max_ticks.
-[[nodiscard]] constexpr bool valid_piece_ticks(std::uint32_t ticks) noexcept {
+/// Most exact ticks one piece carries (its end and the five control-point slots).
+inline constexpr std::uint32_t max_exact_run = 6;
+
+/// True if `ticks` is a valid piece length: 1 or a power of two up to HermiteChunk::max_ticks;
+/// for an exact run 2..max_exact_run.
+[[nodiscard]] constexpr bool valid_piece_ticks(std::uint32_t ticks, bool exact_run = false) noexcept {
+  if (exact_run) return ticks >= 2 && ticks <= max_exact_run;
   return ticks >= 1 && ticks <= HermiteChunk::max_ticks && (ticks & (ticks - 1)) == 0;
 }
+
+/// True for a chunk (Hermite-stepped ticks), false for exact ticks.
+[[nodiscard]] constexpr bool is_chunk(const PlannedPiece& piece) noexcept { return piece.ticks > 1 && !piece.exact_run; }
 
 }  // namespace curvestep
