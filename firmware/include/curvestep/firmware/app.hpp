@@ -291,7 +291,12 @@ class App {
   /// The commanded position (Q16.16 raw) of the last setpoint.
   [[nodiscard]] const protocol::WirePoint& position() const noexcept { return position_; }
   /// True if on_tick() may advance: no setpoint stream, or room for one more setpoint in it.
-  [[nodiscard]] bool ready_to_tick() const noexcept { return !settings_.stream_setpoints || !setpoints_.full(); }
+  /// Without a planner also false while the next setpoint needs a piece that has not arrived.
+  [[nodiscard]] bool ready_to_tick() const noexcept {
+    if (settings_.stream_setpoints && setpoints_.full()) return false;
+    if constexpr (!plans_on_board) return !moving_ || controller_.state() != ControllerState::Running || controller_.can_step();
+    return true;
+  }
   /// True once the job's last segment (flag end of job) has been queued.
   [[nodiscard]] bool job_end_known() const noexcept { return job_end_known_; }
   /// The setpoint stream's sender (window, go-backs), for diagnostics and tests.
@@ -709,7 +714,10 @@ class App {
     if (!stalled_ || !moving_ || settings_.stall_timeout_ms == 0) return;
     if (now - stalled_since_ms_ < settings_.stall_timeout_ms) return;
     stalled_ = false;
-    raise_fault(fail(Error::LinkTimeout, now - stalled_since_ms_));
+    // Without a planner a stall is usually a queue the host did not refill in time.
+    bool starved = false;
+    if constexpr (!plans_on_board) starved = !controller_.can_step();
+    raise_fault(fail(starved ? Error::QueueUnderrun : Error::LinkTimeout, now - stalled_since_ms_));
   }
 
   void watch_link(std::uint32_t now) noexcept {
