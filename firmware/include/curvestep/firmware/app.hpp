@@ -615,6 +615,7 @@ class App {
     held_ = false;
     resume_when_held_ = false;
     fault_pending_ = false;
+    stalled_ = false;  // a stall of the stopped job is not the next job's
     job_segments_ = 0;
     // The next job starts where the machine stands.
     has_last_end_ = positioned_;
