@@ -306,6 +306,19 @@ TEST_CASE("executor app: a piece ending outside the travel range is refused with
   CHECK(rig.host.received.errors[3].code == Error::OutsideTravel);
   CHECK(rig.host.received.errors[3].index == 0);
   CHECK(rig.app.controller().queued() == 1);
+  // So is every point of an exact run: its second point leaves the range in Y, its end does not.
+  QueuePiece run;
+  run.axis_count = 3;
+  run.ticks = 3;
+  run.exact_run = true;
+  run.controls[0] = {99, 50, 0};
+  run.controls[1] = {99, 100.25, 0};
+  run.end = {99, 99, 0};
+  rig.send(Message(run));
+  REQUIRE(rig.host.received.errors.size() == 5);
+  CHECK(rig.host.received.errors[4].code == Error::OutsideTravel);
+  CHECK(rig.host.received.errors[4].index == 1);
+  CHECK(rig.app.controller().queued() == 1);
 }
 
 TEST_CASE("executor app: the next job must begin where the last one ended", "[firmware][app][executor]") {

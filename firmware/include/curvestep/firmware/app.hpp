@@ -522,18 +522,17 @@ class App {
   }
 
   /// A host-planned piece (no planner on board). The job's first piece must be where the machine
-  /// stands (SegmentsNotConnected, as a segment's start); every piece's end must be inside the
-  /// travel range (OutsideTravel, index = axis). The stepped setpoints of a chunk stay within
+  /// stands (SegmentsNotConnected, as a segment's start); every piece's end and every point of an
+  /// exact run must be inside the travel range (OutsideTravel, index = axis). The stepped setpoints of a chunk stay within
   /// chunk_error_bound of the host's exact path, which ends on the checked end points.
   [[nodiscard, gnu::noinline]] Result<void> queue_piece(const protocol::QueuePiece& m) noexcept {
     if (!configured_) return fail(Error::ConfigurationMissing);
     if (state_ == protocol::MachineState::Fault || job_end_known_) return fail(Error::InvalidState);
     if (m.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
     const PlannedPiece piece = to_planned_piece(m);
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      if (travel_[axis].limited() && (piece.end[axis] < travel_[axis].min_mm || piece.end[axis] > travel_[axis].max_mm)) {
-        return fail(Error::OutsideTravel, static_cast<std::uint16_t>(axis));
-      }
+    CURVESTEP_CHECK(inside_travel(piece.end));
+    if (piece.exact_run) {
+      for (std::uint32_t k = 0; k + 1 < piece.ticks; ++k) CURVESTEP_CHECK(inside_travel(piece.controls[k]));
     }
     if (job_segments_ == 0 && has_last_end_) {
       CURVESTEP_TRY(const protocol::WirePoint start, to_wire_point(piece.end));
@@ -547,6 +546,16 @@ class App {
       job_end_known_ = true;
       CURVESTEP_TRY(last_end_, to_wire_point(piece.end));  // where the next job must start
       has_last_end_ = true;
+    }
+    return ok();
+  }
+
+  /// OutsideTravel (index = axis) if an exact setpoint position `p` leaves the travel range.
+  [[nodiscard]] Result<void> inside_travel(const MachinePoint& p) const noexcept {
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      if (travel_[axis].limited() && (p[axis] < travel_[axis].min_mm || p[axis] > travel_[axis].max_mm)) {
+        return fail(Error::OutsideTravel, static_cast<std::uint16_t>(axis));
+      }
     }
     return ok();
   }
