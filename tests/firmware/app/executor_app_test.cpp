@@ -342,6 +342,32 @@ TEST_CASE("executor app: the next job must begin where the last one ended", "[fi
   CHECK(rig.app.controller().queued() == 1);
 }
 
+TEST_CASE("executor app: a job that opens with an exact run begins at the run's first point", "[firmware][app][executor]") {
+  ExecutorRig rig;
+  rig.connect_and_configure();
+  rig.send(Message(exact(0, 0)));
+  rig.send(Message(exact(0.5, 0.25, 0, true)));
+  rig.send(Message(Start{}));
+  rig.run_to_idle();
+  REQUIRE(rig.host.received.errors.empty());
+  QueuePiece run;
+  run.axis_count = 3;
+  run.ticks = 2;
+  run.exact_run = true;
+  run.controls[0] = {0.5, 0.25, 0};  // the next job's first setpoint: where the machine stands
+  run.end = {0.75, 0.25, 0};
+  rig.send(Message(run));
+  CHECK(rig.host.received.errors.empty());
+  CHECK(rig.app.controller().queued() == 1);
+  rig.send(Message(Abort{}));  // the machine still stands at (0.5, 0.25)
+  run.controls[0] = {0.75, 0.25, 0};
+  run.end = {0.5, 0.25, 0};  // ends where the machine stands, but begins elsewhere
+  rig.send(Message(run));
+  REQUIRE(rig.host.received.errors.size() == 1);
+  CHECK(rig.host.received.errors[0].code == Error::SegmentsNotConnected);
+  CHECK(rig.app.controller().queued() == 0);
+}
+
 TEST_CASE("executor app: pieces that run out before the job end stall the ticks and a long stall is a QueueUnderrun fault",
           "[firmware][app][executor]") {
   AppSettings settings;

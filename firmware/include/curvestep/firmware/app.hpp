@@ -535,16 +535,18 @@ class App {
       for (std::uint32_t k = 0; k + 1 < piece.ticks; ++k) CURVESTEP_CHECK(inside_travel(piece.controls[k]));
     }
     if (job_segments_ == 0 && has_last_end_) {
-      CURVESTEP_TRY(const protocol::WirePoint start, to_wire_point(piece.end));
+      // The job's first setpoint: an exact run's first point, else the piece's end.
+      CURVESTEP_TRY(const protocol::WirePoint start, to_wire_point(piece.exact_run ? piece.controls[0] : piece.end));
       if (start != last_end_) return fail(Error::SegmentsNotConnected, 0);
     }
+    CURVESTEP_TRY(const protocol::WirePoint end, to_wire_point(piece.end));  // checked before anything is queued
     CURVESTEP_CHECK(controller_.push(piece));
     const auto depth = static_cast<std::uint16_t>(controller_.queued());
     if (depth > statistics_.max_queue_depth) statistics_.max_queue_depth = depth;
     ++job_segments_;
     if (m.end_of_job) {
       job_end_known_ = true;
-      CURVESTEP_TRY(last_end_, to_wire_point(piece.end));  // where the next job must start
+      last_end_ = end;  // where the next job must start
       has_last_end_ = true;
     }
     return ok();

@@ -562,8 +562,9 @@ namespace detail {
 
 /// Encodes a QueuePiece payload (queue_piece_size bytes). It never writes what the decoder
 /// refuses: InvalidArgument for axis_count not 2 or 3 (index 1), ticks not 1 or a power of two
-/// <= 256 (index 2), or a non-zero value that would not be sent (index = the byte offset of its
-/// point: z with two axes, controls of an exact piece); NotFinite (index = the byte offset of
+/// <= 256 (for an exact run: not 2..6) (index 2), or a non-zero value that would not be sent
+/// (index = the byte offset of its point: z with two axes, controls of an exact piece, points
+/// of an exact run beyond its ticks); NotFinite (index = the byte offset of
 /// the value) for a NaN or infinite coordinate.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueuePiece& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
@@ -802,8 +803,9 @@ template <>
 }
 
 /// Decodes a QueuePiece payload: BadPayload at byte 0 for a reserved flag bit, at 1 for an
-/// axis_count not 2 or 3, at 2 for ticks not 1 or a power of two <= 256, and for a length other
-/// than queue_piece_size(axis_count, ticks) at the first missing or extra byte; NotFinite (index
+/// axis_count not 2 or 3, at 2 for ticks not 1 or a power of two <= 256 (an exact run: not
+/// 2..6), and for a length other than queue_piece_size(axis_count, ticks, exact_run) at the
+/// first missing or extra byte; NotFinite (index
 /// = its byte offset) for a NaN or infinite coordinate. Unsent values (z with two axes, the
 /// controls of an exact piece) are 0.
 template <>

@@ -165,6 +165,7 @@ class MotionController {
     has_previous_ = false;
     tick_ = 0;
     chunk_end_tick_ = no_chunk;
+    chunk_begin_tick_ = no_chunk;
     clear_state_cache();
     retry_tick_ = 0;
     backoff_ticks_ = 1;
@@ -502,6 +503,7 @@ class MotionController {
       if (n == 2) {
         // The exact state of the next tick is known: keep it (a chunk of one tick, nothing stepped).
         chunk_end_tick_ = k0 + 1;
+        chunk_begin_tick_ = no_chunk;  // nothing stepped: no chunk begins here
         chunk_end_state_ = state_at(k0 + 1, span, false);
         chunk_span_ = span;
         break;

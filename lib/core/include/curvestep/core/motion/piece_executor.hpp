@@ -8,8 +8,9 @@
 //
 // It has the MotionController's interface where a firmware App uses one (configure, start, abort,
 // reset, next_setpoint, state, fault, queued), with these differences:
-//   * the queue holds pieces, not segments; the job's first piece must be exact (ticks 1): a
-//     chunk needs the setpoint before it;
+//   * the queue holds pieces, not segments; the job's first piece must be exact (one tick or an
+//     exact run): a chunk needs the setpoint before it; the job ends with the piece flagged
+//     end_of_job (there is no end_of_job() call);
 //   * it cannot brake: hold() is refused (NotSupported) and an empty queue before the job's last
 //     piece is a fault (QueueUnderrun), an immediate stop, not a controlled one. The host keeps
 //     the queue filled (docs/firmware.md, "Executing host-planned motion");
@@ -47,7 +48,8 @@ class PieceExecutor {
 
   /// Queues a piece. ConfigurationMissing before configure; InvalidState after the job's last
   /// piece, an abort or a fault; QueueFull; InvalidArgument (index 0) for ticks that are not 1 or
-  /// a power of two up to HermiteChunk::max_ticks, (index 1) for a chunk as the job's first piece;
+  /// a power of two up to HermiteChunk::max_ticks (an exact run: not 2..max_exact_run), (index 1)
+  /// for a chunk as the job's first piece;
   /// NotFinite for a NaN or infinite coordinate. A refused piece leaves the queue unchanged.
   [[nodiscard]] Result<void> push(const PlannedPiece& piece) noexcept {
     if (!configured_) return fail(Error::ConfigurationMissing, piece.segment);
@@ -60,12 +62,8 @@ class PieceExecutor {
     if (!finite(piece)) return fail(Error::NotFinite, piece.segment);
     [[maybe_unused]] const bool pushed = queue_.try_push(piece);  // room checked above
     if (piece.end_of_job) end_of_job_ = true;
-    if (state_ == ControllerState::Finished) state_ = ControllerState::Idle;
     return ok();
   }
-
-  /// No more pieces will come (also set by a piece with end_of_job).
-  void end_of_job() noexcept { end_of_job_ = true; }
 
   /// Starts replaying the queue. ConfigurationMissing, InvalidState (not idle), NothingQueued.
   [[nodiscard]] Result<void> start() noexcept {

@@ -23,7 +23,7 @@ namespace curvestep {
 
 /// One planned piece of a job (see the header comment).
 struct PlannedPiece {
-  std::uint32_t ticks = 1;             ///< control ticks covered: 1 (exact) or a power of two 2..256 (chunk)
+  std::uint32_t ticks = 1;             ///< control ticks covered: 1 (exact), a power of two 2..256 (chunk), 2..6 (exact run)
   MachinePoint end{};                  ///< unrounded position of the piece's last setpoint (mm)
   /// Chunk only: the Hermite control points q1..q5 relative to the previous setpoint (q0 = 0 is
   /// implied: HermiteChunk::Controls without its first point, 24 bytes less per queued piece).

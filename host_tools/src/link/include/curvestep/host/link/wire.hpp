@@ -47,7 +47,7 @@ struct WireJob {
 /// 3), for a controller without a planner. Coordinates travel as binary64, exactly. Throws
 /// std::runtime_error naming the piece's job segment for what the wire cannot express: a Z
 /// coordinate other than 0 on a 2-axis controller, a length that is not 1 or a power of two up
-/// to 256.
+/// to 256 (an exact run: not 2 to 6).
 [[nodiscard]] protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count);
 
 /// `value` in Q16.16 raw units, rounded to nearest; sets `exact` false if rounding changed it.
