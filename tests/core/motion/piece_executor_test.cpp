@@ -206,14 +206,14 @@ TEST_CASE("piece executor: refuses bad pieces and leaves the queue unchanged", "
   first_chunk.ticks = 2;
   const auto refused_chunk = executor.push(first_chunk);
   CHECK(refused_chunk.error() == Error::InvalidArgument);
-  CHECK(refused_chunk.failure().index == 1);  // a chunk cannot open a job
+  CHECK(refused_chunk.failure().index == 2);  // a chunk cannot open a job: QueuePiece's ticks field
 
   for (std::uint32_t ticks : {0u, 3u, 6u, 512u}) {
     PlannedPiece p = exact_piece(0, 0);
     p.ticks = ticks;
     const auto r = executor.push(p);
     CHECK(r.error() == Error::InvalidArgument);
-    CHECK(r.failure().index == 0);
+    CHECK(r.failure().index == 2);
   }
   PlannedPiece nan = exact_piece(std::numeric_limits<double>::quiet_NaN(), 0, 7);
   CHECK(executor.push(nan).error() == Error::NotFinite);

@@ -77,7 +77,7 @@
 // waiting for ever. On a noisy line the batches shrink (halved on every go-back, down to 4
 // setpoints, grown by one per clean batch), because a short frame is much more likely to arrive
 // whole: at 2 % damaged bytes a 160-byte frame arrives 4 % of the time, a 40-byte one 45 %.
-// Setpoints while held or starved are not sent.
+// Setpoints while held or starved are not sent; a stalled App sends what it has (a short batch).
 // The window is a board parameter: `static constexpr std::size_t setpoint_window` in the board
 // (default 4 frames, about 0.7 KiB; the host board uses 8).
 //
@@ -793,7 +793,8 @@ class App {
   /// Moves buffered setpoints into the setpoint stream's window as batches (never drops any).
   void send_setpoints() noexcept {
     adapt_batch_size();
-    const bool stopped = !moving_ || controller_.state() == ControllerState::Held ||
+    // Stopped, or stalled (a paused interpolator must not hold back what it already produced).
+    const bool stopped = !moving_ || stalled_ || controller_.state() == ControllerState::Held ||
                          controller_.state() == ControllerState::Starved;
     while (!setpoints_.empty() && sender_.can_submit(protocol::MessageType::SetpointBatch)) {
       if (setpoints_.size() < batch_limit_ && !stopped) return;

@@ -47,9 +47,10 @@ class PieceExecutor {
   }
 
   /// Queues a piece. ConfigurationMissing before configure; InvalidState after the job's last
-  /// piece, an abort or a fault; QueueFull; InvalidArgument (index 0) for ticks that are not 1 or
-  /// a power of two up to HermiteChunk::max_ticks (an exact run: not 2..max_exact_run), (index 1)
-  /// for a chunk as the job's first piece;
+  /// piece, an abort or a fault; QueueFull; InvalidArgument with index 2 (the byte offset of
+  /// QueuePiece's ticks, the field at fault) for ticks that are not 1 or a power of two up to
+  /// HermiteChunk::max_ticks (an exact run: not 2..max_exact_run) and for a chunk as the job's
+  /// first piece;
   /// NotFinite for a NaN or infinite coordinate. A refused piece leaves the queue unchanged.
   [[nodiscard]] Result<void> push(const PlannedPiece& piece) noexcept {
     if (!configured_) return fail(Error::ConfigurationMissing, piece.segment);
@@ -57,8 +58,9 @@ class PieceExecutor {
       return fail(Error::InvalidState, piece.segment);
     }
     if (queue_.full()) return fail(Error::QueueFull, piece.segment);
-    if (!valid_piece_ticks(piece.ticks, piece.exact_run)) return fail(Error::InvalidArgument, 0);
-    if (is_chunk(piece) && first_of_job()) return fail(Error::InvalidArgument, 1);
+    constexpr std::uint16_t ticks_field = 2;  // QueuePiece's byte offset of ticks (docs/protocol.md)
+    if (!valid_piece_ticks(piece.ticks, piece.exact_run)) return fail(Error::InvalidArgument, ticks_field);
+    if (is_chunk(piece) && first_of_job()) return fail(Error::InvalidArgument, ticks_field);
     if (!finite(piece)) return fail(Error::NotFinite, piece.segment);
     [[maybe_unused]] const bool pushed = queue_.try_push(piece);  // room checked above
     if (piece.end_of_job) end_of_job_ = true;
