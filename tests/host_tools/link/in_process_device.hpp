@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: MIT
 // A firmware App<FakeBoard, ...> behind a host Transport, in this process: what stream_job writes
 // goes to the App's serial input, what the App writes comes back from read(). The App ticks inside
-// read() like the host board's fast mode (boards/host/device.hpp): only when the setpoint stream
-// is not backed up and the queue holds the planner's window (Lookahead + 2 entries; for a
-// controller without a planner, Lookahead 0, the piece the next setpoint needs), unless the job's end has arrived or the controller is braking,
-// so a fast device never plans with less than a real-time one fed in time, nor underruns; held
-// or starved, it waits for the host.
+// read() by the host board's fast-mode rule (boards/host/fast_mode.hpp, fast_tick_allowed), so a
+// fast device never plans with less than a real-time one fed in time, nor underruns; held or
+// starved, it waits for the host.
 #pragma once
 
 #include <algorithm>
@@ -15,13 +13,14 @@
 #include <span>
 #include <string>
 
+#include <curvestep/boards/host/fast_mode.hpp>
 #include <curvestep/host/link/transport.hpp>
 
 #include "fake_board.hpp"  // tests/firmware/app
 
 namespace curvestep::host::link::testing {
 
-template <class AppType, std::size_t Lookahead>
+template <class AppType>
 class InProcessDevice final : public Transport {
  public:
   InProcessDevice() : app_(std::make_unique<AppType>(board_)) {}
@@ -54,19 +53,7 @@ class InProcessDevice final : public Transport {
     app_->poll();
   }
 
-  [[nodiscard]] bool may_tick() {
-    if (!app_->moving() || !app_->ready_to_tick()) return false;
-    const auto& controller = app_->controller();
-    if (controller.state() == ControllerState::Held || controller.state() == ControllerState::Starved) return false;
-    bool window_full = false;
-    if constexpr (Lookahead == 0) {
-      window_full = controller.can_step();  // no planner: the next setpoint's piece has arrived
-    } else {
-      window_full = controller.queued() >= Lookahead + 2;
-    }
-    const bool braking = controller.state() != ControllerState::Running;
-    return window_full || app_->job_end_known() || braking;
-  }
+  [[nodiscard]] bool may_tick() const { return boards::host::fast_tick_allowed(*app_); }
 
   curvestep::firmware::testing::FakeBoard board_;
   std::unique_ptr<AppType> app_;

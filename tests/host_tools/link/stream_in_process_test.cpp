@@ -48,7 +48,7 @@ TEST_CASE("stream in process: a planning App with look-ahead 9 streams curvestep
   using WindowApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 17, 9>;
   const auto machine = host::load_machine(examples / "machine.json");
   const auto job = host::load_job(examples / "seed_cubic.json");
-  hl::testing::InProcessDevice<WindowApp, 9> device;
+  hl::testing::InProcessDevice<WindowApp> device;
   std::vector<std::string> warnings;
   hl::StreamOptions options;
   options.warn = [&warnings](const std::string& text) { warnings.push_back(text); };
@@ -82,7 +82,7 @@ TEST_CASE("stream in process: an App without a planner replays the pieces planne
     if (entry.path().extension() != ".json" || entry.path().filename() == "machine.json") continue;
     INFO(entry.path().filename().string());
     const auto job = host::load_job(entry.path());
-    hl::testing::InProcessDevice<ExecutorApp, 0> device;
+    hl::testing::InProcessDevice<ExecutorApp> device;
     std::vector<hl::StreamProgress> progress;
     hl::StreamOptions options;
     options.progress = [&progress](const hl::StreamProgress& p) { progress.push_back(p); };
@@ -121,7 +121,7 @@ TEST_CASE("stream in process: the window the pieces are planned with is StreamOp
   one.lookahead = 1;
   const auto narrow = host::simulate(job, machine, one).setpoints;
   REQUIRE(narrow.size() != host::simulate(job, machine).setpoints.size());
-  hl::testing::InProcessDevice<ExecutorApp, 0> device;
+  hl::testing::InProcessDevice<ExecutorApp> device;
   hl::StreamOptions options;
   options.lookahead = 1;
   const hl::StreamResult result = hl::stream_job(device, job, machine, options);
@@ -133,7 +133,7 @@ TEST_CASE("stream in process: a window outside 1..16 for a controller without a 
           "[host_tools][stream][pieces]") {
   const auto machine = host::load_machine(examples / "machine.json");
   const auto job = host::load_job(examples / "seed_cubic.json");
-  hl::testing::InProcessDevice<ExecutorApp, 0> device;
+  hl::testing::InProcessDevice<ExecutorApp> device;
   hl::StreamOptions options;
   options.lookahead = 17;
   try {

@@ -530,9 +530,9 @@ class App {
     if (state_ == protocol::MachineState::Fault || job_end_known_) return fail(Error::InvalidState);
     if (m.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
     const PlannedPiece piece = to_planned_piece(m);
-    CURVESTEP_CHECK(inside_travel(piece.end));
+    CURVESTEP_CHECK(check_travel(piece.end, travel_));
     if (piece.exact_run) {
-      for (std::uint32_t k = 0; k + 1 < piece.ticks; ++k) CURVESTEP_CHECK(inside_travel(piece.controls[k]));
+      for (std::uint32_t k = 0; k + 1 < piece.ticks; ++k) CURVESTEP_CHECK(check_travel(piece.controls[k], travel_));
     }
     if (job_segments_ == 0 && has_last_end_) {
       // The job's first setpoint: an exact run's first point, else the piece's end.
@@ -548,16 +548,6 @@ class App {
       job_end_known_ = true;
       last_end_ = end;  // where the next job must start
       has_last_end_ = true;
-    }
-    return ok();
-  }
-
-  /// OutsideTravel (index = axis) if an exact setpoint position `p` leaves the travel range.
-  [[nodiscard]] Result<void> inside_travel(const MachinePoint& p) const noexcept {
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      if (travel_[axis].limited() && (p[axis] < travel_[axis].min_mm || p[axis] > travel_[axis].max_mm)) {
-        return fail(Error::OutsideTravel, static_cast<std::uint16_t>(axis));
-      }
     }
     return ok();
   }

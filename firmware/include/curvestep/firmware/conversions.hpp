@@ -215,14 +215,24 @@ struct SegmentBounds {
   return b;
 }
 
-/// OutsideTravel (index = axis) if the segment's bounds leave a limited axis' travel range.
-[[nodiscard]] inline Result<void> check_travel(const PathSegment& s, const TravelLimits& travel) noexcept {
-  const SegmentBounds b = segment_bounds(s);
+/// OutsideTravel (index = axis) if the box `b` leaves a limited axis' travel range.
+[[nodiscard]] constexpr Result<void> check_travel(const SegmentBounds& b, const TravelLimits& travel) noexcept {
   for (std::size_t a = 0; a < motion_axes; ++a) {
     if (!travel[a].limited()) continue;
     if (b.low[a] < travel[a].min_mm || b.high[a] > travel[a].max_mm) return fail(Error::OutsideTravel, a);
   }
   return ok();
+}
+
+/// OutsideTravel (index = axis) if the segment's bounds leave a limited axis' travel range.
+[[nodiscard]] inline Result<void> check_travel(const PathSegment& s, const TravelLimits& travel) noexcept {
+  return check_travel(segment_bounds(s), travel);
+}
+
+/// OutsideTravel (index = axis) if the point `p` (an exact setpoint of a planned piece) leaves a
+/// limited axis' travel range.
+[[nodiscard]] constexpr Result<void> check_travel(const MachinePoint& p, const TravelLimits& travel) noexcept {
+  return check_travel(SegmentBounds{p, p}, travel);
 }
 
 }  // namespace curvestep::firmware

@@ -11,14 +11,12 @@
 //   * no tick while the setpoint stream is backed up (App::ready_to_tick: the host has not
 //     acknowledged enough batches) or the serial line is (the host is not reading); the stream's
 //     stall timeout is off, so a slow host only slows the device down, it never loses a setpoint;
-//   * no tick while the queue is shallower than the planner's look-ahead window needs (Lookahead
-//     + 2 entries, so the next segment is planned with a full window), unless the job's last
-//     segment has arrived (App::job_end_known) or the controller is braking; held or starved, it
-//     waits for the host instead of spinning. A fast device thus never plans a segment with
-//     fewer segments ahead than a real-time device fed in time, and its setpoints equal
-//     `curvestep sim`'s;
-//   * without a planner (Lookahead 0, `curvestep device --executor`: it replays host-planned
-//     pieces) no tick needs a piece that has not arrived yet, so a slow host never starves it.
+//   * otherwise fast_tick_allowed (fast_mode.hpp): no tick while the queue is shallower than the
+//     planner's look-ahead window needs, or (without a planner, `curvestep device --executor`)
+//     before the piece the next setpoint needs has arrived; held or starved, it waits for the
+//     host instead of spinning. A fast device thus never plans a segment with fewer segments
+//     ahead than a real-time device fed in time, nor starves, and its setpoints equal
+//     `curvestep sim`'s.
 // Real time: a tick whose setpoint cannot be streamed does not advance (App::on_tick), and a
 // stream backed up for longer than the link timeout is a Fault (LinkTimeout).
 // Wall-clock time still drives the link (timeouts, heartbeats), so link loss is detected alike.
@@ -35,6 +33,7 @@
 #include <span>
 
 #include <curvestep/boards/host/board.hpp>
+#include <curvestep/boards/host/fast_mode.hpp>
 #include <curvestep/boards/host/tick_clock.hpp>
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/firmware/app.hpp>
@@ -97,24 +96,8 @@ int run_device(int fd, Output& output, const DeviceOptions& options, const std::
         board.clear_backed_up();
         continue;
       }
-      if (!app->ready_to_tick()) {
-        wait_for(POLLIN, 2);  // the host has not acknowledged enough setpoints yet
-        continue;
-      }
-      const auto& controller = app->controller();
-      if (controller.state() == ControllerState::Held || controller.state() == ControllerState::Starved) {
-        wait_for(POLLIN, 2);  // nothing moves until the host resumes or refills: do not spin
-        continue;
-      }
-      bool window_full = false;
-      if constexpr (Lookahead == 0) {
-        window_full = controller.can_step();
-      } else {
-        window_full = controller.queued() >= Application::Controller::lookahead + 2;
-      }
-      const bool braking = controller.state() != ControllerState::Running;
-      if (!window_full && !app->job_end_known() && !braking) {
-        wait_for(POLLIN, 2);
+      if (!fast_tick_allowed(*app)) {
+        wait_for(POLLIN, 2);  // for the host: acknowledgements, pieces, segments, a resume
         continue;
       }
       app->on_tick();

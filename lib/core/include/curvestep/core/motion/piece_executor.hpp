@@ -143,8 +143,9 @@ class PieceExecutor {
   [[nodiscard]] static constexpr std::size_t queue_capacity() noexcept { return Capacity; }
   [[nodiscard]] bool queue_full() const noexcept { return queue_.full(); }
   [[nodiscard]] std::uint64_t tick() const noexcept { return tick_; }
-  /// True if the next setpoint needs no piece beyond those queued (one is being replayed, or waits).
-  [[nodiscard]] bool can_step() const noexcept { return end_pending_ || !queue_.empty(); }
+  /// True if the next setpoint needs no piece beyond those queued (the piece being replayed stays
+  /// at the queue's front until its end point is out, so a queued piece is all it takes).
+  [[nodiscard]] bool can_step() const noexcept { return !queue_.empty(); }
 
  private:
   [[nodiscard]] bool stopped() const noexcept { return state_ != ControllerState::Running; }
