@@ -48,6 +48,34 @@ struct SourceSegment {
   }
 };
 
+/// What a job event does (G-code machine words that are not motion, docs/gcode.md).
+enum class JobEventKind : std::uint8_t {
+  Dwell,          ///< G4: stay at rest for `value` seconds
+  ProgramPause,   ///< M0 / M1: stop until resumed
+  ProgramEnd,     ///< M2 / M30
+  SpindleOn,      ///< M3 (value = S, rev/min, clockwise) / M4 (counter-clockwise: `flag` set)
+  SpindleOff,     ///< M5
+  SpindleSpeed,   ///< S alone while the spindle runs (value = rev/min)
+  CoolantMist,    ///< M7
+  CoolantFlood,   ///< M8
+  CoolantOff,     ///< M9
+  ToolChange,     ///< M6 (value = tool number)
+  DigitalOutput,  ///< M62-M65 (value = output number, `flag` = on)
+  PenUp,          ///< plotter pen lifted (machine file's pen model)
+  PenDown,        ///< plotter pen lowered
+  LayerChange,    ///< a plotter layer ends and the next begins (pen change pause); text = layer name
+};
+
+/// A non-motion event of a job, in program order between segments.
+struct JobEvent {
+  JobEventKind kind = JobEventKind::Dwell;
+  std::size_t before_segment = 0;  ///< happens after Job::segments[before_segment - 1] ends, before segments[before_segment]
+  double value = 0;                ///< seconds (Dwell), rev/min, tool or output number
+  bool flag = false;               ///< M4 counter-clockwise / output on
+  std::size_t line = 0;            ///< source line (0 if none)
+  std::string text;                ///< what the program said (e.g. "M6 T3"), for reports
+};
+
 /// A loaded job: the path as PathSegments, and where each one came from.
 struct Job {
   int version = 1;                        ///< format version of the file
@@ -55,6 +83,11 @@ struct Job {
   std::vector<PathSegment> segments;      ///< the path, connected end to start
   std::vector<std::size_t> source_index;  ///< for each PathSegment, the file's segment index
   std::vector<SourceSegment> sources;     ///< the file's segments, in file order
+  std::vector<JobEvent> events;           ///< non-motion events, ordered by before_segment then program order
+  /// Path-control tolerance per junction (G64 P), mm: blend_tolerance_mm[k] applies to the corner
+  /// between segments[k-1] and segments[k]; empty = the machine file's tolerance everywhere,
+  /// a negative entry = exact stop (G61 / G61.1) at that corner.
+  std::vector<double> blend_tolerance_mm;
 };
 
 /// Loads a job file. Throws LoadError (naming file, line, segment, field) or std::runtime_error
