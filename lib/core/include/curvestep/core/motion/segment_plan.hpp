@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include <curvestep/core/detail/golden_section.hpp>
 #include <curvestep/core/motion/path_length_table.hpp>
@@ -189,28 +190,61 @@ template <std::size_t Intervals = 64>
   return out;
 }
 
-/// The largest speed at the joint from `previous` into `next` (both already planned).
-///   tangent-continuous: only the curvature jump counts: a jump Δ(κN) changes the acceleration by
-///     v²|Δ(κN)| within one tick, so with the S-curve v² |Δ(κN)| <= ½ j_max Δt;
-///   a corner of angle θ: grbl's junction deviation v² = a δ sin(θ/2) / (1 − sin(θ/2)); with the
-///     S-curve the velocity jump v·2 sin(θ/2) within one tick must also keep the jerk (<= ½ j Δt²);
-///     the trapezoid stops (its full acceleration starts beside the jump): setpoints differentiated
-///     numerically stay within the limits, at the price of (near-)stops at sharp corners (no
-///     corner blending yet).
+/// grbl's junction-deviation speed (its documented formula, not its code): the circle tangent to
+/// both directions whose closest point lies `deviation_mm` inside the corner has the radius
+///     r = δ · sin(φ/2) / (1 − sin(φ/2)),
+/// with φ the angle between the *reversed* incoming direction and the outgoing one (φ = 180°
+/// straight on, φ → 0 a reversal), and the speed on it at acceleration a is v = √(a r). With
+/// θ = 180° − φ the deflection (the angle between the two tangents, cos θ = T_in · T_out),
+/// sin(φ/2) = cos(θ/2). +infinity straight on, 0 for a reversal.
+[[nodiscard]] inline double junction_deviation_speed(double cos_deflection, double a_max_mm_per_s2,
+                                                     double deviation_mm) noexcept {
+  const double sin_half_phi = std::sqrt(std::fmax(0.0, (1 + cos_deflection) / 2));  // = cos(θ/2)
+  if (sin_half_phi >= 1) return std::numeric_limits<double>::infinity();
+  if (!(sin_half_phi > 0)) return 0;
+  return std::sqrt(a_max_mm_per_s2 * deviation_mm * sin_half_phi / (1 - sin_half_phi));
+}
+
+namespace detail {
+/// Share of a limit that a velocity jump at a corner may use, as a fraction k of the limit. The jump
+/// Δv = v (T_out − T_in) of a corner of deflection θ happens within one tick: differentiated
+/// numerically it adds Δv/Δt to the acceleration and Δv/Δt² to the jerk beside the profile's own
+/// tangential part (up to the full limit L along T_out). Its direction D = (T_out − T_in)/|…| has
+/// D · T_out = sin(θ/2) = s, so the measured vector is at most L √(1 + k² + 2 k s); k is chosen so
+/// that this stays within (1 + corner_limit_excess) L: k = √(s² + ε) − s, ε = 2·excess + excess².
+inline constexpr double corner_limit_excess = 0.0075;
+[[nodiscard]] inline double corner_jump_share(double half_angle_sin) noexcept {
+  constexpr double epsilon = 2 * corner_limit_excess + corner_limit_excess * corner_limit_excess;
+  return std::sqrt(half_angle_sin * half_angle_sin + epsilon) - half_angle_sin;
+}
+}  // namespace detail
+
+/// The largest speed at the joint from `previous` into `next` (both already planned), the smallest of:
+///   the two segments' speed caps;
+///   a corner of deflection θ (the angle between the tangents): grbl's junction deviation
+///     (junction_deviation_speed) with the machine's δ, and the velocity jump 2 v sin(θ/2), which
+///     happens within one tick, kept to a share k(θ) of both a_max Δt and j_max Δt² (k from
+///     detail::corner_jump_share, so the measured acceleration and jerk stay within 0.75 % of the
+///     limits even with the full tangential acceleration or jerk beside the corner). Trapezoid and
+///     S-curve alike: a corner is passed at this speed, not at a stop. Both caps shrink as θ
+///     grows, so a gentler corner is never slower than a sharper one. A reversal stops.
+///   a jump Δ(κN) of the curvature vector changes the acceleration by v²|Δ(κN)| within one tick:
+///     with the S-curve v² |Δ(κN)| <= ½ j_max Δt.
+/// Sharp corners remain slow: corner blending (host_tools smoothing) replaces them by curves of
+/// continuous curvature, which this function then passes at their full speed.
 [[nodiscard]] inline double junction_speed(const SegmentPlan& previous, const SegmentPlan& next, const MachineLimits& machine) noexcept {
   double v = std::fmin(previous.limits.speed_cap_mm_per_s, next.limits.speed_cap_mm_per_s);
   const double dt = 1.0 / machine.rate_hz;
   const double cos_theta = dot(previous.end_tangent, next.start_tangent);
   const double half_angle_sin = std::sqrt(std::fmax(0.0, (1 - cos_theta) / 2));  // sin(θ/2)
-  constexpr double tangent_continuity = 1e-6;  // sin(θ/2) below this counts as a smooth join
+  constexpr double tangent_continuity = 1e-9;  // sin(θ/2) below this counts as a smooth join
   if (half_angle_sin > tangent_continuity) {
     if (half_angle_sin >= 1 - 1e-12) return 0;  // reversal
-    const double deviation = machine.junction_deviation_mm * half_angle_sin / (1 - half_angle_sin);
-    v = std::fmin(v, std::sqrt(machine.a_max_mm_per_s2 * deviation));
-    // S-curve: the acceleration is zero at the joint, the velocity jump alone makes the jerk.
-    // Trapezoid: the full tangential acceleration starts at once beside the jump, so only a stop
-    // keeps the measured acceleration within a_max.
-    v = machine.jerk_limited ? std::fmin(v, 0.5 * machine.j_max_mm_per_s3 * dt * dt / (2 * half_angle_sin)) : 0;
+    v = std::fmin(v, junction_deviation_speed(cos_theta, machine.a_max_mm_per_s2, machine.junction_deviation_mm));
+    const double share = detail::corner_jump_share(half_angle_sin);
+    double jump = share * machine.a_max_mm_per_s2 * dt;  // the largest velocity jump
+    if (machine.jerk_limited) jump = std::fmin(jump, share * machine.j_max_mm_per_s3 * dt * dt);
+    v = std::fmin(v, jump / (2 * half_angle_sin));
   }
   const double curvature_jump = norm(previous.end_curvature - next.start_curvature);
   if (machine.jerk_limited && curvature_jump > 0) {
