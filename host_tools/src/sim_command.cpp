@@ -14,6 +14,7 @@
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/report.hpp>
 #include <curvestep/host/simulator.hpp>
+#include <curvestep/host/smoothing/path_smoothing.hpp>
 
 #include "command_registry.hpp"
 
@@ -28,6 +29,7 @@ struct SimOptions {
   std::string output;
   std::string report;
   bool double_precision = false;
+  double blend_tolerance_mm = -1;  ///< < 0: the machine file's
 };
 
 /// Exit status for a job the machine cannot run within its limits.
@@ -37,12 +39,17 @@ int run_sim(const SimOptions& o) {
   if (o.lookahead < 1 || o.lookahead > static_cast<long long>(SimulationOptions::max_lookahead)) {
     throw std::runtime_error("--lookahead: must be between 1 and " + std::to_string(SimulationOptions::max_lookahead) + " segments");
   }
-  const Job job = load_job_file(o.job);
-  MachineLimits machine = load_machine(o.machine);
+  const Job programmed = load_job_file(o.job);
+  const MachineFile machine_file = load_machine_file(o.machine);
+  MachineLimits machine = machine_file.limits;
   if (o.rate_hz > 0) {
     machine.rate_hz = o.rate_hz;
     if (auto valid = machine.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
+  smoothing::SmoothingReport smoothing_report;
+  const Job job = smoothing::smooth_job(
+      programmed, smoothing::options_for(machine, smoothing::tolerance_in_force(machine_file.blend_tolerance_mm, o.blend_tolerance_mm)),
+      &smoothing_report);
   SimulationOptions options;
   options.lookahead = static_cast<std::size_t>(o.lookahead);
   options.fixed_point = !o.double_precision;
@@ -62,7 +69,7 @@ int run_sim(const SimOptions& o) {
   std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16");
   if (options.lookahead != SimulationOptions::max_lookahead) std::cout << ", look-ahead " << options.lookahead;
   std::cout << ")\n"
-            << format_summary(result.summary, machine);
+            << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report);
   if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
   if (!o.report.empty()) std::cout << "  wrote " << o.report << "\n";
   return result.summary.violations.empty() ? 0 : exit_limits_exceeded;
@@ -84,6 +91,10 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v)");
   sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary)");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
+  sim->add_option("--blend-tolerance", options->blend_tolerance_mm,
+                  "Path smoothing tolerance in mm (corner blends and line-run fits; 0 = off), overriding the machine "
+                  "file's \"blend_tolerance\" (docs/motion.md, \"Path smoothing\")")
+      ->check(CLI::Range(0.0, max_blend_tolerance_mm));
   sim->callback([options] {
     const int status = run_sim(*options);
     if (status != 0) throw CLI::RuntimeError(status);

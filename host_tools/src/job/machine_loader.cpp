@@ -91,7 +91,7 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
   const Reader reader(document, Error::InvalidMachine);
   const Node root = reader.root();
   reader.check_keys(root, {"version", "v_max", "a_max", "j_max", "feed", "rapid", "tolerance", "rate_hz",
-                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio"});
+                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance"});
   MachineFile file;
   if (const auto version = reader.optional(root, "version")) {
     const auto value = reader.integer(*version, 0, 1000000);
@@ -159,6 +159,14 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
     reader.fail(at, message, valid.error());
   }
   if (const auto gpio = reader.optional(root, "gpio")) file.gpio = parse_gpio(reader, *gpio);
+  if (const auto node = reader.optional(root, "blend_tolerance")) {
+    const double value = reader.number(*node);
+    if (!(value >= 0 && value <= max_blend_tolerance_mm)) {
+      reader.fail(*node, "value " + format_number(value) + " is outside 0 .. " + format_number(max_blend_tolerance_mm) +
+                             " mm (0 turns path smoothing off)");
+    }
+    file.blend_tolerance_mm = value;
+  }
   return file;
 }
 

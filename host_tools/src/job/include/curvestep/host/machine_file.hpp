@@ -27,10 +27,16 @@ struct GpioWiring {
   std::array<std::optional<GpioAxisWiring>, motion_axes> axes{};  ///< x, y, z
 };
 
+/// Largest "blend_tolerance" a machine file may give, mm.
+inline constexpr double max_blend_tolerance_mm = 10;
+
 /// Everything a machine file holds.
 struct MachineFile {
   MachineLimits limits;            ///< planning and stepping limits, validated
   std::optional<GpioWiring> gpio;  ///< the "gpio" section, if present (validated)
+  /// "blend_tolerance": path smoothing's largest deviation from the programmed path, mm (0 = off,
+  /// the default; G64 P overrides it per move). Host-side: the controller gets smoothed segments.
+  double blend_tolerance_mm = 0;
 };
 
 /// Loads a machine file with its optional "gpio" section; throws as load_machine.
