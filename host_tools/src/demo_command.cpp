@@ -24,6 +24,7 @@
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/link/wire.hpp>
 #include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/smoothing/path_smoothing.hpp>
 #include <curvestep/host/report.hpp>
 #include <curvestep/host/simulator.hpp>
 
@@ -51,11 +52,12 @@ struct DemoRun {
   std::string difference;  ///< where the streams first differ, if they do
 };
 
-DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine, const std::string& out) {
+DemoRun run_one(const std::filesystem::path& file, const MachineFile& machine_file, const std::string& out) {
   DemoRun run;
   run.name = file.filename().string();
   std::vector<std::string> notes;
-  const Job job = load_job_file(file, JobFileOptions{true}, &notes);
+  const MachineLimits& machine = machine_file.limits;
+  const Job job = smoothing::smooth_for_machine(load_job_file(file, JobFileOptions{true}, &notes), machine, machine_file.blend_tolerance_mm);
   const auto [device_job, device_machine] = link::as_device_sees(job, machine);
 
   link::StreamResult streamed;
@@ -112,7 +114,7 @@ DemoRun run_one(const std::filesystem::path& file, const MachineLimits& machine,
 void run_demo(const DemoOptions& options) {
   std::filesystem::create_directories(options.out);
   const std::filesystem::path examples(options.examples);
-  const MachineLimits machine = load_machine(examples / "jobs" / "machine.json");
+  const MachineFile machine = load_machine_file(examples / "jobs" / "machine.json");
   const std::vector<std::filesystem::path> jobs{examples / "svg" / "curvestep_demo.svg", examples / "gcode" / "cnc_pocket.ngc"};
   std::cout << "curvestep demo: virtual device on a pseudo-terminal, real protocol, simulator check\n";
   bool all_identical = true;

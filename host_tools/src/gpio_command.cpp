@@ -39,6 +39,7 @@
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/link/wire.hpp>
 #include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/smoothing/path_smoothing.hpp>
 #include <curvestep/host/simulator.hpp>
 
 #include "board_thread.hpp"
@@ -221,13 +222,13 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
 }
 
 int run_gpio(const GpioCommandOptions& o) {
-  const Job job = load_job_file(o.job);
   const MachineFile file = load_machine_file(o.machine);
   MachineLimits machine = file.limits;
   if (o.rate_hz > 0) {
     machine.rate_hz = o.rate_hz;
     if (auto valid = machine.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
+  const Job job = smoothing::smooth_for_machine(load_job_file(o.job), machine, file.blend_tolerance_mm);
   boards::host::GpioLines lines;
   if (!o.dry_run) {
     if (!file.gpio) {

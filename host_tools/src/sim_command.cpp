@@ -47,9 +47,8 @@ int run_sim(const SimOptions& o) {
     if (auto valid = machine.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
   smoothing::SmoothingReport smoothing_report;
-  const Job job = smoothing::smooth_job(
-      programmed, smoothing::options_for(machine, smoothing::tolerance_in_force(machine_file.blend_tolerance_mm, o.blend_tolerance_mm)),
-      &smoothing_report);
+  const Job job = smoothing::smooth_for_machine(
+      programmed, machine, smoothing::tolerance_in_force(machine_file.blend_tolerance_mm, o.blend_tolerance_mm), &smoothing_report);
   SimulationOptions options;
   options.lookahead = static_cast<std::size_t>(o.lookahead);
   options.fixed_point = !o.double_precision;

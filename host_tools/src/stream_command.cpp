@@ -20,6 +20,7 @@
 #include <curvestep/host/link/streamer.hpp>
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/smoothing/path_smoothing.hpp>
 #include <curvestep/host/simulator.hpp>
 
 #include "command_registry.hpp"
@@ -35,21 +36,22 @@ struct StreamCommandOptions {
   std::string capture;
   unsigned link_timeout_ms = 3000;
   std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
+  double blend_tolerance_mm = -1;  ///< path smoothing tolerance; < 0: the machine file's
 };
 
 /// Exit status when the controller or the link failed.
 constexpr int exit_device_error = 4;
 
 /// The machine file without its "gpio" section (the device's wiring, not planning data).
-MachineLimits load_machine_for_stream(const std::string& path) {
+MachineFile load_machine_for_stream(const std::string& path) {
   const std::string text = read_text_file(path);
   const auto root = nlohmann::json::parse(text, nullptr, false, true);
   if (root.is_object() && root.contains("gpio")) {
     auto planning = root;
     planning.erase("gpio");
-    return parse_machine(planning.dump(2), path);
+    return parse_machine_file(planning.dump(2), path);
   }
-  return load_machine(path);
+  return load_machine_file(path);
 }
 
 std::string format_seconds(double s) {
@@ -76,8 +78,12 @@ std::string look_ahead_text(const link::StreamResult& result) {
 }
 
 int run_stream(const StreamCommandOptions& o) {
-  const Job job = load_job_file(o.job);
-  const MachineLimits machine = load_machine_for_stream(o.machine);
+  const MachineFile machine_file = load_machine_for_stream(o.machine);
+  const MachineLimits machine = machine_file.limits;
+  smoothing::SmoothingReport smoothing_report;
+  const Job job = smoothing::smooth_for_machine(load_job_file(o.job), machine,
+                                                smoothing::tolerance_in_force(machine_file.blend_tolerance_mm, o.blend_tolerance_mm),
+                                                &smoothing_report);
   auto transport = link::open_port(o.port, o.baud);
   link::StreamOptions options;
   options.link.link_timeout_ms = o.link_timeout_ms;
@@ -119,7 +125,7 @@ int run_stream(const StreamCommandOptions& o) {
             << (result.lookahead == 0 ? " pieces\n" : " segments\n")
             << "  device look-ahead:   " << look_ahead_text(result) << "\n";
   if (result.lookahead == 0) std::cout << "  pieces sent:         " << result.pieces_sent << "\n";
-  std::cout << "  bytes sent:          " << result.bytes_sent << "\n";
+  std::cout << "  bytes sent:          " << result.bytes_sent << "\n" << smoothing::format_smoothing(smoothing_report);
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
   if (result.duplicate_setpoints != 0) {
     std::cerr << "curvestep stream: the setpoint stream is broken: " << result.duplicate_setpoints << " duplicated\n";
@@ -142,6 +148,10 @@ void add_stream_command(CLI::App& app) {
                      "Look-ahead window (segments) to plan with here for a controller without a planner, which replays "
                      "the planned pieces (as curvestep sim --lookahead); a controller with a planner uses its own")
       ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
+  stream->add_option("--blend-tolerance", options->blend_tolerance_mm,
+                     "Path smoothing tolerance in mm (0 = off), overriding the machine file's \"blend_tolerance\"; "
+                     "curvestep sim --blend-tolerance with the same value plans the same segments")
+      ->check(CLI::Range(0.0, max_blend_tolerance_mm));
   stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
   stream->callback([options] {
     const int status = run_stream(*options);

@@ -26,11 +26,17 @@ struct Candidate {
   bool valid = false;
 };
 
+/// Arc-length maps of the two neighbours, built once per corner.
+struct Maps {
+  LengthMap incoming;
+  LengthMap outgoing;
+};
+
 /// The blend of cut lengths d_a, d_b and shape factor β (not yet checked against the tolerance).
-Candidate make_candidate(const CornerRequest& r, double d_a, double d_b, double beta) {
+Candidate make_candidate(const CornerRequest& r, const Maps& maps, double d_a, double d_b, double beta) {
   Candidate c;
-  const double u_a = parameter_at_length(*r.incoming, r.incoming_length_mm - d_a, r.incoming_length_mm);
-  const double u_b = parameter_at_length(*r.outgoing, d_b, r.outgoing_length_mm);
+  const double u_a = maps.incoming.parameter_at(maps.incoming.total() - d_a);
+  const double u_b = maps.outgoing.parameter_at(d_b);
   if (!(u_a > 0 && u_a < 1 && u_b > 0 && u_b < 1)) return c;
   const auto p_a = on_grid(r.incoming->point(u_a));
   const auto p_b = on_grid(r.outgoing->point(u_b));
@@ -107,10 +113,10 @@ double curvature_speed_cap(const CornerRequest& r, const PathSegment& curve) {
 
 /// The largest blend of shape β within the tolerance: cut lengths s (each capped by what its
 /// segment makes available), found by bisection on s.
-Candidate largest_blend(const CornerRequest& r, double beta) {
+Candidate largest_blend(const CornerRequest& r, const Maps& maps, double beta) {
   const double s_max = std::fmax(r.incoming_available_mm, r.outgoing_available_mm);
   const auto at = [&](double s) {
-    Candidate c = make_candidate(r, std::fmin(s, r.incoming_available_mm), std::fmin(s, r.outgoing_available_mm), beta);
+    Candidate c = make_candidate(r, maps, std::fmin(s, r.incoming_available_mm), std::fmin(s, r.outgoing_available_mm), beta);
     if (c.valid) c.blend.deviation_mm = deviation(r, c.blend);
     return c;
   };
@@ -138,9 +144,10 @@ Candidate largest_blend(const CornerRequest& r, double beta) {
 std::optional<CornerBlend> blend_corner(const CornerRequest& request) {
   if (request.incoming == nullptr || request.outgoing == nullptr || !(request.tolerance_mm > 0)) return std::nullopt;
   if (!(request.incoming_available_mm > 0) || !(request.outgoing_available_mm > 0)) return std::nullopt;
+  const Maps maps{LengthMap(*request.incoming), LengthMap(*request.outgoing)};
   std::optional<CornerBlend> best;
   for (const double beta : shape_factors) {
-    Candidate c = largest_blend(request, beta);
+    Candidate c = largest_blend(request, maps, beta);
     if (!c.valid) continue;
     c.blend.speed_cap_mm_per_s = curvature_speed_cap(request, c.blend.curve);
     if (!(c.blend.speed_cap_mm_per_s > 0)) continue;

@@ -52,15 +52,32 @@ double length_between(const PathSegment& segment, double u0, double u1) {
   return total;
 }
 
-double parameter_at_length(const PathSegment& segment, double s_mm, double total_mm) {
+namespace {
+constexpr std::size_t map_pieces = 64;
+}
+
+LengthMap::LengthMap(const PathSegment& segment) : segment_(&segment), cumulative_(map_pieces + 1, 0.0) {
+  for (std::size_t k = 0; k < map_pieces; ++k) {
+    const double a = static_cast<double>(k) / map_pieces;
+    const double b = static_cast<double>(k + 1) / map_pieces;
+    cumulative_[k + 1] = cumulative_[k] + (segment.kind() == SegmentKind::Line ? norm(segment.end() - segment.start()) / map_pieces
+                                                                                : gauss_length(segment, a, b));
+  }
+}
+
+double LengthMap::parameter_at(double s_mm) const {
   if (s_mm <= 0) return 0;
-  if (s_mm >= total_mm) return 1;
-  if (segment.kind() == SegmentKind::Line) return s_mm / total_mm;
-  double low = 0;
-  double high = 1;
-  for (int i = 0; i < 60; ++i) {
+  if (s_mm >= total()) return 1;
+  if (segment_->kind() == SegmentKind::Line) return s_mm / total();
+  const auto above = std::upper_bound(cumulative_.begin(), cumulative_.end(), s_mm);
+  const std::size_t k = static_cast<std::size_t>(above - cumulative_.begin()) - 1;
+  const double base = static_cast<double>(k) / map_pieces;
+  double low = base;
+  double high = static_cast<double>(k + 1) / map_pieces;
+  const double wanted = s_mm - cumulative_[k];
+  for (int i = 0; i < 44; ++i) {
     const double mid = (low + high) / 2;
-    if (length_between(segment, 0, mid) < s_mm) {
+    if (gauss_length(*segment_, base, mid) < wanted) {
       low = mid;
     } else {
       high = mid;

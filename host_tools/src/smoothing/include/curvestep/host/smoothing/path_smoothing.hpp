@@ -60,6 +60,13 @@ struct SmoothingReport {
 /// keep their place. `report` (optional) receives the figures.
 [[nodiscard]] Job smooth_job(const Job& job, const SmoothingOptions& options, SmoothingReport* report = nullptr);
 
+/// smooth_job() with options_for(machine, tolerance_mm): what every command that moves a machine
+/// (sim, stream, gpio, demo) runs, so what was simulated is what runs.
+[[nodiscard]] inline Job smooth_for_machine(const Job& job, const MachineLimits& machine, double tolerance_mm,
+                                            SmoothingReport* report = nullptr) {
+  return smooth_job(job, options_for(machine, tolerance_mm), report);
+}
+
 /// The report as summary lines ("  smoothing: ..."), for sim and stream.
 [[nodiscard]] std::string format_smoothing(const SmoothingReport& report);
 

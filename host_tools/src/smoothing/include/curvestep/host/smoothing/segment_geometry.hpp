@@ -18,8 +18,19 @@ namespace curvestep::host::smoothing {
 /// Arc length of `segment` between parameters u0 <= u1 (composite Gauss-Legendre, 1e-12 relative).
 [[nodiscard]] double length_between(const PathSegment& segment, double u0, double u1);
 
-/// The parameter u at arc length `s_mm` from the start (0 <= s <= length), by bisection on length_between.
-[[nodiscard]] double parameter_at_length(const PathSegment& segment, double s_mm, double total_mm);
+/// Arc length as a function of u, tabulated once (64 Gauss-Legendre pieces) for fast inversion.
+class LengthMap {
+ public:
+  explicit LengthMap(const PathSegment& segment);
+  /// Total arc length, mm.
+  [[nodiscard]] double total() const noexcept { return cumulative_.back(); }
+  /// The parameter at arc length s from the start (0 <= s <= total), to ~1e-12 in u.
+  [[nodiscard]] double parameter_at(double s_mm) const;
+
+ private:
+  const PathSegment* segment_;
+  std::vector<double> cumulative_;  ///< length from 0 to k/64
+};
 
 /// Unit tangent and curvature vector κN at u (zero vectors where the derivative vanishes).
 struct LocalFrame {
