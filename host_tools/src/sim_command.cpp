@@ -25,7 +25,7 @@ struct SimOptions {
   std::string job;
   std::string machine;
   double rate_hz = 0;
-  long long lookahead = static_cast<long long>(SimulationOptions::max_lookahead);
+  long long lookahead = 0;  ///< 0: not given (the count window 16 extended by distance)
   std::string output;
   std::string report;
   bool double_precision = false;
@@ -36,7 +36,8 @@ struct SimOptions {
 constexpr int exit_limits_exceeded = 3;
 
 int run_sim(const SimOptions& o) {
-  if (o.lookahead < 1 || o.lookahead > static_cast<long long>(SimulationOptions::max_lookahead)) {
+  const bool replay_window = o.lookahead != 0;
+  if (replay_window && (o.lookahead < 1 || o.lookahead > static_cast<long long>(SimulationOptions::max_lookahead))) {
     throw std::runtime_error("--lookahead: must be between 1 and " + std::to_string(SimulationOptions::max_lookahead) + " segments");
   }
   const Job programmed = load_job_file(o.job);
@@ -50,7 +51,11 @@ int run_sim(const SimOptions& o) {
   const Job job = smoothing::smooth_for_machine(
       programmed, machine, smoothing::tolerance_in_force(machine_file.blend_tolerance_mm, o.blend_tolerance_mm), &smoothing_report);
   SimulationOptions options;
-  options.lookahead = static_cast<std::size_t>(o.lookahead);
+  if (replay_window) {
+    options.lookahead = static_cast<std::size_t>(o.lookahead);
+  } else {
+    options.lookahead_distance_mm = lookahead_distance_for(machine);
+  }
   options.fixed_point = !o.double_precision;
   options.progress = make_terminal_progress();  // a bar with ETA on a terminal, quiet otherwise
   const SimulationResult result = simulate(job, machine, options);
@@ -66,7 +71,7 @@ int run_sim(const SimOptions& o) {
     write_html_report(o.report, report);
   }
   std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16");
-  if (options.lookahead != SimulationOptions::max_lookahead) std::cout << ", look-ahead " << options.lookahead;
+  if (replay_window) std::cout << ", look-ahead " << options.lookahead;
   std::cout << ")\n"
             << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report);
   if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
@@ -85,8 +90,9 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("--machine,-m", options->machine, "Machine file (.json)")->required()->check(CLI::ExistingFile);
   sim->add_option("--rate", options->rate_hz, "Setpoint rate in Hz (100..100000), overriding the machine file");
   sim->add_option("--lookahead", options->lookahead,
-                  "Look-ahead window in segments (1..16, default 16). The setpoints depend on it: give a device's "
-                  "window to reproduce its stream bit for bit (docs/motion.md, \"Look-ahead and determinism\")");
+                  "Look-ahead window in segments (1..16). The setpoints depend on it: give a device's window to reproduce "
+                  "its stream bit for bit. Without it: 16 segments, extended to cover twice the braking distance "
+                  "from v_max (up to 256 segments) (docs/motion.md, \"Look-ahead and determinism\")");
   sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v)");
   sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary)");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");

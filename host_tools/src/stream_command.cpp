@@ -37,6 +37,7 @@ struct StreamCommandOptions {
   unsigned link_timeout_ms = 3000;
   std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
   double blend_tolerance_mm = -1;  ///< path smoothing tolerance; < 0: the machine file's
+  bool lookahead_given = false;    ///< --lookahead given: plan with that count window alone
 };
 
 /// Exit status when the controller or the link failed.
@@ -63,8 +64,9 @@ std::string format_seconds(double s) {
 }
 
 /// Which mode ran: the device planned with its own window, or it replayed pieces planned here.
-std::string look_ahead_text(const link::StreamResult& result) {
+std::string look_ahead_text(const link::StreamResult& result, bool by_distance) {
   if (result.lookahead == 0) {
+    if (by_distance) return "none (it replays pieces planned here with the distance window: curvestep sim gives the same setpoints)";
     const std::string n = std::to_string(result.planned_lookahead);
     return "none (it replays pieces planned here with --lookahead " + n + ": curvestep sim --lookahead " + n +
            " gives the same setpoints)";
@@ -88,6 +90,7 @@ int run_stream(const StreamCommandOptions& o) {
   link::StreamOptions options;
   options.link.link_timeout_ms = o.link_timeout_ms;
   options.lookahead = o.lookahead;
+  if (!o.lookahead_given) options.lookahead_distance_mm = lookahead_distance_for(machine);
   options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
   const bool terminal = isatty(STDERR_FILENO) != 0;
   if (terminal) {
@@ -123,7 +126,7 @@ int run_stream(const StreamCommandOptions& o) {
             << "  damaged frames:      " << result.frames_rejected << "\n"
             << "  device queue peak:   " << result.max_queue_depth << " of " << result.queue_capacity
             << (result.lookahead == 0 ? " pieces\n" : " segments\n")
-            << "  device look-ahead:   " << look_ahead_text(result) << "\n";
+            << "  device look-ahead:   " << look_ahead_text(result, !o.lookahead_given) << "\n";
   if (result.lookahead == 0) std::cout << "  pieces sent:         " << result.pieces_sent << "\n";
   std::cout << "  bytes sent:          " << result.bytes_sent << "\n" << smoothing::format_smoothing(smoothing_report);
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
@@ -144,7 +147,7 @@ void add_stream_command(CLI::App& app) {
   stream->add_option("--port,-p", options->port, "Serial port or pseudo-terminal (/dev/ttyUSB0, /dev/pts/3)")->required();
   stream->add_option("--baud", options->baud, "Baud rate (real ports)");
   stream->add_option("--capture", options->capture, "Write the controller's setpoints as CSV (t,x,y,z,v)");
-  stream->add_option("--lookahead", options->lookahead,
+  auto* lookahead_option = stream->add_option("--lookahead", options->lookahead,
                      "Look-ahead window (segments) to plan with here for a controller without a planner, which replays "
                      "the planned pieces (as curvestep sim --lookahead); a controller with a planner uses its own")
       ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
@@ -153,7 +156,8 @@ void add_stream_command(CLI::App& app) {
                      "curvestep sim --blend-tolerance with the same value plans the same segments")
       ->check(CLI::Range(0.0, max_blend_tolerance_mm));
   stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
-  stream->callback([options] {
+  stream->callback([options, lookahead_option] {
+    options->lookahead_given = lookahead_option->count() > 0;
     const int status = run_stream(*options);
     if (status != 0) throw CLI::RuntimeError(status);
   });

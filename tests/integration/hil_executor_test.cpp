@@ -73,8 +73,8 @@ TEST_CASE("hil: every example job streamed to curvestep device --executor gives 
     INFO(output);
     REQUIRE(status == 0);
     ct::check_same_setpoints(expected, capture);
-    CHECK_THAT(output, Catch::Contains("device look-ahead:   none (it replays pieces planned here with --lookahead 16: "
-                                       "curvestep sim --lookahead 16 gives the same setpoints)"));
+    CHECK_THAT(output, Catch::Contains("device look-ahead:   none (it replays pieces planned here with the distance window: "
+                                       "curvestep sim gives the same setpoints)"));
     CHECK_THAT(output, Catch::Contains("pieces sent:"));
     ++jobs;
   }

@@ -108,12 +108,13 @@ inline long first_difference(const std::vector<RawSetpoint>& a, const std::vecto
   return a.size() == b.size() ? -1 : static_cast<long>(n);
 }
 
-/// Runs `curvestep sim` on `job` with `machine` and returns its setpoints (exit status 3, limits
-/// exceeded, still writes them).
+/// Runs `curvestep sim --lookahead 16` (the window of `curvestep device`, App<_, _, 32, 16>) on `job`
+/// with `machine` and returns its setpoints (exit status 3, limits exceeded, still writes them).
 inline std::vector<RawSetpoint> simulate(const std::filesystem::path& job, const std::filesystem::path& machine) {
   const auto csv = scratch_dir() / ("sim_" + job.stem().string() + ".csv");
   std::string errors;
-  const int status = run_program({"sim", job.string(), "--machine", machine.string(), "-o", csv.string()}, errors, "sim");
+  const int status =
+      run_program({"sim", job.string(), "--machine", machine.string(), "--lookahead", "16", "-o", csv.string()}, errors, "sim");
   INFO(errors);
   REQUIRE((status == 0 || status == 3));
   return read_raw_setpoints(csv);

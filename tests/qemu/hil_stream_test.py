@@ -61,13 +61,16 @@ def main():
             return 1
         # The device's planning window (its Capabilities, printed by stream): sim plans with the same.
         # A device without a planner replays what stream planned with its --lookahead (default 16).
+        # Planned here without --lookahead: the distance window, as curvestep sim plans without it.
         lookahead = (re.search(r"device look-ahead:\s+(\d+)", stream.stdout) or
                      re.search(r"planned here with --lookahead (\d+)", stream.stdout))
-        if lookahead is None:
+        by_distance = "planned here with the distance window" in stream.stdout
+        if lookahead is None and not by_distance:
             print("FAIL: curvestep stream did not print the device's look-ahead")
             return 1
-        sim = subprocess.run([args.curvestep, "sim", args.job, "-m", args.machine, "-o", simulated,
-                              "--lookahead", lookahead.group(1)], capture_output=True, text=True, timeout=100)
+        window = [] if by_distance else ["--lookahead", lookahead.group(1)]
+        sim = subprocess.run([args.curvestep, "sim", args.job, "-m", args.machine, "-o", simulated] + window,
+                             capture_output=True, text=True, timeout=100)
         if sim.returncode != 0:
             print("FAIL: curvestep sim failed:", sim.stdout + sim.stderr)
             return 1

@@ -68,6 +68,7 @@ class Upload {
   void plan_here(std::size_t axes) {
     SimulationOptions planning;
     planning.lookahead = options_.lookahead;
+    planning.lookahead_distance_mm = options_.lookahead_distance_mm;
     const std::vector<PlannedPiece> planned = plan_pieces(job_, machine_, planning);
     pieces_.reserve(planned.size());
     for (const PlannedPiece& piece : planned) {

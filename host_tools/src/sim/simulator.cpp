@@ -19,8 +19,10 @@
 namespace curvestep::host {
 namespace {
 
-constexpr std::size_t queue_capacity = 32;
 constexpr std::size_t max_lookahead = SimulationOptions::max_lookahead;
+constexpr std::size_t max_distance_window = SimulationOptions::max_distance_window;
+/// Room for the largest window behind the segment in progress, and for cusp splits.
+constexpr std::size_t queue_capacity = max_distance_window + 16;
 
 std::string failure_text(const Job& job, const Failure& f) {
   std::ostringstream s;
@@ -38,9 +40,11 @@ std::string failure_text(const Job& job, const Failure& f) {
 template <class... Controllers>
 class LockstepRun {
  public:
-  LockstepRun(const Job& job, const MachineLimits& machine, std::size_t lookahead) : job_(job) {
+  LockstepRun(const Job& job, const MachineLimits& machine, const SimulationOptions& options) : job_(job) {
     std::apply([&](auto&... c) { (check(c.configure(machine), "machine"), ...); }, controllers_);
-    std::apply([&](auto&... c) { (check(c.set_lookahead(lookahead), "lookahead"), ...); }, controllers_);
+    std::apply([&](auto&... c) { (check(c.set_lookahead(options.lookahead), "lookahead"), ...); }, controllers_);
+    std::apply([&](auto&... c) { (check(c.set_lookahead_distance(options.lookahead_distance_mm), "lookahead distance"), ...); },
+               controllers_);
   }
 
   /// Fills the queues, starts, and calls on_tick with each step's setpoints (a tuple, one per
@@ -102,8 +106,10 @@ class LockstepRun {
   std::tuple<Controllers...> controllers_;
 };
 
-using ExactController = MotionController<double, queue_capacity, max_lookahead>;
-using FixedController = MotionController<Q16_16, queue_capacity, max_lookahead>;
+// The controllers' largest window is the distance window's; set_lookahead() keeps the count window
+// at options.lookahead (<= max_lookahead), which alone decides the setpoints without a distance.
+using ExactController = MotionController<double, queue_capacity, max_distance_window>;
+using FixedController = MotionController<Q16_16, queue_capacity, max_distance_window>;
 
 /// Refuses what neither simulate() nor plan_pieces() can run: an empty job, an invalid machine, a
 /// look-ahead window outside 1..max_lookahead.
@@ -155,7 +161,7 @@ void note_violation(SimulationSummary& s, const char* what, double measured, dou
 SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
   check_request(job, machine, options);
   SimulationResult result;
-  LockstepRun<ExactController, FixedController> run(job, machine, options.lookahead);
+  LockstepRun<ExactController, FixedController> run(job, machine, options);
   const double dt = 1.0 / machine.rate_hz;
   std::vector<std::array<double, 3>> exact_positions;
   std::size_t reported = 0;
@@ -236,9 +242,14 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
   return result;
 }
 
+double lookahead_distance_for(const MachineLimits& machine) {
+  const ProfileLimits limits{machine.v_max_mm_per_s, machine.a_max_mm_per_s2, machine.j_max_mm_per_s3, machine.jerk_limited};
+  return 2 * speed_change_distance(machine.v_max_mm_per_s, 0, limits);
+}
+
 std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
   check_request(job, machine, options);
-  LockstepRun<FixedController> run(job, machine, options.lookahead);
+  LockstepRun<FixedController> run(job, machine, options);
   std::vector<PlannedPiece> pieces;
   PieceRecorder recorder;
   const auto keep = [&pieces](const PlannedPiece& piece) { pieces.push_back(piece); };

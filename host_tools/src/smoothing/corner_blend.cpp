@@ -15,11 +15,11 @@ namespace {
 
 /// Blend speeds λ = β d tried; the one the planner can pass fastest is kept (1.3 suits sharp
 /// corners, 2.1 gentle ones: measured on line–line corners of 10° to 135°).
-constexpr std::array<double, 3> shape_factors{1.3, 1.8, 2.1};
+constexpr std::array<double, 2> shape_factors{1.3, 2.1};
 /// Deviations are measured on sampled curves: accept up to this share of the tolerance.
 constexpr double tolerance_margin = 0.97;
-constexpr std::size_t blend_samples = 48;
-constexpr std::size_t programmed_samples = 24;
+constexpr std::size_t blend_samples = 32;
+constexpr std::size_t programmed_samples = 16;
 
 struct Candidate {
   CornerBlend blend;
@@ -126,7 +126,7 @@ Candidate largest_blend(const CornerRequest& r, const Maps& maps, double beta) {
   best = Candidate{};
   double low = 0;
   double high = s_max;
-  for (int i = 0; i < 24 && high - low > 1e-6 * s_max; ++i) {
+  for (int i = 0; i < 16 && high - low > 1e-5 * s_max; ++i) {
     const double mid = (low + high) / 2;
     Candidate c = at(mid);
     if (c.valid && c.blend.deviation_mm <= limit) {

@@ -294,7 +294,10 @@ std::optional<LineRunFit> fit_line_run(const std::vector<MachinePoint>& vertices
       control[i] = *g;
     }
     if (b >= 1.0) control[3] = vertices.back();
-    auto piece = PathSegment::make_bezier(control);
+    // A straight piece (collinear lines) is a line: the planner keeps a line's full limits.
+    const bool straight = distance_to_chord(control[1], control[0], control[3]) < 1e-7 &&
+                          distance_to_chord(control[2], control[0], control[3]) < 1e-7;
+    auto piece = straight ? PathSegment::make_line(control[0], control[3]) : PathSegment::make_bezier(control);
     if (!piece) return std::nullopt;
     piece.value().set_feed_mm_per_s(feed_mm_per_s);
     fit.pieces.push_back(piece.value());

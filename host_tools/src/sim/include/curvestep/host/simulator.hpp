@@ -49,8 +49,19 @@ struct SimulationOptions {
   /// setpoints depend on it: replay a device with its own window to get its stream bit for bit
   /// (an App<Board, S, Queue, Lookahead> with Queue >= Lookahead + 8 plans with Lookahead).
   std::size_t lookahead = max_lookahead;
+  /// Extends the window by distance (MotionController::set_lookahead_distance): up to
+  /// max_distance_window segments until their lengths cover this many mm. 0 (the default): the count
+  /// window alone, as a device with an on-board planner runs it. `curvestep sim` without --lookahead
+  /// and executor streaming use lookahead_distance_for(machine).
+  double lookahead_distance_mm = 0;
+  /// The most segments a distance window may take.
+  static constexpr std::size_t max_distance_window = 256;
   std::function<void(double fraction)> progress;  ///< called now and then with 0..1 (may be empty)
 };
+
+/// The look-ahead distance that lets a planner reach any speed the machine allows and stop again:
+/// twice the S-curve (or trapezoid) distance from v_max to rest.
+[[nodiscard]] double lookahead_distance_for(const MachineLimits& machine);
 
 /// The setpoints and the summary of a run.
 struct SimulationResult {

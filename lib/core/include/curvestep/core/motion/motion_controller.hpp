@@ -75,6 +75,20 @@ class MotionController {
   }
   [[nodiscard]] std::size_t lookahead_window() const noexcept { return lookahead_; }
 
+  /// Extends the window by distance: past lookahead_window() segments, more queued segments (up to
+  /// Lookahead) join it until their lengths add up to `distance_mm`, so short segments never hide
+  /// the braking distance. 0 (the default) turns it off; the setpoints then depend on the count
+  /// window alone, as a firmware's do. With it on, they depend on the job, the machine, the window
+  /// and the distance (a pure function of the queued segments' lengths, bit for bit everywhere).
+  /// InvalidArgument for a negative or non-finite distance; InvalidState while moving.
+  [[nodiscard]] Result<void> set_lookahead_distance(double distance_mm) noexcept {
+    if (!stopped()) return fail(Error::InvalidState);
+    if (!(distance_mm >= 0) || !(distance_mm < 1e300)) return fail(Error::InvalidArgument);
+    lookahead_distance_mm_ = distance_mm;
+    return ok();
+  }
+  [[nodiscard]] double lookahead_distance_mm() const noexcept { return lookahead_distance_mm_; }
+
   /// Sets the machine. InvalidLimit/InvalidRate from MachineLimits::validate; InvalidState while moving.
   [[nodiscard]] Result<void> configure(const MachineLimits& machine) noexcept {
     if (!stopped()) return fail(Error::InvalidState);
@@ -124,7 +138,8 @@ class MotionController {
     if (state_ != ControllerState::Running) return;
     const auto now = profile_.at(time_now() - origin_s_);
     ProfileLimits limits = front().plan.limits;
-    for (std::size_t i = 1; i < queue_.size() && i <= lookahead_; ++i) {
+    const std::size_t window = window_size();
+    for (std::size_t i = 1; i <= window; ++i) {
       limits.acceleration_mm_per_s2 = std::fmin(limits.acceleration_mm_per_s2, queue_[i].plan.limits.acceleration_mm_per_s2);
       limits.jerk_mm_per_s3 = std::fmin(limits.jerk_mm_per_s3, queue_[i].plan.limits.jerk_mm_per_s3);
     }
@@ -328,9 +343,21 @@ class MotionController {
 
   /// The highest exit speed of the front segment when entered at v0: a backward pass over the
   /// next lookahead_ segments, whose window always ends at rest.
-  [[nodiscard]] double exit_speed(double v0, double remaining_mm) const noexcept {
+  /// The segments after the front that the window covers: lookahead_ of them (or all queued), and
+  /// with a look-ahead distance as many more (up to Lookahead) as it takes to cover that distance.
+  [[nodiscard]] std::size_t window_size() const noexcept {
     const std::size_t after = queue_.size() - 1;
-    const std::size_t window = after < lookahead_ ? after : lookahead_;
+    std::size_t window = after < lookahead_ ? after : lookahead_;
+    if (lookahead_distance_mm_ > 0) {
+      double covered = 0;
+      for (std::size_t m = 1; m <= window; ++m) covered += queue_[m].plan.length_mm;
+      while (covered < lookahead_distance_mm_ && window < after && window < Lookahead) covered += queue_[++window].plan.length_mm;
+    }
+    return window;
+  }
+
+  [[nodiscard]] double exit_speed(double v0, double remaining_mm) const noexcept {
+    const std::size_t window = window_size();
     if (window == 0) return 0;
     double v = 0;  // the largest entry speed of segment m from which a stop by the window's end works
     for (std::size_t m = window; m >= 1; --m) {
@@ -604,6 +631,7 @@ class MotionController {
   bool configured_ = false;
   bool end_of_job_ = false;
   std::size_t lookahead_ = Lookahead;  ///< the look-ahead window in use (set_lookahead)
+  double lookahead_distance_mm_ = 0;   ///< extends the window by distance (set_lookahead_distance), 0: off
   ControllerState state_ = ControllerState::Idle;
   Failure fault_{Error::InvalidState, no_index};
   RingBuffer<Entry, QueueCapacity> queue_{};

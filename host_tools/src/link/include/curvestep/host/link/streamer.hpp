@@ -54,9 +54,11 @@ struct StreamOptions {
   std::function<void(const std::string&)> warn;         ///< called for each value the wire cannot carry exactly
   double status_interval_s = 0.2;                       ///< StatusRequest period while running
   /// The look-ahead window the job is planned with here (plan_pieces) for a controller without a
-  /// planner (Capabilities::lookahead 0); unused for one that plans. 1..max_lookahead; the default
-  /// makes its stream `curvestep sim`'s default output.
+  /// planner (Capabilities::lookahead 0); unused for one that plans. 1..max_lookahead.
   std::size_t lookahead = SimulationOptions::max_lookahead;
+  /// With it: the window extended by distance (SimulationOptions::lookahead_distance_mm; 0 = off).
+  /// `curvestep stream` without --lookahead uses lookahead_distance_for(machine), as `curvestep sim` does.
+  double lookahead_distance_mm = 0;
 };
 
 /// The controller stopped the job or the link died: a one-line cause naming what failed.

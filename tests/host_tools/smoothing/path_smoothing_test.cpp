@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: MIT
+// Path smoothing: the smoothed path stays within the tolerance of the programmed polyline (distances
+// computed here, from the programmed vertices and the smoothed segments' own evaluation), joints
+// are passed at the segments' speed, and the issue's jobs run at feed within every limit.
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include <curvestep/core/motion/path_length_table.hpp>
+#include <curvestep/core/motion/segment_plan.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/simulator.hpp>
+#include <curvestep/host/smoothing/path_smoothing.hpp>
+
+#include "polyline_jobs.hpp"
+
+using namespace curvestep;
+using namespace curvestep::host;
+using namespace curvestep::testing;
+
+namespace {
+
+/// Distance from p to the segment [a, b] (written here, independent of the code under test).
+double to_segment(const MachinePoint& p, const MachinePoint& a, const MachinePoint& b) {
+  const MachinePoint d = b - a;
+  const double l2 = dot(d, d);
+  const double t = l2 > 0 ? std::clamp(dot(p - a, d) / l2, 0.0, 1.0) : 0.0;
+  return norm(p - (a + d * t));
+}
+
+double to_polyline(const MachinePoint& p, const std::vector<MachinePoint>& line) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 1; i < line.size(); ++i) best = std::fmin(best, to_segment(p, line[i - 1], line[i]));
+  return best;
+}
+
+/// The programmed polyline of a job of lines.
+std::vector<MachinePoint> vertices_of(const Job& job) {
+  std::vector<MachinePoint> v{job.segments.front().start()};
+  for (const auto& s : job.segments) v.push_back(s.end());
+  return v;
+}
+
+/// The smoothed path, each segment evaluated at `per_segment` + 1 points.
+std::vector<MachinePoint> trace(const Job& job, std::size_t per_segment = 100) {
+  std::vector<MachinePoint> points;
+  for (const auto& s : job.segments) {
+    for (std::size_t k = points.empty() ? 0 : 1; k <= per_segment; ++k) points.push_back(s.point(static_cast<double>(k) / per_segment));
+  }
+  return points;
+}
+
+struct Deviation {
+  double path_to_programmed = 0;  ///< largest distance of a smoothed point from the programmed polyline
+  double programmed_to_path = 0;  ///< largest distance of a programmed vertex from the smoothed path
+};
+
+Deviation deviation(const Job& programmed, const Job& smoothed) {
+  const auto programmed_line = vertices_of(programmed);
+  const auto path = trace(smoothed);
+  Deviation d;
+  for (const auto& p : path) d.path_to_programmed = std::fmax(d.path_to_programmed, to_polyline(p, programmed_line));
+  for (const auto& v : programmed_line) d.programmed_to_path = std::fmax(d.programmed_to_path, to_polyline(v, path));
+  return d;
+}
+
+MachineLimits example_machine() {
+  return load_machine_file(std::filesystem::path(CURVESTEP_SOURCE_DIR) / "examples" / "jobs" / "machine.json").limits;
+}
+
+/// Connected end to start, every coordinate on the Q16.16 grid at the joints.
+void require_connected(const Job& job) {
+  for (std::size_t i = 1; i < job.segments.size(); ++i) {
+    INFO("joint " << i);
+    REQUIRE(job.segments[i].start() == job.segments[i - 1].end());
+    REQUIRE(grid(job.segments[i].start()) == job.segments[i].start());
+  }
+}
+
+}  // namespace
+
+TEST_CASE("smoothing: the smoothed path stays within the tolerance of the programmed polyline, both ways", "[host][smoothing]") {
+  constexpr double tolerance = 0.01;
+  // Sampling the smoothed curves at 100 points each can overstate a vertex's distance by the
+  // sagitta of a sample chord (below 0.05 um on these jobs).
+  constexpr double sampling = 5e-5;
+  const struct {
+    const char* name;
+    std::vector<MachinePoint> vertices;
+  } jobs[] = {
+      {"circle of 360 chords", circle_chords(360)},
+      {"circle of 36 chords", circle_chords(36)},
+      {"spiral of 2000 points", spiral(2000)},
+      {"3-axis raster", raster(4)},
+      {"walk turning 5..120 degrees", turning_walk({5, -20, 45, 120, -90, 10, 2, -60}, 40, 3)},
+      {"walk of 0.2 mm lines turning 1..8 degrees", turning_walk({1, 3, -2, 8, 5, -4}, 300, 0.2)},
+  };
+  for (const auto& j : jobs) {
+    INFO(j.name);
+    const Job programmed = polyline_job(j.vertices);
+    smoothing::SmoothingReport report;
+    const Job smoothed = smoothing::smooth_for_machine(programmed, example_machine(), tolerance, &report);
+    require_connected(smoothed);
+    CHECK(smoothed.segments.front().start() == programmed.segments.front().start());
+    CHECK(smoothed.segments.back().end() == programmed.segments.back().end());
+    const Deviation d = deviation(programmed, smoothed);
+    CHECK(d.path_to_programmed <= tolerance);
+    CHECK(d.programmed_to_path <= tolerance + sampling);
+    // The report's own figure is an upper bound of what was measured here.
+    CHECK(report.max_deviation_mm <= tolerance);
+    CHECK(std::fmax(d.path_to_programmed, d.programmed_to_path) <= report.max_deviation_mm + sampling);
+  }
+}
+
+TEST_CASE("smoothing: runs of short lines become few curves, and the joints inside them are smooth", "[host][smoothing]") {
+  const Job programmed = polyline_job(circle_chords(3600));
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, example_machine(), 0.01, &report);
+  CHECK(report.runs_fitted == 1);
+  CHECK(report.lines_fitted == 3600);
+  CHECK(smoothed.segments.size() <= 40);
+  // The planner passes every joint at the speed the neighbouring curves allow (no corner).
+  const MachineLimits machine = example_machine();
+  for (std::size_t i = 1; i < smoothed.segments.size(); ++i) {
+    const auto a_table = PathLengthTable<64>::build(smoothed.segments[i - 1]).value();
+    const auto b_table = PathLengthTable<64>::build(smoothed.segments[i]).value();
+    const auto a = plan_segment(smoothed.segments[i - 1], a_table, machine).value();
+    const auto b = plan_segment(smoothed.segments[i], b_table, machine).value();
+    INFO("joint " << i);
+    CHECK(junction_speed(a, b, machine) >= 0.99 * std::fmin(a.limits.speed_cap_mm_per_s, b.limits.speed_cap_mm_per_s));
+  }
+}
+
+TEST_CASE("smoothing: a blended corner is curvature-continuous and passed at the blend's own speed", "[host][smoothing]") {
+  // Two 10 mm lines meeting at 20 degrees: too few lines to fit, so a blend.
+  const Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}},
+                                       MachinePoint{{10 + 10 * std::cos(pi / 9), 10 * std::sin(pi / 9), 0}}});
+  const MachineLimits machine = example_machine();
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
+  REQUIRE(report.corners_blended == 1);
+  REQUIRE(smoothed.segments.size() == 3);
+  CHECK(smoothed.segments[1].kind() == SegmentKind::Bezier);
+  for (std::size_t i = 1; i < 3; ++i) {
+    const auto a = plan_segment(smoothed.segments[i - 1], PathLengthTable<64>::build(smoothed.segments[i - 1]).value(), machine).value();
+    const auto b = plan_segment(smoothed.segments[i], PathLengthTable<64>::build(smoothed.segments[i]).value(), machine).value();
+    INFO("joint " << i);
+    CHECK(dot(a.end_tangent, b.start_tangent) > std::cos(2e-3));
+    CHECK(junction_speed(a, b, machine) >= 0.99 * std::fmin(a.limits.speed_cap_mm_per_s, b.limits.speed_cap_mm_per_s));
+  }
+  // Unsmoothed, the corner's velocity jump allows a crawl only; smoothed, the blend's cap is far above.
+  const auto line_a = plan_segment(programmed.segments[0], PathLengthTable<64>::build(programmed.segments[0]).value(), machine).value();
+  const auto line_b = plan_segment(programmed.segments[1], PathLengthTable<64>::build(programmed.segments[1]).value(), machine).value();
+  const auto blend = plan_segment(smoothed.segments[1], PathLengthTable<64>::build(smoothed.segments[1]).value(), machine).value();
+  CHECK(blend.limits.speed_cap_mm_per_s > 10 * junction_speed(line_a, line_b, machine));
+}
+
+TEST_CASE("smoothing: rapids, exact stops, reversals and joints with events are kept as programmed", "[host][smoothing]") {
+  const MachineLimits machine = example_machine();
+  Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}}, MachinePoint{{20, 2, 0}}, MachinePoint{{30, 0, 0}},
+                                 MachinePoint{{40, 3, 0}}, MachinePoint{{30, 3, 0}}, MachinePoint{{20, 6, 0}}});
+  // joints: 1 (10,0) blended; 2 (20,2) exact stop (G61); 3 (30,0) an event; 4 (40,3) a hairpin (free);
+  programmed.segments[5].set_rapid(true);  // joint 5 rapid
+  programmed.blend_tolerance_mm.assign(programmed.segments.size(), 0.0);
+  programmed.blend_tolerance_mm[2] = -1;
+  programmed.events.push_back(JobEvent{JobEventKind::Dwell, 3, 0.5, false, 4, "G4 P0.5"});
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
+  require_connected(smoothed);
+  const auto starts_at = [&](const MachinePoint& p) {
+    for (std::size_t i = 0; i < smoothed.segments.size(); ++i) {
+      if (smoothed.segments[i].start() == p) return static_cast<long>(i);
+    }
+    return -1L;
+  };
+  CHECK(starts_at(programmed.segments[1].start()) == -1);  // blended: nobody starts at (10, 0)
+  CHECK(starts_at(programmed.segments[2].start()) >= 0);   // exact stop
+  const long event_joint = starts_at(programmed.segments[3].start());
+  REQUIRE(event_joint >= 0);
+  CHECK(smoothed.events.front().before_segment == static_cast<std::size_t>(event_joint));
+  CHECK(starts_at(programmed.segments[5].start()) >= 0);   // rapid
+  CHECK(smoothed.segments.back().rapid());
+  CHECK(smoothed.segments.back().start() == programmed.segments.back().start());
+  CHECK(smoothed.segments.back().end() == programmed.segments.back().end());
+  CHECK(smoothed.blend_tolerance_mm.empty());
+}
+
+TEST_CASE("smoothing: with the tolerance 0 the job is unchanged", "[host][smoothing]") {
+  const Job programmed = polyline_job(circle_chords(36));
+  smoothing::SmoothingReport report;
+  const Job same = smoothing::smooth_for_machine(programmed, example_machine(), 0, &report);
+  REQUIRE(same.segments.size() == programmed.segments.size());
+  for (std::size_t i = 0; i < same.segments.size(); ++i) CHECK(same.segments[i].end() == programmed.segments[i].end());
+  CHECK(report.corners_blended == 0);
+  CHECK(report.runs_fitted == 0);
+}
+
+TEST_CASE("smoothing: the issue's jobs run at feed within every limit", "[host][smoothing][sim]") {
+  const MachineLimits machine = example_machine();  // a 2000, j 50000, feed 50 mm/s
+  const auto run = [&](const std::vector<MachinePoint>& vertices) {
+    const Job smoothed = smoothing::smooth_for_machine(polyline_job(vertices), machine, 0.01);
+    return simulate(smoothed, machine).summary;
+  };
+  // The same circle as one arc (full circle from (20, 0) about the origin).
+  Job arc_job;
+  arc_job.name = "arc";
+  arc_job.segments.push_back(
+      PathSegment::make_arc(MachinePoint{{20, 0, 0}}, MachinePoint{{20, 0, 0}}, MachinePoint{}, ArcDirection::CounterClockwise, 0, 1e-9).value());
+  arc_job.segments.back().set_feed_mm_per_s(50);
+  arc_job.source_index = {0};
+  arc_job.sources.resize(1);
+  const double arc_time = simulate(arc_job, machine).summary.duration_s;
+  for (const std::size_t chords : {std::size_t{360}, std::size_t{3600}}) {
+    INFO(chords << " chords");
+    const auto s = run(circle_chords(chords));
+    CHECK(s.violations.empty());
+    CHECK(s.duration_s <= 1.15 * arc_time);
+  }
+  {
+    INFO("spiral of 2000 points");
+    const auto vertices = spiral(2000);
+    double length = 0;
+    for (std::size_t i = 1; i < vertices.size(); ++i) length += norm(vertices[i] - vertices[i - 1]);
+    const auto s = run(vertices);
+    CHECK(s.violations.empty());
+    CHECK(s.duration_s <= 1.15 * length / 50);
+  }
+  {
+    INFO("3-axis raster");
+    const auto s = run(raster(6));
+    CHECK(s.violations.empty());
+  }
+}
+
+TEST_CASE("smoothing: the machine file's blend_tolerance is read and checked", "[host][smoothing]") {
+  const std::string base = R"({"v_max": 100, "a_max": 1000, "j_max": 10000, "feed": 20, "tolerance": 0.01, "rate_hz": 1000)";
+  CHECK(parse_machine_file(base + "}", "m.json").blend_tolerance_mm == 0);
+  CHECK(parse_machine_file(base + R"(, "blend_tolerance": 0.05})", "m.json").blend_tolerance_mm == 0.05);
+  try {
+    (void)parse_machine_file(base + R"(, "blend_tolerance": -1})", "m.json");
+    FAIL("a negative tolerance was accepted");
+  } catch (const LoadError& e) {
+    CHECK(std::string(e.what()).find("blend_tolerance") != std::string::npos);
+  }
+}
