@@ -25,7 +25,8 @@ struct SimOptions {
   std::string job;
   std::string machine;
   double rate_hz = 0;
-  long long lookahead = 0;  ///< 0: not given (the count window 16 extended by distance)
+  long long lookahead = static_cast<long long>(SimulationOptions::max_lookahead);
+  bool lookahead_given = false;  ///< without --lookahead: the count window 16 extended by distance
   std::string output;
   std::string report;
   bool double_precision = false;
@@ -36,8 +37,8 @@ struct SimOptions {
 constexpr int exit_limits_exceeded = 3;
 
 int run_sim(const SimOptions& o) {
-  const bool replay_window = o.lookahead != 0;
-  if (replay_window && (o.lookahead < 1 || o.lookahead > static_cast<long long>(SimulationOptions::max_lookahead))) {
+  const bool replay_window = o.lookahead_given;
+  if (o.lookahead < 1 || o.lookahead > static_cast<long long>(SimulationOptions::max_lookahead)) {
     throw std::runtime_error("--lookahead: must be between 1 and " + std::to_string(SimulationOptions::max_lookahead) + " segments");
   }
   const Job programmed = load_job_file(o.job);
@@ -89,7 +90,7 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required()->check(CLI::ExistingFile);
   sim->add_option("--machine,-m", options->machine, "Machine file (.json)")->required()->check(CLI::ExistingFile);
   sim->add_option("--rate", options->rate_hz, "Setpoint rate in Hz (100..100000), overriding the machine file");
-  sim->add_option("--lookahead", options->lookahead,
+  auto* lookahead_option = sim->add_option("--lookahead", options->lookahead,
                   "Look-ahead window in segments (1..16). The setpoints depend on it: give a device's window to reproduce "
                   "its stream bit for bit. Without it: 16 segments, extended to cover twice the braking distance "
                   "from v_max (up to 256 segments) (docs/motion.md, \"Look-ahead and determinism\")");
@@ -100,7 +101,8 @@ void add_sim_command(CLI::App& app) {
                   "Path smoothing tolerance in mm (corner blends and line-run fits; 0 = off), overriding the machine "
                   "file's \"blend_tolerance\" (docs/motion.md, \"Path smoothing\")")
       ->check(CLI::Range(0.0, max_blend_tolerance_mm));
-  sim->callback([options] {
+  sim->callback([options, lookahead_option] {
+    options->lookahead_given = lookahead_option->count() > 0;
     const int status = run_sim(*options);
     if (status != 0) throw CLI::RuntimeError(status);
   });

@@ -145,9 +145,10 @@ std::string file_text(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("sim: --lookahead replays a shorter window, and the default is 16", "[host_tools][sim][lookahead]") {
+TEST_CASE("sim: --lookahead replays a shorter window, and the default is 16 extended by distance", "[host_tools][sim][lookahead]") {
+  // Path smoothing off (it would merge the collinear lines into one): the window alone matters.
   const std::string job = short_lines_job();
-  const std::string machine = source("examples/jobs/machine.json");
+  const std::string machine = source("examples/jobs/machine.json") + " --blend-tolerance 0";
   const Run nine = run("sim " + job + " --machine " + machine + " --lookahead 9 -o /tmp/curvestep_sim_test_la9.csv");
   const Run sixteen = run("sim " + job + " --machine " + machine + " --lookahead 16 -o /tmp/curvestep_sim_test_la16.csv");
   const Run by_default = run("sim " + job + " --machine " + machine + " -o /tmp/curvestep_sim_test_la_default.csv");
@@ -159,16 +160,24 @@ TEST_CASE("sim: --lookahead replays a shorter window, and the default is 16", "[
   CHECK(by_default.output.find("look-ahead") == std::string::npos);
   const std::string csv9 = file_text("/tmp/curvestep_sim_test_la9.csv");
   const std::string csv16 = file_text("/tmp/curvestep_sim_test_la16.csv");
-  CHECK(file_text("/tmp/curvestep_sim_test_la_default.csv") == csv16);
+  const std::string csv_default = file_text("/tmp/curvestep_sim_test_la_default.csv");
   CHECK(csv9 != csv16);
+  // 100 lines of 0.04 mm: 16 of them (0.64 mm) hide the braking distance, the default does not.
+  CHECK(csv_default != csv16);
+  CHECK(std::count(csv_default.begin(), csv_default.end(), '\n') < std::count(csv16.begin(), csv16.end(), '\n'));
   // The command writes what the library gives with the same window.
+  const auto job_file = curvestep::host::parse_job(file_text(job), "short_lines.json");
+  const auto machine_limits = curvestep::host::load_machine(source("examples/jobs/machine.json"));
   curvestep::host::SimulationOptions options;
   options.lookahead = 9;
-  const auto result = curvestep::host::simulate(curvestep::host::parse_job(file_text(job), "short_lines.json"),
-                                                curvestep::host::load_machine(machine), options);
   std::ostringstream expected;
-  curvestep::host::write_setpoints_csv(expected, result.setpoints);
+  curvestep::host::write_setpoints_csv(expected, curvestep::host::simulate(job_file, machine_limits, options).setpoints);
   CHECK(csv9 == expected.str());
+  curvestep::host::SimulationOptions by_distance;
+  by_distance.lookahead_distance_mm = curvestep::host::lookahead_distance_for(machine_limits);
+  std::ostringstream expected_default;
+  curvestep::host::write_setpoints_csv(expected_default, curvestep::host::simulate(job_file, machine_limits, by_distance).setpoints);
+  CHECK(csv_default == expected_default.str());
 }
 
 TEST_CASE("sim: an out-of-range --lookahead fails with a one-line cause", "[host_tools][sim][lookahead]") {

@@ -49,7 +49,7 @@ std::vector<MachinePoint> vertices_of(const Job& job) {
 std::vector<MachinePoint> trace(const Job& job, std::size_t per_segment = 100) {
   std::vector<MachinePoint> points;
   for (const auto& s : job.segments) {
-    for (std::size_t k = points.empty() ? 0 : 1; k <= per_segment; ++k) points.push_back(s.point(static_cast<double>(k) / per_segment));
+    for (std::size_t k = points.empty() ? 0 : 1; k <= per_segment; ++k) points.push_back(s.point(static_cast<double>(k) / static_cast<double>(per_segment)));
   }
   return points;
 }

@@ -15,7 +15,7 @@ constexpr double pi = 3.14159265358979323846;
 
 /// p with every coordinate on the Q16.16 grid.
 inline MachinePoint grid(MachinePoint p) {
-  for (auto& c : p) c = Q16_16::from_double(c).value().to_double();
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) p[axis] = Q16_16::from_double(p[axis]).value().to_double();
   return p;
 }
 
