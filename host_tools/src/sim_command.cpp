@@ -69,6 +69,7 @@ int run_sim(const SimOptions& o) {
     report.result = &result;
     report.fixed_point = !o.double_precision;
     report.title = o.job;
+    report.extra_rows = smoothing::smoothing_rows(smoothing_report);
     write_html_report(o.report, report);
   }
   std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16");

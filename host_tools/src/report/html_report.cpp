@@ -161,6 +161,7 @@ std::string html_report(const ReportInput& input) {
     summary_row(out, std::string("step rate ") + axis_names[axis], figure(s.peak_step_rate_hz[axis], 6) + " Hz",
                 figure(machine.max_step_rate_hz, 6) + " Hz", over ? "exceeds" : "ok");
   }
+  for (const auto& row : input.extra_rows) summary_row(out, row[0], row[1], row[2], "");
   out << "</table>\n";
 
   out << "<h2>Path</h2>\n";

@@ -249,4 +249,19 @@ std::string format_smoothing(const SmoothingReport& r) {
   return out.str();
 }
 
+std::vector<std::array<std::string, 3>> smoothing_rows(const SmoothingReport& r) {
+  const auto um = [](double mm) {
+    std::ostringstream text;
+    text << mm * 1000 << " µm";
+    return text.str();
+  };
+  if (!(r.tolerance_mm > 0)) return {{"path smoothing", "off", ""}};
+  return {{"path smoothing", std::to_string(r.segments_before) + " segments → " + std::to_string(r.segments_after), ""},
+          {"corners blended", std::to_string(r.corners_blended) + " of " + std::to_string(r.corners), ""},
+          {"line runs fitted", std::to_string(r.runs_fitted) + " (" + std::to_string(r.lines_fitted) + " lines → " +
+                                   std::to_string(r.fitted_pieces) + " curves)",
+           ""},
+          {"deviation from the programmed path", um(r.max_deviation_mm), um(r.tolerance_mm)}};
+}
+
 }  // namespace curvestep::host::smoothing

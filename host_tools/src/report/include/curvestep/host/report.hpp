@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,8 @@ struct ReportInput {
   const SimulationResult* result = nullptr;   ///< the simulation
   bool fixed_point = true;                    ///< setpoint positions are Q16.16
   std::string title;                          ///< e.g. the job file's name
+  /// Further summary rows (name, value, limit), e.g. path smoothing's figures.
+  std::vector<std::array<std::string, 3>> extra_rows;
 };
 
 /// One self-contained HTML page (no external resources): summary figures, warnings, the path plot

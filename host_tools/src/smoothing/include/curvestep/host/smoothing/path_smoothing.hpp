@@ -19,7 +19,9 @@
 #pragma once
 
 #include <cstddef>
+#include <array>
 #include <string>
+#include <vector>
 
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/host/job.hpp>
@@ -69,6 +71,9 @@ struct SmoothingReport {
 
 /// The report as summary lines ("  smoothing: ..."), for sim and stream.
 [[nodiscard]] std::string format_smoothing(const SmoothingReport& report);
+
+/// The report as (name, value, limit) rows for the HTML report.
+[[nodiscard]] std::vector<std::array<std::string, 3>> smoothing_rows(const SmoothingReport& report);
 
 /// The tolerance in force: `command_line_mm` when given (>= 0), else the machine file's.
 [[nodiscard]] inline double tolerance_in_force(double machine_file_mm, double command_line_mm) noexcept {
