@@ -24,7 +24,7 @@
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/link/wire.hpp>
 #include <curvestep/host/machine_file.hpp>
-#include <curvestep/host/smoothing/path_smoothing.hpp>
+#include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/report.hpp>
 #include <curvestep/host/simulator.hpp>
 
@@ -56,8 +56,11 @@ DemoRun run_one(const std::filesystem::path& file, const MachineFile& machine_fi
   DemoRun run;
   run.name = file.filename().string();
   std::vector<std::string> notes;
-  const MachineLimits& machine = machine_file.limits;
-  const Job job = smoothing::smooth_for_machine(load_job_file(file, JobFileOptions{true}, &notes), machine, machine_file.blend_tolerance_mm);
+  JobPipelineOptions pipeline;
+  pipeline.optimize = true;
+  const PreparedJob prepared = prepare_job(file, machine_file.limits, machine_file.blend_tolerance_mm, pipeline);
+  const Job& job = prepared.job;
+  const MachineLimits& machine = prepared.machine;
   const auto [device_job, device_machine] = link::as_device_sees(job, machine);
 
   link::StreamResult streamed;

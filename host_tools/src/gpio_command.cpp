@@ -39,12 +39,13 @@
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/link/wire.hpp>
 #include <curvestep/host/machine_file.hpp>
-#include <curvestep/host/smoothing/path_smoothing.hpp>
+#include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/simulator.hpp>
 
 #include "board_thread.hpp"
 #include "command_registry.hpp"
 #include "gpio_command_output.hpp"
+#include "job_pipeline_options.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -56,6 +57,7 @@ struct GpioCommandOptions {
   std::string chip;
   bool dry_run = false;
   unsigned link_timeout_ms = 3000;
+  JobPipelineOptions pipeline;
 };
 
 /// Exit status: the job asks an axis for more steps per second than the machine allows.
@@ -228,7 +230,10 @@ int run_gpio(const GpioCommandOptions& o) {
     machine.rate_hz = o.rate_hz;
     if (auto valid = machine.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
-  const Job job = smoothing::smooth_for_machine(load_job_file(o.job), machine, file.blend_tolerance_mm);
+  const PreparedJob prepared = prepare_job(o.job, machine, file.blend_tolerance_mm, o.pipeline);
+  const Job& job = prepared.job;
+  machine = prepared.machine;
+  for (const auto& note : prepared.notes) std::cerr << "curvestep gpio: note: " << note << "\n";
   boards::host::GpioLines lines;
   if (!o.dry_run) {
     if (!file.gpio) {
@@ -284,6 +289,7 @@ void add_gpio_command(CLI::App& app) {
   gpio->add_flag("--dry-run", options->dry_run,
                  "Drive no lines: run the firmware as fast as possible and count the steps it would take");
   gpio->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
+  add_job_pipeline_options(gpio, options->pipeline);
   gpio->footer(
       "Exit status: 0 done; 3 an axis would exceed max_step_rate (nothing moved); 4 the controller or link failed;\n"
       "5 the GPIO chip or a line cannot be opened; 1 bad input.");

@@ -9,9 +9,11 @@
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/report.hpp>
+#include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/simulator.hpp>
 
 #include "command_registry.hpp"
+#include "job_pipeline_options.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -20,17 +22,25 @@ struct PlotOptions {
   std::string job;
   std::string machine;
   std::string output;
+  JobPipelineOptions pipeline;
 };
 
 void run_plot(const PlotOptions& o) {
-  const Job job = load_job_file(o.job);  // .json, G-code or SVG by extension, as sim
   PathPlotOptions plot;
-  plot.title = job.name;
   if (o.machine.empty()) {
+    // Without a machine: the programmed path (nothing to smooth for).
+    const Job job = load_job_file(o.job, JobFileOptions{o.pipeline.optimize});
+    plot.title = job.name;
     write_path_plot(o.output, job, nullptr, plot);
   } else {
-    const MachineLimits machine = load_machine(o.machine);
+    // With a machine: the path the machine runs (the job pipeline of sim, stream and gpio).
+    const MachineFile machine_file = load_machine_file(o.machine);
+    const PreparedJob prepared = prepare_job(o.job, machine_file.limits, machine_file.blend_tolerance_mm, o.pipeline);
+    const Job& job = prepared.job;
+    const MachineLimits& machine = prepared.machine;
+    plot.title = job.name;
     SimulationOptions options;
+    options.lookahead_distance_mm = lookahead_distance_for(machine);
     options.progress = make_terminal_progress();
     const SimulationResult result = simulate(job, machine, options);
     finish_terminal_progress();
@@ -46,6 +56,7 @@ void add_plot_command(CLI::App& app) {
   plot->add_option("-o,--output", options->output, "SVG file to write")->required();
   plot->add_option("--machine,-m", options->machine, "Machine file (.json): simulate and colour by planned speed")
       ->check(CLI::ExistingFile);
+  add_job_pipeline_options(plot, options->pipeline);
   plot->callback([options] { run_plot(*options); });
 }
 

@@ -17,6 +17,7 @@
 #include <curvestep/host/smoothing/path_smoothing.hpp>
 
 #include "command_registry.hpp"
+#include "job_pipeline_options.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -30,7 +31,7 @@ struct SimOptions {
   std::string output;
   std::string report;
   bool double_precision = false;
-  double blend_tolerance_mm = -1;  ///< < 0: the machine file's
+  JobPipelineOptions pipeline;
 };
 
 /// Exit status for a job the machine cannot run within its limits.
@@ -41,16 +42,16 @@ int run_sim(const SimOptions& o) {
   if (o.lookahead < 1 || o.lookahead > static_cast<long long>(SimulationOptions::max_lookahead)) {
     throw std::runtime_error("--lookahead: must be between 1 and " + std::to_string(SimulationOptions::max_lookahead) + " segments");
   }
-  const Job programmed = load_job_file(o.job);
   const MachineFile machine_file = load_machine_file(o.machine);
-  MachineLimits machine = machine_file.limits;
+  MachineLimits file_limits = machine_file.limits;
   if (o.rate_hz > 0) {
-    machine.rate_hz = o.rate_hz;
-    if (auto valid = machine.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
+    file_limits.rate_hz = o.rate_hz;
+    if (auto valid = file_limits.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
-  smoothing::SmoothingReport smoothing_report;
-  const Job job = smoothing::smooth_for_machine(
-      programmed, machine, smoothing::tolerance_in_force(machine_file.blend_tolerance_mm, o.blend_tolerance_mm), &smoothing_report);
+  const PreparedJob prepared = prepare_job(o.job, file_limits, machine_file.blend_tolerance_mm, o.pipeline);
+  const Job& job = prepared.job;
+  const MachineLimits& machine = prepared.machine;
+  const smoothing::SmoothingReport& smoothing_report = prepared.smoothing;
   SimulationOptions options;
   if (replay_window) {
     options.lookahead = static_cast<std::size_t>(o.lookahead);
@@ -76,6 +77,7 @@ int run_sim(const SimOptions& o) {
   if (replay_window) std::cout << ", look-ahead " << options.lookahead;
   std::cout << ")\n"
             << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report);
+  for (const auto& note : prepared.notes) std::cout << "  note: " << note << "\n";
   if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
   if (!o.report.empty()) std::cout << "  wrote " << o.report << "\n";
   return result.summary.violations.empty() ? 0 : exit_limits_exceeded;
@@ -98,10 +100,7 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v)");
   sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary)");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
-  sim->add_option("--blend-tolerance", options->blend_tolerance_mm,
-                  "Path smoothing tolerance in mm (corner blends and line-run fits; 0 = off), overriding the machine "
-                  "file's \"blend_tolerance\" (docs/motion.md, \"Path smoothing\")")
-      ->check(CLI::Range(0.0, max_blend_tolerance_mm));
+  add_job_pipeline_options(sim, options->pipeline);
   sim->callback([options, lookahead_option] {
     options->lookahead_given = lookahead_option->count() > 0;
     const int status = run_sim(*options);

@@ -20,10 +20,11 @@
 #include <curvestep/host/link/streamer.hpp>
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/machine_file.hpp>
-#include <curvestep/host/smoothing/path_smoothing.hpp>
+#include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/simulator.hpp>
 
 #include "command_registry.hpp"
+#include "job_pipeline_options.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -36,7 +37,7 @@ struct StreamCommandOptions {
   std::string capture;
   unsigned link_timeout_ms = 3000;
   std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
-  double blend_tolerance_mm = -1;  ///< path smoothing tolerance; < 0: the machine file's
+  JobPipelineOptions pipeline;
   bool lookahead_given = false;    ///< --lookahead given: plan with that count window alone
 };
 
@@ -81,11 +82,10 @@ std::string look_ahead_text(const link::StreamResult& result, bool by_distance) 
 
 int run_stream(const StreamCommandOptions& o) {
   const MachineFile machine_file = load_machine_for_stream(o.machine);
-  const MachineLimits machine = machine_file.limits;
-  smoothing::SmoothingReport smoothing_report;
-  const Job job = smoothing::smooth_for_machine(load_job_file(o.job), machine,
-                                                smoothing::tolerance_in_force(machine_file.blend_tolerance_mm, o.blend_tolerance_mm),
-                                                &smoothing_report);
+  const PreparedJob prepared = prepare_job(o.job, machine_file.limits, machine_file.blend_tolerance_mm, o.pipeline);
+  const Job& job = prepared.job;
+  const MachineLimits& machine = prepared.machine;
+  for (const auto& note : prepared.notes) std::cerr << "curvestep stream: note: " << note << "\n";
   auto transport = link::open_port(o.port, o.baud);
   link::StreamOptions options;
   options.link.link_timeout_ms = o.link_timeout_ms;
@@ -128,7 +128,7 @@ int run_stream(const StreamCommandOptions& o) {
             << (result.lookahead == 0 ? " pieces\n" : " segments\n")
             << "  device look-ahead:   " << look_ahead_text(result, !o.lookahead_given) << "\n";
   if (result.lookahead == 0) std::cout << "  pieces sent:         " << result.pieces_sent << "\n";
-  std::cout << "  bytes sent:          " << result.bytes_sent << "\n" << smoothing::format_smoothing(smoothing_report);
+  std::cout << "  bytes sent:          " << result.bytes_sent << "\n" << smoothing::format_smoothing(prepared.smoothing);
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
   if (result.duplicate_setpoints != 0) {
     std::cerr << "curvestep stream: the setpoint stream is broken: " << result.duplicate_setpoints << " duplicated\n";
@@ -151,10 +151,7 @@ void add_stream_command(CLI::App& app) {
                      "Look-ahead window (segments) to plan with here for a controller without a planner, which replays "
                      "the planned pieces (as curvestep sim --lookahead); a controller with a planner uses its own")
       ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
-  stream->add_option("--blend-tolerance", options->blend_tolerance_mm,
-                     "Path smoothing tolerance in mm (0 = off), overriding the machine file's \"blend_tolerance\"; "
-                     "curvestep sim --blend-tolerance with the same value plans the same segments")
-      ->check(CLI::Range(0.0, max_blend_tolerance_mm));
+  add_job_pipeline_options(stream, options->pipeline);
   stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
   stream->callback([options, lookahead_option] {
     options->lookahead_given = lookahead_option->count() > 0;

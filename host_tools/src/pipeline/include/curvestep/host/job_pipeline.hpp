@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// One job pipeline for every command that moves a machine (sim, plot, stream, gpio, demo), so that
+// what was simulated is what runs:
+//
+//   file ─► load_job_file (by extension; --optimize orders SVG subpaths)
+//        ─► step-rate-aware limits (each axis's v_max lowered to what its drivers can step)
+//        ─► path smoothing (blend_tolerance / --blend-tolerance)  ─► Job + MachineLimits to plan/send
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/smoothing/path_smoothing.hpp>
+
+namespace curvestep::host {
+
+/// The options every machine-moving command accepts (add_job_pipeline_options in the program).
+struct JobPipelineOptions {
+  bool optimize = false;            ///< --optimize: order SVG subpaths to shorten pen-up travel
+  double blend_tolerance_mm = -1;   ///< --blend-tolerance; < 0: the machine file's
+  bool strict_step_rate = false;    ///< --strict-step-rate: refuse instead of planning slower
+};
+
+/// A job ready to plan or send, with the limits to plan it with.
+struct PreparedJob {
+  Job job;                                 ///< smoothed
+  MachineLimits machine;                   ///< the machine file's limits, step-rate aware unless strict
+  smoothing::SmoothingReport smoothing;    ///< what smoothing did
+  std::vector<std::string> notes;          ///< lines worth telling the user (import notes, lowered axis speeds)
+};
+
+/// Share of max_step_rate an axis may use when its speed is lowered to fit it (the setpoints'
+/// measured speed may exceed the planned cap by rounding).
+inline constexpr double step_rate_share = 0.99;
+
+/// `machine` with each stepped axis's v_max lowered so that v_max × steps_per_mm stays within
+/// step_rate_share × max_step_rate (the planner then keeps every axis within it: per-axis speed caps,
+/// docs/motion.md). A note per lowered axis is appended to `notes`.
+[[nodiscard]] MachineLimits step_rate_aware(const MachineLimits& machine, std::vector<std::string>* notes = nullptr);
+
+/// Loads `job_file` and prepares it for `machine` (the machine file's limits, possibly with a rate
+/// override) and the machine file's `blend_tolerance_mm`. Throws what load_job_file throws.
+[[nodiscard]] PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineLimits& machine,
+                                      double machine_blend_tolerance_mm, const JobPipelineOptions& options);
+
+}  // namespace curvestep::host

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// The job pipeline of every machine-moving command (job_pipeline.hpp).
+#include <curvestep/host/job_pipeline.hpp>
+
+#include <cmath>
+#include <sstream>
+
+#include <curvestep/host/job_file.hpp>
+
+namespace curvestep::host {
+
+MachineLimits step_rate_aware(const MachineLimits& machine, std::vector<std::string>* notes) {
+  MachineLimits out = machine;
+  const char* names[] = {"x", "y", "z"};
+  const double fastest = std::fmax(machine.v_max_mm_per_s, machine.rapid_mm_per_s);
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    AxisLimits& a = out.axes[axis];
+    if (!(a.steps_per_mm > 0) || !(machine.max_step_rate_hz > 0)) continue;
+    const double steppable = step_rate_share * machine.max_step_rate_hz / a.steps_per_mm;
+    const double current = a.v_max_mm_per_s > 0 ? a.v_max_mm_per_s : fastest;
+    if (steppable < current) {
+      a.v_max_mm_per_s = steppable;
+      if (notes != nullptr) {
+        std::ostringstream line;
+        line << "axis " << names[axis] << " planned at most " << steppable << " mm/s (max_step_rate " << machine.max_step_rate_hz
+             << " steps/s at " << a.steps_per_mm << " steps/mm; --strict-step-rate refuses instead)";
+        notes->push_back(line.str());
+      }
+    }
+  }
+  return out;
+}
+
+PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineLimits& machine, double machine_blend_tolerance_mm,
+                        const JobPipelineOptions& options) {
+  PreparedJob prepared;
+  const Job programmed = load_job_file(job_file, JobFileOptions{options.optimize}, &prepared.notes);
+  prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &prepared.notes);
+  prepared.job = smoothing::smooth_for_machine(
+      programmed, prepared.machine, smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm),
+      &prepared.smoothing);
+  return prepared;
+}
+
+}  // namespace curvestep::host
