@@ -103,7 +103,8 @@ TEST_CASE("sim: an invalid job fails with a one-line cause naming file and segme
   CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
 }
 
-TEST_CASE("sim: a job the machine cannot run exits with status 3 and names the limit", "[host_tools][sim]") {
+TEST_CASE("sim: a job too fast for the drivers is planned slower, and with --strict-step-rate exits 3 naming the limit",
+          "[host_tools][sim]") {
   std::ifstream in(source("examples/jobs/machine.json"));
   std::stringstream text;
   text << in.rdbuf();
@@ -112,9 +113,15 @@ TEST_CASE("sim: a job the machine cannot run exits with status 3 and names the l
   REQUIRE(at != std::string::npos);
   machine.replace(at, std::string("\"max_step_rate\": 40000").size(), "\"max_step_rate\": 1000");
   const std::string path = temporary("slow_machine.json", machine);
-  const Run r = run("sim " + source("examples/jobs/every_type.json") + " --machine " + path);
+  const Run r = run("sim " + source("examples/jobs/every_type.json") + " --machine " + path + " --strict-step-rate");
   CHECK(r.status == 3);
   CHECK(r.output.find("steps/s") != std::string::npos);
+  // Without --strict-step-rate: each axis at most 0.99 · 1000 / 80 = 12.375 mm/s, within the limit.
+  const Run slower = run("sim " + source("examples/jobs/every_type.json") + " --machine " + path);
+  INFO(slower.output);
+  CHECK(slower.status == 0);
+  CHECK(slower.output.find("axis x planned at most 12.375 mm/s") != std::string::npos);
+  CHECK(slower.output.find("limit violations:    none") != std::string::npos);
 }
 
 TEST_CASE("sim: a missing machine option is a usage error", "[host_tools][sim]") {

@@ -6,12 +6,14 @@
 // tangential parts. With T, N the unit tangent and normal, κ the curvature and a_t, j_t the
 // tangential acceleration and jerk, a moving point has
 //     a = a_t T + v²κ N                     j = (j_t − v³κ²) T + (3 v a_t κ + v³ dκ/ds) N.
-// So |a| <= a_max holds if v²κ <= ½ a_max and |a_t| <= 0.85 a_max (0.25 + 0.7225 < 1), and
-// |j| <= j_max holds if |j_t| <= ½ j_max, v³(κ² + |dκ/ds|) <= ¼ j_max and 3 v |a_t| κ <= ¼ j_max.
+// So |a| <= a_max holds if v²κ <= ½ a_max and |a_t| <= √(a_max² − (v_cap²κ)²), and |j| <= j_max
+// holds if v³(κ² + |dκ/ds|) <= ¼ j_max, 3 v |a_t| κ <= ¼ j_max (the normal part n <= ½ j_max) and
+// |j_t| <= √(j_max² − n²) − v³κ² (>= 0.616 j_max), each with the segment's largest κ, dκ/ds and v.
 // A straight segment keeps the full a_max and j_max. Per-axis velocity limits cap v |T_axis|;
-// an axis sees |a_t| |T_axis| + v²κ |N_axis| <= (0.85 + 0.5) a_eff max(|T_axis|, |N_axis|) on a
-// curved segment and a_t |T_axis| on a straight one, so each axis limit caps the segment's
-// a_eff accordingly (an XY move is not slowed by a slow Z axis). The chord
+// an axis sees |a_t| |T_axis| + v²κ |N_axis| of acceleration, so each axis limit caps the speed
+// (v²κ max|N_axis| <= ½ a_axis) and then the tangential acceleration by what the centripetal part at
+// that speed leaves: a_t <= (a_axis − v_cap² κ max|N_axis|) / max|T_axis| (an XY move is not slowed
+// by a slow Z axis, and a gently curved Z profile keeps most of a_max along the path). The chord
 // between two setpoints must stay within the tolerance: its sagitta κ (v Δt)² / 8 <= tolerance.
 // κ and dκ/ds are sampled at 129 points (dκ/ds by differences of κ over arc length, with a 25%
 // margin); the planning is a pure function of the segment and the machine (deterministic).
@@ -165,22 +167,36 @@ template <std::size_t Intervals = 64>
     const double limit = machine.axes[axis].v_max_mm_per_s;
     if (limit > 0 && max_tangent_component[axis] > 0) speed_cap = std::fmin(speed_cap, limit / max_tangent_component[axis]);
   }
-  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-    const double limit = machine.axes[axis].a_max_mm_per_s2;
-    if (!(limit > 0)) continue;
-    const double share = max_kappa > 0 ? 1.35 * std::fmax(max_tangent_component[axis], max_normal_component[axis])
-                                       : max_tangent_component[axis];
-    if (share > 0) a_max = std::fmin(a_max, limit / share);
-  }
-  double acceleration = a_max;
   double jerk = machine.j_max_mm_per_s3;
   if (max_kappa > 0) {
-    speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * a_max / max_kappa));                                   // v²κ <= a/2
+    speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * a_max / max_kappa));  // v²κ <= a/2
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {              // per axis: v²κ |N_axis| <= a_axis/2
+      const double limit = machine.axes[axis].a_max_mm_per_s2;
+      if (limit > 0 && max_normal_component[axis] > 0) {
+        speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * limit / (max_kappa * max_normal_component[axis])));
+      }
+    }
     speed_cap = std::fmin(speed_cap, detail::cube_root(0.25 * jerk / (max_kappa * max_kappa + max_kappa_rate)));  // normal jerk
     const double dt = 1.0 / machine.rate_hz;
-    speed_cap = std::fmin(speed_cap, std::sqrt(8 * machine.tolerance_mm / max_kappa) / dt);                 // chord sagitta
-    acceleration = std::fmin(0.85 * a_max, 0.25 * jerk / (3 * speed_cap * max_kappa));                       // 3 v a κ <= j/4
-    jerk = 0.5 * jerk;
+    speed_cap = std::fmin(speed_cap, std::sqrt(8 * machine.tolerance_mm / max_kappa) / dt);  // chord sagitta
+  }
+  // Tangential acceleration: what the centripetal part c = v_cap² κ (<= a_max/2) leaves of the whole
+  // vector, √(a_max² − c²) (>= 0.866 a_max), and per axis a_t |T_axis| + v_cap² κ |N_axis| <= a_axis.
+  const double centripetal_max = speed_cap * speed_cap * max_kappa;
+  double acceleration = std::sqrt(std::fmax(0.0, a_max * a_max - centripetal_max * centripetal_max));
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    const double limit = machine.axes[axis].a_max_mm_per_s2;
+    if (!(limit > 0) || !(max_tangent_component[axis] > 0)) continue;
+    const double centripetal = max_kappa > 0 ? speed_cap * speed_cap * max_kappa * max_normal_component[axis] : 0.0;
+    acceleration = std::fmin(acceleration, (limit - centripetal) / max_tangent_component[axis]);
+  }
+  if (max_kappa > 0) {
+    acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * speed_cap * max_kappa));  // 3 v a κ <= j/4
+    // Jerk: the normal part n = v³(κ² + dκ/ds) + 3 v a_t κ (<= j/2 by the caps above) and the
+    // tangential v³κ² leave the profile j_t <= √(j² − n²) − v³κ² (>= 0.616 j).
+    const double v3 = speed_cap * speed_cap * speed_cap;
+    const double normal = v3 * (max_kappa * max_kappa + max_kappa_rate) + 3 * speed_cap * acceleration * max_kappa;
+    jerk = std::sqrt(std::fmax(0.0, jerk * jerk - normal * normal)) - v3 * max_kappa * max_kappa;
   }
   if (!(speed_cap > 0) || !(acceleration > 0)) {
     out = fail(Error::InvalidLimit);
