@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 #include <unistd.h>
 
@@ -33,6 +34,32 @@ struct SimOptions {
   bool double_precision = false;
   JobPipelineOptions pipeline;
 };
+
+/// The job's machine events as summary lines (count, then up to 8 with where they happen).
+std::string format_events(const Job& job) {
+  if (job.events.empty()) return {};
+  static const char* names[] = {"dwell", "pause", "program end", "spindle on", "spindle off", "spindle speed", "mist",
+                                "flood", "coolant off", "tool change", "output", "pen up", "pen down", "layer change"};
+  std::ostringstream out;
+  out << "  job events:          " << job.events.size()
+      << " (in program order; the motion does not stop or wait for them yet: dwells and pauses take no time here nor on a device)\n";
+  std::size_t shown = 0;
+  for (const JobEvent& e : job.events) {
+    if (++shown > 8) {
+      out << "                       ...\n";
+      break;
+    }
+    out << "                       " << names[static_cast<std::size_t>(e.kind)];
+    if (!e.text.empty()) out << " (" << e.text << ")";
+    if (e.kind == JobEventKind::Dwell) out << " " << e.value << " s";
+    if (e.kind == JobEventKind::SpindleOn || e.kind == JobEventKind::SpindleSpeed) out << " " << e.value << " rev/min";
+    if (e.kind == JobEventKind::ToolChange) out << " tool " << e.value;
+    out << " before segment " << e.before_segment;
+    if (e.line != 0) out << ", line " << e.line;
+    out << "\n";
+  }
+  return out.str();
+}
 
 /// Exit status for a job the machine cannot run within its limits.
 constexpr int exit_limits_exceeded = 3;
@@ -76,7 +103,7 @@ int run_sim(const SimOptions& o) {
   std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16");
   if (replay_window) std::cout << ", look-ahead " << options.lookahead;
   std::cout << ")\n"
-            << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report);
+            << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report) << format_events(job);
   for (const auto& note : prepared.notes) std::cout << "  note: " << note << "\n";
   if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
   if (!o.report.empty()) std::cout << "  wrote " << o.report << "\n";

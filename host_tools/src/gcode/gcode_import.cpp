@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <initializer_list>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -53,10 +54,33 @@ std::string explain(Error code, const std::string& word) {
   const bool g5 = word.starts_with("G5") && !word.starts_with("G5.");
   const bool arc = word.starts_with("G2") || word.starts_with("G3");
   switch (code) {
-    case Error::GcodeUnsupportedWord:
-      if (word == "/") return "block delete is not supported";
+    case Error::GcodeUnsupportedWord: {
+      const auto is = [&word](std::initializer_list<const char*> codes) {
+        for (const char* c : codes) {
+          if (word == c) return true;
+        }
+        return false;
+      };
       if (arc) return "arcs are supported in the G17 (XY) plane only";
+      if (!word.empty() && (word[0] == 'A' || word[0] == 'B' || word[0] == 'C' || word[0] == 'U' || word[0] == 'V' || word[0] == 'W')) {
+        return "rotary and parallel axes (A B C U V W) are not supported: this is a 3-axis (X Y Z) machine";
+      }
+      if (!word.empty() && word[0] == 'O') return "O-word subroutines and control flow are not supported yet (docs/gcode.md)";
+      if (!word.empty() && word[0] == '#') return "parameters (#) and expressions are not supported yet (docs/gcode.md)";
+      if (is({"G93"})) return "inverse-time feed (G93) is not supported: use G94 (units per minute)";
+      if (is({"G95"})) return "feed per revolution (G95) needs a spindle model, which this controller does not have: use G94";
+      if (is({"G41", "G42", "G41.1", "G42.1"})) return "cutter radius compensation (G41/G42) is not supported yet: post the tool path with compensation done by the CAM";
+      if (is({"G43.1", "G43.2"})) return "dynamic tool length offsets (G43.1/G43.2) are not supported: use G43 H with the machine file's tool table";
+      if (is({"G73", "G74", "G76", "G81", "G82", "G83", "G84", "G85", "G86", "G87", "G88", "G89"})) {
+        return "canned cycles are not supported yet: post drilling as G0/G1 moves";
+      }
+      if (is({"G33", "G33.1", "G76"})) return "threading (spindle-synchronised motion) is not supported";
+      if (is({"G7", "G8"})) return "lathe diameter/radius modes are not supported (this is a mill/plotter controller)";
+      if (is({"G38.2", "G38.3", "G38.4", "G38.5"})) return "probing is not supported";
+      if (!word.empty() && word[0] == 'M') return "unsupported M code (supported: M0 M1 M2 M30 M3 M4 M5 M6 M7 M8 M9 M48-M53 M62-M65)";
+      if (!word.empty() && word[0] == 'G') return "unsupported G code (docs/gcode.md lists the supported ones)";
       return "unsupported word";
+    }
     case Error::GcodeBadNumber: return "malformed or out-of-range number (at most 15 digits; coordinates within +-32767 mm)";
     case Error::GcodeMissingWord:
       if (g5_1) return "G5.1 needs I or J";
@@ -71,7 +95,9 @@ std::string explain(Error code, const std::string& word) {
              "or the radius is zero";
     case Error::GcodeSplineNotG17: return "splines (G5, G5.1, G5.2) need plane G17 (XY)";
     case Error::GcodeSplineNoTangent: return "G5 without I J must follow a G5 whose end tangent it continues (the first of a series needs I J)";
-    case Error::GcodeSyntax: return "syntax error (unexpected character, unclosed comment, N not first, or too many words)";
+    case Error::GcodeSyntax:
+      if (!word.empty() && word[0] == '#') return "parameters (#) and expressions are not supported yet (docs/gcode.md)";
+      return "syntax error (unexpected character, unclosed comment, N not first, or too many words)";
     case Error::GcodeConflictingWords: return "cannot appear with the other words of the line (or twice)";
     case Error::GcodeNurbsBlock:
       if (word.starts_with("G5.3")) return "G5.3 without an open G5.2 block, or with fewer control points than the order L";
@@ -116,7 +142,10 @@ class GcodeLoader {
           if (w.letter == 'G' && w.code_tenths == 52) nurbs_column = w.column;
         }
       }
+      add_events(motion.value(), false);
+      if (motion.value().has_pre_rapid) add_rapid(before, motion.value());
       add(motion.value());
+      add_events(motion.value(), true);
       if (stop == text.size()) break;
       start = stop + 1;
     }
@@ -197,6 +226,44 @@ class GcodeLoader {
     return segment.value();
   }
 
+  /// The block's machine events as job events: those LinuxCNC executes before the motion
+  /// (`after` false), or the stops after it (M0/M1/M2/M30).
+  void add_events(const gcode::Motion& motion, bool after) {
+    for (const auto& e : motion.machine_events()) {
+      const bool stop = e.kind == gcode::MachineEventKind::Pause || e.kind == gcode::MachineEventKind::ProgramEnd;
+      if (stop != after) continue;
+      JobEvent event;
+      event.before_segment = job_.segments.size();
+      event.value = e.value;
+      event.flag = e.flag;
+      event.line = line_number_;
+      event.text = word_at(line_, e.column);
+      switch (e.kind) {
+        case gcode::MachineEventKind::SpindleSpeed: event.kind = JobEventKind::SpindleSpeed; break;
+        case gcode::MachineEventKind::ToolChange: event.kind = JobEventKind::ToolChange; break;
+        case gcode::MachineEventKind::SpindleOn: event.kind = JobEventKind::SpindleOn; break;
+        case gcode::MachineEventKind::SpindleOff: event.kind = JobEventKind::SpindleOff; break;
+        case gcode::MachineEventKind::CoolantMist: event.kind = JobEventKind::CoolantMist; break;
+        case gcode::MachineEventKind::CoolantFlood: event.kind = JobEventKind::CoolantFlood; break;
+        case gcode::MachineEventKind::CoolantOff: event.kind = JobEventKind::CoolantOff; break;
+        case gcode::MachineEventKind::DigitalOutput: event.kind = JobEventKind::DigitalOutput; break;
+        case gcode::MachineEventKind::Dwell: event.kind = JobEventKind::Dwell; break;
+        case gcode::MachineEventKind::Pause: event.kind = JobEventKind::ProgramPause; break;
+        case gcode::MachineEventKind::ProgramEnd: event.kind = JobEventKind::ProgramEnd; break;
+      }
+      job_.events.push_back(event);
+    }
+  }
+
+  /// The rapid to G28/G30's intermediate point, before the move home.
+  void add_rapid(const MachinePoint& from, const gcode::Motion& motion) {
+    gcode::Motion leg = motion;
+    leg.kind = gcode::MotionKind::Rapid;
+    leg.start = from;
+    leg.end = motion.pre_rapid;
+    add(leg);
+  }
+
   void add(const gcode::Motion& motion) {
     if (motion.kind == gcode::MotionKind::None) return;
     SourceSegment source;
@@ -246,6 +313,7 @@ class GcodeLoader {
       piece.set_feed_mm_per_s(source.type == SegmentType::Rapid ? 0.0 : source.feed_mm_per_s);
       job_.segments.push_back(piece);
       job_.source_index.push_back(index);
+      job_.blend_tolerance_mm.push_back(motion.path_tolerance_mm);  // G64 P / G61 at the joint into it
     }
     if (source.type == SegmentType::Rapid) source.feed_mm_per_s = 0;
     job_.sources.push_back(std::move(source));

@@ -319,9 +319,9 @@ TEST_CASE("gcode interpreter: unsupported and conflicting words are errors that 
     std::size_t column;
   };
   const Case cases[] = {
-      {{"G4 P1"}, Error::GcodeUnsupportedWord, 1},
+      {{"G33 X1"}, Error::GcodeUnsupportedWord, 1},    // threading
       {{"G1 G81 X1"}, Error::GcodeUnsupportedWord, 4},
-      {{"M3"}, Error::GcodeUnsupportedWord, 1},
+      {{"M66"}, Error::GcodeUnsupportedWord, 1},       // wait on input
       {{"G1.5 X1"}, Error::GcodeUnsupportedWord, 1},
       {{"G0 G1 X1"}, Error::GcodeConflictingWords, 4},
       {{"G20 G21"}, Error::GcodeConflictingWords, 5},

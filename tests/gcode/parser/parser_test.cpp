@@ -104,8 +104,8 @@ TEST_CASE("gcode parser: errors name the column of the word at fault", "[gcode][
   };
   const Case cases[] = {
       {"G1 A5", Error::GcodeUnsupportedWord, 4},      // unknown axis letter
-      {"G1 X1 T2", Error::GcodeUnsupportedWord, 7},   // tool word
-      {"/G1 X1", Error::GcodeUnsupportedWord, 1},     // block delete
+      {"G1 X1 E2", Error::GcodeUnsupportedWord, 7},   // an extruder word
+      {"G1 /X1", Error::GcodeSyntax, 4},              // block delete only first on the line
       {"G1 X1 X2", Error::GcodeConflictingWords, 7},  // X twice
       {"G1 X1 N5", Error::GcodeSyntax, 7},            // N not first
       {"G1 X1 (open", Error::GcodeSyntax, 7},         // unclosed comment

@@ -66,6 +66,32 @@ enum class Plane : std::uint8_t { XY, ZX, YZ };
 /// Active units (G21, G20).
 enum class Units : std::uint8_t { Millimetres, Inches };
 
+/// A machine word that is not motion (docs/gcode.md), in LinuxCNC's order of execution.
+enum class MachineEventKind : std::uint8_t {
+  SpindleSpeed,   ///< S while the spindle runs (value rev/min)
+  ToolChange,     ///< M6 (value: the tool selected with T)
+  SpindleOn,      ///< M3 (flag false) / M4 (flag true), value rev/min
+  SpindleOff,     ///< M5
+  CoolantMist,    ///< M7
+  CoolantFlood,   ///< M8
+  CoolantOff,     ///< M9
+  DigitalOutput,  ///< M62/M64 on (flag true), M63/M65 off; value: output P
+  Dwell,          ///< G4 (value: seconds)
+  Pause,          ///< M0 / M1, after the block's motion
+  ProgramEnd,     ///< M2 / M30, after the block's motion
+};
+
+/// One machine event of a block.
+struct MachineEvent {
+  MachineEventKind kind = MachineEventKind::Dwell;
+  double value = 0;
+  bool flag = false;
+  std::uint16_t column = 0;  ///< column of its word
+};
+
+/// Events one block may carry.
+inline constexpr std::size_t max_block_events = 8;
+
 /// One motion produced by a block.
 struct Motion {
   MotionKind kind = MotionKind::None;         ///< what moves
@@ -80,6 +106,13 @@ struct Motion {
   double feed_mm_per_min = 0;                 ///< modal feed, 0 if none was given
   std::uint16_t column = 0;                   ///< column of the word that commanded the motion
   bool program_end = false;                   ///< the block held M2 or M30
+  std::array<MachineEvent, max_block_events> events{};  ///< the block's machine events, in execution order
+  std::size_t event_count = 0;                ///< how many of `events` are used
+  bool has_pre_rapid = false;                 ///< G28/G30 with axis words: a rapid to `pre_rapid` comes first
+  Point pre_rapid{};                          ///< that intermediate point, mm (machine coordinates)
+  double path_tolerance_mm = 0;               ///< path control in force: 0 G64, > 0 G64 P, < 0 G61/G61.1 (exact stop)
+  /// The events, in execution order (the Pause and ProgramEnd kinds happen after the motion).
+  [[nodiscard]] constexpr std::span<const MachineEvent> machine_events() const noexcept { return {events.data(), event_count}; }
 };
 
 /// Factor from inches to millimetres.
@@ -117,68 +150,337 @@ class Interpreter {
   [[nodiscard]] constexpr std::span<const double> nurbs_weights() const noexcept { return {nurbs_weights_.data(), nurbs_count_}; }
   [[nodiscard]] static constexpr std::size_t nurbs_capacity() noexcept { return MaxNurbsPoints; }
 
+  /// The work offset of coordinate system `index` (0 = G54 … 8 = G59.3), mm.
+  [[nodiscard]] constexpr const Point& work_offset(std::size_t index) const noexcept { return work_offsets_[index]; }
+  /// The coordinate system in use (0 = G54 … 8 = G59.3).
+  [[nodiscard]] constexpr std::size_t coordinate_system() const noexcept { return coordinate_system_; }
+  /// The G92 offset in force, mm.
+  [[nodiscard]] constexpr const Point& g92_offset() const noexcept { return g92_offset_; }
+  /// The tool length offset in force (G43), mm.
+  [[nodiscard]] constexpr double tool_length_offset_mm() const noexcept { return tool_length_mm_; }
+  /// Sets the length of tool `tool` (0 .. max_tools-1) for G43, mm (the machine file's tool table).
+  constexpr void set_tool_length_mm(std::size_t tool, double length_mm) noexcept {
+    if (tool < max_tools) tool_lengths_[tool] = length_mm;
+  }
+  /// Sets the G28 / G30 positions (machine coordinates, mm; the machine file's).
+  constexpr void set_home_positions(const Point& g28, const Point& g30) noexcept {
+    home28_ = g28;
+    home30_ = g30;
+  }
+  /// Tools a tool table may hold.
+  static constexpr std::size_t max_tools = 100;
+
   /// Executes one block. Failures carry the column of the word at fault.
   template <std::size_t Capacity>
   [[nodiscard]] Result<Motion> execute(const Block<Capacity>& block) noexcept {
-    // ---- classify the words ----
+    // ---- classify the words by modal group ----
     const Word* motion_word = nullptr;
     const Word* plane_word = nullptr;
     const Word* units_word = nullptr;
     const Word* distance_word = nullptr;
     const Word* arc_distance_word = nullptr;
-    const Word* end_word = nullptr;
+    const Word* feed_mode_word = nullptr;
+    const Word* compensation_word = nullptr;
+    const Word* tool_length_word = nullptr;
+    const Word* coordinate_word = nullptr;
+    const Word* path_word = nullptr;
+    const Word* retract_word = nullptr;
+    const Word* group0_word = nullptr;
+    const Word* g53_word = nullptr;
+    const Word* stop_word = nullptr;
+    const Word* spindle_word = nullptr;
+    const Word* tool_change_word = nullptr;
+    const Word* coolant_word = nullptr;
+    const Word* coolant_off_word = nullptr;
+    const Word* output_word = nullptr;
+    const Word* override_word = nullptr;
     for (const Word& w : block.words()) {
       const Word** slot = nullptr;
       if (w.letter == 'G') {
         switch (w.code_tenths) {
-          case 0: case 10: case 20: case 30: case 50: case 51: case 52: case 53: slot = &motion_word; break;
+          case 0: case 10: case 20: case 30: case 50: case 51: case 52: case 53: case 800: slot = &motion_word; break;
           case 170: case 180: case 190: slot = &plane_word; break;
           case 200: case 210: slot = &units_word; break;
           case 900: case 910: slot = &distance_word; break;
           case 901: case 911: slot = &arc_distance_word; break;
+          case 940: slot = &feed_mode_word; break;
+          case 400: slot = &compensation_word; break;
+          case 430: case 490: slot = &tool_length_word; break;
+          case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593: slot = &coordinate_word; break;
+          case 610: case 611: case 640: slot = &path_word; break;
+          case 980: case 990: slot = &retract_word; break;
+          case 40: case 100: case 280: case 281: case 300: case 301: case 920: case 921: case 922: case 923: slot = &group0_word; break;
+          case 530: slot = &g53_word; break;
           default: return fail(Error::GcodeUnsupportedWord, w.column);
         }
       } else if (w.letter == 'M') {
-        if (w.code_tenths != 20 && w.code_tenths != 300) return fail(Error::GcodeUnsupportedWord, w.column);
-        slot = &end_word;
+        switch (w.code_tenths) {
+          case 0: case 10: case 20: case 300: slot = &stop_word; break;
+          case 30: case 40: case 50: slot = &spindle_word; break;
+          case 60: slot = &tool_change_word; break;
+          case 70: case 80: slot = coolant_word == nullptr ? &coolant_word : nullptr; break;  // M7 and M8 together
+          case 90: slot = &coolant_off_word; break;
+          case 620: case 630: case 640: case 650: slot = &output_word; break;
+          case 480: case 490: case 500: case 510: case 520: case 530: slot = &override_word; break;
+          default: return fail(Error::GcodeUnsupportedWord, w.column);
+        }
+        if (slot == nullptr) continue;  // the second of M7/M8
       }
       if (slot != nullptr) {
         if (*slot != nullptr) return fail(Error::GcodeConflictingWords, w.column);
         *slot = &w;
       }
     }
-    // ---- modal settings, in LinuxCNC's order: feed, plane, units, distance modes ----
-    if (plane_word != nullptr) {
-      plane_ = plane_word->code_tenths == 170 ? Plane::XY : plane_word->code_tenths == 180 ? Plane::ZX : Plane::YZ;
+    if (coolant_word != nullptr && coolant_off_word != nullptr) return fail(Error::GcodeConflictingWords, coolant_off_word->column);
+    const bool uses_axes = group0_word != nullptr && group0_word->code_tenths != 40 && group0_word->code_tenths != 281 &&
+                           group0_word->code_tenths != 301 && group0_word->code_tenths != 921 &&
+                           group0_word->code_tenths != 922 && group0_word->code_tenths != 923;
+    if (uses_axes && motion_word != nullptr) return fail(Error::GcodeConflictingWords, motion_word->column);
+    if (in_nurbs_ && (group0_word != nullptr || g53_word != nullptr)) {
+      return fail(Error::GcodeNurbsBlock, (group0_word != nullptr ? group0_word : g53_word)->column);
     }
-    if (units_word != nullptr) units_ = units_word->code_tenths == 200 ? Units::Inches : Units::Millimetres;
-    if (const Word* f = block.find('F')) {
-      if (!(f->value >= 0)) return fail(Error::GcodeBadNumber, f->column);
-      feed_value_ = f->value;
-    }
-    if (distance_word != nullptr) incremental_ = distance_word->code_tenths == 910;
-    if (arc_distance_word != nullptr) arc_absolute_ = arc_distance_word->code_tenths == 901;
 
     Motion motion;
     motion.start = position_;
     motion.end = position_;
-    motion.feed_mm_per_min = feed_value_ * scale();  // F is read in the units active at the motion
-    motion.program_end = end_word != nullptr;
-
-    if (in_nurbs_) {
-      CURVESTEP_TRY(motion, nurbs_line(block, motion_word, motion));
-    } else {
-      CURVESTEP_TRY(motion, motion_line(block, motion_word, motion));
+    // ---- LinuxCNC's order of execution: feed, S, T, M6, M3-M5, M7-M9, outputs, dwell, plane, units,
+    // compensation, tool length, coordinate system, path control, distance modes, group 0, motion, stop ----
+    if (const Word* f = block.find('F')) {
+      if (!(f->value >= 0)) return fail(Error::GcodeBadNumber, f->column);
+      feed_value_ = f->value;
     }
-    if (end_word != nullptr) {
-      if (in_nurbs_) return fail(Error::GcodeNurbsBlock, end_word->column);
-      ended_ = true;
+    const auto add_event = [&motion](MachineEventKind kind, double value, bool flag, std::uint16_t column) {
+      if (motion.event_count < max_block_events) motion.events[motion.event_count++] = MachineEvent{kind, value, flag, column};
+    };
+    if (const Word* sw = block.find('S')) {
+      if (!(sw->value >= 0)) return fail(Error::GcodeBadNumber, sw->column);
+      spindle_rpm_ = sw->value;
+      if (spindle_on_ && spindle_word == nullptr) add_event(MachineEventKind::SpindleSpeed, spindle_rpm_, spindle_ccw_, sw->column);
+    }
+    if (const Word* t = block.find('T')) {
+      if (!(t->value >= 0) || t->value != std::floor(t->value) || t->value >= max_tools) return fail(Error::GcodeBadNumber, t->column);
+      selected_tool_ = static_cast<std::size_t>(t->value);
+    }
+    if (tool_change_word != nullptr) {
+      loaded_tool_ = selected_tool_;
+      add_event(MachineEventKind::ToolChange, static_cast<double>(loaded_tool_), false, tool_change_word->column);
+    }
+    if (spindle_word != nullptr) {
+      if (spindle_word->code_tenths == 50) {
+        spindle_on_ = false;
+        add_event(MachineEventKind::SpindleOff, 0, false, spindle_word->column);
+      } else {
+        spindle_on_ = true;
+        spindle_ccw_ = spindle_word->code_tenths == 40;
+        add_event(MachineEventKind::SpindleOn, spindle_rpm_, spindle_ccw_, spindle_word->column);
+      }
+    }
+    if (coolant_word != nullptr) {
+      for (const Word& w : block.words()) {
+        if (w.letter == 'M' && (w.code_tenths == 70 || w.code_tenths == 80)) {
+          add_event(w.code_tenths == 70 ? MachineEventKind::CoolantMist : MachineEventKind::CoolantFlood, 0, false, w.column);
+        }
+      }
+    }
+    if (coolant_off_word != nullptr) add_event(MachineEventKind::CoolantOff, 0, false, coolant_off_word->column);
+    if (output_word != nullptr) {
+      const Word* p = block.find('P');
+      if (p == nullptr) return fail(Error::GcodeMissingWord, output_word->column);
+      if (!(p->value >= 0) || p->value != std::floor(p->value)) return fail(Error::GcodeBadNumber, p->column);
+      add_event(MachineEventKind::DigitalOutput, p->value, output_word->code_tenths == 620 || output_word->code_tenths == 640,
+                output_word->column);
+    }
+    if (group0_word != nullptr && group0_word->code_tenths == 40) {
+      const Word* p = block.find('P');
+      if (p == nullptr) return fail(Error::GcodeMissingWord, group0_word->column);
+      if (!(p->value >= 0 && p->value <= 1e6)) return fail(Error::GcodeBadNumber, p->column);
+      add_event(MachineEventKind::Dwell, p->value, false, group0_word->column);
+    }
+    if (plane_word != nullptr) {
+      plane_ = plane_word->code_tenths == 170 ? Plane::XY : plane_word->code_tenths == 180 ? Plane::ZX : Plane::YZ;
+    }
+    if (units_word != nullptr) units_ = units_word->code_tenths == 200 ? Units::Inches : Units::Millimetres;
+    if (tool_length_word != nullptr) {
+      if (tool_length_word->code_tenths == 490) {
+        tool_length_mm_ = 0;
+      } else {
+        std::size_t tool = loaded_tool_;
+        if (const Word* h = block.find('H')) {
+          if (!(h->value >= 0) || h->value != std::floor(h->value) || h->value >= max_tools) return fail(Error::GcodeBadNumber, h->column);
+          tool = static_cast<std::size_t>(h->value);
+        }
+        tool_length_mm_ = tool_lengths_[tool];
+      }
+    }
+    if (coordinate_word != nullptr) {
+      const std::int32_t c = coordinate_word->code_tenths;
+      coordinate_system_ = c <= 590 ? static_cast<std::size_t>((c - 540) / 10) : static_cast<std::size_t>(c - 591 + 6);
+    }
+    if (path_word != nullptr) {
+      if (path_word->code_tenths == 640) {
+        path_tolerance_mm_ = 0;
+        if (const Word* p = block.find('P')) {
+          if (!(p->value >= 0 && p->value * scale() <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, p->column);
+          path_tolerance_mm_ = p->value * scale();
+        }
+      } else {
+        path_tolerance_mm_ = -1;
+      }
+    }
+    if (distance_word != nullptr) incremental_ = distance_word->code_tenths == 910;
+    if (arc_distance_word != nullptr) arc_absolute_ = arc_distance_word->code_tenths == 901;
+    motion.path_tolerance_mm = path_tolerance_mm_;
+    motion.feed_mm_per_min = feed_value_ * scale();  // F is read in the units active at the motion
+    motion.program_end = stop_word != nullptr && (stop_word->code_tenths == 20 || stop_word->code_tenths == 300);
+
+    // ---- the words the motion uses: everything not consumed above or by group 0 ----
+    Block<Capacity> motion_block;
+    for (const Word& w : block.words()) {
+      bool consumed = w.letter == 'S' || w.letter == 'T' || w.letter == 'H' || w.letter == 'D';
+      if (w.letter == 'G' && w.code_tenths != 0 && w.code_tenths != 10 && w.code_tenths != 20 && w.code_tenths != 30 &&
+          w.code_tenths != 50 && w.code_tenths != 51 && w.code_tenths != 52 && w.code_tenths != 53 && w.code_tenths != 800) {
+        consumed = true;  // modal settings already applied (the motion functions know only motion G words)
+      }
+      if (w.letter == 'M') consumed = true;
+      if (w.letter == 'P' && (output_word != nullptr || (group0_word != nullptr && group0_word->code_tenths == 40) ||
+                              (group0_word != nullptr && group0_word->code_tenths == 100) ||
+                              (path_word != nullptr && path_word->code_tenths == 640))) {
+        consumed = true;
+      }
+      if (w.letter == 'Q' && path_word != nullptr && path_word->code_tenths == 640) consumed = true;
+      if (w.letter == 'L' && group0_word != nullptr && group0_word->code_tenths == 100) consumed = true;
+      if (uses_axes && (w.letter == 'X' || w.letter == 'Y' || w.letter == 'Z')) consumed = true;
+      if (!consumed) (void)motion_block.try_push(w);
+    }
+    if (group0_word != nullptr) {
+      switch (group0_word->code_tenths) {
+        case 281: home28_ = position_; break;
+        case 301: home30_ = position_; break;
+        case 921: g92_offset_ = Point{}; g92_saved_ = Point{}; break;
+        case 922: g92_offset_ = Point{}; break;
+        case 923: g92_offset_ = g92_saved_; break;
+        default: break;
+      }
+    }
+    if (uses_axes) CURVESTEP_CHECK(group_zero(block, *group0_word, motion));
+    if (motion_word != nullptr && motion_word->code_tenths == 800) {
+      mode_ = -1;  // G80: no motion mode until the next motion G word
+      CURVESTEP_CHECK(only(motion_block, "", Error::GcodeConflictingWords));
+    } else {
+      machine_coordinates_ = g53_word != nullptr;
+      if (machine_coordinates_ && incremental_) return fail(Error::GcodeConflictingWords, g53_word->column);
+      if (in_nurbs_) {
+        CURVESTEP_TRY(motion, nurbs_line(motion_block, motion_word, motion));
+      } else {
+        CURVESTEP_TRY(motion, motion_line(motion_block, motion_word, motion));
+      }
+      machine_coordinates_ = false;
+    }
+    if (stop_word != nullptr) {
+      if (in_nurbs_) return fail(Error::GcodeNurbsBlock, stop_word->column);
+      const bool end = stop_word->code_tenths == 20 || stop_word->code_tenths == 300;
+      add_event(end ? MachineEventKind::ProgramEnd : MachineEventKind::Pause, stop_word->code_tenths == 10 ? 1.0 : 0.0, false,
+                stop_word->column);
+      if (end) {
+        ended_ = true;
+        // M2/M30 reset (LinuxCNC): G54, G17, G90, G94, G40, G49 cancelled offsets kept, G92 kept, M5, M9.
+        coordinate_system_ = 0;
+        plane_ = Plane::XY;
+        incremental_ = false;
+        spindle_on_ = false;
+      }
     }
     return motion;
   }
 
  private:
   [[nodiscard]] constexpr double scale() const noexcept { return units_ == Units::Inches ? millimetres_per_inch : 1.0; }
+
+  /// Program coordinates -> machine coordinates: work offset + G92 offset + tool length (z), or
+  /// nothing for a G53 move.
+  [[nodiscard]] constexpr Point offset_in_force() const noexcept {
+    if (machine_coordinates_) return Point{};
+    Point o = work_offsets_[coordinate_system_] + g92_offset_;
+    o[2] += tool_length_mm_;
+    return o;
+  }
+
+  /// G10 L2/L20, G28/G30, G92: the group-0 codes that use the axis words (LinuxCNC semantics).
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> group_zero(const Block<Capacity>& block, const Word& g, Motion& motion) noexcept {
+    constexpr std::array<char, 3> axes{'X', 'Y', 'Z'};
+    const auto value_of = [&](std::size_t axis, double& out) -> Result<bool> {
+      const Word* w = block.find(axes[axis]);
+      if (w == nullptr) return false;
+      out = w->value * scale();
+      if (!(std::fabs(out) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, w->column);
+      return true;
+    };
+    switch (g.code_tenths) {
+      case 100: {  // G10 L2 / L20 P<system> X Y Z
+        const Word* l = block.find('L');
+        const Word* p = block.find('P');
+        if (l == nullptr || p == nullptr) return fail(Error::GcodeMissingWord, g.column);
+        if (l->value != 2 && l->value != 20) return fail(Error::GcodeUnsupportedWord, l->column);
+        if (!(p->value >= 0 && p->value <= 9) || p->value != std::floor(p->value)) return fail(Error::GcodeBadNumber, p->column);
+        const std::size_t system = p->value == 0 ? coordinate_system_ : static_cast<std::size_t>(p->value) - 1;
+        for (std::size_t axis = 0; axis < 3; ++axis) {
+          double v = 0;
+          CURVESTEP_TRY(const bool given, value_of(axis, v));
+          if (!given) continue;
+          if (l->value == 2) {
+            work_offsets_[system][axis] = v;
+          } else {  // L20: the current position becomes v in that system
+            work_offsets_[system][axis] = position_[axis] - v - g92_offset_[axis] - (axis == 2 ? tool_length_mm_ : 0.0);
+          }
+        }
+        return ok();
+      }
+      case 280:
+      case 300: {  // G28 / G30 [X Y Z]: through the given point (program coordinates) to the stored position
+        const Point& home = g.code_tenths == 280 ? home28_ : home30_;
+        Point intermediate = position_;
+        Point target = position_;
+        bool any = false;
+        const Point offset = offset_in_force();
+        for (std::size_t axis = 0; axis < 3; ++axis) {
+          double v = 0;
+          CURVESTEP_TRY(const bool given, value_of(axis, v));
+          if (!given) continue;
+          any = true;
+          intermediate[axis] = incremental_ ? position_[axis] + v : v + offset[axis];
+          target[axis] = home[axis];
+        }
+        if (!any) target = home;
+        motion.start = position_;
+        if (any && !(intermediate == position_)) {
+          motion.has_pre_rapid = true;
+          motion.pre_rapid = intermediate;
+          motion.start = intermediate;
+        }
+        motion.end = target;
+        motion.column = g.column;
+        motion.kind = target == motion.start ? (motion.has_pre_rapid ? MotionKind::Rapid : MotionKind::None) : MotionKind::Rapid;
+        position_ = target;
+        previous_cubic_ = false;
+        return ok();
+      }
+      case 920: {  // G92 X Y Z: the current position becomes the given values
+        bool any = false;
+        for (std::size_t axis = 0; axis < 3; ++axis) {
+          double v = 0;
+          CURVESTEP_TRY(const bool given, value_of(axis, v));
+          if (!given) continue;
+          any = true;
+          g92_offset_[axis] = position_[axis] - v - work_offsets_[coordinate_system_][axis] - (axis == 2 ? tool_length_mm_ : 0.0);
+        }
+        if (!any) return fail(Error::GcodeMissingWord, g.column);
+        g92_saved_ = g92_offset_;
+        return ok();
+      }
+      default: return ok();
+    }
+  }
 
   /// The end point from X Y Z (absolute or incremental), range-checked.
   template <std::size_t Capacity>
@@ -187,7 +489,7 @@ class Interpreter {
     constexpr std::array<char, 3> axes{'X', 'Y', 'Z'};
     for (std::size_t axis = 0; axis < 3; ++axis) {
       if (const Word* w = block.find(axes[axis])) {
-        const double v = w->value * scale() + (incremental_ ? position_[axis] : 0.0);
+        const double v = w->value * scale() + (incremental_ ? position_[axis] : offset_in_force()[axis]);
         if (!(std::fabs(v) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, w->column);
         end[axis] = v;
       }
@@ -351,8 +653,8 @@ class Interpreter {
       if (i_word == nullptr && j_word == nullptr) return fail(Error::GcodeMissingWord, column);
       CURVESTEP_TRY(const double i, offset(block, 'I'));
       CURVESTEP_TRY(const double j, offset(block, 'J'));
-      cx = arc_absolute_ ? i : s[0] + i;
-      cy = arc_absolute_ ? j : s[1] + j;
+      cx = arc_absolute_ ? i + offset_in_force()[0] : s[0] + i;
+      cy = arc_absolute_ ? j + offset_in_force()[1] : s[1] + j;
     }
     const double r0 = std::sqrt((s[0] - cx) * (s[0] - cx) + (s[1] - cy) * (s[1] - cy));
     const double r1 = std::sqrt((e[0] - cx) * (e[0] - cx) + (e[1] - cy) * (e[1] - cy));
@@ -459,6 +761,21 @@ class Interpreter {
   }
 
   Point position_{};
+  std::array<Point, 9> work_offsets_{};  ///< G54 … G59.3
+  std::size_t coordinate_system_ = 0;
+  Point g92_offset_{};
+  Point g92_saved_{};
+  std::array<double, max_tools> tool_lengths_{};
+  double tool_length_mm_ = 0;
+  std::size_t selected_tool_ = 0;
+  std::size_t loaded_tool_ = 0;
+  Point home28_{};
+  Point home30_{};
+  double path_tolerance_mm_ = 0;
+  double spindle_rpm_ = 0;
+  bool spindle_on_ = false;
+  bool spindle_ccw_ = false;
+  bool machine_coordinates_ = false;  ///< G53 in the block being executed
   Plane plane_ = Plane::XY;
   Units units_ = Units::Millimetres;
   bool incremental_ = false;

@@ -13,7 +13,7 @@
 // Syntax (LinuxCNC's, the part a path needs): letters are case-insensitive; spaces and tabs may
 // stand between words and between a letter and its number; "( ... )" is a comment anywhere, ";"
 // starts a comment to the end of the line; "%" first on a line (at most a comment after it) is a
-// program delimiter; "N"
+// program delimiter; "/" first on a line is block delete (the switch is off: the line runs); "N"
 // (line number) may only be the first word. Letters the interpreter does not know are rejected
 // here with GcodeUnsupportedWord, so an unsupported word is never silently ignored. A letter
 // other than G and M may appear once per line (GcodeConflictingWords otherwise).
@@ -40,13 +40,14 @@ struct Word {
   std::uint16_t column = 0;      ///< 1-based column of the letter
 };
 
-/// The letters the parser accepts (G M N F X Y Z I J K R P Q L).
+/// The letters the parser accepts (G M N F X Y Z I J K R P Q L S T H D).
 [[nodiscard]] constexpr bool is_supported_letter(char letter) noexcept {
   switch (letter) {
     case 'G': case 'M': case 'N': case 'F':
     case 'X': case 'Y': case 'Z':
     case 'I': case 'J': case 'K': case 'R':
     case 'P': case 'Q': case 'L':
+    case 'S': case 'T': case 'H': case 'D':
       return true;
     default:
       return false;
@@ -78,6 +79,9 @@ class Block {
     }
     return nullptr;
   }
+  /// The line started with "/" (block delete).
+  [[nodiscard]] constexpr bool block_delete() const noexcept { return block_delete_; }
+  constexpr void set_block_delete() noexcept { block_delete_ = true; }
   /// Whether the line carried an N word, and its value.
   [[nodiscard]] constexpr bool has_line_number() const noexcept { return has_line_number_; }
   [[nodiscard]] constexpr double line_number() const noexcept { return line_number_; }
@@ -91,6 +95,7 @@ class Block {
   std::size_t size_ = 0;
   double line_number_ = 0;
   bool has_line_number_ = false;
+  bool block_delete_ = false;
 };
 
 namespace detail {
@@ -175,7 +180,7 @@ inline constexpr std::size_t max_decimals = 22;
 }
 
 /// Parses one line (without its line break) into a Block. Failures (index: 1-based column of the
-/// word or character at fault): GcodeUnsupportedWord (unknown letter or "/" block delete),
+/// word or character at fault): GcodeUnsupportedWord (unknown letter),
 /// GcodeBadNumber (at the word's letter), GcodeSyntax (a
 /// character that starts no word, an unclosed or nested comment, N not first, more than Capacity
 /// words),
@@ -210,7 +215,13 @@ template <std::size_t Capacity = 24>
       ++position;
       continue;
     }
-    if (c == '/') return fail(Error::GcodeUnsupportedWord, detail::column_of(position));
+    if (c == '/') {
+      // Block delete, first on the line: the switch is off (as LinuxCNC starts), the line runs.
+      if (!first_word || block.block_delete()) return fail(Error::GcodeSyntax, detail::column_of(position));
+      block.set_block_delete();
+      ++position;
+      continue;
+    }
     if (!detail::is_letter(c)) return fail(Error::GcodeSyntax, detail::column_of(position));
     if (delimiter) return fail(Error::GcodeSyntax, detail::column_of(position));
     const char letter = detail::to_upper(c);

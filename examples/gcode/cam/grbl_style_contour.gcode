@@ -1,0 +1,17 @@
+; Contour, in the style of grbl-oriented CAM posts (Estlcam, bCNC, Inkscape gcodetools)
+G21 G90 G94
+G17
+M3 S10000
+G0 Z5.000
+G0 X0.000 Y0.000
+G1 Z-0.500 F300
+G1 X20.000 Y0.000 F1200
+G1 X20.000 Y15.000
+g3 x15.000 y20.000 i-5.000 j0.000
+G1 X0.000 Y20.000
+G1 X0.000 Y0.000
+/ G4 P0.5
+G0 Z5.000
+M5
+G0 X0 Y0
+M2
