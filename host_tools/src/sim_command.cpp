@@ -124,7 +124,7 @@ void add_sim_command(CLI::App& app) {
                   "Look-ahead window in segments (1..16). The setpoints depend on it: give a device's window to reproduce "
                   "its stream bit for bit. Without it: 16 segments, extended to cover twice the braking distance "
                   "from v_max (up to 256 segments) (docs/motion.md, \"Look-ahead and determinism\")");
-  sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v)");
+  sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v,index; index = the setpoint's tick from the start)");
   sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary)");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
   add_job_pipeline_options(sim, options->pipeline);

@@ -146,7 +146,7 @@ void add_stream_command(CLI::App& app) {
       ->check(CLI::ExistingFile);
   stream->add_option("--port,-p", options->port, "Serial port or pseudo-terminal (/dev/ttyUSB0, /dev/pts/3)")->required();
   stream->add_option("--baud", options->baud, "Baud rate (real ports)");
-  stream->add_option("--capture", options->capture, "Write the controller's setpoints as CSV (t,x,y,z,v)");
+  stream->add_option("--capture", options->capture, "Write the controller's setpoints as CSV (t,x,y,z,v,index), as curvestep sim -o");
   auto* lookahead_option = stream->add_option("--lookahead", options->lookahead,
                      "Look-ahead window (segments) to plan with here for a controller without a planner, which replays "
                      "the planned pieces (as curvestep sim --lookahead); a controller with a planner uses its own")

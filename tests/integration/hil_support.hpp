@@ -71,16 +71,18 @@ inline std::filesystem::path zigzag_job(int count) {
 struct RawSetpoint {
   double t = 0;
   std::array<std::int64_t, 3> raw{};
+  std::uint64_t index = 0;  ///< the index column: the setpoint's tick
   friend bool operator==(const RawSetpoint&, const RawSetpoint&) = default;
 };
 
-/// Reads `t,x,y,z,v` CSV; each coordinate must be an exact Q16.16 value.
+/// Reads `t,x,y,z,v,index` CSV; each coordinate must be an exact Q16.16 value. The index is
+/// compared with the other stream's like the coordinates (operator==).
 inline std::vector<RawSetpoint> read_raw_setpoints(const std::filesystem::path& csv) {
   std::ifstream in(csv);
   if (!in) throw std::runtime_error("cannot read " + csv.string());
   std::string line;
   std::getline(in, line);
-  if (line != "t,x,y,z,v") throw std::runtime_error(csv.string() + ": unexpected header " + line);
+  if (line != "t,x,y,z,v,index") throw std::runtime_error(csv.string() + ": unexpected header " + line);
   std::vector<RawSetpoint> out;
   while (std::getline(in, line)) {
     std::stringstream s(line);
@@ -94,6 +96,9 @@ inline std::vector<RawSetpoint> read_raw_setpoints(const std::filesystem::path& 
       if (scaled != std::nearbyint(scaled)) throw std::runtime_error(csv.string() + ": not a Q16.16 value: " + field);
       axis = static_cast<std::int64_t>(scaled);
     }
+    std::getline(s, field, ',');  // v
+    std::getline(s, field, ',');
+    r.index = std::stoull(field);
     out.push_back(r);
   }
   return out;

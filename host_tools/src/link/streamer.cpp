@@ -254,6 +254,7 @@ class Upload {
       }
       SetpointRecord r;
       r.time_s = static_cast<double>(index) * dt;
+      r.index = index;
       double d2 = 0;
       for (std::size_t a = 0; a < 3; ++a) {
         r.raw_q16[a] = point[a];

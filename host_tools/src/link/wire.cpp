@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <curvestep/core/error_text.hpp>
+#include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/host/csv.hpp>
 
@@ -41,14 +42,12 @@ std::uint32_t extra_turns(const PathSegment& s, const protocol::QueueSegment& q,
 }  // namespace
 
 std::int32_t to_q16(double value, bool& exact) {
-  const double scaled = value * 65536.0;
-  const double rounded = std::nearbyint(scaled);
-  if (!(rounded >= static_cast<double>(std::numeric_limits<std::int32_t>::min()) &&
-        rounded <= static_cast<double>(std::numeric_limits<std::int32_t>::max()))) {
-    throw std::out_of_range("value " + format_number(value) + " outside the Q16.16 range");
-  }
-  if (rounded != scaled) exact = false;
-  return static_cast<std::int32_t>(rounded);
+  // The one rounding of every host path (docs/protocol.md, "Conventions"): Q16_16::from_double,
+  // to nearest with ties away from zero, as the job loaders quantise coordinates.
+  const auto fixed = Q16_16::from_double(value);
+  if (!fixed) throw std::out_of_range("value " + format_number(value) + " outside the Q16.16 range");
+  if (static_cast<double>(fixed.value().raw()) != value * 65536.0) exact = false;
+  return fixed.value().raw();
 }
 
 WireMachine to_wire(const MachineLimits& m, std::size_t axis_count) {

@@ -173,6 +173,7 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
     const auto& [exact, fixed] = setpoints;
     SetpointRecord r;
     r.time_s = static_cast<double>(exact.tick) * dt;
+    r.index = exact.tick;
     r.speed_mm_per_s = exact.speed_mm_per_s;
     r.segment = exact.segment;
     double quantisation = 0;
@@ -259,11 +260,12 @@ std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machi
 }
 
 void write_setpoints_csv(std::ostream& out, const std::vector<SetpointRecord>& setpoints) {
-  out << "t,x,y,z,v\n";
+  out << "t,x,y,z,v,index\n";
   for (const auto& r : setpoints) {
     out << format_number(r.time_s) << ',' << format_number(r.position_mm[0]) << ',' << format_number(r.position_mm[1]) << ','
-        << format_number(r.position_mm[2]) << ',' << format_number(r.speed_mm_per_s) << '\n';
+        << format_number(r.position_mm[2]) << ',' << format_number(r.speed_mm_per_s) << ',' << r.index << '\n';
   }
+}
 }
 
 std::string format_summary(const SimulationSummary& s, const MachineLimits& machine) {

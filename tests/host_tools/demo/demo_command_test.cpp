@@ -60,8 +60,8 @@ TEST_CASE("demo: both bundled jobs stream identical to the simulator and leave p
     const std::string report = slurp(dir / "out" / (stem + "_report.html"));
     CHECK(report.find("<html") != std::string::npos);
     CHECK(report.find("</html>") != std::string::npos);
-    CHECK(slurp(dir / "out" / (stem + "_device.csv")).rfind("t,x,y,z,v\n", 0) == 0);
-    CHECK(slurp(dir / "out" / (stem + "_sim.csv")).rfind("t,x,y,z,v\n", 0) == 0);
+    CHECK(slurp(dir / "out" / (stem + "_device.csv")).rfind("t,x,y,z,v,index\n", 0) == 0);
+    CHECK(slurp(dir / "out" / (stem + "_sim.csv")).rfind("t,x,y,z,v,index\n", 0) == 0);
   }
   std::filesystem::remove_all(dir);
 }

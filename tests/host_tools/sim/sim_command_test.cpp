@@ -53,7 +53,7 @@ TEST_CASE("sim: the bundled jobs run within the limits and write CSV", "[host_to
   std::ifstream in(csv);
   std::string header;
   std::getline(in, header);
-  CHECK(header == "t,x,y,z,v");
+  CHECK(header == "t,x,y,z,v,index");
   std::string line;
   std::size_t rows = 0;
   std::string last;

@@ -24,6 +24,7 @@ struct SetpointRecord {
   double speed_mm_per_s = 0;
   std::array<std::int32_t, 3> raw_q16{};  ///< the bits a Q16.16 firmware sends (fixed-point runs)
   std::uint32_t segment = 0;               ///< the job file's segment index
+  std::uint64_t index = 0;                 ///< the setpoint's index (tick) from the job's start: time_s = index / rate
 };
 
 /// What `curvestep sim` reports.
@@ -83,7 +84,8 @@ struct SimulationResult {
 [[nodiscard]] std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machine,
                                                     const SimulationOptions& options = {});
 
-/// Writes `t,x,y,z,v` and one line per setpoint (shortest round-trip decimals).
+/// Writes `t,x,y,z,v,index` and one line per setpoint (shortest round-trip decimals; `index` is the
+/// setpoint's index from the job's start, the same in `curvestep sim -o` and `stream --capture`).
 void write_setpoints_csv(std::ostream& out, const std::vector<SetpointRecord>& setpoints);
 
 /// The summary as the human-readable block `curvestep sim` prints.

@@ -50,7 +50,8 @@ struct WireJob {
 /// to 256 (an exact run: not 2 to 6).
 [[nodiscard]] protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count);
 
-/// `value` in Q16.16 raw units, rounded to nearest; sets `exact` false if rounding changed it.
+/// `value` in Q16.16 raw units, rounded to nearest with ties away from zero (Q16_16::from_double, the
+/// rule of docs/protocol.md); sets `exact` false if rounding changed it.
 /// Throws std::out_of_range outside the Q16.16 range.
 [[nodiscard]] std::int32_t to_q16(double value, bool& exact);
 
