@@ -266,7 +266,6 @@ void write_setpoints_csv(std::ostream& out, const std::vector<SetpointRecord>& s
         << format_number(r.position_mm[2]) << ',' << format_number(r.speed_mm_per_s) << ',' << r.index << '\n';
   }
 }
-}
 
 std::string format_summary(const SimulationSummary& s, const MachineLimits& machine) {
   std::ostringstream out;
