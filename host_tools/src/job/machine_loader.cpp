@@ -152,9 +152,15 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
       message += "is outside 100 Hz .. 100 kHz";
     } else {
       const bool may_be_zero = field == LimitField::JunctionDeviation || field == LimitField::AxisStepsPerMm ||
-                               field == LimitField::AxisVMax || field == LimitField::AxisAMax;
-      message += std::string(may_be_zero ? "must not be negative" : "must be positive") + " (" +
-                std::string(describe(valid.error())) + ")";
+                               field == LimitField::AxisVMax || field == LimitField::AxisAMax || field == LimitField::Rapid;
+      const LimitRange range = limit_range(field);
+      const double value = at.json != nullptr && at.json->is_number() ? at.json->get<double>() : 0.0;
+      if (may_be_zero ? value < 0 : value <= 0) {
+        message += std::string(may_be_zero ? "must not be negative" : "must be positive");
+      } else {
+        message += "is outside " + format_number(range.low) + " .. " + format_number(range.high) + (may_be_zero ? " (or 0)" : "");
+      }
+      message += " (" + std::string(describe(valid.error())) + ")";
     }
     reader.fail(at, message, valid.error());
   }

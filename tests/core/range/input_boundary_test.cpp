@@ -223,6 +223,7 @@ TEST_CASE("range: machine limits at the ends of the double range give finite set
     m.a_max_mm_per_s2 = huge;
     m.j_max_mm_per_s3 = huge;
     m.rapid_mm_per_s = huge;
+    CHECK_FALSE(m.validate());  // beyond limit_range: refused before anything is planned
     MotionController<double, 8, 4> controller;
     if (!controller.configure(m)) continue;
     const auto pushed = controller.try_push(PathSegment::make_line(mp(0, 0), mp(10, 5)).value(), 0);
@@ -248,21 +249,54 @@ TEST_CASE("range: machine limits at the ends of the double range give finite set
       CHECK(last.position[1] == 5.0);
     }
   }
-  // Tiny limits: a crawl, but every setpoint is finite and on the line.
-  MachineLimits slow = test_machine();
-  slow.v_max_mm_per_s = 1e-300;
-  slow.feed_mm_per_s = 1e-300;
-  slow.a_max_mm_per_s2 = 1e-300;
-  slow.j_max_mm_per_s3 = 1e-300;
-  MotionController<double, 8, 4> controller;
-  REQUIRE(controller.configure(slow).has_value());
-  REQUIRE(controller.try_push(PathSegment::make_line(mp(0, 0), mp(10, 5)).value(), 0).has_value());
-  controller.end_of_job();
-  REQUIRE(controller.start().has_value());
-  for (int tick = 0; tick < 1000; ++tick) {
-    const auto sp = controller.next_setpoint();
-    REQUIRE(sp.has_value());
-    REQUIRE(std::isfinite(sp.value().position[0]));
-    CHECK(sp.value().position[1] == Approx(sp.value().position[0] / 2).margin(1e-12));
+  // Tiny limits are refused (issue 19.8 / 21 / 24.4: v_max 5e-324 streamed setpoints at the start
+  // for ever): InvalidLimit naming the field, for each field alone.
+  for (const double tiny : {1e-300, 5e-324}) {
+    MachineLimits slow = test_machine();
+    slow.v_max_mm_per_s = tiny;
+    MotionController<double, 8, 4> controller;
+    const auto refused = controller.configure(slow);
+    REQUIRE_FALSE(refused);
+    CHECK(refused.error() == Error::InvalidLimit);
+    CHECK(refused.where() == static_cast<std::size_t>(LimitField::VMax));
+    MachineLimits fine_tolerance = test_machine();
+    fine_tolerance.tolerance_mm = tiny;
+    CHECK(fine_tolerance.validate().where() == static_cast<std::size_t>(LimitField::Tolerance));
   }
+}
+
+TEST_CASE("range: each machine limit just outside its documented range is refused naming its field", "[core][range]") {
+  // The ranges of limit_range() (docs/errors.md): one field at a time, just below and just above.
+  struct Case {
+    double MachineLimits::*field;
+    LimitField name;
+    double below, above;
+  };
+  const Case cases[] = {
+      {&MachineLimits::v_max_mm_per_s, LimitField::VMax, 0.9e-3, 1.1e6},
+      {&MachineLimits::a_max_mm_per_s2, LimitField::AMax, 0.9e-3, 1.1e9},
+      {&MachineLimits::j_max_mm_per_s3, LimitField::JMax, 0.9e-3, 1.1e12},
+      {&MachineLimits::feed_mm_per_s, LimitField::Feed, 0.9e-3, 1.1e6},
+      {&MachineLimits::tolerance_mm, LimitField::Tolerance, 0.9e-6, 101},
+      {&MachineLimits::junction_deviation_mm, LimitField::JunctionDeviation, -1e-9, 101},
+      {&MachineLimits::rapid_mm_per_s, LimitField::Rapid, 0.9e-3, 1.1e6},
+      {&MachineLimits::max_step_rate_hz, LimitField::MaxStepRate, 0.9, 1.1e8},
+  };
+  for (const auto& c : cases) {
+    INFO("field " << static_cast<int>(c.name));
+    for (const double v : {c.below, c.above}) {
+      MachineLimits m = test_machine();
+      m.*c.field = v;
+      const auto r = m.validate();
+      REQUIRE_FALSE(r);
+      CHECK(r.error() == Error::InvalidLimit);
+      CHECK(r.where() == static_cast<std::size_t>(c.name));
+    }
+    MachineLimits edge = test_machine();
+    edge.*c.field = limit_range(c.name).high;
+    CHECK(edge.validate().has_value());
+  }
+  MachineLimits axis = test_machine();
+  axis.axes[2].a_max_mm_per_s2 = 2e9;
+  CHECK(axis.validate().where() == static_cast<std::size_t>(LimitField::AxisAMax) + 2);
 }

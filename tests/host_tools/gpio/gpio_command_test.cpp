@@ -110,16 +110,21 @@ TEST_CASE("gpio: a machine file without a gpio section is refused with its name"
   CHECK(r.err.find("machine.json: no \"gpio\" section") != std::string::npos);
 }
 
-TEST_CASE("gpio: a job faster than max_step_rate is refused before anything moves", "[host_tools][gpio]") {
+TEST_CASE("gpio: with --strict-step-rate a job faster than max_step_rate is refused before anything moves", "[host_tools][gpio]") {
   // v_max 200 mm/s at 80 steps/mm would be 16000 steps/s; every_type.json's feed 20 mm/s line alone
   // needs 1600. With max_step_rate 1000 some axis must exceed it.
   const std::string m = machine("machine_slow_driver.json", gpio_section, 1000);
-  const Run r = run("gpio " + source("examples/jobs/every_type.json") + " --machine " + m + " --dry-run");
+  const Run r = run("gpio " + source("examples/jobs/every_type.json") + " --machine " + m + " --dry-run --strict-step-rate");
   INFO(r.out << r.err);
   CHECK(r.status == 3);
   CHECK(r.err.find("more than max_step_rate 1000") != std::string::npos);
   CHECK(r.err.find("nothing moved") != std::string::npos);
   CHECK(r.out.find("steps taken") == std::string::npos);
+  // Without it the job is planned slower (each axis at most 0.99 · 1000 / 80 = 12.375 mm/s) and runs.
+  const Run slower = run("gpio " + source("examples/jobs/every_type.json") + " --machine " + m + " --dry-run");
+  INFO(slower.out << slower.err);
+  CHECK(slower.status == 0);
+  CHECK(slower.err.find("planned at most 12.375 mm/s") != std::string::npos);
 }
 
 TEST_CASE("gpio: --rate must give whole microseconds per tick on the host board's 1 MHz step timer", "[host_tools][gpio]") {

@@ -66,7 +66,9 @@ TEST_CASE("report: limits exceeded appear as warnings and sim keeps exit status 
   std::ofstream(machine_file) << machine;
   const std::string html = scratch("report_warnings.html");
   std::remove(html.c_str());
-  const auto r = run_curvestep("sim " + source("examples/jobs/every_type.json") + " --machine " + machine_file + " --report " + html);
+  // --strict-step-rate: refuse instead of planning the axis slower (the default).
+  const auto r = run_curvestep("sim " + source("examples/jobs/every_type.json") + " --machine " + machine_file + " --report " + html +
+                               " --strict-step-rate");
   INFO(r.output);
   CHECK(r.status == 3);
   CHECK(r.output.find("LIMIT VIOLATION:     axis y needs") != std::string::npos);

@@ -62,8 +62,10 @@ TEST_CASE("sim: the bundled jobs run within the limits and write CSV", "[host_to
     last = line;
   }
   CHECK(rows > 100);
-  // The last setpoint stands still (v = 0).
-  CHECK(last.substr(last.rfind(',') + 1) == "0");
+  // The last setpoint stands still (v = 0), and its index is the last tick (rows - 1).
+  const std::string without_index = last.substr(0, last.rfind(','));
+  CHECK(without_index.substr(without_index.rfind(',') + 1) == "0");
+  CHECK(last.substr(last.rfind(',') + 1) == std::to_string(rows - 1));
 }
 
 TEST_CASE("sim: the CSV's last position is the job's end point", "[host_tools][sim]") {
@@ -90,6 +92,14 @@ TEST_CASE("sim: a rate override changes the setpoint count", "[host_tools][sim]"
   const Run bad = run("sim " + source("examples/jobs/seed_cubic.json") + " --machine " + source("examples/jobs/machine.json") + " --rate 50");
   CHECK(bad.status != 0);
   CHECK(bad.output.find("--rate") != std::string::npos);
+  // NaN, 0 and negative rates are refused, not silently ignored (issue 19.8).
+  for (const std::string nonsense : {"nan", "0", "-1000", "inf"}) {
+    INFO(nonsense);
+    const Run r = run("sim " + source("examples/jobs/seed_cubic.json") + " --machine " + source("examples/jobs/machine.json") +
+                      " --rate " + nonsense);
+    CHECK(r.status != 0);
+    CHECK(r.output.find("--rate") != std::string::npos);
+  }
 }
 
 TEST_CASE("sim: an invalid job fails with a one-line cause naming file and segment", "[host_tools][sim]") {

@@ -32,6 +32,28 @@ enum class LimitField : std::uint8_t {
   MaxStepRate = 19,
 };
 
+/// The range a field must lie in (inclusive; `low` 0 also admits 0 for the fields that may be 0).
+/// Beyond these no machine exists, and the arithmetic of planning stops being meaningful: a
+/// v_max of 5e-324 mm/s would stream setpoints at the start point for ever, 1e308 squares to
+/// infinity (issues 19.8, 21, 24).
+struct LimitRange {
+  double low;
+  double high;
+};
+[[nodiscard]] constexpr LimitRange limit_range(LimitField field) noexcept {
+  switch (field) {
+    case LimitField::VMax: case LimitField::Feed: case LimitField::Rapid: case LimitField::AxisVMax: return {1e-3, 1e6};
+    case LimitField::AMax: case LimitField::AxisAMax: return {1e-3, 1e9};
+    case LimitField::JMax: return {1e-3, 1e12};
+    case LimitField::Tolerance: return {1e-6, 100};
+    case LimitField::JunctionDeviation: return {0, 100};
+    case LimitField::MaxStepRate: return {1, 1e8};
+    case LimitField::AxisStepsPerMm: return {0, 1e6};
+    case LimitField::RateHz: return {100, 100000};
+  }
+  return {0, 0};
+}
+
 /// Machine configuration used by the planner, interpolator and step generator.
 struct MachineLimits {
   double v_max_mm_per_s = 100;          ///< path speed limit
@@ -46,31 +68,33 @@ struct MachineLimits {
   bool jerk_limited = true;             ///< S-curve (true) or trapezoidal (false) speed profiles
   std::array<AxisLimits, motion_axes> axes{};  ///< x, y, z
 
-  /// Checks every field: InvalidLimit (index = LimitField) for non-positive or non-finite values
-  /// (rapid, junction deviation and the axis fields may be 0),
-  /// InvalidRate for a rate outside 100 Hz .. 100 kHz.
+  /// Checks every field: InvalidLimit (index = LimitField, + axis for the axis fields) for a
+  /// non-finite value or one outside limit_range() (rapid, junction deviation and the axis fields
+  /// may also be 0: not limited), InvalidRate for a rate outside 100 Hz .. 100 kHz.
   [[nodiscard]] constexpr Result<void> validate() const noexcept {
-    auto positive = [](double v) { return std::isfinite(v) && v > 0; };
-    auto non_negative = [](double v) { return std::isfinite(v) && v >= 0; };
-    if (!positive(v_max_mm_per_s)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::VMax));
-    if (!positive(a_max_mm_per_s2)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::AMax));
-    if (!positive(j_max_mm_per_s3)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::JMax));
-    if (!positive(feed_mm_per_s)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::Feed));
-    if (!positive(tolerance_mm)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::Tolerance));
+    const auto in_range = [](double v, LimitField field, bool zero_allowed) {
+      const LimitRange r = limit_range(field);
+      return std::isfinite(v) && ((zero_allowed && v == 0) || (v >= r.low && v <= r.high));
+    };
+    const auto check = [&](double v, LimitField field, bool zero_allowed, std::size_t offset = 0) -> Result<void> {
+      if (!in_range(v, field, zero_allowed)) return fail(Error::InvalidLimit, static_cast<std::size_t>(field) + offset);
+      return ok();
+    };
+    CURVESTEP_CHECK(check(v_max_mm_per_s, LimitField::VMax, false));
+    CURVESTEP_CHECK(check(a_max_mm_per_s2, LimitField::AMax, false));
+    CURVESTEP_CHECK(check(j_max_mm_per_s3, LimitField::JMax, false));
+    CURVESTEP_CHECK(check(feed_mm_per_s, LimitField::Feed, false));
+    CURVESTEP_CHECK(check(tolerance_mm, LimitField::Tolerance, false));
     if (!std::isfinite(rate_hz) || rate_hz < 100 || rate_hz > 100000) {
       return fail(Error::InvalidRate, static_cast<std::size_t>(LimitField::RateHz));
     }
-    if (!non_negative(junction_deviation_mm)) {
-      return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::JunctionDeviation));
-    }
-    if (!non_negative(rapid_mm_per_s)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::Rapid));
-    if (!positive(max_step_rate_hz)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::MaxStepRate));
+    CURVESTEP_CHECK(check(junction_deviation_mm, LimitField::JunctionDeviation, true));
+    CURVESTEP_CHECK(check(rapid_mm_per_s, LimitField::Rapid, true));
+    CURVESTEP_CHECK(check(max_step_rate_hz, LimitField::MaxStepRate, false));
     for (std::size_t i = 0; i < motion_axes; ++i) {
-      if (!non_negative(axes[i].steps_per_mm)) {
-        return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::AxisStepsPerMm) + i);
-      }
-      if (!non_negative(axes[i].v_max_mm_per_s)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::AxisVMax) + i);
-      if (!non_negative(axes[i].a_max_mm_per_s2)) return fail(Error::InvalidLimit, static_cast<std::size_t>(LimitField::AxisAMax) + i);
+      CURVESTEP_CHECK(check(axes[i].steps_per_mm, LimitField::AxisStepsPerMm, true, i));
+      CURVESTEP_CHECK(check(axes[i].v_max_mm_per_s, LimitField::AxisVMax, true, i));
+      CURVESTEP_CHECK(check(axes[i].a_max_mm_per_s2, LimitField::AxisAMax, true, i));
     }
     return ok();
   }

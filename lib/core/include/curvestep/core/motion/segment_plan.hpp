@@ -7,8 +7,8 @@
 // tangential acceleration and jerk, a moving point has
 //     a = a_t T + v²κ N                     j = (j_t − v³κ²) T + (3 v a_t κ + v³ dκ/ds) N.
 // So |a| <= a_max holds if v²κ <= ½ a_max and |a_t| <= √(a_max² − (v_cap²κ)²), and |j| <= j_max
-// holds if v³(κ² + |dκ/ds|) <= ¼ j_max, 3 v |a_t| κ <= ¼ j_max (the normal part n <= ½ j_max) and
-// |j_t| <= √(j_max² − n²) − v³κ² (>= 0.616 j_max), each with the segment's largest κ, dκ/ds and v.
+// holds if |j_t| <= ½ j_max, v³(κ² + |dκ/ds|) <= ¼ j_max and 3 v |a_t| κ <= ¼ j_max (the half the
+// profile leaves also covers a joint's curvature jump, junction_speed).
 // A straight segment keeps the full a_max and j_max. Per-axis velocity limits cap v |T_axis|;
 // an axis sees |a_t| |T_axis| + v²κ |N_axis| of acceleration, so each axis limit caps the speed
 // (v²κ max|N_axis| <= ½ a_axis) and then the tangential acceleration by what the centripetal part at
@@ -192,11 +192,10 @@ template <std::size_t Intervals = 64>
   }
   if (max_kappa > 0) {
     acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * speed_cap * max_kappa));  // 3 v a κ <= j/4
-    // Jerk: the normal part n = v³(κ² + dκ/ds) + 3 v a_t κ (<= j/2 by the caps above) and the
-    // tangential v³κ² leave the profile j_t <= √(j² − n²) − v³κ² (>= 0.616 j).
-    const double v3 = speed_cap * speed_cap * speed_cap;
-    const double normal = v3 * (max_kappa * max_kappa + max_kappa_rate) + 3 * speed_cap * acceleration * max_kappa;
-    jerk = std::sqrt(std::fmax(0.0, jerk * jerk - normal * normal)) - v3 * max_kappa * max_kappa;
+    // Jerk: the profile keeps half. The normal part (<= j/2 by the caps above) would leave more,
+    // but a joint's curvature jump spends the other half within one tick (junction_speed: v²|Δ(κN)|
+    // <= ½ j Δt) beside the profile's own jerk at the joint.
+    jerk = 0.5 * jerk;
   }
   if (!(speed_cap > 0) || !(acceleration > 0)) {
     out = fail(Error::InvalidLimit);
