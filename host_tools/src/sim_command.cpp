@@ -16,6 +16,7 @@
 #include <curvestep/host/simulator.hpp>
 
 #include "command_registry.hpp"
+#include "rate_option.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -77,7 +78,8 @@ void add_sim_command(CLI::App& app) {
   auto* sim = app.add_subcommand("sim", "Replay a job exactly as the firmware would run it and report the motion");
   sim->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required()->check(CLI::ExistingFile);
   sim->add_option("--machine,-m", options->machine, "Machine file (.json)")->required()->check(CLI::ExistingFile);
-  sim->add_option("--rate", options->rate_hz, "Setpoint rate in Hz (100..100000), overriding the machine file");
+  sim->add_option("--rate", options->rate_hz, "Setpoint rate in Hz (100..100000), overriding the machine file")
+      ->check(rate_hz_check());
   sim->add_option("--lookahead", options->lookahead,
                   "Look-ahead window in segments (1..16, default 16). The setpoints depend on it: give a device's "
                   "window to reproduce its stream bit for bit (docs/motion.md, \"Look-ahead and determinism\")");

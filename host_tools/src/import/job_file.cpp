@@ -9,10 +9,13 @@
 
 #include <curvestep/host/gcode_import.hpp>
 #include <curvestep/host/svg_import.hpp>
+#include <curvestep/host/swept_extent.hpp>
 
 namespace curvestep::host {
 
-Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
+namespace {
+
+Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -35,6 +38,14 @@ Job load_job_file(const std::filesystem::path& path, const JobFileOptions& optio
   }
   throw std::runtime_error(path.string() + ": unknown job format '" + extension +
                            "' (understood: .json, .ngc, .nc, .gcode, .tap, .svg)");
+}
+
+}  // namespace
+
+Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
+  Job job = load_by_extension(path, options, notes);
+  check_swept_extent(job);  // every format: no job starts that the controller would refuse halfway
+  return job;
 }
 
 }  // namespace curvestep::host

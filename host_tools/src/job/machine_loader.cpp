@@ -4,6 +4,8 @@
 
 #include <array>
 #include <map>
+#include <optional>
+#include <utility>
 #include <string>
 
 #include <curvestep/core/error_text.hpp>
@@ -28,6 +30,68 @@ Node limit_node(const Node& root, LimitField field, std::size_t axis) {
     case LimitField::AxisAMax: return root.member("axes").member(axis_names[axis]).member("a_max");
     default: return root.member(machine_field_name(field).substr(1, machine_field_name(field).size() - 2));
   }
+}
+
+/// Whether zero is a valid value of `field` (it then means "none" or "no separate limit").
+bool may_be_zero(LimitField field) {
+  return field == LimitField::JunctionDeviation || field == LimitField::Rapid || field == LimitField::AxisStepsPerMm ||
+         field == LimitField::AxisVMax || field == LimitField::AxisAMax;
+}
+
+/// The values a machine file may give a limit: a positive value outside [low, high] is refused by
+/// name before planning, where it would end in a bare std::bad_alloc (1e-300 mm tolerance or
+/// speed makes an endless plan) or be blamed on the job (a_max 5e-324). docs/robustness.md lists them.
+struct PlausibleRange {
+  double low;
+  double high;
+  const char* unit;
+};
+
+PlausibleRange plausible_range(LimitField field) {
+  switch (field) {
+    case LimitField::VMax:
+    case LimitField::Feed:
+    case LimitField::Rapid:
+    case LimitField::AxisVMax: return {1e-3, 1e5, "mm/s"};
+    case LimitField::AMax:
+    case LimitField::AxisAMax: return {1e-3, 1e8, "mm/s^2"};
+    case LimitField::JMax: return {1e-3, 1e12, "mm/s^3"};
+    case LimitField::Tolerance:
+    case LimitField::JunctionDeviation: return {1e-4, 100, "mm"};
+    case LimitField::MaxStepRate: return {1, 1e7, "Hz"};
+    case LimitField::AxisStepsPerMm: return {1e-3, 1e6, "steps/mm"};
+    case LimitField::RateHz: break;  // validate() checks 100 Hz .. 100 kHz
+  }
+  return {0, 0, ""};
+}
+
+/// The first limit whose positive value lies outside its plausible range (zero means "none" for
+/// the fields that may be zero; validate() has judged zero and negative values).
+std::optional<std::pair<LimitField, std::size_t>> implausible_limit(const MachineLimits& limits) {
+  const std::pair<LimitField, double> fields[] = {
+      {LimitField::VMax, limits.v_max_mm_per_s},
+      {LimitField::AMax, limits.a_max_mm_per_s2},
+      {LimitField::JMax, limits.j_max_mm_per_s3},
+      {LimitField::Feed, limits.feed_mm_per_s},
+      {LimitField::Tolerance, limits.tolerance_mm},
+      {LimitField::JunctionDeviation, limits.junction_deviation_mm},
+      {LimitField::Rapid, limits.rapid_mm_per_s},
+      {LimitField::MaxStepRate, limits.max_step_rate_hz},
+  };
+  const auto outside = [](LimitField field, double value) {
+    const PlausibleRange range = plausible_range(field);
+    return value > 0 && (value < range.low || value > range.high);
+  };
+  for (const auto& [field, value] : fields) {
+    if (outside(field, value)) return std::pair{field, std::size_t{0}};
+  }
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    const AxisLimits& limit = limits.axes[axis];
+    if (outside(LimitField::AxisStepsPerMm, limit.steps_per_mm)) return std::pair{LimitField::AxisStepsPerMm, axis};
+    if (outside(LimitField::AxisVMax, limit.v_max_mm_per_s)) return std::pair{LimitField::AxisVMax, axis};
+    if (outside(LimitField::AxisAMax, limit.a_max_mm_per_s2)) return std::pair{LimitField::AxisAMax, axis};
+  }
+  return std::nullopt;
 }
 
 /// The "gpio" section: {"chip": NAME, "x": {"step": LINE, "dir": LINE, "invert_dir": BOOL}, "y": ..., "z": ...}.
@@ -151,12 +215,20 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
     if (valid.error() == Error::InvalidRate) {
       message += "is outside 100 Hz .. 100 kHz";
     } else {
-      const bool may_be_zero = field == LimitField::JunctionDeviation || field == LimitField::AxisStepsPerMm ||
-                               field == LimitField::AxisVMax || field == LimitField::AxisAMax;
-      message += std::string(may_be_zero ? "must not be negative" : "must be positive") + " (" +
+      message += std::string(may_be_zero(field) ? "must not be negative" : "must be positive") + " (" +
                 std::string(describe(valid.error())) + ")";
     }
     reader.fail(at, message, valid.error());
+  }
+  if (const auto implausible = implausible_limit(limits)) {
+    const auto [field, axis] = *implausible;
+    const PlausibleRange range = plausible_range(field);
+    Node at = limit_node(root, field, axis);
+    at.field = machine_field_name(field, axis);
+    const double value = at.json != nullptr && at.json->is_number() ? at.json->get<double>() : 0.0;
+    reader.fail(at, "value " + format_number(value) + " is outside the plausible range " + format_number(range.low) + " .. " +
+                        format_number(range.high) + " " + range.unit + (may_be_zero(field) ? " (or 0 for none)" : ""),
+                Error::InvalidLimit);
   }
   if (const auto gpio = reader.optional(root, "gpio")) file.gpio = parse_gpio(reader, *gpio);
   return file;
