@@ -8,6 +8,7 @@
 #include <string>
 
 #include <curvestep/host/gcode_import.hpp>
+#include <curvestep/host/parameter_speed.hpp>
 #include <curvestep/host/svg_import.hpp>
 #include <curvestep/host/swept_extent.hpp>
 
@@ -44,7 +45,9 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
 
 Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
   Job job = load_by_extension(path, options, notes);
-  check_swept_extent(job);  // every format: no job starts that the controller would refuse halfway
+  // Every format: no job starts that the controller would refuse halfway or could not follow.
+  check_swept_extent(job);
+  check_parameter_speed(job);
   return job;
 }
 
