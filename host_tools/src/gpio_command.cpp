@@ -46,6 +46,7 @@
 #include "command_registry.hpp"
 #include "gpio_command_output.hpp"
 #include "job_pipeline_options.hpp"
+#include "rate_option.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -285,7 +286,7 @@ void add_gpio_command(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   gpio->add_option("--rate", options->rate_hz, "Control tick rate in Hz (100..100000, dividing 1 MHz), overriding the machine file")
-      ->check(setpoint_rate_check());
+      ->check(rate_hz_check());
   gpio->add_option("--chip", options->chip, "GPIO chip (gpiochip0, /dev/gpiochip0 or 0), overriding the machine file's gpio.chip");
   gpio->add_flag("--dry-run", options->dry_run,
                  "Drive no lines: run the firmware as fast as possible and count the steps it would take");

@@ -3,34 +3,12 @@
 // moves a machine: sim, plot, stream, gpio.
 #pragma once
 
-#include <exception>
-#include <string>
-
 #include <CLI/CLI.hpp>
 
 #include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/machine_file.hpp>
 
 namespace curvestep::host {
-
-/// Checks a --rate value: a number within 100 .. 100000 Hz (NaN, 0 and negative rates are refused,
-/// not ignored).
-inline CLI::Validator setpoint_rate_check() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        double value = 0;
-        try {
-          std::size_t used = 0;
-          value = std::stod(text, &used);
-          if (used != text.size()) return "not a number: " + text;
-        } catch (const std::exception&) {
-          return "not a number: " + text;
-        }
-        if (!(value >= 100 && value <= 100000)) return "must be between 100 and 100000 Hz, not " + text;
-        return {};
-      },
-      "100..100000");
-}
 
 /// Adds --optimize, --blend-tolerance and --strict-step-rate to `command`, filling `options`.
 inline void add_job_pipeline_options(CLI::App* command, JobPipelineOptions& options) {

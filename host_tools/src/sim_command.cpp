@@ -19,6 +19,7 @@
 
 #include "command_registry.hpp"
 #include "job_pipeline_options.hpp"
+#include "rate_option.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -120,7 +121,7 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required()->check(CLI::ExistingFile);
   sim->add_option("--machine,-m", options->machine, "Machine file (.json)")->required()->check(CLI::ExistingFile);
   sim->add_option("--rate", options->rate_hz, "Setpoint rate in Hz (100..100000), overriding the machine file")
-      ->check(setpoint_rate_check());
+      ->check(rate_hz_check());
   auto* lookahead_option = sim->add_option("--lookahead", options->lookahead,
                   "Look-ahead window in segments (1..16). The setpoints depend on it: give a device's window to reproduce "
                   "its stream bit for bit. Without it: 16 segments, extended to cover twice the braking distance "

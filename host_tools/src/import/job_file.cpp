@@ -8,11 +8,15 @@
 #include <string>
 
 #include <curvestep/host/gcode_import.hpp>
+#include <curvestep/host/parameter_speed.hpp>
 #include <curvestep/host/svg_import.hpp>
+#include <curvestep/host/swept_extent.hpp>
 
 namespace curvestep::host {
 
-Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
+namespace {
+
+Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -35,6 +39,16 @@ Job load_job_file(const std::filesystem::path& path, const JobFileOptions& optio
   }
   throw std::runtime_error(path.string() + ": unknown job format '" + extension +
                            "' (understood: .json, .ngc, .nc, .gcode, .tap, .svg)");
+}
+
+}  // namespace
+
+Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
+  Job job = load_by_extension(path, options, notes);
+  // Every format: no job starts that the controller would refuse halfway or could not follow.
+  check_swept_extent(job);
+  check_parameter_speed(job);
+  return job;
 }
 
 }  // namespace curvestep::host

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/printable.hpp>
 
 namespace curvestep::host::detail {
 namespace {
@@ -159,6 +160,41 @@ std::string type_name(const nlohmann::json* pointer) {
   return "null";
 }
 
+/// Offset of the bracket that opens level max_json_depth + 1 of arrays and objects, or npos. Runs
+/// before the parser and the line scanner, whose memory would otherwise grow with the depth.
+std::size_t too_deep_at(std::string_view text) {
+  std::size_t depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') {
+        ++i;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_json_depth) return i;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return std::string_view::npos;
+}
+
+/// nlohmann's "... last read: '<token>'" with the token cut to a quotable length.
+std::string shorten_last_read(std::string message) {
+  const std::string marker = "last read: '";
+  const auto open = message.find(marker);
+  if (open == std::string::npos) return message;
+  const auto start = open + marker.size();
+  const auto close = message.rfind('\'');
+  if (close == std::string::npos || close < start) return message;
+  return message.substr(0, start) + quoted_excerpt(std::string_view(message).substr(start, close - start)) + message.substr(close);
+}
+
 }  // namespace
 
 LineColumn line_column(std::string_view text, std::size_t offset) {
@@ -187,6 +223,14 @@ JsonDocument::JsonDocument(std::string_view text, std::string name, Error code) 
     describe_pointer(prefix.final_pointer, prefix, location);
     throw LoadError(std::move(location), message, code);
   };
+  // nlohmann's lexer takes a NUL for the end of the input and would ignore the rest of the file.
+  if (const auto nul = text.find('\0'); nul != std::string_view::npos) {
+    fail_at(nul, nul, "a NUL byte is not allowed in a JSON file (a binary or truncated file?)");
+  }
+  if (const auto deep = too_deep_at(text); deep != std::string_view::npos) {
+    fail_at(deep, 0, "arrays and objects nested deeper than " + std::to_string(max_json_depth) +
+                            " levels (the limit for job and machine files)");
+  }
   try {
     root_ = nlohmann::json::parse(text.begin(), text.end());
   } catch (const nlohmann::json::parse_error& e) {
@@ -201,7 +245,7 @@ JsonDocument::JsonDocument(std::string_view text, std::string name, Error code) 
       message = message.substr(colon + 2);
     }
     const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
-    fail_at(offset, offset, "invalid JSON: " + message);
+    fail_at(offset, offset, "invalid JSON: " + shorten_last_read(message));
   } catch (const nlohmann::json::out_of_range& e) {
     // A number too large for a double ("1e999"): nlohmann names the literal but not where it is.
     const std::string message = e.what();
@@ -213,7 +257,7 @@ JsonDocument::JsonDocument(std::string_view text, std::string name, Error code) 
       literal = message.substr(open + 1, close - open - 1);
       if (const auto at = text.find(literal); at != std::string_view::npos) offset = at;
     }
-    fail_at(offset, offset + 1, "number " + literal + " is too large (not finite)");
+    fail_at(offset, offset + 1, "number " + quoted_excerpt(literal) + " is too large (not finite)");
   }
   lines_ = scan_json(text).lines;
 }

@@ -19,6 +19,9 @@
 
 namespace curvestep::host::detail {
 
+/// The deepest nesting of arrays and objects a job or machine file may have (a job needs 4).
+inline constexpr std::size_t max_json_depth = 64;
+
 /// Line and column (1-based) of byte offset `offset` in `text`.
 struct LineColumn {
   std::size_t line = 1;

@@ -4,6 +4,8 @@
 
 #include <utility>
 
+#include <curvestep/host/printable.hpp>
+
 namespace curvestep::host {
 
 std::string format_load_error(const SourceLocation& location, const std::string& message) {
@@ -19,7 +21,8 @@ std::string format_load_error(const SourceLocation& location, const std::string&
     text += ": ";
   }
   if (!location.field.empty()) text += location.field + ": ";
-  return text + message;
+  // One line, safe for a terminal: input quoted in the message (ids, words, file names) is escaped.
+  return printable(text + message);
 }
 
 LoadError::LoadError(SourceLocation location, std::string message, Error code)

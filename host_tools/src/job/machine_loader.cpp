@@ -30,6 +30,13 @@ Node limit_node(const Node& root, LimitField field, std::size_t axis) {
   }
 }
 
+/// Whether zero is a valid value of `field` (it then means "none" or "no separate limit"); the
+/// ranges of the others are the core's limit_range() (MachineLimits::validate, docs/errors.md).
+bool may_be_zero(LimitField field) {
+  return field == LimitField::JunctionDeviation || field == LimitField::Rapid || field == LimitField::AxisStepsPerMm ||
+         field == LimitField::AxisVMax || field == LimitField::AxisAMax;
+}
+
 /// The "gpio" section: {"chip": NAME, "x": {"step": LINE, "dir": LINE, "invert_dir": BOOL}, "y": ..., "z": ...}.
 GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
   reader.check_keys(gpio, {"chip", "x", "y", "z"});
@@ -151,14 +158,13 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
     if (valid.error() == Error::InvalidRate) {
       message += "is outside 100 Hz .. 100 kHz";
     } else {
-      const bool may_be_zero = field == LimitField::JunctionDeviation || field == LimitField::AxisStepsPerMm ||
-                               field == LimitField::AxisVMax || field == LimitField::AxisAMax || field == LimitField::Rapid;
       const LimitRange range = limit_range(field);
       const double value = at.json != nullptr && at.json->is_number() ? at.json->get<double>() : 0.0;
-      if (may_be_zero ? value < 0 : value <= 0) {
-        message += std::string(may_be_zero ? "must not be negative" : "must be positive");
+      if (may_be_zero(field) ? value < 0 : value <= 0) {
+        message += std::string(may_be_zero(field) ? "must not be negative" : "must be positive");
       } else {
-        message += "is outside " + format_number(range.low) + " .. " + format_number(range.high) + (may_be_zero ? " (or 0)" : "");
+        message += "is outside the plausible range " + format_number(range.low) + " .. " + format_number(range.high) +
+                   (may_be_zero(field) ? " (or 0 for none)" : "");
       }
       message += " (" + std::string(describe(valid.error())) + ")";
     }

@@ -6,12 +6,17 @@
 #include <cmath>
 #include <cstdio>
 
+#include <curvestep/host/printable.hpp>
+
 namespace curvestep::host::report_detail {
 
 std::string escape(std::string_view text) {
+  // Control characters and invalid UTF-8 (a file name, an SVG id) would make the XML malformed:
+  // printable() writes them as \xNN first, then the XML specials are escaped.
+  const std::string safe = printable(text);
   std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
+  out.reserve(safe.size());
+  for (const char c : safe) {
     switch (c) {
       case '&': out += "&amp;"; break;
       case '<': out += "&lt;"; break;

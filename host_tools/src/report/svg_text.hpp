@@ -7,7 +7,7 @@
 
 namespace curvestep::host::report_detail {
 
-/// `text` with &, <, >, " and ' replaced by entities.
+/// `text` made printable() (control characters and invalid UTF-8 as \xNN), then &, <, >, " and ' as entities.
 [[nodiscard]] std::string escape(std::string_view text);
 
 /// A pixel coordinate with two decimals ("12.35").

@@ -28,6 +28,7 @@
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/printable.hpp>
 #include <curvestep/host/wire_value.hpp>
 
 #include "svg_geometry.hpp"
@@ -317,6 +318,13 @@ class SvgReader {
   }
 
   void visit(const tinyxml2::XMLElement& element, const Affine& parent_map) {
+    // Nested <use> fans out geometrically (a 1.3 KB file drew billions of elements): bound the total.
+    if (!active_uses_.empty() && ++expanded_elements_ > max_svg_expanded_elements) {
+      const tinyxml2::XMLElement& outer = *active_uses_.front();
+      fail(outer, outer.Attribute("href") != nullptr ? "href" : "xlink:href",
+           "<use> references expand to more than " + std::to_string(max_svg_expanded_elements) +
+               " elements (the limit for SVG files)");
+    }
     const std::string full_name = element.Name();
     if (full_name.find(':') != std::string::npos && full_name.rfind("svg:", 0) != 0) return;  // editor metadata
     const std::string name = local_name(element);
@@ -385,13 +393,14 @@ class SvgReader {
     if (raw == nullptr) return;  // nothing referenced: nothing drawn
     const std::string reference = trim(raw);
     if (reference.empty() || reference.front() != '#') {
-      fail(element, attribute, "only references into the same file (\"#id\") are supported, got \"" + reference + "\"");
+      fail(element, attribute,
+           "only references into the same file (\"#id\") are supported, got \"" + quoted_excerpt(reference) + "\"");
     }
     const auto found = ids_.find(reference.substr(1));
-    if (found == ids_.end()) fail(element, attribute, "no element has id \"" + reference.substr(1) + "\"");
+    if (found == ids_.end()) fail(element, attribute, "no element has id \"" + quoted_excerpt(reference.substr(1)) + "\"");
     const tinyxml2::XMLElement& target = *found->second;
     if (std::find(active_uses_.begin(), active_uses_.end(), &element) != active_uses_.end() || active_uses_.size() > 64) {
-      fail(element, attribute, "the reference \"" + reference + "\" refers back to itself");
+      fail(element, attribute, "the reference \"" + quoted_excerpt(reference) + "\" refers back to itself");
     }
     active_uses_.push_back(&element);
     const Affine placed = map * Affine{1, 0, 0, 1, length(element, "x", 0), length(element, "y", 0)};
@@ -694,6 +703,7 @@ class SvgReader {
   std::vector<std::string> warnings_;
   std::map<std::string, const tinyxml2::XMLElement*> ids_;
   std::vector<const tinyxml2::XMLElement*> active_uses_;
+  std::size_t expanded_elements_ = 0;  ///< elements visited through <use>, all uses together
 };
 
 }  // namespace

@@ -23,6 +23,9 @@
 namespace curvestep::host {
 
 /// How a drawing becomes a job.
+/// The most elements all <use> references of one file may expand to together (docs/robustness.md).
+inline constexpr std::size_t max_svg_expanded_elements = 100000;
+
 struct SvgOptions {
   bool optimize = false;             ///< reorder subpaths (greedy nearest neighbour, open ones may be reversed)
   MachinePoint start{};              ///< where the machine stands before the job, mm (the first rapid starts here)

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: MIT
+// The box a segment sweeps (arcs: their extreme angles; Béziers: the control hull), and the load-time
+// check that every segment of a job stays inside the Q16.16 range.
+#pragma once
+
+#include <curvestep/core/motion/path_segment.hpp>
+#include <curvestep/host/job.hpp>
+
+namespace curvestep::host {
+
+/// An axis-aligned box: low[axis] <= high[axis].
+struct SweptBox {
+  MachinePoint low;   ///< smallest coordinate on each axis
+  MachinePoint high;  ///< largest coordinate on each axis
+};
+
+/// A box holding every point `segment` passes through: exact for lines and arcs (their ends and the
+/// axis-direction angles inside the sweep), the control-point hull for (rational) Béziers, which
+/// contains the curve since the weights are positive.
+[[nodiscard]] SweptBox swept_box(const PathSegment& segment);
+
+/// Throws LoadError (FixedOverflow, naming the job file, line and segment) for the first segment of
+/// `job` whose swept box leaves the Q16.16 range (-32768 .. 32767.99998 mm), so that no job starts
+/// that the controller would refuse halfway (issue 19 item 3).
+void check_swept_extent(const Job& job);
+
+}  // namespace curvestep::host

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: MIT
+// Does the controller's arc-length table follow the curve's parameter speed?
+//
+// Why: the controller (sim and device, the same code) moves along a segment through a table of
+// 64 equal parameter pieces, s(u) cubic on each (PathLengthTable). The machine then moves at
+// v |p'(u)| / S'(u), which is the planned v while the cubic's slope S' matches the true speed
+// |p'|. A rational curve with a strong weight ratio (1, 100, 1) has nearly all its speed in a few
+// pieces near its ends, where one cubic cannot follow it: the speed comes out hundreds of times
+// too high and the machine jumps. The check runs the controller's own table (same bits as the
+// device) and compares its slope with |p'(u)| at 16 points per piece; a curve the table cannot
+// follow within 5 % is refused at load time, where the message can name the file and line.
+#include <curvestep/host/parameter_speed.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <cstdio>
+#include <string>
+
+#include <curvestep/core/motion/path_length_table.hpp>
+#include <curvestep/host/load_error.hpp>
+
+namespace curvestep::host {
+
+double table_speed_factor(const PathSegment& segment) {
+  constexpr std::size_t intervals = 64;  // the MotionController's TableIntervals
+  constexpr std::size_t samples = 16 * intervals;
+  const auto table = PathLengthTable<intervals>::build(segment);
+  if (!table) return 1;  // a degenerate curve is refused elsewhere
+  double worst = 1;
+  const double length = table.value().length();
+  for (std::size_t i = 0; i < samples; ++i) {
+    const double s = length * (static_cast<double>(i) + 0.5) / static_cast<double>(samples);
+    const auto located = table.value().locate(s);
+    const double speed = norm(segment.derivative(located.u, 1));
+    if (!(located.ds_du > 0)) {
+      if (speed > 0) return std::numeric_limits<double>::infinity();
+      continue;
+    }
+    worst = std::max(worst, speed / located.ds_du);
+  }
+  return worst;
+}
+
+void check_parameter_speed(const Job& job) {
+  const auto three_digits = [](double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return std::string(text);
+  };
+  for (std::size_t k = 0; k < job.segments.size(); ++k) {
+    const PathSegment& segment = job.segments[k];
+    if (segment.kind() != SegmentKind::RationalBezier) continue;  // polynomial speeds are followed
+    const double factor = table_speed_factor(segment);
+    if (factor <= max_table_speed_factor) continue;
+    SourceLocation location;
+    location.file = job.name;
+    if (k < job.source_index.size()) {
+      const std::size_t index = job.source_index[k];
+      location.segment = index;
+      if (index < job.sources.size()) {
+        location.line = job.sources[index].line;
+        location.segment_type = std::string(segment_type_name(job.sources[index].type));
+      }
+    }
+    throw LoadError(std::move(location),
+                    "the weights vary too strongly: the controller's arc-length table cannot follow this curve's "
+                    "parameter speed (the machine would move " + three_digits(factor) +
+                        " times faster than planned); lower the weight ratio or split the curve",
+                    Error::InvalidJob);
+  }
+}
+
+}  // namespace curvestep::host

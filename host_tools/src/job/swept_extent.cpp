@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+// Swept extent of a job's segments, checked at load time.
+//
+// Why: the loaders check the numbers a file gives (end points, centres, control points), but an
+// arc's circle can reach far past them: `G3 I29991` has its ends and centre in range and sweeps to
+// 60 000 mm. The controller works in Q16.16 and refuses such a segment only when it reaches it, so
+// the machine would stop halfway through the job. Each segment's box is computed exactly where that
+// is cheap (lines, arcs: the circle's extremes lie at the axis-direction angles inside the sweep)
+// and conservatively for Béziers (the control points' hull holds the curve), and checked here once.
+#include <curvestep/host/swept_extent.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include <curvestep/host/csv.hpp>
+#include <curvestep/host/load_error.hpp>
+
+namespace curvestep::host {
+namespace {
+
+/// The Q16.16 range in mm: [-2^15, 2^15 - 2^-16].
+constexpr double q16_low = -32768.0;
+constexpr double q16_high = 32768.0 - 1.0 / 65536.0;
+
+void include(SweptBox& box, const MachinePoint& p) {
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    box.low[axis] = std::min(box.low[axis], p[axis]);
+    box.high[axis] = std::max(box.high[axis], p[axis]);
+  }
+}
+
+/// Adds the arc's extreme points: where the swept angle crosses a multiple of 90°, at the largest
+/// radius the (spiral) arc has.
+void include_arc_extremes(SweptBox& box, const PathSegment& arc) {
+  const CompactSegment c = arc.compact();
+  const double cx = c.values[6];
+  const double cy = c.values[7];
+  const double radius = c.values[9];
+  const double sweep = c.values[10];
+  const double end_scale = c.values[12];
+  const double r_max = radius * std::max(1.0, end_scale);
+  const double start_angle = std::atan2(c.values[1] - cy, c.values[0] - cx);
+  const double from = std::min(start_angle, start_angle + sweep);
+  const double to = std::max(start_angle, start_angle + sweep);
+  const double quarter = std::numbers::pi / 2;
+  const double z = c.values[2];
+  const double first = std::ceil(from / quarter);
+  for (double k = first; k * quarter <= to && k < first + 4; ++k) {
+    const auto direction = static_cast<int>(std::fmod(std::fmod(k, 4.0) + 4.0, 4.0));
+    const double dx = direction == 0 ? 1.0 : direction == 2 ? -1.0 : 0.0;
+    const double dy = direction == 1 ? 1.0 : direction == 3 ? -1.0 : 0.0;
+    include(box, MachinePoint{{cx + r_max * dx, cy + r_max * dy, z}});
+  }
+}
+
+/// "x = 59982 mm" for the first coordinate of `box` outside the Q16.16 range, empty if none.
+std::string outside_q16(const SweptBox& box) {
+  constexpr const char* names[] = {"x", "y", "z"};
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    if (!(box.low[axis] >= q16_low)) return std::string(names[axis]) + " = " + format_number(box.low[axis]) + " mm";
+    if (!(box.high[axis] <= q16_high)) return std::string(names[axis]) + " = " + format_number(box.high[axis]) + " mm";
+  }
+  return {};
+}
+
+std::string_view kind_name(SegmentKind kind) {
+  switch (kind) {
+    case SegmentKind::Arc: return "arc";
+    case SegmentKind::RationalBezier: return "rational Bezier";
+    default: return "curve";
+  }
+}
+
+}  // namespace
+
+SweptBox swept_box(const PathSegment& segment) {
+  SweptBox box{segment.start(), segment.start()};
+  include(box, segment.end());
+  const CompactSegment c = segment.compact();
+  if (segment.kind() == SegmentKind::Arc) {
+    include_arc_extremes(box, segment);
+  } else {
+    for (std::size_t i = 0; i <= c.degree; ++i) include(box, MachinePoint{{c.values[3 * i], c.values[3 * i + 1], c.values[3 * i + 2]}});
+  }
+  return box;
+}
+
+void check_swept_extent(const Job& job) {
+  for (std::size_t k = 0; k < job.segments.size(); ++k) {
+    const std::string outside = outside_q16(swept_box(job.segments[k]));
+    if (outside.empty()) continue;
+    SourceLocation location;
+    location.file = job.name;
+    if (k < job.source_index.size()) {
+      const std::size_t index = job.source_index[k];
+      location.segment = index;
+      if (index < job.sources.size()) {
+        location.line = job.sources[index].line;
+        location.segment_type = std::string(segment_type_name(job.sources[index].type));
+      }
+    }
+    throw LoadError(std::move(location),
+                    "the " + std::string(kind_name(job.segments[k].kind())) + " reaches " + outside +
+                        ", outside the Q16.16 range (-32768 to 32768 mm) the controller works in",
+                    Error::FixedOverflow);
+  }
+}
+
+}  // namespace curvestep::host
