@@ -45,7 +45,7 @@ enum class Error : std::uint8_t {
   StepCountOverflow = 62, ///< step count beyond 32 bits
 
   // --- motion planning and jobs (70-99) ---
-  InvalidLimit = 70,           ///< velocity/acceleration/jerk/feed limit is not positive or not finite
+  InvalidLimit = 70,           ///< a machine limit is not finite or outside its documented range
   SegmentsNotConnected = 71,   ///< segment does not start where the previous one ended
   StepRateTooHigh = 72,        ///< job needs more steps per second than the machine allows
   InvalidRate = 73,            ///< control rate outside 100 Hz .. 100 kHz

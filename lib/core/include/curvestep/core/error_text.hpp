@@ -112,7 +112,7 @@ namespace curvestep {
     case Error::FixedOverflow: return "value or intermediate result outside the fixed-point range";
     case Error::DivisionByZero: return "division by zero";
     case Error::StepCountOverflow: return "step count beyond 32 bits";
-    case Error::InvalidLimit: return "velocity/acceleration/jerk/feed limit is not positive or not finite";
+    case Error::InvalidLimit: return "a machine limit is not finite or outside its documented range";
     case Error::SegmentsNotConnected: return "segment does not start where the previous one ended";
     case Error::StepRateTooHigh: return "job needs more steps per second than the machine allows";
     case Error::InvalidRate: return "control rate outside 100 Hz .. 100 kHz";
