@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <initializer_list>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -71,9 +72,9 @@ std::string explain(Error code, const std::string& word) {
       if (is({"G95"})) return "feed per revolution (G95) needs a spindle model, which this controller does not have: use G94";
       if (is({"G41", "G42", "G41.1", "G42.1"})) return "cutter radius compensation (G41/G42) is not supported yet: post the tool path with compensation done by the CAM";
       if (is({"G43.1", "G43.2"})) return "dynamic tool length offsets (G43.1/G43.2) are not supported: use G43 H with the machine file's tool table";
-      if (is({"G73", "G74", "G76", "G81", "G82", "G83", "G84", "G85", "G86", "G87", "G88", "G89"})) {
-        return "canned cycles are not supported yet: post drilling as G0/G1 moves";
-      }
+      if (is({"G73", "G81", "G82", "G83", "G85", "G86", "G89"})) return "canned cycles run in the G17 (XY) plane only";
+      if (is({"G74", "G84"})) return "tapping cycles (G74/G84) need spindle-synchronised motion, which this controller does not have";
+      if (is({"G87", "G88"})) return "back boring (G87) and manual-retract boring (G88) are not supported: use G81-G89 cycles or G0/G1";
       if (is({"G33", "G33.1", "G76"})) return "threading (spindle-synchronised motion) is not supported";
       if (is({"G7", "G8"})) return "lathe diameter/radius modes are not supported (this is a mill/plotter controller)";
       if (is({"G38.2", "G38.3", "G38.4", "G38.5"})) return "probing is not supported";
@@ -93,6 +94,18 @@ std::string explain(Error code, const std::string& word) {
       if (word.starts_with("R")) return "the radius is too small to reach the end point";
       return "radius to end of arc differs from radius to start (allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius), "
              "or the radius is zero";
+    case Error::GcodeCannedCycle:
+      if (word.starts_with("R")) return "canned cycle: the retract plane R is below the hole bottom Z";
+      if (word.starts_with("Q")) return "canned cycle: the peck depth Q must be positive";
+      if (word.starts_with("P")) return "canned cycle: the dwell P must be from 0 to 1e6 seconds";
+      if (word.starts_with("G86")) return "canned cycle: G86 needs the spindle turning (M3/M4 first), or Z, R and P are missing";
+      if (word.starts_with("G73") || word.starts_with("G83")) {
+        return "canned cycle: needs X, Y or Z, and Z, R and a positive Q in this block or an earlier block of the series";
+      }
+      if (word.starts_with("G82") || word.starts_with("G89")) {
+        return "canned cycle: needs X, Y or Z, and Z, R and P in this block or an earlier block of the series";
+      }
+      return "canned cycle: needs X, Y or Z, and Z and R in this block or an earlier block of the series";
     case Error::GcodeSplineNotG17: return "splines (G5, G5.1, G5.2) need plane G17 (XY)";
     case Error::GcodeSplineNoTangent: return "G5 without I J must follow a G5 whose end tangent it continues (the first of a series needs I J)";
     case Error::GcodeSyntax:
@@ -232,27 +245,25 @@ class GcodeLoader {
     for (const auto& e : motion.machine_events()) {
       const bool stop = e.kind == gcode::MachineEventKind::Pause || e.kind == gcode::MachineEventKind::ProgramEnd;
       if (stop != after) continue;
-      JobEvent event;
-      event.before_segment = job_.segments.size();
-      event.value = e.value;
-      event.flag = e.flag;
-      event.line = line_number_;
-      event.text = word_at(line_, e.column);
-      switch (e.kind) {
-        case gcode::MachineEventKind::SpindleSpeed: event.kind = JobEventKind::SpindleSpeed; break;
-        case gcode::MachineEventKind::ToolChange: event.kind = JobEventKind::ToolChange; break;
-        case gcode::MachineEventKind::SpindleOn: event.kind = JobEventKind::SpindleOn; break;
-        case gcode::MachineEventKind::SpindleOff: event.kind = JobEventKind::SpindleOff; break;
-        case gcode::MachineEventKind::CoolantMist: event.kind = JobEventKind::CoolantMist; break;
-        case gcode::MachineEventKind::CoolantFlood: event.kind = JobEventKind::CoolantFlood; break;
-        case gcode::MachineEventKind::CoolantOff: event.kind = JobEventKind::CoolantOff; break;
-        case gcode::MachineEventKind::DigitalOutput: event.kind = JobEventKind::DigitalOutput; break;
-        case gcode::MachineEventKind::Dwell: event.kind = JobEventKind::Dwell; break;
-        case gcode::MachineEventKind::Pause: event.kind = JobEventKind::ProgramPause; break;
-        case gcode::MachineEventKind::ProgramEnd: event.kind = JobEventKind::ProgramEnd; break;
-      }
-      job_.events.push_back(event);
+      add_event(job_event_kind(e.kind), e.value, e.flag, word_at(line_, e.column));
     }
+  }
+
+  static JobEventKind job_event_kind(gcode::MachineEventKind kind) {
+    switch (kind) {
+      case gcode::MachineEventKind::SpindleSpeed: return JobEventKind::SpindleSpeed;
+      case gcode::MachineEventKind::ToolChange: return JobEventKind::ToolChange;
+      case gcode::MachineEventKind::SpindleOn: return JobEventKind::SpindleOn;
+      case gcode::MachineEventKind::SpindleOff: return JobEventKind::SpindleOff;
+      case gcode::MachineEventKind::CoolantMist: return JobEventKind::CoolantMist;
+      case gcode::MachineEventKind::CoolantFlood: return JobEventKind::CoolantFlood;
+      case gcode::MachineEventKind::CoolantOff: return JobEventKind::CoolantOff;
+      case gcode::MachineEventKind::DigitalOutput: return JobEventKind::DigitalOutput;
+      case gcode::MachineEventKind::Dwell: return JobEventKind::Dwell;
+      case gcode::MachineEventKind::Pause: return JobEventKind::ProgramPause;
+      case gcode::MachineEventKind::ProgramEnd: return JobEventKind::ProgramEnd;
+    }
+    return JobEventKind::Dwell;
   }
 
   /// The rapid to G28/G30's intermediate point, before the move home.
@@ -304,6 +315,7 @@ class GcodeLoader {
         break;
       }
       case gcode::MotionKind::Nurbs: add_nurbs(motion, source, pieces); break;
+      case gcode::MotionKind::Cycle: add_cycle(motion); return;
       case gcode::MotionKind::None: return;
     }
     if (source.breaks.empty()) source.breaks = {0.0, 1.0};
@@ -317,6 +329,42 @@ class GcodeLoader {
     }
     if (source.type == SegmentType::Rapid) source.feed_mm_per_s = 0;
     job_.sources.push_back(std::move(source));
+  }
+
+  /// A canned cycle: its rapids and feeds as lines of the cycle's program line, its dwells and
+  /// G86's spindle stop and restart as events between them.
+  void add_cycle(const gcode::Motion& motion) {
+    gcode::Motion leg = motion;
+    leg.kind = gcode::MotionKind::Rapid;
+    leg.start = motion.start;
+    const std::string word = "G" + std::to_string(motion.cycle.code);  // also on the lines that only give X Y
+    gcode::expand_cycle(motion.cycle, motion.start, [&](const gcode::CycleStep& step) {
+      switch (step.kind) {
+        case gcode::CycleStepKind::Rapid:
+        case gcode::CycleStepKind::Feed:
+          leg.kind = step.kind == gcode::CycleStepKind::Rapid ? gcode::MotionKind::Rapid : gcode::MotionKind::Line;
+          leg.end = step.end;
+          add(leg);
+          leg.start = step.end;
+          return;
+        case gcode::CycleStepKind::Dwell: add_event(JobEventKind::Dwell, step.seconds, false, word); return;
+        case gcode::CycleStepKind::SpindleStop: add_event(JobEventKind::SpindleOff, 0, false, word); return;
+        case gcode::CycleStepKind::SpindleStart:
+          add_event(JobEventKind::SpindleOn, interpreter_.spindle_rpm(), interpreter_.spindle_counter_clockwise(), word);
+          return;
+      }
+    });
+  }
+
+  void add_event(JobEventKind kind, double value, bool flag, const std::string& text) {
+    JobEvent event;
+    event.kind = kind;
+    event.before_segment = job_.segments.size();
+    event.value = value;
+    event.flag = flag;
+    event.line = line_number_;
+    event.text = text;
+    job_.events.push_back(event);
   }
 
   void add_nurbs(const gcode::Motion& motion, SourceSegment& source, std::vector<PathSegment>& pieces) {

@@ -131,7 +131,7 @@ TEST_CASE("gcode machine words: what is not supported says why, with file:line:c
     const char* says;
   } cases[] = {
       {"G21\nG41 D1 G1 X1 F100\n", "cutter radius compensation"},
-      {"G21\nG81 X1 Y1 Z-1 R1 F100\n", "canned cycles"},
+      {"G21\nG84 X1 Y1 Z-1 R1 F100\n", "tapping cycles"},
       {"G21\nG1 A10 F100\n", "rotary"},
       {"G21\nO100 sub\n", "O-word"},
       {"G21\n#1=2\n", "parameters"},

@@ -320,7 +320,8 @@ TEST_CASE("gcode interpreter: unsupported and conflicting words are errors that 
   };
   const Case cases[] = {
       {{"G33 X1"}, Error::GcodeUnsupportedWord, 1},    // threading
-      {{"G1 G81 X1"}, Error::GcodeUnsupportedWord, 4},
+      {{"G1 G81 X1"}, Error::GcodeConflictingWords, 4},  // two motion words
+      {{"G1 G84 X1"}, Error::GcodeUnsupportedWord, 4},   // tapping
       {{"M66"}, Error::GcodeUnsupportedWord, 1},       // wait on input
       {{"G1.5 X1"}, Error::GcodeUnsupportedWord, 1},
       {{"G0 G1 X1"}, Error::GcodeConflictingWords, 4},

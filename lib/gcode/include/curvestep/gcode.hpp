@@ -2,5 +2,6 @@
 // Umbrella header of curvestep::gcode: the line parser and the modal interpreter.
 #pragma once
 
+#include <curvestep/gcode/canned_cycle.hpp>
 #include <curvestep/gcode/interpreter.hpp>
 #include <curvestep/gcode/parser.hpp>

@@ -71,6 +71,7 @@ namespace curvestep {
     case Error::GcodeSyntax: return "GcodeSyntax";
     case Error::GcodeConflictingWords: return "GcodeConflictingWords";
     case Error::GcodeNurbsBlock: return "GcodeNurbsBlock";
+    case Error::GcodeCannedCycle: return "GcodeCannedCycle";
     case Error::InvalidState: return "InvalidState";
     case Error::QueueUnderrun: return "QueueUnderrun";
     case Error::HardFault: return "HardFault";
@@ -143,6 +144,7 @@ namespace curvestep {
     case Error::GcodeSyntax: return "malformed line";
     case Error::GcodeConflictingWords: return "words that cannot appear together";
     case Error::GcodeNurbsBlock: return "G5.2/G5.3 block malformed";
+    case Error::GcodeCannedCycle: return "canned cycle words inconsistent (R below Z, Q or P missing, spindle stopped)";
     case Error::InvalidState: return "command not allowed in the current machine state";
     case Error::QueueUnderrun: return "the queue ran out of segments (or planned pieces) while moving";
     case Error::HardFault: return "the controller faulted and reported it";
@@ -214,6 +216,7 @@ inline constexpr Error all_errors[] = {
     Error::GcodeSyntax,
     Error::GcodeConflictingWords,
     Error::GcodeNurbsBlock,
+    Error::GcodeCannedCycle,
     Error::InvalidState,
     Error::QueueUnderrun,
     Error::HardFault,

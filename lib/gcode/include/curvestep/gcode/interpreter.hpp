@@ -27,6 +27,9 @@
 //   Splines only in G17 (GcodeSplineNotG17) and only in X and Y (a Z word is GcodeConflictingWords).
 //   G17/G18/G19, G20/G21, G90/G91, G90.1/G91.1 are modal; F is modal (per minute, in units);
 //   M2/M30 end the program.
+//   G73 G81 G82 G83 G85 G86 G89 canned cycles (G17): MotionKind::Cycle with the holes and levels
+//                      resolved (canned_cycle.hpp expands them); Z R Q P sticky through the series;
+//                      G98 (default) / G99 retract modes; G80 cancels.
 // Arcs in G18/G19 are not supported (GcodeUnsupportedWord at the arc's G word), because a
 // PathSegment arc lies in the XY plane.
 //
@@ -37,12 +40,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <span>
 #include <string_view>
 
 #include <curvestep/core/curve/circular_arc.hpp>
 #include <curvestep/core/geometry/vec.hpp>
 #include <curvestep/core/result.hpp>
+#include <curvestep/gcode/canned_cycle.hpp>
 #include <curvestep/gcode/parser.hpp>
 
 namespace curvestep::gcode {
@@ -59,6 +64,7 @@ enum class MotionKind : std::uint8_t {
   Cubic,      ///< G5 cubic Bézier, control[0..3]
   Quadratic,  ///< G5.1 quadratic Bézier, control[0..2]
   Nurbs,      ///< G5.3 closed a NURBS block; control points and weights in the interpreter
+  Cycle,      ///< a canned cycle (G73 G81 G82 G83 G85 G86 G89): `cycle`, expanded by expand_cycle()
 };
 
 /// Active plane (G17, G18, G19).
@@ -111,6 +117,7 @@ struct Motion {
   bool has_pre_rapid = false;                 ///< G28/G30 with axis words: a rapid to `pre_rapid` comes first
   Point pre_rapid{};                          ///< that intermediate point, mm (machine coordinates)
   double path_tolerance_mm = 0;               ///< path control in force: 0 G64, > 0 G64 P, < 0 G61/G61.1 (exact stop)
+  CannedCycle cycle{};                        ///< Cycle: the holes and levels, machine coordinates
   /// The events, in execution order (the Pause and ProgramEnd kinds happen after the motion).
   [[nodiscard]] constexpr std::span<const MachineEvent> machine_events() const noexcept { return {events.data(), event_count}; }
 };
@@ -121,6 +128,24 @@ inline constexpr double millimetres_per_inch = 25.4;
 inline constexpr double max_coordinate_mm = 32767.0;
 /// Largest number of turns (P on G2/G3).
 inline constexpr double max_arc_turns = 10000.0;
+/// Largest repeat count L of a canned cycle.
+inline constexpr double max_cycle_repeats = 10000.0;
+
+/// Whether `code_tenths` is a G code of the motion group (G0 G1 G2 G3 G5 G5.1 G5.2 G5.3 G80 and the cycles).
+[[nodiscard]] constexpr bool is_motion_code(std::int32_t code_tenths) noexcept {
+  switch (code_tenths) {
+    case 0: case 10: case 20: case 30: case 50: case 51: case 52: case 53: case 800:
+    case 730: case 810: case 820: case 830: case 850: case 860: case 890:
+      return true;
+    default:
+      return false;
+  }
+}
+
+/// Whether `code_tenths` is a canned cycle this interpreter runs.
+[[nodiscard]] constexpr bool is_cycle_code(std::int32_t code_tenths) noexcept {
+  return code_tenths == 730 || (code_tenths >= 810 && code_tenths <= 890 && code_tenths != 840 && code_tenths != 870 && code_tenths != 880);
+}
 
 /// Whether radii r0 (start) and r1 (end) disagree beyond LinuxCNC's tolerance: more than 0.5 mm,
 /// or more than 0.005 mm and more than 0.1 % of r0.
@@ -156,6 +181,11 @@ class Interpreter {
   [[nodiscard]] constexpr std::size_t coordinate_system() const noexcept { return coordinate_system_; }
   /// The G92 offset in force, mm.
   [[nodiscard]] constexpr const Point& g92_offset() const noexcept { return g92_offset_; }
+  /// The spindle speed last set with S, rev/min, and the direction of the last M3/M4.
+  [[nodiscard]] constexpr double spindle_rpm() const noexcept { return spindle_rpm_; }
+  [[nodiscard]] constexpr bool spindle_counter_clockwise() const noexcept { return spindle_ccw_; }
+  /// G98 (return to the initial level) rather than G99 (return to R) is in force.
+  [[nodiscard]] constexpr bool retract_to_initial_level() const noexcept { return retract_to_initial_; }
   /// The tool length offset in force (G43), mm.
   [[nodiscard]] constexpr double tool_length_offset_mm() const noexcept { return tool_length_mm_; }
   /// Sets the length of tool `tool` (0 .. max_tools-1) for G43, mm (the machine file's tool table).
@@ -198,7 +228,8 @@ class Interpreter {
       const Word** slot = nullptr;
       if (w.letter == 'G') {
         switch (w.code_tenths) {
-          case 0: case 10: case 20: case 30: case 50: case 51: case 52: case 53: case 800: slot = &motion_word; break;
+          case 0: case 10: case 20: case 30: case 50: case 51: case 52: case 53: case 800:
+          case 730: case 810: case 820: case 830: case 850: case 860: case 890: slot = &motion_word; break;
           case 170: case 180: case 190: slot = &plane_word; break;
           case 200: case 210: slot = &units_word; break;
           case 900: case 910: slot = &distance_word; break;
@@ -328,6 +359,7 @@ class Interpreter {
       }
     }
     if (distance_word != nullptr) incremental_ = distance_word->code_tenths == 910;
+    if (retract_word != nullptr) retract_to_initial_ = retract_word->code_tenths == 980;
     if (arc_distance_word != nullptr) arc_absolute_ = arc_distance_word->code_tenths == 901;
     motion.path_tolerance_mm = path_tolerance_mm_;
     motion.feed_mm_per_min = feed_value_ * scale();  // F is read in the units active at the motion
@@ -337,8 +369,7 @@ class Interpreter {
     Block<Capacity> motion_block;
     for (const Word& w : block.words()) {
       bool consumed = w.letter == 'S' || w.letter == 'T' || w.letter == 'H' || w.letter == 'D';
-      if (w.letter == 'G' && w.code_tenths != 0 && w.code_tenths != 10 && w.code_tenths != 20 && w.code_tenths != 30 &&
-          w.code_tenths != 50 && w.code_tenths != 51 && w.code_tenths != 52 && w.code_tenths != 53 && w.code_tenths != 800) {
+      if (w.letter == 'G' && !is_motion_code(w.code_tenths)) {
         consumed = true;  // modal settings already applied (the motion functions know only motion G words)
       }
       if (w.letter == 'M') consumed = true;
@@ -365,6 +396,7 @@ class Interpreter {
     if (uses_axes) CURVESTEP_CHECK(group_zero(block, *group0_word, motion));
     if (motion_word != nullptr && motion_word->code_tenths == 800) {
       mode_ = -1;  // G80: no motion mode until the next motion G word
+      cycle_sticky_ = {};
       CURVESTEP_CHECK(only(motion_block, "", Error::GcodeConflictingWords));
     } else {
       machine_coordinates_ = g53_word != nullptr;
@@ -568,12 +600,15 @@ class Interpreter {
   template <std::size_t Capacity>
   [[nodiscard]] Result<Motion> motion_line(const Block<Capacity>& block, const Word* motion_word, Motion motion) noexcept {
     if (motion_word != nullptr) {
+      // R Z Q P stay in force only through a series of canned-cycle blocks.
+      if (!is_cycle_code(motion_word->code_tenths) || !is_cycle_code(mode_)) cycle_sticky_ = {};
       mode_ = motion_word->code_tenths;
       mode_column_ = motion_word->column;
     }
     const bool moves = has_any(block, "XYZIJKRPQL");
     if (!moves) {
       if (motion_word == nullptr) return motion;
+      if (is_cycle_code(mode_)) return fail(Error::GcodeCannedCycle, motion_word->column);  // no X Y Z
       if (mode_ == 52) return start_nurbs(block, *motion_word, motion);
       if (mode_ == 53) return fail(Error::GcodeNurbsBlock, motion_word->column);
       return motion;  // a motion mode alone moves nothing
@@ -610,7 +645,9 @@ class Interpreter {
       case 50: return cubic(block, column, motion);
       case 51: return quadratic(block, column, motion);
       case 52: return start_nurbs(block, Word{'G', 5.2, 52, column}, motion);
-      default: return fail(Error::GcodeNurbsBlock, column);  // G5.3 without G5.2
+      default:
+        if (is_cycle_code(mode_)) return canned_cycle(block, column, motion);
+        return fail(Error::GcodeNurbsBlock, column);  // G5.3 without G5.2
     }
   }
 
@@ -665,6 +702,80 @@ class Interpreter {
     motion.center = Point{{cx, cy, s[2]}};
     motion.radius_difference_mm = std::fabs(r1 - r0);
     motion.kind = MotionKind::Arc;
+    position_ = motion.end;
+    previous_cubic_ = false;
+    return motion;
+  }
+
+  /// A canned-cycle block (LinuxCNC semantics, canned_cycle.hpp): resolves the holes and levels.
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<Motion> canned_cycle(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
+    if (plane_ != Plane::XY) return fail(Error::GcodeUnsupportedWord, column);
+    CURVESTEP_CHECK(only(block, "XYZRQPL", Error::GcodeConflictingWords));
+    const Word* x = block.find('X');
+    const Word* y = block.find('Y');
+    const Word* z = block.find('Z');
+    if (x == nullptr && y == nullptr && z == nullptr) return fail(Error::GcodeCannedCycle, column);
+    // Sticky words: this block's, else the previous cycle block's.
+    const auto sticky = [&](char letter, StickyValue& kept) -> Result<bool> {
+      if (const Word* w = block.find(letter)) {
+        if (!(std::fabs(w->value) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, w->column);
+        kept = StickyValue{true, w->value};
+      }
+      return kept.given;
+    };
+    CURVESTEP_TRY(const bool has_z, sticky('Z', cycle_sticky_.z));
+    CURVESTEP_TRY(const bool has_r, sticky('R', cycle_sticky_.r));
+    CURVESTEP_TRY(const bool has_q, sticky('Q', cycle_sticky_.q));
+    CURVESTEP_TRY(const bool has_p, sticky('P', cycle_sticky_.p));
+    if (!has_z || !has_r) return fail(Error::GcodeCannedCycle, column);
+    // The column of a word on this line, else the cycle's (a sticky word may come from an earlier line).
+    const auto here = [&](char letter) -> std::uint16_t {
+      const Word* w = block.find(letter);
+      return w != nullptr ? w->column : column;
+    };
+    CannedCycle c;
+    c.code = mode_ / 10;
+    if (c.code == 73 || c.code == 83) {
+      if (!has_q || !(cycle_sticky_.q.value > 0)) return fail(Error::GcodeCannedCycle, here('Q'));
+      c.peck_mm = cycle_sticky_.q.value * scale();
+    }
+    if (c.code == 82 || c.code == 86 || c.code == 89) {
+      if (!has_p || !(cycle_sticky_.p.value >= 0 && cycle_sticky_.p.value <= 1e6)) {
+        return fail(Error::GcodeCannedCycle, here('P'));
+      }
+      c.dwell_s = cycle_sticky_.p.value;
+    }
+    if (c.code == 86 && !spindle_on_) return fail(Error::GcodeCannedCycle, column);
+    if (const Word* l = block.find('L')) {
+      if (!(l->value >= 1 && l->value <= max_cycle_repeats) || l->value != std::floor(l->value)) return fail(Error::GcodeBadNumber, l->column);
+      c.repeats = static_cast<std::uint32_t>(l->value);
+    }
+    const double initial_z = position_[2];
+    const Point offset = offset_in_force();
+    const double dx = x != nullptr ? x->value * scale() : 0.0;
+    const double dy = y != nullptr ? y->value * scale() : 0.0;
+    if (incremental_) {
+      // X Y from the current point (and again per repeat), R from the current Z, Z from R.
+      c.first_hole = Point{{position_[0] + dx, position_[1] + dy, 0.0}};
+      c.step = Point{{dx, dy, 0.0}};
+      c.r_z = initial_z + cycle_sticky_.r.value * scale();
+      c.bottom_z = c.r_z + cycle_sticky_.z.value * scale();
+    } else {
+      c.first_hole = Point{{x != nullptr ? dx + offset[0] : position_[0], y != nullptr ? dy + offset[1] : position_[1], 0.0}};
+      c.r_z = cycle_sticky_.r.value * scale() + offset[2];
+      c.bottom_z = cycle_sticky_.z.value * scale() + offset[2];
+    }
+    if (c.r_z < c.bottom_z) return fail(Error::GcodeCannedCycle, here('R'));
+    c.clear_z = retract_to_initial_ && initial_z > c.r_z ? initial_z : c.r_z;
+    const double last = static_cast<double>(c.repeats - 1);
+    for (const double v : {c.first_hole[0], c.first_hole[1], c.first_hole[0] + last * c.step[0], c.first_hole[1] + last * c.step[1],
+                           c.r_z, c.bottom_z}) {
+      if (!(std::fabs(v) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, column);
+    }
+    motion.kind = MotionKind::Cycle;
+    motion.cycle = c;
+    motion.end = expand_cycle(c, position_, [](const CycleStep&) {});
     position_ = motion.end;
     previous_cubic_ = false;
     return motion;
@@ -760,7 +871,18 @@ class Interpreter {
     return motion;
   }
 
+  /// A canned-cycle word kept from an earlier block of the series.
+  struct StickyValue {
+    bool given = false;
+    double value = 0;  ///< as written (program units)
+  };
+  struct CycleSticky {
+    StickyValue z, r, q, p;
+  };
+
   Point position_{};
+  CycleSticky cycle_sticky_{};
+  bool retract_to_initial_ = true;  ///< G98 (LinuxCNC's start-up mode); G99 returns to R
   std::array<Point, 9> work_offsets_{};  ///< G54 … G59.3
   std::size_t coordinate_system_ = 0;
   Point g92_offset_{};

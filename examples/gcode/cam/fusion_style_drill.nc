@@ -1,0 +1,39 @@
+%
+(1002)
+(T2  D=3.2 - ZMIN=-8. - drill)
+(Fusion-style drilling post: G98 peck drilling with sticky hole lines, a spot-drill dwell, G80)
+N10 G90 G94 G17 G91.1
+N15 G21
+N20 G53 G0 Z0.
+(Spot drill)
+N25 T2 M6
+N30 S3000 M3
+N35 G54
+N40 M8
+N45 G0 X10. Y10.
+N50 G43 Z15. H2
+N55 G0 Z5.
+N60 G98 G82 X10. Y10. Z-1. R2. P0.2 F150.
+N65 X30.
+N70 Y30.
+N75 X10.
+N80 G80
+(Peck drill)
+N85 G0 Z15.
+N90 G98 G83 X10. Y10. Z-8. R2. Q2.5 F200.
+N95 X30.
+N100 Y30.
+N105 X10.
+N110 G80
+(Chip-breaking row, incremental with L)
+N115 G0 X50. Y10. Z5.
+N120 G91 G99 G73 X5. Y0. Z-4. R-3. Q1. L4 F200.
+N125 G90 G80
+N130 G0 Z15.
+N135 M9
+N140 G53 G0 Z0.
+N145 M5
+N150 G28 G91 X0. Y0.
+N155 G90
+N160 M30
+%
