@@ -2,6 +2,7 @@
 // G-code programs -> Job: the allocation-free parser and interpreter of lib/gcode, plus file:line.
 #include <curvestep/host/gcode_import.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <initializer_list>
@@ -26,6 +27,10 @@ constexpr std::size_t max_nurbs_points = 512;
 using Interpreter = gcode::Interpreter<max_nurbs_points>;
 using RationalSpline = Nurbs<double, motion_axes, PathSegment::max_degree, max_nurbs_points>;
 constexpr double seconds_per_minute = 60.0;
+constexpr double two_pi = 6.283185307179586;
+/// Largest pitch error of a G18/G19 helix piece, mm, and most pieces per arc.
+constexpr double helix_tolerance_mm = 1e-4;
+constexpr std::size_t max_arc_pieces = 4096;
 /// The interpreter checked the radii before quantisation; quantising start, end and centre (each
 /// coordinate by at most 2^-17 mm) changes each radius by at most 2·√2·2^-17 mm, so their difference
 /// by at most 4.4e-5 mm. make_arc gets that much slack on top of the checked difference.
@@ -62,7 +67,6 @@ std::string explain(Error code, const std::string& word) {
         }
         return false;
       };
-      if (arc) return "arcs are supported in the G17 (XY) plane only";
       if (!word.empty() && (word[0] == 'A' || word[0] == 'B' || word[0] == 'C' || word[0] == 'U' || word[0] == 'V' || word[0] == 'W')) {
         return "rotary and parallel axes (A B C U V W) are not supported: this is a 3-axis (X Y Z) machine";
       }
@@ -92,8 +96,8 @@ std::string explain(Error code, const std::string& word) {
       return "no motion mode (G0, G1, G2, G3, G5, G5.1, G5.2) is active";
     case Error::GcodeArcRadiusMismatch:
       if (word.starts_with("R")) return "the radius is too small to reach the end point";
-      return "radius to end of arc differs from radius to start (allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius), "
-             "or the radius is zero";
+      return "radius to end of arc differs from radius to start (allowed: 0.5 mm / 0.05 in, or 0.005 mm / 0.0005 in when within "
+             "0.1 % of the radius), or the radius is zero";
     case Error::GcodeCannedCycle:
       if (word.starts_with("R")) return "canned cycle: the retract plane R is below the hole bottom Z";
       if (word.starts_with("Q")) return "canned cycle: the peck depth Q must be positive";
@@ -178,28 +182,34 @@ class GcodeLoader {
   }
 
   /// GcodeArcRadiusMismatch of a centre-form arc, with both radii as LinuxCNC reports them. The
-  /// interpreter has already applied the block's modal settings (units, distance modes).
+  /// interpreter has already applied the block's modal settings (units, distance modes, plane).
   template <std::size_t Capacity>
   [[noreturn]] void fail_radii(const gcode::Block<Capacity>& block, const MachinePoint& start, std::size_t column) {
-    const gcode::Word* i = block.find('I');
-    const gcode::Word* j = block.find('J');
+    constexpr std::string_view axis_letters = "XYZ";
+    constexpr std::string_view offset_letters = "IJK";
+    const gcode::PlaneAxes axes = gcode::axes_of(interpreter_.plane());
+    const gcode::Word* i = block.find(offset_letters[axes.first]);
+    const gcode::Word* j = block.find(offset_letters[axes.second]);
     if (block.find('R') != nullptr || (i == nullptr && j == nullptr)) fail(column, Error::GcodeArcRadiusMismatch);
-    const double scale = interpreter_.units() == gcode::Units::Inches ? gcode::millimetres_per_inch : 1.0;
+    const bool inches = interpreter_.units() == gcode::Units::Inches;
+    const double scale = inches ? gcode::millimetres_per_inch : 1.0;
     MachinePoint end = start;
-    for (std::size_t axis = 0; axis < 2; ++axis) {
-      if (const gcode::Word* w = block.find(axis == 0 ? 'X' : 'Y')) end[axis] = w->value * scale + (interpreter_.incremental() ? start[axis] : 0.0);
+    for (const std::size_t axis : {axes.first, axes.second}) {
+      if (const gcode::Word* w = block.find(axis_letters[axis])) end[axis] = w->value * scale + (interpreter_.incremental() ? start[axis] : 0.0);
     }
     const double ci = i != nullptr ? i->value * scale : 0.0;
     const double cj = j != nullptr ? j->value * scale : 0.0;
-    const double cx = interpreter_.arc_centers_absolute() ? ci : start[0] + ci;
-    const double cy = interpreter_.arc_centers_absolute() ? cj : start[1] + cj;
-    const double r0 = std::hypot(start[0] - cx, start[1] - cy);
-    const double r1 = std::hypot(end[0] - cx, end[1] - cy);
+    const double cu = interpreter_.arc_centers_absolute() ? ci : start[axes.first] + ci;
+    const double cv = interpreter_.arc_centers_absolute() ? cj : start[axes.second] + cj;
+    const double r0 = std::hypot(start[axes.first] - cu, start[axes.second] - cv);
+    const double r1 = std::hypot(end[axes.first] - cu, end[axes.second] - cv);
+    const char* allowed = inches ? "allowed: 0.05 in, or 0.0005 in when within 0.1 % of the radius"
+                                 : "allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius";
     fail_message(column,
                  r0 == 0 ? std::string("zero radius: the centre is the start point")
                          : "radius to end of arc differs from radius to start: start radius " + format_number(r0) +
                                " mm, end radius " + format_number(r1) + " mm, difference " + format_number(std::fabs(r1 - r0)) +
-                               " mm (allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius)",
+                               " mm (" + allowed + ")",
                  Error::GcodeArcRadiusMismatch);
   }
 
@@ -301,6 +311,10 @@ class GcodeLoader {
         source.type = SegmentType::Arc;
         const MachinePoint center = grid(motion.center, column);
         source.points = {start, end, center};
+        if (motion.plane != gcode::Plane::XY) {
+          add_plane_arc(motion, start, end, source, pieces);
+          break;
+        }
         const double tolerance = motion.radius_difference_mm + quantisation_radius_slack_mm;
         pieces.push_back(made(PathSegment::make_arc(start, end, center, motion.direction, motion.full_turns, tolerance), column));
         break;
@@ -329,6 +343,79 @@ class GcodeLoader {
     }
     if (source.type == SegmentType::Rapid) source.feed_mm_per_s = 0;
     job_.sources.push_back(std::move(source));
+  }
+
+  /// An arc in G18 or G19: rational quadratic pieces of at most a quarter turn, exact circles (the
+  /// radius goes linearly from start to end within the checked difference). A helix's normal axis
+  /// moves linearly per piece; pieces are halved until its pitch error is below helix_tolerance_mm.
+  void add_plane_arc(const gcode::Motion& motion, const MachinePoint& start, const MachinePoint& end, SourceSegment& source,
+                     std::vector<PathSegment>& pieces) {
+    const std::size_t column = motion.column;
+    const gcode::PlaneAxes axes = gcode::axes_of(motion.plane);
+    const double cu = motion.center[axes.first];
+    const double cv = motion.center[axes.second];
+    const double a0 = std::atan2(start[axes.second] - cv, start[axes.first] - cu);
+    const double a1 = std::atan2(end[axes.second] - cv, end[axes.first] - cu);
+    const double r0 = std::hypot(start[axes.first] - cu, start[axes.second] - cv);
+    const double r1 = std::hypot(end[axes.first] - cu, end[axes.second] - cv);
+    const double sign = motion.direction == ArcDirection::CounterClockwise ? 1.0 : -1.0;
+    const bool closed = start[axes.first] == end[axes.first] && start[axes.second] == end[axes.second];
+    double sweep = closed ? two_pi : std::fmod(sign * (a1 - a0) + 2 * two_pi, two_pi);
+    if (!closed && sweep == 0) sweep = two_pi;
+    sweep += two_pi * static_cast<double>(motion.full_turns);
+    const double rise = end[axes.normal] - start[axes.normal];
+    std::size_t count = static_cast<std::size_t>(std::ceil(sweep / (two_pi / 4) - 1e-12));
+    if (count == 0) count = 1;
+    while (count < max_arc_pieces && std::fabs(rise / static_cast<double>(count)) * helix_pitch_error(sweep / static_cast<double>(count)) >
+                                         helix_tolerance_mm) {
+      count *= 2;
+    }
+    const double step = sweep / static_cast<double>(count);
+    const double weight = wire_value(std::cos(step / 2), WireQuantity::Weight, column);
+    const auto at = [&](double angle, double radius, double normal) {
+      MachinePoint p{};
+      p[axes.first] = cu + radius * std::cos(angle);
+      p[axes.second] = cv + radius * std::sin(angle);
+      p[axes.normal] = normal;
+      return p;
+    };
+    MachinePoint from = start;
+    for (std::size_t k = 0; k < count; ++k) {
+      const double f0 = static_cast<double>(k) / static_cast<double>(count);
+      const double f1 = static_cast<double>(k + 1) / static_cast<double>(count);
+      const double mid_radius = r0 + (r1 - r0) * (f0 + f1) / 2;
+      const double mid_normal = start[axes.normal] + rise * (f0 + f1) / 2;
+      const MachinePoint control = grid(at(a0 + sign * step * (static_cast<double>(k) + 0.5), mid_radius / std::cos(step / 2), mid_normal), column);
+      const MachinePoint to = k + 1 == count ? end : grid(at(a0 + sign * step * static_cast<double>(k + 1), r0 + (r1 - r0) * f1,
+                                                          start[axes.normal] + rise * f1), column);
+      const std::vector<MachinePoint> points{from, control, to};
+      const std::vector<double> weights{1.0, weight, 1.0};
+      pieces.push_back(made(PathSegment::make_rational_bezier(points, weights), column));
+      source.breaks.push_back(f0);
+      from = to;
+    }
+    source.breaks.push_back(1.0);
+  }
+
+  /// The largest difference, as a fraction of a piece's rise, between the normal coordinate of a
+  /// rational quadratic arc piece of angle `step` (the middle control point at the mean height) and
+  /// a true helix's, which rises in proportion to the angle. Sampled at 64 parameters.
+  static double helix_pitch_error(double step) {
+    const double w = std::cos(step / 2);
+    double worst = 0;
+    for (int i = 1; i < 64; ++i) {
+      const double t = i / 64.0;
+      const double b0 = (1 - t) * (1 - t);
+      const double b1 = 2 * t * (1 - t);
+      const double b2 = t * t;
+      const double d = b0 + w * b1 + b2;
+      const double x = (b0 * std::cos(step / 2) + b1 + b2 * std::cos(step / 2)) / d;  // w·(1/w) = 1 for the middle point
+      const double y = (-b0 * std::sin(step / 2) + b2 * std::sin(step / 2)) / d;
+      const double by_angle = (std::atan2(y, x) + step / 2) / step;
+      const double rational = (w * b1 / 2 + b2) / d;
+      worst = std::max(worst, std::fabs(rational - by_angle));
+    }
+    return worst;
   }
 
   /// A canned cycle: its rapids and feeds as lines of the cycle's program line, its dwells and

@@ -333,7 +333,7 @@ TEST_CASE("gcode interpreter: unsupported and conflicting words are errors that 
       {{"G2 X1 Y1"}, Error::GcodeMissingWord, 1},       // neither I J nor R
       {{"G2 X0 Y0 R1"}, Error::GcodeMissingWord, 10},   // R cannot describe a full circle
       {{"G2 X0 Y0 I0 J0"}, Error::GcodeArcRadiusMismatch, 1},  // zero radius
-      {{"G18", "G2 X1 Z1 I1"}, Error::GcodeUnsupportedWord, 1},
+      {{"G18", "G2 X1 Z1 I1 J1"}, Error::GcodeConflictingWords, 13},  // J is the G18 normal
       {{"G2 X2 I1 P1.5"}, Error::GcodeBadNumber, 10},
       {{"G1 X40000"}, Error::GcodeBadNumber, 4},        // beyond the Q16.16 range
       {{"G20 G1 X2000"}, Error::GcodeBadNumber, 8},     // 50800 mm

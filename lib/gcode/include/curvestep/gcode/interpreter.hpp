@@ -7,11 +7,11 @@
 //
 // Semantics (LinuxCNC g-code reference):
 //   G0/G1 X Y Z        rapid / feed line to the end point (G90 absolute, G91 incremental).
-//   G2/G3 X Y Z I J P  arc in the XY plane (G17), clockwise / counter-clockwise; centre = start +
+//   G2/G3 X Y Z I J P  arc in the XY plane (G17; G18, G19 below), clockwise / counter-clockwise; centre = start +
 //                      (I,J) in G91.1 (the default) or (I,J) in G90.1. Z moving makes a helix. End
 //                      equal to start is a full circle; P n adds n-1 extra turns. The radii to start
-//                      r0 and end r1 must agree: error if |r0-r1| > 0.5 mm, or if |r0-r1| > 0.005 mm
-//                      and > 0.1 % of r0 (LinuxCNC's documented tolerance, applied in mm).
+//                      r0 and end r1 must agree: error if |r0-r1| > 0.5 mm (0.05 in), or if |r0-r1| > 0.005 mm
+//                      (0.0005 in) and > 0.1 % of r0 (LinuxCNC's documented tolerance, in the program's units).
 //   G2/G3 X Y Z R      radius form: centre on the perpendicular bisector of the chord at distance
 //                      sqrt(R² - (c/2)²); R > 0 the arc of at most half a turn, R < 0 the longer one.
 //   G5 X Y I J P Q     cubic Bézier with control points P0, P0+(I,J), P1+(P,Q), P1 (offsets always
@@ -30,8 +30,8 @@
 //   G73 G81 G82 G83 G85 G86 G89 canned cycles (G17): MotionKind::Cycle with the holes and levels
 //                      resolved (canned_cycle.hpp expands them); Z R Q P sticky through the series;
 //                      G98 (default) / G99 retract modes; G80 cancels.
-// Arcs in G18/G19 are not supported (GcodeUnsupportedWord at the arc's G word), because a
-// PathSegment arc lies in the XY plane.
+// Arcs turn in the selected plane: G17 X Y with I J (K refused), G18 Z X with K I (J refused), G19
+// Y Z with J K (I refused); the third axis makes a helix. Motion::plane says which.
 //
 // Errors carry the 1-based column of the word at fault (Failure::index).
 #pragma once
@@ -103,7 +103,8 @@ struct Motion {
   MotionKind kind = MotionKind::None;         ///< what moves
   Point start{};                              ///< where the motion starts, mm
   Point end{};                                ///< where it ends, mm
-  Point center{};                             ///< arc centre (z = start z), mm
+  Point center{};                             ///< arc centre (its normal coordinate = the start's), mm
+  Plane plane = Plane::XY;                    ///< arc: the plane it turns in (G17, G18, G19)
   ArcDirection direction = ArcDirection::Clockwise;  ///< arc direction (G2 clockwise, G3 counter-clockwise)
   std::uint32_t full_turns = 0;               ///< arc: extra whole turns (P - 1)
   double radius_difference_mm = 0;            ///< arc: |r_end - r_start|, already within tolerance
@@ -147,11 +148,27 @@ inline constexpr double max_cycle_repeats = 10000.0;
   return code_tenths == 730 || (code_tenths >= 810 && code_tenths <= 890 && code_tenths != 840 && code_tenths != 870 && code_tenths != 880);
 }
 
-/// Whether radii r0 (start) and r1 (end) disagree beyond LinuxCNC's tolerance: more than 0.5 mm,
-/// or more than 0.005 mm and more than 0.1 % of r0.
-[[nodiscard]] inline bool arc_radii_mismatch(double r0, double r1) noexcept {
+/// Whether radii r0 (start) and r1 (end), in mm, disagree beyond LinuxCNC's tolerance for the
+/// program's units: more than 0.5 mm (0.05 in), or more than 0.005 mm (0.0005 in) and more than
+/// 0.1 % of r0.
+[[nodiscard]] inline bool arc_radii_mismatch(double r0, double r1, Units units = Units::Millimetres) noexcept {
   const double difference = std::fabs(r1 - r0);
-  return difference > 0.5 || (difference > 0.005 && difference > 0.001 * r0);
+  const double absolute = units == Units::Inches ? 0.05 * millimetres_per_inch : 0.5;
+  const double small = units == Units::Inches ? 0.0005 * millimetres_per_inch : 0.005;
+  return difference > absolute || (difference > small && difference > 0.001 * r0);
+}
+
+/// The axes of a plane: the arc's first and second axis (counter-clockwise from first to second,
+/// seen from the positive normal) and the normal (the helix axis). G17 X Y Z, G18 Z X Y, G19 Y Z X.
+struct PlaneAxes {
+  std::size_t first, second, normal;
+};
+[[nodiscard]] constexpr PlaneAxes axes_of(Plane plane) noexcept {
+  switch (plane) {
+    case Plane::ZX: return {2, 0, 1};
+    case Plane::YZ: return {1, 2, 0};
+    default: return {0, 1, 2};
+  }
 }
 
 /// The modal interpreter; MaxNurbsPoints bounds the control points of one G5.2 block.
@@ -653,53 +670,62 @@ class Interpreter {
 
   template <std::size_t Capacity>
   [[nodiscard]] Result<Motion> arc(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
-    if (plane_ != Plane::XY) return fail(Error::GcodeUnsupportedWord, column);
+    constexpr std::string_view offset_letters = "IJK";  // the centre offsets along X, Y, Z
+    const PlaneAxes axes = axes_of(plane_);
     CURVESTEP_CHECK(only(block, "XYZIJKRP", Error::GcodeConflictingWords));
-    if (const Word* k = block.find('K')) return fail(Error::GcodeConflictingWords, k->column);
+    if (const Word* k = block.find(offset_letters[axes.normal])) return fail(Error::GcodeConflictingWords, k->column);
     const Word* r_word = block.find('R');
-    const Word* i_word = block.find('I');
-    const Word* j_word = block.find('J');
+    const Word* i_word = block.find(offset_letters[axes.first]);
+    const Word* j_word = block.find(offset_letters[axes.second]);
     if (r_word != nullptr && (i_word != nullptr || j_word != nullptr)) return fail(Error::GcodeConflictingWords, r_word->column);
     CURVESTEP_TRY(motion.end, end_point(block));
     motion.direction = mode_ == 20 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
+    motion.plane = plane_;
     if (const Word* p = block.find('P')) {
       if (!(p->value >= 1 && p->value <= max_arc_turns) || p->value != std::floor(p->value)) {
         return fail(Error::GcodeBadNumber, p->column);
       }
       motion.full_turns = static_cast<std::uint32_t>(p->value) - 1;
     }
-    const Point s = position_;
+    // In the plane's own coordinates (u along the first axis, v along the second).
+    const Point& s = position_;
     const Point& e = motion.end;
-    double cx = 0;
-    double cy = 0;
+    const double su = s[axes.first];
+    const double sv = s[axes.second];
+    const double eu = e[axes.first];
+    const double ev = e[axes.second];
+    double cu = 0;
+    double cv = 0;
     if (r_word != nullptr) {
       CURVESTEP_TRY(const double r, offset(block, 'R'));
-      const double dx = e[0] - s[0];
-      const double dy = e[1] - s[1];
-      const double chord = std::sqrt(dx * dx + dy * dy);
+      const double du = eu - su;
+      const double dv = ev - sv;
+      const double chord = std::sqrt(du * du + dv * dv);
       if (chord == 0) return fail(Error::GcodeMissingWord, r_word->column);  // R cannot make a full circle
       const double half = chord / 2;
       const double radius = std::fabs(r);
-      if (radius < half && arc_radii_mismatch(radius, half)) return fail(Error::GcodeArcRadiusMismatch, r_word->column);
+      if (radius < half && arc_radii_mismatch(radius, half, units_)) return fail(Error::GcodeArcRadiusMismatch, r_word->column);
       const double height = radius > half ? std::sqrt(radius * radius - half * half) : 0.0;
       double side = motion.direction == ArcDirection::CounterClockwise ? 1.0 : -1.0;
       if (r < 0) side = -side;
-      cx = s[0] + dx / 2 - side * height * dy / chord;
-      cy = s[1] + dy / 2 + side * height * dx / chord;
+      cu = su + du / 2 - side * height * dv / chord;
+      cv = sv + dv / 2 + side * height * du / chord;
     } else {
       if (i_word == nullptr && j_word == nullptr) return fail(Error::GcodeMissingWord, column);
-      CURVESTEP_TRY(const double i, offset(block, 'I'));
-      CURVESTEP_TRY(const double j, offset(block, 'J'));
-      cx = arc_absolute_ ? i + offset_in_force()[0] : s[0] + i;
-      cy = arc_absolute_ ? j + offset_in_force()[1] : s[1] + j;
+      CURVESTEP_TRY(const double i, offset(block, offset_letters[axes.first]));
+      CURVESTEP_TRY(const double j, offset(block, offset_letters[axes.second]));
+      cu = arc_absolute_ ? i + offset_in_force()[axes.first] : su + i;
+      cv = arc_absolute_ ? j + offset_in_force()[axes.second] : sv + j;
     }
-    const double r0 = std::sqrt((s[0] - cx) * (s[0] - cx) + (s[1] - cy) * (s[1] - cy));
-    const double r1 = std::sqrt((e[0] - cx) * (e[0] - cx) + (e[1] - cy) * (e[1] - cy));
-    if (!(r0 > 0) || arc_radii_mismatch(r0, r1)) return fail(Error::GcodeArcRadiusMismatch, column);
-    if (!(std::fabs(cx) <= max_coordinate_mm && std::fabs(cy) <= max_coordinate_mm)) {
+    const double r0 = std::sqrt((su - cu) * (su - cu) + (sv - cv) * (sv - cv));
+    const double r1 = std::sqrt((eu - cu) * (eu - cu) + (ev - cv) * (ev - cv));
+    if (!(r0 > 0) || arc_radii_mismatch(r0, r1, units_)) return fail(Error::GcodeArcRadiusMismatch, column);
+    if (!(std::fabs(cu) <= max_coordinate_mm && std::fabs(cv) <= max_coordinate_mm)) {
       return fail(Error::GcodeBadNumber, r_word != nullptr ? r_word->column : column);
     }
-    motion.center = Point{{cx, cy, s[2]}};
+    motion.center = s;
+    motion.center[axes.first] = cu;
+    motion.center[axes.second] = cv;
     motion.radius_difference_mm = std::fabs(r1 - r0);
     motion.kind = MotionKind::Arc;
     position_ = motion.end;
