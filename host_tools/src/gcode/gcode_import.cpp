@@ -86,7 +86,7 @@ std::string explain(Error code, const std::string& word) {
       if (!word.empty() && word[0] == 'G') return "unsupported G code (docs/gcode.md lists the supported ones)";
       return "unsupported word";
     }
-    case Error::GcodeBadNumber: return "malformed or out-of-range number (at most 15 digits; coordinates within +-32767 mm)";
+    case Error::GcodeBadNumber: return "malformed or out-of-range number (an integer part of at most 15 digits; coordinates within +-32767 mm)";
     case Error::GcodeMissingWord:
       if (g5_1) return "G5.1 needs I or J";
       if (g5) return "G5 needs P and Q, and I and J together";

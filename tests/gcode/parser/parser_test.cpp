@@ -36,10 +36,22 @@ TEST_CASE("gcode parser: numbers are the correctly rounded doubles of their deci
   CHECK(number("123456789.012345").value() == 123456789.012345);
   CHECK(number("0.30000000000000000000").value() == 0.3);  // trailing zeros beyond 15 digits are harmless
   CHECK(number("  - 2.25").value() == -2.25);              // blanks before the number and after the sign
+  CHECK(number("1 2.5 0").value() == 12.5);                // and between the digits (LinuxCNC removes blanks)
 }
 
-TEST_CASE("gcode parser: a number with no digit or too many digits is GcodeBadNumber at its column", "[gcode][parser]") {
-  for (const std::string_view bad : {"", "-", ".", "+.", "1234567890123456", "0.1234567890123456", "0.00000000000000000000001"}) {
+TEST_CASE("gcode parser: fraction digits beyond 15 significant are rounded off by the first one dropped", "[gcode][parser]") {
+  // The expected values are the 15-digit decimals, rounded by hand, as C++ literals.
+  CHECK(number("0.30000000000000004").value() == 0.3);                   // Python's repr of 0.1 + 0.2
+  CHECK(number("0.1234567890123456").value() == 0.123456789012346);      // 16th digit 6: up
+  CHECK(number("0.1234567890123444").value() == 0.123456789012344);      // 16th digit 4: down
+  CHECK(number("-1.99999999999999999").value() == -2.0);                 // the carry runs through
+  CHECK(number("12.3456789012345678").value() == 12.3456789012346);
+  CHECK(number("0.00000000000000000000001").value() == 0.0);             // beyond 22 decimals, 1 < 5
+  CHECK(number("0.00000000000000000000006").value() == 1e-22);
+}
+
+TEST_CASE("gcode parser: a number with no digit or an integer part beyond 15 digits is GcodeBadNumber at its column", "[gcode][parser]") {
+  for (const std::string_view bad : {"", "-", ".", "+.", "1234567890123456", "-12345678901234567.5"}) {
     INFO(bad);
     const auto r = number(bad);
     REQUIRE_FALSE(r);

@@ -7,8 +7,11 @@
 // digits, so m < 10^15 < 2^53 is exact in double) and a count d of decimals (d <= 22, so 10^d is
 // exact in double). The value is m / 10^d: one IEEE division of two exact operands, hence the
 // correctly rounded double of the written decimal (error at most half an ulp, about 1e-16
-// relative). More significant digits than 15 are rejected (GcodeBadNumber) unless they are
-// trailing zeros of the fraction, which change nothing; nothing wraps and nothing is dropped.
+// relative). Fraction digits beyond the 15th significant one or the 22nd decimal (programs written
+// by scripts print 17 digits, "0.30000000000000004") are rounded off by the first dropped digit:
+// the value is then within 5e-16 relative of the decimal, far below the Q16.16 grid (2^-16 mm).
+// An integer part of more than 15 digits is refused (GcodeBadNumber); nothing wraps. Blanks may
+// stand between the digits, as LinuxCNC removes them ("X1 0.5" is X10.5).
 //
 // Syntax (LinuxCNC's, the part a path needs): letters are case-insensitive; spaces and tabs may
 // stand between words and between a letter and its number; "( ... )" is a comment anywhere, ";"
@@ -121,9 +124,9 @@ inline constexpr std::size_t max_significant_digits = 15;
 /// Most decimals a number may have (after dropping trailing zeros beyond the significant digits).
 inline constexpr std::size_t max_decimals = 22;
 
-/// Parses a number starting at text[position] (blanks before it and after the sign are skipped)
-/// and advances position past it. GcodeBadNumber (index: 1-based column) if there is no digit, or
-/// too many significant digits or decimals.
+/// Parses a number starting at text[position] (blanks before it, after the sign and between digits
+/// are skipped) and advances position past it. GcodeBadNumber (index: 1-based column) if there is
+/// no digit or the integer part has more than 15 significant digits.
 [[nodiscard]] constexpr Result<double> parse_number(std::string_view text, std::size_t& position) noexcept {
   while (position < text.size() && detail::is_blank(text[position])) ++position;
   const std::size_t start = position;
@@ -138,8 +141,18 @@ inline constexpr std::size_t max_decimals = 22;
   std::size_t decimals = 0;
   bool any_digit = false;
   bool point = false;
+  bool rounded = false;  // digits dropped: the first one decided the rounding
   while (position < text.size()) {
     const char c = text[position];
+    if (detail::is_blank(c)) {
+      std::size_t next = position;
+      while (next < text.size() && detail::is_blank(text[next])) ++next;
+      if (next < text.size() && (detail::is_digit(text[next]) || (text[next] == '.' && !point))) {
+        position = next;
+        continue;
+      }
+      break;
+    }
     if (c == '.' && !point) {
       point = true;
       ++position;
@@ -149,21 +162,23 @@ inline constexpr std::size_t max_decimals = 22;
     any_digit = true;
     const auto digit = static_cast<std::uint64_t>(c - '0');
     ++position;
-    if (mantissa == 0 && digit == 0) {  // leading zero
+    const bool room = significant < max_significant_digits && (!point || decimals < max_decimals);
+    if (room && mantissa == 0 && digit == 0) {  // leading zero
       if (point) ++decimals;
       continue;
     }
-    if (significant < max_significant_digits) {
+    if (room && !rounded) {
       mantissa = mantissa * 10 + digit;
       ++significant;
       if (point) ++decimals;
       continue;
     }
-    // Beyond the significant digits only trailing zeros of the fraction are harmless.
-    if (!point || digit != 0) return fail(Error::GcodeBadNumber, detail::column_of(start));
+    // Beyond 15 significant digits or 22 decimals: an integer part is too long; a fraction is rounded.
+    if (!point) return fail(Error::GcodeBadNumber, detail::column_of(start));
+    if (!rounded && digit >= 5) ++mantissa;  // < 10^15 + 1 < 2^53: still exact
+    rounded = true;
   }
   if (!any_digit) return fail(Error::GcodeBadNumber, detail::column_of(start));
-  if (decimals > max_decimals) return fail(Error::GcodeBadNumber, detail::column_of(start));
   const double magnitude = static_cast<double>(mantissa) / detail::power_of_ten(decimals);
   return negative ? -magnitude : magnitude;
 }
