@@ -79,6 +79,9 @@ TEST_CASE("arc planes: a G19 full-circle helix rises along X in proportion to th
 TEST_CASE("arc planes: the offset letter along the normal is refused, R works in every plane", "[gcode][import][arc][plane]") {
   CHECK_THAT(message_of("G21 G18\nG2 X10 Z10 K10 J1 F600\n"), Catch::Contains("arc.ngc:2:16"));
   CHECK_THAT(message_of("G21 G19\nG2 Y10 Z10 I1 F600\n"), Catch::Contains("arc.ngc:2:12"));
+  // A zero offset along the normal means nothing and is accepted (FreeCAD's grbl post writes K0.000).
+  const Job k0 = parse_gcode_job("G21 G17\nG2 X10 Y10 I10 J0 K0.000 F600\n", "k0.ngc");
+  CHECK(k0.segments.size() == 1);
   // R form in G19, clockwise seen from +X from (y 0, z 0) to (y 10, z 10), R10: the quarter about
   // the centre (y 10, z 0).
   const Job job = parse_gcode_job("G21 G19\nG2 Y10 Z10 R10 F600\n", "g19_r.ngc");

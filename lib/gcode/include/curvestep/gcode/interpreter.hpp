@@ -673,7 +673,10 @@ class Interpreter {
     constexpr std::string_view offset_letters = "IJK";  // the centre offsets along X, Y, Z
     const PlaneAxes axes = axes_of(plane_);
     CURVESTEP_CHECK(only(block, "XYZIJKRP", Error::GcodeConflictingWords));
-    if (const Word* k = block.find(offset_letters[axes.normal])) return fail(Error::GcodeConflictingWords, k->column);
+    // The offset along the normal has no meaning; CAM posts (FreeCAD's grbl post) write K0 on G17 arcs.
+    if (const Word* k = block.find(offset_letters[axes.normal]); k != nullptr && k->value != 0) {
+      return fail(Error::GcodeConflictingWords, k->column);
+    }
     const Word* r_word = block.find('R');
     const Word* i_word = block.find(offset_letters[axes.first]);
     const Word* j_word = block.find(offset_letters[axes.second]);
