@@ -13,6 +13,7 @@
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/printable.hpp>
 #include <curvestep/host/report.hpp>
 #include <curvestep/host/simulator.hpp>
 #include <curvestep/host/smoothing/path_smoothing.hpp>
@@ -40,7 +41,7 @@ struct SimOptions {
 std::string format_events(const Job& job) {
   if (job.events.empty()) return {};
   static const char* names[] = {"dwell", "pause", "program end", "spindle on", "spindle off", "spindle speed", "mist",
-                                "flood", "coolant off", "tool change", "output", "pen up", "pen down", "layer change"};
+                                "flood", "coolant off", "tool change", "output", "pen up", "pen down", "layer change", "message"};
   std::ostringstream out;
   out << "  job events:          " << job.events.size()
       << " (in program order; the motion does not stop or wait for them yet: dwells and pauses take no time here nor on a device)\n";
@@ -51,7 +52,11 @@ std::string format_events(const Job& job) {
       break;
     }
     out << "                       " << names[static_cast<std::size_t>(e.kind)];
-    if (!e.text.empty()) out << " (" << e.text << ")";
+    if (e.kind == JobEventKind::Message) {
+      out << " \"" << printable(e.text) << "\"";
+    } else if (!e.text.empty()) {
+      out << " (" << e.text << ")";
+    }
     if (e.kind == JobEventKind::Dwell) out << " " << e.value << " s";
     if (e.kind == JobEventKind::SpindleOn || e.kind == JobEventKind::SpindleSpeed) out << " " << e.value << " rev/min";
     if (e.kind == JobEventKind::ToolChange) out << " tool " << e.value;

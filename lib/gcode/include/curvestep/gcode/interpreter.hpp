@@ -198,6 +198,11 @@ class Interpreter {
   [[nodiscard]] constexpr std::size_t coordinate_system() const noexcept { return coordinate_system_; }
   /// The G92 offset in force, mm.
   [[nodiscard]] constexpr const Point& g92_offset() const noexcept { return g92_offset_; }
+  /// The current position in the coordinate system in use (work offset, G92 and tool length
+  /// removed), mm, as LinuxCNC's #5420-#5422 report it (in the program's units: divide by 25.4 in G20).
+  [[nodiscard]] constexpr Point program_position() const noexcept { return position_ - offset_in_force(); }
+  /// The tool loaded by the last M6.
+  [[nodiscard]] constexpr std::size_t loaded_tool() const noexcept { return loaded_tool_; }
   /// The spindle speed last set with S, rev/min, and the direction of the last M3/M4.
   [[nodiscard]] constexpr double spindle_rpm() const noexcept { return spindle_rpm_; }
   [[nodiscard]] constexpr bool spindle_counter_clockwise() const noexcept { return spindle_ccw_; }

@@ -64,6 +64,7 @@ enum class JobEventKind : std::uint8_t {
   PenUp,          ///< plotter pen lifted (machine file's pen model)
   PenDown,        ///< plotter pen lowered
   LayerChange,    ///< a plotter layer ends and the next begins (pen change pause); text = layer name
+  Message,        ///< an operator message: G-code (MSG,...), (DEBUG,...) or (PRINT,...); text = the message
 };
 
 /// A non-motion event of a job, in program order between segments.
