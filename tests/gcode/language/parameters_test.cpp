@@ -80,6 +80,7 @@ TEST_CASE("language: block delete is off, so '/' lines run and are marked; on sk
 TEST_CASE("language: % opens the program and the next % ends it", "[gcode][language][lines]") {
   CHECK(x_values(run_program("\n%\nG0 X1\n%\nG0 X2\n")) == std::vector<double>{1.0});
   CHECK(x_values(run_program("G0 X1\n%\nG0 X2\n")) == std::vector<double>{1.0, 2.0});  // not first: ignored
+  CHECK(x_values(run_program("%\nG0 X1\n%\no1 endif\n")) == std::vector<double>{1.0});  // nothing read after the closing %
 }
 
 TEST_CASE("language: M2 and M30 end the program after their block", "[gcode][language][lines]") {

@@ -207,6 +207,10 @@ std::string_view keyword_name(Keyword keyword) noexcept {
   return "?";
 }
 
+bool is_blank(const ParsedLine& line) noexcept {
+  return !line.percent && !line.oword && !line.error && line.words.empty() && line.assignments.empty() && line.messages.empty();
+}
+
 ParsedLine parse_program_line(std::string_view source) {
   const LexedLine lexed = lex_line(source);
   ParsedLine line;

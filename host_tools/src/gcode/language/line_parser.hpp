@@ -66,6 +66,9 @@ struct ParsedLine {
   std::optional<LineError> error;
 };
 
+/// True for a line with nothing in it but blanks and plain comments.
+[[nodiscard]] bool is_blank(const ParsedLine& line) noexcept;
+
 /// Parses one source line. Syntax errors of an O-word line are thrown (the program's structure
 /// depends on them); those of other lines are kept in ParsedLine::error.
 [[nodiscard]] ParsedLine parse_program_line(std::string_view source);

@@ -49,6 +49,8 @@ class ProgramReader::Impl final : public detail::ParameterSource {
  public:
   Impl(std::string_view text, std::string file_name, ProgramOptions options) : file_(std::move(file_name)), options_(options) {
     std::size_t start = 0;
+    bool opened = false;   // the first non-blank line was '%'
+    bool content = false;  // a non-blank line was seen
     for (;;) {
       std::size_t stop = text.find('\n', start);
       if (stop == std::string_view::npos) stop = text.size();
@@ -60,6 +62,10 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       } catch (const LineError& error) {
         throw_at(sources_.size() - 1, error);
       }
+      const ParsedLine& parsed = lines_.back();
+      if (parsed.percent && opened) break;  // LinuxCNC reads nothing after the closing '%'
+      if (parsed.percent && !content) opened = true;
+      if (!detail::is_blank(parsed)) content = true;
       if (stop == text.size()) break;
       start = stop + 1;
     }

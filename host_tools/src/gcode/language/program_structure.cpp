@@ -74,16 +74,12 @@ class Scanner {
   /// The closing '%' of a program whose first non-blank line is '%'.
   std::size_t find_end() const {
     std::size_t i = 0;
-    while (i < lines_.size() && blank(lines_[i])) ++i;
+    while (i < lines_.size() && is_blank(lines_[i])) ++i;
     if (i == lines_.size() || !lines_[i].percent) return lines_.size();
     for (std::size_t j = i + 1; j < lines_.size(); ++j) {
       if (lines_[j].percent) return j;
     }
     return lines_.size();
-  }
-
-  static bool blank(const ParsedLine& line) {
-    return !line.percent && !line.oword && !line.error && line.words.empty() && line.assignments.empty() && line.messages.empty();
   }
 
   std::size_t innermost_loop() const {
