@@ -38,7 +38,7 @@ struct ProgramMessage {
 struct ProgramBlock {
   std::size_t line = 0;                  ///< 1-based line number in the file
   std::string source;                    ///< the line as written (for messages)
-  bool block_delete = false;             ///< the line started with '/' (and block delete was on)
+  bool block_delete = false;             ///< the line started with '/' (it runs: the block delete switch is off)
   std::vector<ProgramWord> words;        ///< the machine words, in the order written (N, O excluded)
   std::vector<ProgramMessage> messages;  ///< MSG / DEBUG / PRINT comments of the line
   /// The word with this letter, or nullptr. A letter appears at most once (the language layer refuses
@@ -51,8 +51,9 @@ struct ProgramBlock {
   }
 };
 
-/// Numbered (#1-#5602) and named (#<name>, #<_global>) parameters. The machine layer writes the
-/// system parameters through set(); `persistent` values (#5161-#5390) may come from the machine file.
+/// Numbered (#1-#5602) and global named (#<_name>) parameters; local names (#<name>, no '_') live in
+/// the ProgramReader's call frames. The machine layer writes the system parameters through set()
+/// (programs may set #1-#5399 only); `persistent` values (#5161-#5390) may come from the machine file.
 class ParameterStore {
  public:
   static constexpr int max_numbered = 5602;
@@ -60,13 +61,13 @@ class ParameterStore {
   [[nodiscard]] double get(int number) const { return numbered_.at(static_cast<std::size_t>(number)); }
   /// Sets #number.
   void set(int number, double value) { numbered_.at(static_cast<std::size_t>(number)) = value; }
-  /// A named parameter (names are lower case, without spaces), or nullopt if it does not exist.
+  /// A global named parameter ("_name": lower case, without spaces), or nullopt if it does not exist.
   [[nodiscard]] std::optional<double> named(const std::string& name) const {
     const auto found = named_.find(name);
     if (found == named_.end()) return std::nullopt;
     return found->second;
   }
-  /// Sets a named parameter.
+  /// Sets a global named parameter ("_x" for #<_x>).
   void set_named(const std::string& name, double value) { named_[name] = value; }
 
  private:

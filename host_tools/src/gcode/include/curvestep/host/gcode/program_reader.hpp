@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// ProgramReader: the G-code language layer (docs/gcode.md, "The language: parameters, expressions,
+// O-words"). It reads a LinuxCNC program and hands out each executed line as a ProgramBlock, with
+// comments removed, parameters and expressions evaluated, assignments done and O-word control flow
+// followed. It is pulled one block at a time so that the machine layer can write the parameters
+// that depend on the machine state (#5420-#5428, ...) between blocks.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include <curvestep/host/gcode/program_block.hpp>
+
+namespace curvestep::host::gcode {
+
+/// Lines a program may execute (O-word lines included) before it is taken for an endless loop.
+inline constexpr std::size_t default_max_executed_lines = 10'000'000;
+/// Subroutine calls that may be nested.
+inline constexpr std::size_t default_max_call_depth = 64;
+/// The highest parameter a program may set; #5400-#5602 are set by the machine layer only.
+inline constexpr int max_program_parameter = 5399;
+
+/// How a program is read.
+struct ProgramOptions {
+  bool block_delete = false;  ///< the block delete switch: on skips lines starting with '/' (LinuxCNC starts with it off)
+  std::size_t max_executed_lines = default_max_executed_lines;  ///< IterationLimit beyond this
+  std::size_t max_call_depth = default_max_call_depth;          ///< CapacityExceeded beyond this
+};
+
+/// Reads one program. Every error is a LoadError naming file:line:column and the expression,
+/// parameter or O-word at fault, with a G-code error code (GcodeSyntax, GcodeBadNumber, ...),
+/// DivisionByZero, IterationLimit (endless loop) or CapacityExceeded (calls nested too deep).
+class ProgramReader {
+ public:
+  /// Parses `text` and checks its O-word structure (throws LoadError). `file_name` is used in messages.
+  ProgramReader(std::string_view text, std::string file_name, ProgramOptions options = {});
+  ~ProgramReader();
+  ProgramReader(ProgramReader&&) noexcept;
+  ProgramReader& operator=(ProgramReader&&) noexcept;
+  ProgramReader(const ProgramReader&) = delete;
+  ProgramReader& operator=(const ProgramReader&) = delete;
+
+  /// The next executed line that has words or messages, or nullopt at the end of the program
+  /// (end of text, closing %, or after the block holding M2 or M30). Throws LoadError.
+  [[nodiscard]] std::optional<ProgramBlock> next();
+  /// The parameters: numbered ones and the global named ones (#<_name>). Locals live in the reader.
+  [[nodiscard]] ParameterStore& parameters() noexcept;
+  [[nodiscard]] const ParameterStore& parameters() const noexcept;
+  /// True once next() has returned nullopt or handed out an M2/M30 block.
+  [[nodiscard]] bool ended() const noexcept;
+  /// Subroutine calls active now (0 in the main program).
+  [[nodiscard]] std::size_t call_depth() const noexcept;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace curvestep::host::gcode

@@ -1,0 +1,340 @@
+// SPDX-License-Identifier: MIT
+// The language layer's executor: a program counter over the parsed lines, a stack of call frames
+// (each with its saved #1-#30, its local named parameters and its repeat counters) and the links
+// found by scan_structure. Lines run lazily, one next() at a time, so every expression reads the
+// parameters as the machine layer left them after the previous block.
+#include <curvestep/host/gcode/program_reader.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include <curvestep/host/load_error.hpp>
+
+#include "line_parser.hpp"
+#include "message_text.hpp"
+#include "program_structure.hpp"
+
+namespace curvestep::host::gcode {
+
+using detail::ControlLink;
+using detail::Keyword;
+using detail::LineError;
+using detail::no_line;
+using detail::OWord;
+using detail::ParsedLine;
+
+namespace {
+
+/// #1-#30: a call's arguments, saved and restored around each call.
+constexpr int argument_parameters = 30;
+/// A repeat count beyond this is cut to it (the line budget stops such a loop anyway).
+constexpr double max_repeat_count = 1e15;
+
+struct Frame {
+  std::size_t return_line = no_line;
+  std::array<double, argument_parameters> saved{};
+  std::map<std::string, double> locals;
+  std::map<std::size_t, long long> repeats;  ///< repeat line -> passes still to run
+};
+
+bool is_global(const std::string& name) { return !name.empty() && name.front() == '_'; }
+
+}  // namespace
+
+class ProgramReader::Impl final : public detail::ParameterSource {
+ public:
+  Impl(std::string_view text, std::string file_name, ProgramOptions options) : file_(std::move(file_name)), options_(options) {
+    std::size_t start = 0;
+    bool opened = false;   // the first non-blank line was '%'
+    bool content = false;  // a non-blank line was seen
+    for (;;) {
+      std::size_t stop = text.find('\n', start);
+      if (stop == std::string_view::npos) stop = text.size();
+      std::string_view line = text.substr(start, stop - start);
+      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+      sources_.emplace_back(line);
+      try {
+        lines_.push_back(detail::parse_program_line(line));
+      } catch (const LineError& error) {
+        throw_at(sources_.size() - 1, error);
+      }
+      const ParsedLine& parsed = lines_.back();
+      if (parsed.percent && opened) break;  // LinuxCNC reads nothing after the closing '%'
+      if (parsed.percent && !content) opened = true;
+      if (!detail::is_blank(parsed)) content = true;
+      if (stop == text.size()) break;
+      start = stop + 1;
+    }
+    structure_ = detail::scan_structure(lines_, options_.block_delete, file_);
+    frames_.emplace_back();
+    store_.set_named("_value", 0.0);
+    store_.set_named("_value_returned", 0.0);
+  }
+
+  std::optional<ProgramBlock> next() {
+    try {
+      while (!ended_) {
+        if (pc_ >= structure_.end) {
+          ended_ = true;
+          break;
+        }
+        count_line();
+        const ParsedLine& line = lines_[pc_];
+        if (line.percent || (line.block_delete && options_.block_delete)) {
+          ++pc_;
+          continue;
+        }
+        if (line.error) throw *line.error;
+        if (line.oword) {
+          run_control();
+          continue;
+        }
+        if (auto block = run_line()) return block;
+      }
+    } catch (const LineError& error) {
+      ended_ = true;
+      throw_at(pc_, error);
+    } catch (...) {
+      ended_ = true;
+      throw;
+    }
+    return std::nullopt;
+  }
+
+  ParameterStore& parameters() noexcept { return store_; }
+  [[nodiscard]] bool ended() const noexcept { return ended_; }
+  [[nodiscard]] std::size_t call_depth() const noexcept { return frames_.size() - 1; }
+
+  [[nodiscard]] double numbered(int number) const override { return store_.get(number); }
+  [[nodiscard]] std::optional<double> named(const std::string& name) const override {
+    if (is_global(name)) return store_.named(name);
+    const auto& locals = frames_.back().locals;
+    const auto found = locals.find(name);
+    if (found == locals.end()) return std::nullopt;
+    return found->second;
+  }
+
+ private:
+  [[noreturn]] void throw_at(std::size_t line, const LineError& error) const {
+    throw LoadError(SourceLocation{file_, line + 1, error.column(), std::nullopt, {}, error.field()}, error.message(), error.code());
+  }
+
+  [[noreturn]] void fail_oword(const OWord& oword, const std::string& message, Error code) const {
+    throw LineError(oword.column, detail::oword_text(oword), message, code);
+  }
+
+  /// The budget that turns an endless loop into an error naming the loop.
+  void count_line() {
+    if (++executed_ <= options_.max_executed_lines) return;
+    const std::size_t loop = structure_.links[pc_].loop;
+    const std::string message = "more than " + std::to_string(options_.max_executed_lines) +
+                                " lines executed: an endless loop? (the limit keeps a program from running forever)";
+    if (loop != no_line) {
+      pc_ = loop;
+      fail_oword(*lines_[loop].oword, message, Error::IterationLimit);
+    }
+    throw LineError(0, {}, message, Error::IterationLimit);
+  }
+
+  double value(const ParsedLine& line, detail::NodeIndex root) const {
+    return detail::evaluate(line.nodes, root, sources_[pc_], *this);
+  }
+
+  /// A line of words, assignments and comments.
+  std::optional<ProgramBlock> run_line() {
+    const ParsedLine& line = lines_[pc_];
+    ProgramBlock block;
+    block.line = pc_ + 1;
+    block.source = sources_[pc_];
+    block.block_delete = line.block_delete;
+    for (const auto& word : line.words) block.words.push_back(ProgramWord{word.letter, value(line, word.value), word.column});
+    // LinuxCNC: every value on the line is read first; the assignments take effect at its end.
+    struct Pending {
+      const detail::Assignment* assignment;
+      int number;
+      double value;
+    };
+    std::vector<Pending> pending;
+    for (const auto& assignment : line.assignments) {
+      int number = 0;
+      if (assignment.name.empty()) {
+        const auto& at = line.nodes[assignment.number];
+        number = detail::parameter_number(value(line, assignment.number), at, sources_[pc_]);
+        if (number > max_program_parameter) {
+          throw LineError(assignment.column, detail::node_text(at, sources_[pc_]),
+                          "parameters #" + std::to_string(max_program_parameter + 1) + "-#" + std::to_string(ParameterStore::max_numbered) +
+                              " are read-only (the machine state: tool, position)",
+                          Error::GcodeBadNumber);
+        }
+      }
+      pending.push_back(Pending{&assignment, number, value(line, assignment.value)});
+    }
+    for (const auto& p : pending) {
+      if (p.number != 0) {
+        store_.set(p.number, p.value);
+      } else if (is_global(p.assignment->name)) {
+        store_.set_named(p.assignment->name, p.value);
+      } else {
+        frames_.back().locals[p.assignment->name] = p.value;
+      }
+    }
+    // The comments act when the line executes, after its assignments.
+    for (const auto& message : line.messages) {
+      block.messages.push_back(ProgramMessage{
+          message.kind, message.kind == ProgramMessage::Kind::Message ? message.text : detail::substitute_parameters(message.text, *this)});
+    }
+    ++pc_;
+    if (block.words.empty() && block.messages.empty()) return std::nullopt;
+    for (const auto& word : block.words) {
+      if (word.letter == 'M' && (word.value == 2.0 || word.value == 30.0)) ended_ = true;
+    }
+    return block;
+  }
+
+  bool test(const OWord& oword) const { return value(lines_[pc_], oword.arguments.front()) != 0.0; }
+
+  void run_control() {
+    const std::size_t here = pc_;
+    const OWord& oword = *lines_[here].oword;
+    const ControlLink& link = structure_.links[here];
+    switch (oword.keyword) {
+      case Keyword::Sub: pc_ = link.closing + 1; break;
+      case Keyword::Endsub:
+      case Keyword::Return: return_from(oword); break;
+      case Keyword::Call: call(oword); break;
+      case Keyword::If:
+        if (test(oword)) {
+          pc_ = here + 1;
+        } else {
+          enter_branch(link.next_branch);
+        }
+        break;
+      case Keyword::Elseif:
+      case Keyword::Else: pc_ = structure_.links[link.opening].closing + 1; break;  // the taken branch ends here
+      case Keyword::Endif:
+      case Keyword::Do: pc_ = here + 1; break;
+      case Keyword::While:
+        if (link.closes_do) {
+          pc_ = test(oword) ? link.opening + 1 : here + 1;
+        } else {
+          pc_ = test(oword) ? here + 1 : link.closing + 1;
+        }
+        break;
+      case Keyword::Endwhile: pc_ = link.opening; break;
+      case Keyword::Repeat: {
+        const double count = value(lines_[here], oword.arguments.front());
+        const long long passes = count >= 1.0 ? static_cast<long long>(std::min(std::trunc(count), max_repeat_count)) : 0;
+        if (passes <= 0) {
+          pc_ = link.closing + 1;
+        } else {
+          frames_.back().repeats[here] = passes - 1;
+          pc_ = here + 1;
+        }
+        break;
+      }
+      case Keyword::Endrepeat: {
+        long long& remaining = frames_.back().repeats[link.opening];
+        if (remaining > 0) {
+          --remaining;
+          pc_ = link.opening + 1;
+        } else {
+          pc_ = here + 1;
+        }
+        break;
+      }
+      case Keyword::Break: pc_ = structure_.links[link.opening].closing + 1; break;
+      case Keyword::Continue: {
+        const std::size_t loop = link.opening;
+        // while: test again; do: its closing while tests; repeat: endrepeat counts the pass.
+        pc_ = lines_[loop].oword->keyword == Keyword::While ? loop : structure_.links[loop].closing;
+        break;
+      }
+    }
+  }
+
+  /// After a false if or elseif: test the following elseifs, else enter the else or leave at endif.
+  void enter_branch(std::size_t branch) {
+    for (;;) {
+      pc_ = branch;
+      const OWord& oword = *lines_[branch].oword;
+      if (oword.keyword != Keyword::Elseif) {
+        pc_ = branch + 1;
+        return;
+      }
+      count_line();
+      if (test(oword)) {
+        pc_ = branch + 1;
+        return;
+      }
+      branch = structure_.links[branch].next_branch;
+    }
+  }
+
+  void call(const OWord& oword) {
+    std::string label = oword.label;
+    if (oword.label_value != detail::no_node) {
+      const double computed = value(lines_[pc_], oword.label_value);
+      if (!(computed >= 0.0 && computed < 1e9 && computed == std::floor(computed))) {
+        fail_oword(oword, "a computed subroutine label must be a whole number 0..999999999", Error::GcodeBadNumber);
+      }
+      label = std::to_string(static_cast<long>(computed));
+    }
+    const auto sub = structure_.subs.find(label);
+    if (sub == structure_.subs.end()) fail_oword(oword, "no subroutine o" + label + " sub in the file", Error::GcodeSyntax);
+    if (call_depth() >= options_.max_call_depth) {
+      fail_oword(oword, "subroutine calls nested deeper than " + std::to_string(options_.max_call_depth) + " (endless recursion?)",
+                 Error::CapacityExceeded);
+    }
+    std::vector<double> arguments;
+    for (const auto argument : oword.arguments) arguments.push_back(value(lines_[pc_], argument));
+    Frame frame;
+    frame.return_line = pc_ + 1;
+    for (int n = 1; n <= argument_parameters; ++n) frame.saved[static_cast<std::size_t>(n - 1)] = store_.get(n);
+    frames_.push_back(std::move(frame));
+    // #N+1..#30 keep the caller's values (LinuxCNC).
+    for (std::size_t k = 0; k < arguments.size(); ++k) store_.set(static_cast<int>(k + 1), arguments[k]);
+    store_.set_named("_value_returned", 0.0);
+    pc_ = sub->second + 1;
+  }
+
+  void return_from(const OWord& oword) {
+    if (frames_.size() == 1) fail_oword(oword, "reached without a call", Error::GcodeSyntax);
+    const bool has_value = !oword.arguments.empty();
+    const double result = has_value ? value(lines_[pc_], oword.arguments.front()) : 0.0;
+    store_.set_named("_value", result);
+    store_.set_named("_value_returned", has_value ? 1.0 : 0.0);
+    const Frame& frame = frames_.back();
+    for (int n = 1; n <= argument_parameters; ++n) store_.set(n, frame.saved[static_cast<std::size_t>(n - 1)]);
+    pc_ = frame.return_line;
+    frames_.pop_back();
+  }
+
+  std::string file_;
+  ProgramOptions options_;
+  std::vector<std::string> sources_;
+  std::vector<ParsedLine> lines_;
+  detail::ProgramStructure structure_;
+  ParameterStore store_;
+  std::vector<Frame> frames_;
+  std::size_t pc_ = 0;
+  std::size_t executed_ = 0;
+  bool ended_ = false;
+};
+
+ProgramReader::ProgramReader(std::string_view text, std::string file_name, ProgramOptions options)
+    : impl_(std::make_unique<Impl>(text, std::move(file_name), options)) {}
+ProgramReader::~ProgramReader() = default;
+ProgramReader::ProgramReader(ProgramReader&&) noexcept = default;
+ProgramReader& ProgramReader::operator=(ProgramReader&&) noexcept = default;
+
+std::optional<ProgramBlock> ProgramReader::next() { return impl_->next(); }
+ParameterStore& ProgramReader::parameters() noexcept { return impl_->parameters(); }
+const ParameterStore& ProgramReader::parameters() const noexcept { return impl_->parameters(); }
+bool ProgramReader::ended() const noexcept { return impl_->ended(); }
+std::size_t ProgramReader::call_depth() const noexcept { return impl_->call_depth(); }
+
+}  // namespace curvestep::host::gcode
