@@ -17,14 +17,22 @@
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/gcode.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/gcode/program_reader.hpp>
 #include <curvestep/host/wire_value.hpp>
 
 namespace curvestep::host {
 namespace {
 
+/// The machine layer (lib/gcode: modal groups, offsets, motions) and the language layer
+/// (host_tools/src/gcode/language: parameters, expressions, O-words).
+namespace machine = ::curvestep::gcode;
+namespace language = ::curvestep::host::gcode;
+
 /// Control points one G5.2 block may hold.
 constexpr std::size_t max_nurbs_points = 512;
-using Interpreter = gcode::Interpreter<max_nurbs_points>;
+/// Words one executed line may hold.
+constexpr std::size_t machine_block_capacity = 32;
+using Interpreter = machine::Interpreter<max_nurbs_points>;
 using RationalSpline = Nurbs<double, motion_axes, PathSegment::max_degree, max_nurbs_points>;
 constexpr double seconds_per_minute = 60.0;
 constexpr double two_pi = 6.283185307179586;
@@ -40,18 +48,25 @@ constexpr double quantisation_radius_slack_mm = 1e-4;
 std::string word_at(std::string_view line, std::size_t column) {
   if (column == 0 || column > line.size()) return {};
   std::size_t position = column - 1;
-  std::string word(1, gcode::detail::to_upper(line[position]));
+  std::string word(1, machine::detail::to_upper(line[position]));
   ++position;
   while (position < line.size()) {
     const char c = line[position];
-    if (gcode::detail::is_digit(c) || c == '.' || c == '+' || c == '-') {
+    if (machine::detail::is_digit(c) || c == '.' || c == '+' || c == '-') {
       word += c;
-    } else if (!gcode::detail::is_blank(c)) {
+    } else if (!machine::detail::is_blank(c)) {
       break;
     }
     ++position;
   }
   return word;
+}
+
+/// `text` without blanks at either end.
+std::string trimmed(std::string_view text) {
+  const auto first = text.find_first_not_of(" \t");
+  if (first == std::string_view::npos) return {};
+  return std::string(text.substr(first, text.find_last_not_of(" \t") - first + 1));
 }
 
 /// What went wrong, for the word at fault (the location names the word itself).
@@ -70,8 +85,6 @@ std::string explain(Error code, const std::string& word) {
       if (!word.empty() && (word[0] == 'A' || word[0] == 'B' || word[0] == 'C' || word[0] == 'U' || word[0] == 'V' || word[0] == 'W')) {
         return "rotary and parallel axes (A B C U V W) are not supported: this is a 3-axis (X Y Z) machine";
       }
-      if (!word.empty() && word[0] == 'O') return "O-word subroutines and control flow are not supported yet (docs/gcode.md)";
-      if (!word.empty() && word[0] == '#') return "parameters (#) and expressions are not supported yet (docs/gcode.md)";
       if (is({"G93"})) return "inverse-time feed (G93) is not supported: use G94 (units per minute)";
       if (is({"G95"})) return "feed per revolution (G95) needs a spindle model, which this controller does not have: use G94";
       if (is({"G41", "G42", "G41.1", "G42.1"})) return "cutter radius compensation (G41/G42) is not supported yet: post the tool path with compensation done by the CAM";
@@ -113,7 +126,6 @@ std::string explain(Error code, const std::string& word) {
     case Error::GcodeSplineNotG17: return "splines (G5, G5.1, G5.2) need plane G17 (XY)";
     case Error::GcodeSplineNoTangent: return "G5 without I J must follow a G5 whose end tangent it continues (the first of a series needs I J)";
     case Error::GcodeSyntax:
-      if (!word.empty() && word[0] == '#') return "parameters (#) and expressions are not supported yet (docs/gcode.md)";
       return "syntax error (unexpected character, unclosed comment, N not first, or too many words)";
     case Error::GcodeConflictingWords: return "cannot appear with the other words of the line (or twice)";
     case Error::GcodeNurbsBlock:
@@ -132,30 +144,28 @@ class GcodeLoader {
   explicit GcodeLoader(std::string name) { job_.name = std::move(name); }
 
   Job load(std::string_view text) {
-    std::size_t line_number = 0;
+    language::ProgramReader reader(text, job_.name);
     std::size_t nurbs_line = 0;
     std::size_t nurbs_column = 0;
-    std::size_t start = 0;
-    while (start <= text.size() && !interpreter_.ended()) {
-      std::size_t stop = text.find('\n', start);
-      if (stop == std::string_view::npos) stop = text.size();
-      std::string_view line = text.substr(start, stop - start);
-      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-      ++line_number;
-      line_ = line;
-      line_number_ = line_number;
-      const auto block = gcode::parse_line(line);
-      if (!block) fail(block.where(), block.error());
+    write_parameters(reader.parameters());
+    while (!interpreter_.ended()) {
+      auto program_block = reader.next();
+      if (!program_block) break;
+      source_ = std::move(program_block->source);
+      line_ = source_;
+      line_number_ = program_block->line;
+      for (const auto& message : program_block->messages) add_event(JobEventKind::Message, 0, false, trimmed(message.text));
+      const Block block = machine_block(*program_block);
       const bool was_in_nurbs = interpreter_.in_nurbs_block();
       const MachinePoint before = interpreter_.position();
-      const auto motion = interpreter_.execute(block.value());
+      const auto motion = interpreter_.execute(block);
       if (!motion) {
-        if (motion.error() == Error::GcodeArcRadiusMismatch) fail_radii(block.value(), before, motion.where());
+        if (motion.error() == Error::GcodeArcRadiusMismatch) fail_radii(block, before, motion.where());
         fail(motion.where(), motion.error());
       }
       if (!was_in_nurbs && interpreter_.in_nurbs_block()) {
-        nurbs_line = line_number;
-        for (const auto& w : block.value().words()) {
+        nurbs_line = line_number_;
+        for (const auto& w : block.words()) {
           if (w.letter == 'G' && w.code_tenths == 52) nurbs_column = w.column;
         }
       }
@@ -163,8 +173,7 @@ class GcodeLoader {
       if (motion.value().has_pre_rapid) add_rapid(before, motion.value());
       add(motion.value());
       add_events(motion.value(), true);
-      if (stop == text.size()) break;
-      start = stop + 1;
+      write_parameters(reader.parameters());
     }
     if (interpreter_.in_nurbs_block()) {
       line_number_ = nurbs_line;
@@ -176,6 +185,43 @@ class GcodeLoader {
   }
 
  private:
+  using Block = machine::Block<machine_block_capacity>;
+
+  /// An executed line of the language layer as the machine layer's block: letters it does not
+  /// know are refused here, with their column.
+  Block machine_block(const language::ProgramBlock& program_block) {
+    Block block;
+    feed_column_ = 0;
+    if (program_block.block_delete) block.set_block_delete();
+    for (const auto& w : program_block.words) {
+      if (!machine::is_supported_letter(w.letter)) fail(w.column, Error::GcodeUnsupportedWord);
+      const bool code = w.letter == 'G' || w.letter == 'M';
+      const machine::Word word{w.letter, w.value, code ? machine::code_tenths(w.value) : -1,
+                               static_cast<std::uint16_t>(std::min<std::size_t>(w.column, 0xFFFF))};
+      if (!block.try_push(word)) fail(w.column, Error::GcodeSyntax);
+      if (w.letter == 'F') feed_column_ = word.column;
+    }
+    return block;
+  }
+
+  /// The system parameters LinuxCNC keeps, in the program's units: #5211-#5213 the G92 offset,
+  /// #5220 the coordinate system (1 = G54), #5221 + 20 n the offsets of system n + 1, #5400 the tool,
+  /// #5420-#5422 the position in the coordinate system in use.
+  void write_parameters(language::ParameterStore& parameters) const {
+    const double unit = interpreter_.units() == machine::Units::Inches ? machine::millimetres_per_inch : 1.0;
+    const MachinePoint position = interpreter_.program_position();
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      const int a = static_cast<int>(axis);
+      parameters.set(5420 + a, position[axis] / unit);
+      parameters.set(5211 + a, interpreter_.g92_offset()[axis] / unit);
+      for (std::size_t system = 0; system < 9; ++system) {
+        parameters.set(5221 + 20 * static_cast<int>(system) + a, interpreter_.work_offset(system)[axis] / unit);
+      }
+    }
+    parameters.set(5220, static_cast<double>(interpreter_.coordinate_system() + 1));
+    parameters.set(5400, static_cast<double>(interpreter_.loaded_tool()));
+  }
+
   [[noreturn]] void fail(std::size_t column, Error code) {
     const std::string word = word_at(line_, column);
     throw LoadError(SourceLocation{job_.name, line_number_, column, std::nullopt, {}, word}, explain(code, word), code);
@@ -184,18 +230,18 @@ class GcodeLoader {
   /// GcodeArcRadiusMismatch of a centre-form arc, with both radii as LinuxCNC reports them. The
   /// interpreter has already applied the block's modal settings (units, distance modes, plane).
   template <std::size_t Capacity>
-  [[noreturn]] void fail_radii(const gcode::Block<Capacity>& block, const MachinePoint& start, std::size_t column) {
+  [[noreturn]] void fail_radii(const machine::Block<Capacity>& block, const MachinePoint& start, std::size_t column) {
     constexpr std::string_view axis_letters = "XYZ";
     constexpr std::string_view offset_letters = "IJK";
-    const gcode::PlaneAxes axes = gcode::axes_of(interpreter_.plane());
-    const gcode::Word* i = block.find(offset_letters[axes.first]);
-    const gcode::Word* j = block.find(offset_letters[axes.second]);
+    const machine::PlaneAxes axes = machine::axes_of(interpreter_.plane());
+    const machine::Word* i = block.find(offset_letters[axes.first]);
+    const machine::Word* j = block.find(offset_letters[axes.second]);
     if (block.find('R') != nullptr || (i == nullptr && j == nullptr)) fail(column, Error::GcodeArcRadiusMismatch);
-    const bool inches = interpreter_.units() == gcode::Units::Inches;
-    const double scale = inches ? gcode::millimetres_per_inch : 1.0;
+    const bool inches = interpreter_.units() == machine::Units::Inches;
+    const double scale = inches ? machine::millimetres_per_inch : 1.0;
     MachinePoint end = start;
     for (const std::size_t axis : {axes.first, axes.second}) {
-      if (const gcode::Word* w = block.find(axis_letters[axis])) end[axis] = w->value * scale + (interpreter_.incremental() ? start[axis] : 0.0);
+      if (const machine::Word* w = block.find(axis_letters[axis])) end[axis] = w->value * scale + (interpreter_.incremental() ? start[axis] : 0.0);
     }
     const double ci = i != nullptr ? i->value * scale : 0.0;
     const double cj = j != nullptr ? j->value * scale : 0.0;
@@ -236,13 +282,7 @@ class GcodeLoader {
   }
 
   /// The column of the block's F word, or `fallback`.
-  std::size_t feed_column(std::size_t fallback) const {
-    const auto block = gcode::parse_line(line_);
-    if (block) {
-      if (const gcode::Word* f = block.value().find('F')) return f->column;
-    }
-    return fallback;
-  }
+  std::size_t feed_column(std::size_t fallback) const { return feed_column_ != 0 ? feed_column_ : fallback; }
 
   PathSegment made(const Result<PathSegment>& segment, std::size_t column) {
     if (!segment) fail_message(column, std::string(describe(segment.error())), segment.error());
@@ -251,67 +291,67 @@ class GcodeLoader {
 
   /// The block's machine events as job events: those LinuxCNC executes before the motion
   /// (`after` false), or the stops after it (M0/M1/M2/M30).
-  void add_events(const gcode::Motion& motion, bool after) {
+  void add_events(const machine::Motion& motion, bool after) {
     for (const auto& e : motion.machine_events()) {
-      const bool stop = e.kind == gcode::MachineEventKind::Pause || e.kind == gcode::MachineEventKind::ProgramEnd;
+      const bool stop = e.kind == machine::MachineEventKind::Pause || e.kind == machine::MachineEventKind::ProgramEnd;
       if (stop != after) continue;
       add_event(job_event_kind(e.kind), e.value, e.flag, word_at(line_, e.column));
     }
   }
 
-  static JobEventKind job_event_kind(gcode::MachineEventKind kind) {
+  static JobEventKind job_event_kind(machine::MachineEventKind kind) {
     switch (kind) {
-      case gcode::MachineEventKind::SpindleSpeed: return JobEventKind::SpindleSpeed;
-      case gcode::MachineEventKind::ToolChange: return JobEventKind::ToolChange;
-      case gcode::MachineEventKind::SpindleOn: return JobEventKind::SpindleOn;
-      case gcode::MachineEventKind::SpindleOff: return JobEventKind::SpindleOff;
-      case gcode::MachineEventKind::CoolantMist: return JobEventKind::CoolantMist;
-      case gcode::MachineEventKind::CoolantFlood: return JobEventKind::CoolantFlood;
-      case gcode::MachineEventKind::CoolantOff: return JobEventKind::CoolantOff;
-      case gcode::MachineEventKind::DigitalOutput: return JobEventKind::DigitalOutput;
-      case gcode::MachineEventKind::Dwell: return JobEventKind::Dwell;
-      case gcode::MachineEventKind::Pause: return JobEventKind::ProgramPause;
-      case gcode::MachineEventKind::ProgramEnd: return JobEventKind::ProgramEnd;
+      case machine::MachineEventKind::SpindleSpeed: return JobEventKind::SpindleSpeed;
+      case machine::MachineEventKind::ToolChange: return JobEventKind::ToolChange;
+      case machine::MachineEventKind::SpindleOn: return JobEventKind::SpindleOn;
+      case machine::MachineEventKind::SpindleOff: return JobEventKind::SpindleOff;
+      case machine::MachineEventKind::CoolantMist: return JobEventKind::CoolantMist;
+      case machine::MachineEventKind::CoolantFlood: return JobEventKind::CoolantFlood;
+      case machine::MachineEventKind::CoolantOff: return JobEventKind::CoolantOff;
+      case machine::MachineEventKind::DigitalOutput: return JobEventKind::DigitalOutput;
+      case machine::MachineEventKind::Dwell: return JobEventKind::Dwell;
+      case machine::MachineEventKind::Pause: return JobEventKind::ProgramPause;
+      case machine::MachineEventKind::ProgramEnd: return JobEventKind::ProgramEnd;
     }
     return JobEventKind::Dwell;
   }
 
   /// The rapid to G28/G30's intermediate point, before the move home.
-  void add_rapid(const MachinePoint& from, const gcode::Motion& motion) {
-    gcode::Motion leg = motion;
-    leg.kind = gcode::MotionKind::Rapid;
+  void add_rapid(const MachinePoint& from, const machine::Motion& motion) {
+    machine::Motion leg = motion;
+    leg.kind = machine::MotionKind::Rapid;
     leg.start = from;
     leg.end = motion.pre_rapid;
     add(leg);
   }
 
-  void add(const gcode::Motion& motion) {
-    if (motion.kind == gcode::MotionKind::None) return;
+  void add(const machine::Motion& motion) {
+    if (motion.kind == machine::MotionKind::None) return;
     SourceSegment source;
     source.line = line_number_;
     const std::size_t column = motion.column;
-    source.feed_mm_per_s = motion.kind == gcode::MotionKind::Rapid
+    source.feed_mm_per_s = motion.kind == machine::MotionKind::Rapid
                                ? 0.0
                                : wire_value(motion.feed_mm_per_min / seconds_per_minute, WireQuantity::Feed, feed_column(column), "feed (mm/s)");
     std::vector<PathSegment> pieces;
     const MachinePoint start = grid(motion.start, column);
     const MachinePoint end = grid(motion.end, column);
     switch (motion.kind) {
-      case gcode::MotionKind::Rapid:
-      case gcode::MotionKind::Line: {
-        source.type = motion.kind == gcode::MotionKind::Rapid ? SegmentType::Rapid : SegmentType::Line;
+      case machine::MotionKind::Rapid:
+      case machine::MotionKind::Line: {
+        source.type = motion.kind == machine::MotionKind::Rapid ? SegmentType::Rapid : SegmentType::Line;
         source.degree = 1;
         source.points = {start, end};
         if (start == end) return;  // shorter than the grid: nothing moves
         pieces.push_back(made(PathSegment::make_line(start, end), column));
-        pieces.back().set_rapid(motion.kind == gcode::MotionKind::Rapid);
+        pieces.back().set_rapid(motion.kind == machine::MotionKind::Rapid);
         break;
       }
-      case gcode::MotionKind::Arc: {
+      case machine::MotionKind::Arc: {
         source.type = SegmentType::Arc;
         const MachinePoint center = grid(motion.center, column);
         source.points = {start, end, center};
-        if (motion.plane != gcode::Plane::XY) {
+        if (motion.plane != machine::Plane::XY) {
           add_plane_arc(motion, start, end, source, pieces);
           break;
         }
@@ -319,18 +359,18 @@ class GcodeLoader {
         pieces.push_back(made(PathSegment::make_arc(start, end, center, motion.direction, motion.full_turns, tolerance), column));
         break;
       }
-      case gcode::MotionKind::Cubic:
-      case gcode::MotionKind::Quadratic: {
+      case machine::MotionKind::Cubic:
+      case machine::MotionKind::Quadratic: {
         source.type = SegmentType::Bezier;
-        const std::size_t count = motion.kind == gcode::MotionKind::Cubic ? 4 : 3;
+        const std::size_t count = motion.kind == machine::MotionKind::Cubic ? 4 : 3;
         for (std::size_t i = 0; i < count; ++i) source.points.push_back(grid(motion.control[i], column));
         source.degree = count - 1;
         pieces.push_back(made(PathSegment::make_bezier(source.points), column));
         break;
       }
-      case gcode::MotionKind::Nurbs: add_nurbs(motion, source, pieces); break;
-      case gcode::MotionKind::Cycle: add_cycle(motion); return;
-      case gcode::MotionKind::None: return;
+      case machine::MotionKind::Nurbs: add_nurbs(motion, source, pieces); break;
+      case machine::MotionKind::Cycle: add_cycle(motion); return;
+      case machine::MotionKind::None: return;
     }
     if (source.breaks.empty()) source.breaks = {0.0, 1.0};
     const std::size_t index = job_.sources.size();
@@ -348,10 +388,10 @@ class GcodeLoader {
   /// An arc in G18 or G19: rational quadratic pieces of at most a quarter turn, exact circles (the
   /// radius goes linearly from start to end within the checked difference). A helix's normal axis
   /// moves linearly per piece; pieces are halved until its pitch error is below helix_tolerance_mm.
-  void add_plane_arc(const gcode::Motion& motion, const MachinePoint& start, const MachinePoint& end, SourceSegment& source,
+  void add_plane_arc(const machine::Motion& motion, const MachinePoint& start, const MachinePoint& end, SourceSegment& source,
                      std::vector<PathSegment>& pieces) {
     const std::size_t column = motion.column;
-    const gcode::PlaneAxes axes = gcode::axes_of(motion.plane);
+    const machine::PlaneAxes axes = machine::axes_of(motion.plane);
     const double cu = motion.center[axes.first];
     const double cv = motion.center[axes.second];
     const double a0 = std::atan2(start[axes.second] - cv, start[axes.first] - cu);
@@ -420,23 +460,23 @@ class GcodeLoader {
 
   /// A canned cycle: its rapids and feeds as lines of the cycle's program line, its dwells and
   /// G86's spindle stop and restart as events between them.
-  void add_cycle(const gcode::Motion& motion) {
-    gcode::Motion leg = motion;
-    leg.kind = gcode::MotionKind::Rapid;
+  void add_cycle(const machine::Motion& motion) {
+    machine::Motion leg = motion;
+    leg.kind = machine::MotionKind::Rapid;
     leg.start = motion.start;
     const std::string word = "G" + std::to_string(motion.cycle.code);  // also on the lines that only give X Y
-    gcode::expand_cycle(motion.cycle, motion.start, [&](const gcode::CycleStep& step) {
+    machine::expand_cycle(motion.cycle, motion.start, [&](const machine::CycleStep& step) {
       switch (step.kind) {
-        case gcode::CycleStepKind::Rapid:
-        case gcode::CycleStepKind::Feed:
-          leg.kind = step.kind == gcode::CycleStepKind::Rapid ? gcode::MotionKind::Rapid : gcode::MotionKind::Line;
+        case machine::CycleStepKind::Rapid:
+        case machine::CycleStepKind::Feed:
+          leg.kind = step.kind == machine::CycleStepKind::Rapid ? machine::MotionKind::Rapid : machine::MotionKind::Line;
           leg.end = step.end;
           add(leg);
           leg.start = step.end;
           return;
-        case gcode::CycleStepKind::Dwell: add_event(JobEventKind::Dwell, step.seconds, false, word); return;
-        case gcode::CycleStepKind::SpindleStop: add_event(JobEventKind::SpindleOff, 0, false, word); return;
-        case gcode::CycleStepKind::SpindleStart:
+        case machine::CycleStepKind::Dwell: add_event(JobEventKind::Dwell, step.seconds, false, word); return;
+        case machine::CycleStepKind::SpindleStop: add_event(JobEventKind::SpindleOff, 0, false, word); return;
+        case machine::CycleStepKind::SpindleStart:
           add_event(JobEventKind::SpindleOn, interpreter_.spindle_rpm(), interpreter_.spindle_counter_clockwise(), word);
           return;
       }
@@ -454,7 +494,7 @@ class GcodeLoader {
     job_.events.push_back(event);
   }
 
-  void add_nurbs(const gcode::Motion& motion, SourceSegment& source, std::vector<PathSegment>& pieces) {
+  void add_nurbs(const machine::Motion& motion, SourceSegment& source, std::vector<PathSegment>& pieces) {
     const std::size_t column = motion.column;
     source.type = SegmentType::Nurbs;
     const auto points = interpreter_.nurbs_points();
@@ -490,6 +530,8 @@ class GcodeLoader {
 
   Job job_;
   Interpreter interpreter_;
+  std::string source_;     ///< the line being executed, as written
+  std::size_t feed_column_ = 0;  ///< the column of its F word, 0 if none
   std::string_view line_;
   std::size_t line_number_ = 0;
 };

@@ -133,8 +133,6 @@ TEST_CASE("gcode machine words: what is not supported says why, with file:line:c
       {"G21\nG41 D1 G1 X1 F100\n", "cutter radius compensation"},
       {"G21\nG84 X1 Y1 Z-1 R1 F100\n", "tapping cycles"},
       {"G21\nG1 A10 F100\n", "rotary"},
-      {"G21\nO100 sub\n", "O-word"},
-      {"G21\n#1=2\n", "parameters"},
       {"G21\nG95 G1 X1 F1\n", "spindle model"},
       {"G21\nM66 P1\n", "unsupported M code"},
   };
