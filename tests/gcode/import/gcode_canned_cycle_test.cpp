@@ -10,6 +10,8 @@
 
 #include <curvestep/host/gcode_import.hpp>
 
+#include "load_message.hpp"
+
 using namespace curvestep;
 using namespace curvestep::host;
 
@@ -33,15 +35,7 @@ void check_moves(const Job& job, const std::vector<Move>& moves) {
   }
 }
 
-std::string message_of(const std::string& text) {
-  try {
-    (void)parse_gcode_job(text, "cycle.ngc");
-  } catch (const LoadError& e) {
-    return e.what();
-  }
-  FAIL("no LoadError for: " << text);
-  return {};
-}
+std::string message_of(const std::string& text) { return testing::load_error_message(text, "cycle.ngc"); }
 
 constexpr bool R = true;   // rapid
 constexpr bool F = false;  // feed

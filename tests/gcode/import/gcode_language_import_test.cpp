@@ -10,20 +10,14 @@
 
 #include <curvestep/host/gcode_import.hpp>
 
+#include "load_message.hpp"
+
 using namespace curvestep;
 using namespace curvestep::host;
 
 namespace {
 
-std::string message_of(const std::string& text) {
-  try {
-    (void)parse_gcode_job(text, "lang.ngc");
-  } catch (const LoadError& e) {
-    return e.what();
-  }
-  FAIL("no LoadError for: " << text);
-  return {};
-}
+std::string message_of(const std::string& text) { return testing::load_error_message(text, "lang.ngc"); }
 
 constexpr double pi = 3.14159265358979323846;
 

@@ -10,6 +10,8 @@
 
 #include <curvestep/host/gcode_import.hpp>
 
+#include "load_message.hpp"
+
 using namespace curvestep;
 using namespace curvestep::host;
 
@@ -17,15 +19,7 @@ namespace {
 
 MachinePoint pt(double x, double y, double z = 0) { return MachinePoint{{x, y, z}}; }
 
-std::string message_of(const std::string& text) {
-  try {
-    (void)parse_gcode_job(text, "inline.ngc");
-  } catch (const LoadError& e) {
-    return e.what();
-  }
-  FAIL("no LoadError for: " << text);
-  return {};
-}
+std::string message_of(const std::string& text) { return testing::load_error_message(text, "inline.ngc"); }
 
 }  // namespace
 

@@ -216,15 +216,16 @@ TEST_CASE("sim: --help documents --lookahead", "[host_tools][sim][lookahead]") {
   CHECK(r.output.find("1..16") != std::string::npos);
 }
 
-TEST_CASE("sim: every CAM-style example program runs within the limits", "[host_tools][sim][gcode]") {
+TEST_CASE("sim: every example G-code program (CAM-style, parametric) runs within the limits", "[host_tools][sim][gcode]") {
   std::size_t programs = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(source("examples/gcode/cam"))) {
-    if (!entry.is_regular_file()) continue;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(source("examples/gcode"))) {
+    const auto extension = entry.path().extension();
+    if (!entry.is_regular_file() || (extension != ".ngc" && extension != ".nc" && extension != ".gcode")) continue;
     ++programs;
     const Run r = run("sim " + entry.path().string() + " --machine " + source("examples/jobs/machine.json"));
     INFO(entry.path().string() << "\n" << r.output);
     CHECK(r.status == 0);
     CHECK(r.output.find("limit violations:    none") != std::string::npos);
   }
-  CHECK(programs >= 3);
+  CHECK(programs >= 5);
 }
