@@ -3,6 +3,7 @@
 #include <curvestep/host/gcode_import.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <initializer_list>
@@ -156,6 +157,7 @@ class GcodeLoader {
       line_number_ = program_block->line;
       for (const auto& message : program_block->messages) add_event(JobEventKind::Message, 0, false, trimmed(message.text));
       const Block block = machine_block(*program_block);
+      read_offset_parameters(reader.parameters());
       const bool was_in_nurbs = interpreter_.in_nurbs_block();
       const MachinePoint before = interpreter_.position();
       const auto motion = interpreter_.execute(block);
@@ -207,19 +209,47 @@ class GcodeLoader {
   /// The system parameters LinuxCNC keeps, in the program's units: #5211-#5213 the G92 offset,
   /// #5220 the coordinate system (1 = G54), #5221 + 20 n the offsets of system n + 1, #5400 the tool,
   /// #5420-#5422 the position in the coordinate system in use.
-  void write_parameters(language::ParameterStore& parameters) const {
+  void write_parameters(language::ParameterStore& parameters) {
     const double unit = interpreter_.units() == machine::Units::Inches ? machine::millimetres_per_inch : 1.0;
     const MachinePoint position = interpreter_.program_position();
     for (std::size_t axis = 0; axis < 3; ++axis) {
-      const int a = static_cast<int>(axis);
-      parameters.set(5420 + a, position[axis] / unit);
-      parameters.set(5211 + a, interpreter_.g92_offset()[axis] / unit);
-      for (std::size_t system = 0; system < 9; ++system) {
-        parameters.set(5221 + 20 * static_cast<int>(system) + a, interpreter_.work_offset(system)[axis] / unit);
+      parameters.set(5420 + static_cast<int>(axis), position[axis] / unit);
+      for (std::size_t system = 0; system <= coordinate_systems; ++system) {
+        const MachinePoint& offset = system == coordinate_systems ? interpreter_.g92_offset() : interpreter_.work_offset(system);
+        written_offsets_[system][axis] = offset[axis] / unit;
+        parameters.set(offset_parameter(system, axis), written_offsets_[system][axis]);
       }
     }
     parameters.set(5220, static_cast<double>(interpreter_.coordinate_system() + 1));
     parameters.set(5400, static_cast<double>(interpreter_.loaded_tool()));
+  }
+
+  /// A program that assigns a work-offset or G92 parameter changes that offset, as G10 L2 or G92 would.
+  void read_offset_parameters(const language::ParameterStore& parameters) {
+    const double unit = interpreter_.units() == machine::Units::Inches ? machine::millimetres_per_inch : 1.0;
+    for (std::size_t system = 0; system <= coordinate_systems; ++system) {
+      MachinePoint offset = system == coordinate_systems ? interpreter_.g92_offset() : interpreter_.work_offset(system);
+      bool changed = false;
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        const double value = parameters.get(offset_parameter(system, axis));
+        if (value == written_offsets_[system][axis]) continue;
+        offset[axis] = value * unit;
+        changed = true;
+      }
+      if (!changed) continue;
+      if (system == coordinate_systems) {
+        interpreter_.set_g92_offset(offset);
+      } else {
+        interpreter_.set_work_offset(system, offset);
+      }
+    }
+  }
+
+  /// Work coordinate systems G54 … G59.3; index coordinate_systems stands for the G92 offset.
+  static constexpr std::size_t coordinate_systems = 9;
+  static int offset_parameter(std::size_t system, std::size_t axis) {
+    const int a = static_cast<int>(axis);
+    return system == coordinate_systems ? 5211 + a : 5221 + 20 * static_cast<int>(system) + a;
   }
 
   [[noreturn]] void fail(std::size_t column, Error code) {
@@ -330,6 +360,10 @@ class GcodeLoader {
     SourceSegment source;
     source.line = line_number_;
     const std::size_t column = motion.column;
+    if (motion.kind != machine::MotionKind::Rapid && motion.feed_given && motion.feed_mm_per_min == 0) {
+      fail_message(feed_column(column), "a feed move at F0: the feed rate is zero (give F > 0; LinuxCNC refuses it too)",
+                   Error::GcodeBadNumber);
+    }
     source.feed_mm_per_s = motion.kind == machine::MotionKind::Rapid
                                ? 0.0
                                : wire_value(motion.feed_mm_per_min / seconds_per_minute, WireQuantity::Feed, feed_column(column), "feed (mm/s)");
@@ -532,6 +566,7 @@ class GcodeLoader {
   Interpreter interpreter_;
   std::string source_;     ///< the line being executed, as written
   std::size_t feed_column_ = 0;  ///< the column of its F word, 0 if none
+  std::array<std::array<double, 3>, 10> written_offsets_{};  ///< the offset parameters as last written (program units)
   std::string_view line_;
   std::size_t line_number_ = 0;
 };

@@ -78,3 +78,21 @@ TEST_CASE("language import: errors from both layers name file:line:column", "[gc
   CHECK_THAT(message_of("G21\n#1 = 2\nG1 A#1 F100\n"), Catch::Contains("lang.ngc:3:4") && Catch::Contains("rotary"));
   CHECK_THAT(message_of("#1 = 99999\nG21 G0 X#1\n"), Catch::Contains("lang.ngc:2:8") && Catch::Contains("out-of-range"));
 }
+
+TEST_CASE("language import: assigning a work-offset or G92 parameter moves that coordinate system", "[gcode][import][language]") {
+  // #5221 = 50 is G54's X offset (as G10 L2 P1 X50 would set it): G0 X0 then goes to machine x 50.
+  // #5212 = 3 is the G92 Y offset: G0 Y0 goes to machine y 3.
+  const Job job = parse_gcode_job("G21 G90 G54\n#5221 = 50\nG0 X0 Y1\n#5212 = 3\nG0 Y0\n", "offsets.ngc");
+  REQUIRE(job.segments.size() == 2);
+  CHECK(job.segments[0].end()[0] == Approx(50));
+  CHECK(job.segments[0].end()[1] == Approx(1));
+  CHECK(job.segments[1].end()[1] == Approx(3));
+}
+
+TEST_CASE("language import: a feed move at an explicit F0 is refused at the F word", "[gcode][import][errors]") {
+  CHECK_THAT(message_of("G21 G90\nG1 X1 F0\n"), Catch::Contains("lang.ngc:2:7") && Catch::Contains("F0"));
+  CHECK_THAT(message_of("G21 G90 F0\nG0 X1\nG1 X2\n"), Catch::Contains("lang.ngc:3:1") && Catch::Contains("zero"));
+  // A rapid at F0 is fine, and with no F at all a feed move runs at the machine file's feed.
+  CHECK_NOTHROW(parse_gcode_job("G21 G90 F0\nG0 X1\n", "rapid.ngc"));
+  CHECK_NOTHROW(parse_gcode_job("G21 G90\nG1 X1\n", "no_f.ngc"));
+}

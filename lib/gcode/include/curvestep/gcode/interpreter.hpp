@@ -111,6 +111,7 @@ struct Motion {
   std::array<Point, 4> control{};             ///< Cubic: 4, Quadratic: 3 control points
   std::size_t nurbs_order = 0;                ///< Nurbs: order (degree + 1)
   double feed_mm_per_min = 0;                 ///< modal feed, 0 if none was given
+  bool feed_given = false;                    ///< an F word has been given (so 0 is an explicit F0)
   std::uint16_t column = 0;                   ///< column of the word that commanded the motion
   bool program_end = false;                   ///< the block held M2 or M30
   std::array<MachineEvent, max_block_events> events{};  ///< the block's machine events, in execution order
@@ -210,6 +211,12 @@ class Interpreter {
   [[nodiscard]] constexpr bool retract_to_initial_level() const noexcept { return retract_to_initial_; }
   /// The tool length offset in force (G43), mm.
   [[nodiscard]] constexpr double tool_length_offset_mm() const noexcept { return tool_length_mm_; }
+  /// Sets the work offset of coordinate system `index` (0 = G54 … 8 = G59.3), mm, as G10 L2 would.
+  constexpr void set_work_offset(std::size_t index, const Point& offset) noexcept {
+    if (index < work_offsets_.size()) work_offsets_[index] = offset;
+  }
+  /// Sets the G92 offset, mm, as G92 would.
+  constexpr void set_g92_offset(const Point& offset) noexcept { g92_offset_ = offset; }
   /// Sets the length of tool `tool` (0 .. max_tools-1) for G43, mm (the machine file's tool table).
   constexpr void set_tool_length_mm(std::size_t tool, double length_mm) noexcept {
     if (tool < max_tools) tool_lengths_[tool] = length_mm;
@@ -301,6 +308,7 @@ class Interpreter {
     if (const Word* f = block.find('F')) {
       if (!(f->value >= 0)) return fail(Error::GcodeBadNumber, f->column);
       feed_value_ = f->value;
+      feed_given_ = true;
     }
     const auto add_event = [&motion](MachineEventKind kind, double value, bool flag, std::uint16_t column) {
       if (motion.event_count < max_block_events) motion.events[motion.event_count++] = MachineEvent{kind, value, flag, column};
@@ -385,6 +393,7 @@ class Interpreter {
     if (arc_distance_word != nullptr) arc_absolute_ = arc_distance_word->code_tenths == 901;
     motion.path_tolerance_mm = path_tolerance_mm_;
     motion.feed_mm_per_min = feed_value_ * scale();  // F is read in the units active at the motion
+    motion.feed_given = feed_given_;
     motion.program_end = stop_word != nullptr && (stop_word->code_tenths == 20 || stop_word->code_tenths == 300);
 
     // ---- the words the motion uses: everything not consumed above or by group 0 ----
@@ -942,6 +951,7 @@ class Interpreter {
   double previous_p_ = 0;
   double previous_q_ = 0;
   double feed_value_ = 0;
+  bool feed_given_ = false;
   std::int32_t mode_ = -1;
   std::uint16_t mode_column_ = 0;
   std::size_t nurbs_order_ = 3;
