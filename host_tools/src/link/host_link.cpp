@@ -41,11 +41,44 @@ void HostLink::raise(const Failure& failure) const {
 
 void HostLink::connect(const Handler& handler) {
   std::random_device random;
-  receiver_.close();
-  sender_.connect(static_cast<std::uint16_t>(random()), now_ms());
-  while (sender_.state() != protocol::LinkState::Connected) {
-    pump(10, handler);
-    if (sender_.state() == protocol::LinkState::Failed) raise(Failure{sender_.last_error(), no_index});
+  const std::uint32_t begin = now_ms();
+  const LinkStatistics before = statistics_;
+  std::uint32_t pause_ms = 100;
+  for (;;) {
+    receiver_.close();
+    sender_.connect(static_cast<std::uint16_t>(random()), now_ms());
+    try {
+      while (sender_.state() == protocol::LinkState::Connecting) pump(10, handler);
+    } catch (const LinkError& e) {
+      // A round of Hellos without an answer ends here; anything else is final.
+      if (e.code() != Error::LinkTimeout || sender_.state() != protocol::LinkState::Failed) throw;
+    }
+    if (sender_.state() == protocol::LinkState::Connected) break;
+    const Failure failure{sender_.last_error(), no_index};
+    const std::uint32_t elapsed = now_ms() - begin;
+    if (failure.code != Error::LinkTimeout || elapsed + pause_ms >= handshake_timeout_ms_) {
+      if (failure.code != Error::LinkTimeout) raise(failure);
+      const std::size_t damaged = statistics_.frames_rejected - before.frames_rejected;
+      const std::size_t good = statistics_.frames_received - before.frames_received;
+      std::string text = transport_.name() + ": link failed: " + describe_error(failure.code) + ": no answer to Hello in " +
+                         std::to_string(elapsed) + " ms: ";
+      text += damaged == 0 && good == 0 ? std::string("nothing arrived (is the controller on this port and powered?)")
+                                        : std::to_string(damaged) + " damaged frame(s) and " + std::to_string(good) +
+                                              " other frame(s) arrived (a noisy line, a wrong baud rate or another program on the port?)";
+      throw LinkError(failure.code, text);
+    }
+    // A quiet pause (bytes still read and decoded), then a new session.
+    const std::uint32_t pause_end = now_ms() + pause_ms;
+    while (static_cast<std::int32_t>(pause_end - now_ms()) > 0) {
+      std::array<std::byte, 512> bytes{};
+      const std::size_t count = transport_.read(bytes, 10);
+      for (std::size_t i = 0; i < count; ++i) {
+        const auto pushed = decoder_.push(bytes[i]);
+        if (!pushed) ++statistics_.frames_rejected;
+        if (pushed && pushed.value()) ++statistics_.frames_received;
+      }
+    }
+    pause_ms = pause_ms * 2 > 1000 ? 1000 : pause_ms * 2;
   }
   receiver_.open(now_ms());  // the controller opened its setpoint stream (sequence 0) with this session
 }

@@ -54,9 +54,16 @@ class HostLink {
   /// A link over `transport` (not owned) with the sender's timing.
   HostLink(Transport& transport, protocol::SenderSettings settings);
 
-  /// Handshake: sends Hello until Capabilities arrives. Throws LinkError (LinkTimeout,
-  /// VersionMismatch) or TransportError.
+  /// How long connect() keeps trying, ms (default_handshake_timeout_ms).
+  static constexpr std::uint32_t default_handshake_timeout_ms = 10000;
+  /// Handshake: sends Hello until Capabilities arrives. A round of Hellos that draws no answer (the
+  /// sender gives up after max_retransmits) is retried with a new session after a pause that doubles
+  /// from 100 ms up to 1 s, until handshake_timeout_ms have passed. Throws LinkError (LinkTimeout
+  /// naming what arrived meanwhile: damaged frames, other frames or nothing; VersionMismatch) or
+  /// TransportError.
   void connect(const Handler& handler);
+  /// Sets how long connect() keeps trying, ms.
+  void set_handshake_timeout_ms(std::uint32_t timeout_ms) noexcept { handshake_timeout_ms_ = timeout_ms; }
   /// True if `type` may be submitted now (window and credit).
   [[nodiscard]] bool can_submit(protocol::MessageType type) const noexcept { return sender_.can_submit(type); }
   /// Queues a host command. Throws LinkError if the sender refuses it.
@@ -88,6 +95,7 @@ class HostLink {
   protocol::FrameDecoder<> decoder_;
   std::chrono::steady_clock::time_point epoch_;
   LinkStatistics statistics_;
+  std::uint32_t handshake_timeout_ms_ = default_handshake_timeout_ms;
 };
 
 /// One line naming the error code and its meaning ("link timeout (LinkTimeout)").
