@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `curvestep sim JOB --machine MACHINE.json [--rate HZ] [--lookahead N] [-o setpoints.csv] [--report report.html]`:
 // replays a job through the firmware's motion code and prints what the machine would do.
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -93,9 +94,30 @@ int run_sim(const SimOptions& o) {
   }
   options.fixed_point = !o.double_precision;
   options.progress = make_terminal_progress();  // a bar with ETA on a terminal, quiet otherwise
-  const SimulationResult result = simulate(job, machine, options);
+  // The setpoints go to the CSV as they are made; only the HTML report keeps them all (its plots).
+  SimulationResult result;
+  const auto run = [&](const SetpointSink& sink) {
+    const SetpointSink both = [&](const SetpointRecord& r) {
+      if (sink) sink(r);
+      if (!o.report.empty()) result.setpoints.push_back(r);
+    };
+    result.summary = simulate_stream(job, machine, options, both);
+  };
+  if (o.output.empty()) {
+    run({});
+  } else {
+    try {
+      write_output(o.output, [&](std::ostream& out) {
+        write_setpoints_csv_header(out);
+        run([&out](const SetpointRecord& r) { write_setpoint_csv_line(out, r); });
+      });
+    } catch (...) {
+      std::error_code ignored;
+      std::filesystem::remove(o.output, ignored);  // no half-written CSV left behind by a refused job
+      throw;
+    }
+  }
   finish_terminal_progress();
-  if (!o.output.empty()) write_output(o.output, [&](std::ostream& out) { write_setpoints_csv(out, result.setpoints); });
   if (!o.report.empty()) {
     ReportInput report;
     report.job = &job;

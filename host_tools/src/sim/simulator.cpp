@@ -158,17 +158,20 @@ void note_violation(SimulationSummary& s, const char* what, double measured, dou
 
 }  // namespace
 
-SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
+SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, const SimulationOptions& options,
+                                  const SetpointSink& sink) {
   check_request(job, machine, options);
-  SimulationResult result;
+  SimulationSummary s;
   LockstepRun<ExactController, FixedController> run(job, machine, options);
   const double dt = 1.0 / machine.rate_hz;
-  std::vector<std::array<double, 3>> exact_positions;
+  // Peaks from the exact (double) positions, one setpoint apart, as they come (position_differences.hpp,
+  // the implementation the report's motion profile uses too): memory independent of the job's length.
+  RunningDifferences differences;
+  std::array<double, motion_axes> peak_axis_speed{};
   std::size_t reported = 0;
   // Progress is the distance travelled over the path's length (segments queued over the total
   // would say "done" at once for a job that fits the queue).
   const double total_length = options.progress ? approximate_length(job) : 0.0;
-  double travelled = 0;
   run.run([&](const auto& setpoints) {
     const auto& [exact, fixed] = setpoints;
     SetpointRecord r;
@@ -183,42 +186,24 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
       const double d = fixed.position[axis].to_double() - exact.position[axis];
       quantisation += d * d;
     }
-    if (options.fixed_point) result.summary.max_quantisation_mm = std::fmax(result.summary.max_quantisation_mm, std::sqrt(quantisation));
-    if (options.progress && !exact_positions.empty()) {
-      double d2 = 0;
-      for (std::size_t axis = 0; axis < 3; ++axis) {
-        const double d = exact.position[axis] - exact_positions.back()[axis];
-        d2 += d * d;
-      }
-      travelled += std::sqrt(d2);
-    }
-    exact_positions.push_back({exact.position[0], exact.position[1], exact.position[2]});
-    result.setpoints.push_back(r);
-    if (options.progress && result.setpoints.size() - reported >= 20000) {
-      reported = result.setpoints.size();
-      options.progress(total_length > 0 ? std::fmin(travelled / total_length, 0.999) : 0.0);
+    if (options.fixed_point) s.max_quantisation_mm = std::fmax(s.max_quantisation_mm, std::sqrt(quantisation));
+    const SampleDifferences d = differences.push({exact.position[0], exact.position[1], exact.position[2]});
+    s.distance_mm += d.first;
+    s.peak_speed_mm_per_s = std::fmax(s.peak_speed_mm_per_s, d.first / dt);
+    s.peak_acceleration_mm_per_s2 = std::fmax(s.peak_acceleration_mm_per_s2, d.second / (dt * dt));
+    s.peak_jerk_mm_per_s3 = std::fmax(s.peak_jerk_mm_per_s3, d.third / (dt * dt * dt));
+    s.max_chord_deviation_mm = std::fmax(s.max_chord_deviation_mm, d.second / 8);
+    for (std::size_t axis = 0; axis < 3; ++axis) peak_axis_speed[axis] = std::fmax(peak_axis_speed[axis], d.axis_first[axis] / dt);
+    s.duration_s = r.time_s;
+    if (sink) sink(r);
+    if (options.progress && differences.count() - reported >= 20000) {
+      reported = differences.count();
+      options.progress(total_length > 0 ? std::fmin(s.distance_mm / total_length, 0.999) : 0.0);
     }
   });
   if (options.progress) options.progress(1.0);
-
-  SimulationSummary& s = result.summary;
-  s.setpoints = result.setpoints.size();
-  s.duration_s = result.setpoints.back().time_s;
-  // Peaks from the exact (double) positions, one setpoint apart (position_differences.hpp, the
-  // implementation the report's motion profile uses too).
-  const PositionDifferences d = position_differences(exact_positions.size(), [&](std::size_t i) { return exact_positions[i]; }, 1);
-  for (std::size_t i = 1; i < exact_positions.size(); ++i) {
-    s.distance_mm += d.first[i];
-    s.peak_speed_mm_per_s = std::fmax(s.peak_speed_mm_per_s, d.first[i] / dt);
-    s.peak_acceleration_mm_per_s2 = std::fmax(s.peak_acceleration_mm_per_s2, d.second[i] / (dt * dt));
-    s.peak_jerk_mm_per_s3 = std::fmax(s.peak_jerk_mm_per_s3, d.third[i] / (dt * dt * dt));
-    s.max_chord_deviation_mm = std::fmax(s.max_chord_deviation_mm, d.second[i] / 8);
-  }
-  std::array<double, motion_axes> peak_axis_speed{};
-  for (std::size_t axis = 0; axis < 3; ++axis) {
-    peak_axis_speed[axis] = d.peak_axis_first[axis] / dt;
-    s.peak_step_rate_hz[axis] = peak_axis_speed[axis] * machine.axes[axis].steps_per_mm;
-  }
+  s.setpoints = differences.count();
+  for (std::size_t axis = 0; axis < 3; ++axis) s.peak_step_rate_hz[axis] = peak_axis_speed[axis] * machine.axes[axis].steps_per_mm;
   note_violation(s, "peak speed", s.peak_speed_mm_per_s, machine.v_max_mm_per_s, "mm/s");
   note_violation(s, "peak acceleration", s.peak_acceleration_mm_per_s2, machine.a_max_mm_per_s2, "mm/s^2");
   if (machine.jerk_limited) note_violation(s, "peak jerk", s.peak_jerk_mm_per_s3, machine.j_max_mm_per_s3, "mm/s^3");
@@ -240,6 +225,12 @@ SimulationResult simulate(const Job& job, const MachineLimits& machine, const Si
     s.violations.push_back(line.str());
     unchecked[axis] = 0;
   }
+  return s;
+}
+
+SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
+  SimulationResult result;
+  result.summary = simulate_stream(job, machine, options, [&result](const SetpointRecord& r) { result.setpoints.push_back(r); });
   return result;
 }
 
@@ -259,12 +250,16 @@ std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machi
   return pieces;
 }
 
+void write_setpoints_csv_header(std::ostream& out) { out << "t,x,y,z,v,index\n"; }
+
+void write_setpoint_csv_line(std::ostream& out, const SetpointRecord& r) {
+  out << format_number(r.time_s) << ',' << format_number(r.position_mm[0]) << ',' << format_number(r.position_mm[1]) << ','
+      << format_number(r.position_mm[2]) << ',' << format_number(r.speed_mm_per_s) << ',' << r.index << '\n';
+}
+
 void write_setpoints_csv(std::ostream& out, const std::vector<SetpointRecord>& setpoints) {
-  out << "t,x,y,z,v,index\n";
-  for (const auto& r : setpoints) {
-    out << format_number(r.time_s) << ',' << format_number(r.position_mm[0]) << ',' << format_number(r.position_mm[1]) << ','
-        << format_number(r.position_mm[2]) << ',' << format_number(r.speed_mm_per_s) << ',' << r.index << '\n';
-  }
+  write_setpoints_csv_header(out);
+  for (const auto& r : setpoints) write_setpoint_csv_line(out, r);
 }
 
 std::string format_summary(const SimulationSummary& s, const MachineLimits& machine) {

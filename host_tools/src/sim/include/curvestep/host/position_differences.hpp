@@ -16,6 +16,57 @@
 
 namespace curvestep::host {
 
+/// The differences at one sample: Euclidean norms of Δ¹, Δ² and Δ³ (0 where a difference reaches
+/// before the first sample) and |Δ¹| of each axis.
+struct SampleDifferences {
+  double first = 0;
+  double second = 0;
+  double third = 0;
+  std::array<double, 3> axis_first{};
+};
+
+/// The differences at sample i (i >= stride k >= 1), `position(j)` returning sample j.
+template <class PositionAt>
+[[nodiscard]] SampleDifferences differences_at(std::size_t i, PositionAt&& position, std::size_t k) {
+  SampleDifferences d;
+  double v2 = 0, a2 = 0, j2 = 0;
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    const auto p = [&](std::size_t back) { return position(i - back * k)[axis]; };
+    const double d1 = p(0) - p(1);
+    v2 += d1 * d1;
+    d.axis_first[axis] = std::fabs(d1);
+    if (i >= 2 * k) {
+      const double d2 = p(0) - 2 * p(1) + p(2);
+      a2 += d2 * d2;
+    }
+    if (i >= 3 * k) {
+      const double d3 = p(0) - 3 * p(1) + 3 * p(2) - p(3);
+      j2 += d3 * d3;
+    }
+  }
+  d.first = std::sqrt(v2);
+  d.second = std::sqrt(a2);
+  d.third = std::sqrt(j2);
+  return d;
+}
+
+/// Differences of samples as they come (stride 1), keeping the last four: memory independent of
+/// the number of samples. push() returns the differences at the new sample (all 0 for the first).
+class RunningDifferences {
+ public:
+  SampleDifferences push(const std::array<double, 3>& point) {
+    last_[count_ % last_.size()] = point;
+    ++count_;
+    if (count_ < 2) return {};
+    return differences_at(count_ - 1, [this](std::size_t j) -> const std::array<double, 3>& { return last_[j % last_.size()]; }, 1);
+  }
+  [[nodiscard]] std::size_t count() const noexcept { return count_; }
+
+ private:
+  std::array<std::array<double, 3>, 4> last_{};
+  std::size_t count_ = 0;
+};
+
 /// Euclidean norms of the backward differences of every sample (0 where a difference reaches
 /// before the first sample), and the largest |Δ¹| of each axis.
 struct PositionDifferences {
@@ -35,24 +86,11 @@ template <class PositionAt>
   d.second.assign(count, 0.0);
   d.third.assign(count, 0.0);
   for (std::size_t i = k; i < count; ++i) {
-    double v2 = 0, a2 = 0, j2 = 0;
-    for (std::size_t axis = 0; axis < 3; ++axis) {
-      const auto p = [&](std::size_t back) { return position(i - back * k)[axis]; };
-      const double d1 = p(0) - p(1);
-      v2 += d1 * d1;
-      d.peak_axis_first[axis] = std::fmax(d.peak_axis_first[axis], std::fabs(d1));
-      if (i >= 2 * k) {
-        const double d2 = p(0) - 2 * p(1) + p(2);
-        a2 += d2 * d2;
-      }
-      if (i >= 3 * k) {
-        const double d3 = p(0) - 3 * p(1) + 3 * p(2) - p(3);
-        j2 += d3 * d3;
-      }
-    }
-    d.first[i] = std::sqrt(v2);
-    d.second[i] = std::sqrt(a2);
-    d.third[i] = std::sqrt(j2);
+    const SampleDifferences at = differences_at(i, position, k);
+    d.first[i] = at.first;
+    d.second[i] = at.second;
+    d.third[i] = at.third;
+    for (std::size_t axis = 0; axis < 3; ++axis) d.peak_axis_first[axis] = std::fmax(d.peak_axis_first[axis], at.axis_first[axis]);
   }
   return d;
 }

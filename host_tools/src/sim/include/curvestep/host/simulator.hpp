@@ -70,7 +70,16 @@ struct SimulationResult {
   SimulationSummary summary;
 };
 
-/// Runs the job on the machine. Throws std::runtime_error with a one-line cause if the controller
+/// Receives each setpoint of a run as it is made.
+using SetpointSink = std::function<void(const SetpointRecord&)>;
+
+/// Runs the job on the machine, handing each setpoint to `sink` (may be empty) as it is made and
+/// keeping none: memory independent of the job's length. The summary is simulate()'s, bit for bit.
+/// Throws what simulate() throws.
+[[nodiscard]] SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, const SimulationOptions& options,
+                                                const SetpointSink& sink);
+
+/// Runs the job on the machine and keeps every setpoint (simulate_stream into a vector). Throws std::runtime_error with a one-line cause if the controller
 /// rejects a segment (naming the job file and segment) or faults, or if options.lookahead is
 /// outside 1..max_lookahead.
 [[nodiscard]] SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options = {});
@@ -87,6 +96,9 @@ struct SimulationResult {
 /// Writes `t,x,y,z,v,index` and one line per setpoint (shortest round-trip decimals; `index` is the
 /// setpoint's index from the job's start, the same in `curvestep sim -o` and `stream --capture`).
 void write_setpoints_csv(std::ostream& out, const std::vector<SetpointRecord>& setpoints);
+/// The CSV's header line and one setpoint's line, for writing as the setpoints come.
+void write_setpoints_csv_header(std::ostream& out);
+void write_setpoint_csv_line(std::ostream& out, const SetpointRecord& r);
 
 /// The summary as the human-readable block `curvestep sim` prints.
 [[nodiscard]] std::string format_summary(const SimulationSummary& summary, const MachineLimits& machine);
