@@ -140,6 +140,17 @@ TEST_CASE("cutter compensation: a line into an arc at an inside corner", "[gcode
   CHECK(job.segments[3].arc_radius() == Approx(12.0).margin(1e-4));
 }
 
+TEST_CASE("cutter compensation: an arc into a line at an inside corner", "[gcode][import][compensation]") {
+  // Counter-clockwise about (0,0) from (10,0) to (0,10), then down to (0,0) and right to (10,0): left
+  // turns, inside for G41. Left of a counter-clockwise arc is towards its centre: radius 8, from
+  // (8,0); the line x=2 meets it at (2, sqrt(60)); the lines x=2 and y=2 meet at (2,2).
+  const double y = std::sqrt(60.0);
+  const double a = std::atan2(y, 2.0) / 2;  // middle angle
+  const Job job = load("G21 G17\nG0 X20 Y0\nG41 D1 G1 X10 Y0 F600\nG3 X0 Y10 I-10 J0\nG1 Y0\nX10\nG40 X20\n");
+  check_path(job, {to(20, 0), to(8, 0), arc(2, y, 0, 0, 8 * std::cos(a), 8 * std::sin(a)), to(2, 2), to(10, 2), to(20, 0)});
+  CHECK(job.segments[2].arc_radius() == Approx(8.0).margin(1e-4));
+}
+
 TEST_CASE("cutter compensation: a profile of lines and arcs (radius r+2 and r-2)", "[gcode][import][compensation]") {
   // Clockwise: (0,0) up to (0,20), right to (10,20), a convex clockwise arc about (10,10) to (20,10)
   // (tangent at both ends), down to (20,0), then a concave counter-clockwise arc about (10,-7.5)
