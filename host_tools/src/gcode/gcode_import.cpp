@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <initializer_list>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -20,6 +21,8 @@
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/gcode/program_reader.hpp>
 #include <curvestep/host/wire_value.hpp>
+
+#include "cutter_compensation.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -88,7 +91,9 @@ std::string explain(Error code, const std::string& word) {
       }
       if (is({"G93"})) return "inverse-time feed (G93) is not supported: use G94 (units per minute)";
       if (is({"G95"})) return "feed per revolution (G95) needs a spindle model, which this controller does not have: use G94";
-      if (is({"G41", "G42", "G41.1", "G42.1"})) return "cutter radius compensation (G41/G42) is not supported yet: post the tool path with compensation done by the CAM";
+      if (is({"G41", "G42", "G41.1", "G42.1"})) {
+        return "cutter radius compensation works in the G17 (XY) plane only (this controller compensates mills; lathe compensation in G18 is not supported)";
+      }
       if (is({"G43.1", "G43.2"})) return "dynamic tool length offsets (G43.1/G43.2) are not supported: use G43 H with the machine file's tool table";
       if (is({"G73", "G81", "G82", "G83", "G85", "G86", "G89"})) return "canned cycles run in the G17 (XY) plane only";
       if (is({"G74", "G84"})) return "tapping cycles (G74/G84) need spindle-synchronised motion, which this controller does not have";
@@ -102,6 +107,11 @@ std::string explain(Error code, const std::string& word) {
     }
     case Error::GcodeBadNumber: return "malformed or out-of-range number (an integer part of at most 15 digits; coordinates within +-32767 mm)";
     case Error::GcodeMissingWord:
+      if (word == "G41.1" || word == "G42.1") return "G41.1/G42.1 need D (the tool diameter)";
+      if (word == "G41" || word == "G42") {
+        return "G41/G42 without D use the loaded tool, which has no diameter in the machine file's tool table: give D<tool> of a tool "
+               "with a diameter, or G41.1/G42.1 D<diameter>";
+      }
       if (g5_1) return "G5.1 needs I or J";
       if (g5) return "G5 needs P and Q, and I and J together";
       if (arc) return "an arc needs I J (centre) or R (radius)";
@@ -124,6 +134,22 @@ std::string explain(Error code, const std::string& word) {
         return "canned cycle: needs X, Y or Z, and Z, R and P in this block or an earlier block of the series";
       }
       return "canned cycle: needs X, Y or Z, and Z and R in this block or an earlier block of the series";
+    case Error::GcodeCutterCompensation:
+      if (word.starts_with("G41") || word.starts_with("G42")) {
+        return "cutter radius compensation is already on: G40 first (it cannot be turned on again or change side while on)";
+      }
+      if (word.starts_with("D")) {
+        return "tool " + word.substr(1) + " has no diameter in the machine file's tool table (G41.1/G42.1 D<diameter> give the diameter directly)";
+      }
+      if (word.starts_with("L")) return "the tool orientation L is for lathe tools: this controller compensates mills in G17 (leave L out or give L0)";
+      if (word.starts_with("G17") || word.starts_with("G18") || word.starts_with("G19")) {
+        return "the plane cannot change while cutter radius compensation is on (G40 first)";
+      }
+      if (word.starts_with("G28") || word.starts_with("G30")) return "G28/G30 cannot be used while cutter radius compensation is on (G40 first)";
+      if (word.starts_with("G53")) return "G53 (machine coordinates) cannot be used while cutter radius compensation is on (G40 first)";
+      if (word.starts_with("G5")) return "splines (G5, G5.1, G5.2) cannot be compensated: G40 first, or let the CAM offset them";
+      if (word.starts_with("G7") || word.starts_with("G8")) return "canned cycles cannot run while cutter radius compensation is on (G40 first)";
+      return "this motion cannot be compensated (splines, canned cycles): G40 first";
     case Error::GcodeSplineNotG17: return "splines (G5, G5.1, G5.2) need plane G17 (XY)";
     case Error::GcodeSplineNoTangent: return "G5 without I J must follow a G5 whose end tangent it continues (the first of a series needs I J)";
     case Error::GcodeSyntax:
@@ -142,7 +168,12 @@ std::string explain(Error code, const std::string& word) {
 
 class GcodeLoader {
  public:
-  explicit GcodeLoader(std::string name) { job_.name = std::move(name); }
+  GcodeLoader(std::string name, const GcodeOptions& options) {
+    job_.name = std::move(name);
+    for (const auto& [tool, diameter] : options.tool_diameter_mm) {
+      if (tool >= 0) interpreter_.set_tool_diameter_mm(static_cast<std::size_t>(tool), diameter);
+    }
+  }
 
   Job load(std::string_view text) {
     language::ProgramReader reader(text, job_.name);
@@ -171,12 +202,14 @@ class GcodeLoader {
           if (w.letter == 'G' && w.code_tenths == 52) nurbs_column = w.column;
         }
       }
+      follow_compensation(motion.value(), before);
       add_events(motion.value(), false);
       if (motion.value().has_pre_rapid) add_rapid(before, motion.value());
       add(motion.value());
       add_events(motion.value(), true);
       write_parameters(reader.parameters());
     }
+    if (compensation_.active()) flush(compensation_.stop());  // the end of the program: the last move ends square
     if (interpreter_.in_nurbs_block()) {
       line_number_ = nurbs_line;
       line_ = {};
@@ -355,16 +388,117 @@ class GcodeLoader {
     add(leg);
   }
 
+  /// A motion of the program: through the cutter compensation while it is active.
   void add(const machine::Motion& motion) {
     if (motion.kind == machine::MotionKind::None) return;
+    if (!compensation_.active()) {
+      emit(motion, line_number_);
+      return;
+    }
+    const bool planar = motion.kind == machine::MotionKind::Rapid || motion.kind == machine::MotionKind::Line ||
+                        (motion.kind == machine::MotionKind::Arc && motion.plane == machine::Plane::XY);
+    if (!planar) {  // the interpreter refuses these while compensation is on: this is the exit move
+      fail_message(motion.column, "the exit move (the first move after G40) must be a straight line (G0/G1): it goes from the "
+                                  "compensated point to the programmed end", Error::GcodeCutterCompensation);
+    }
+    if (motion.kind != machine::MotionKind::Arc && motion.start[0] == motion.end[0] && motion.start[1] == motion.end[1]) {
+      // Z alone: where the tool centre is, once the held move's end is known.
+      if (compensation_.holding()) {
+        held_.push_back(Held{false, {}, motion, line_number_});
+      } else {
+        emit(at_xy(motion, compensation_.tool()), line_number_);
+      }
+      return;
+    }
+    PlanarMove programmed;
+    programmed.arc = motion.kind == machine::MotionKind::Arc;
+    programmed.rapid = motion.kind == machine::MotionKind::Rapid;
+    programmed.start = motion.start;
+    programmed.end = motion.end;
+    programmed.center = motion.center;
+    programmed.direction = motion.direction;
+    programmed.full_turns = motion.full_turns;
+    programmed.tag = next_tag_++;
+    moves_[programmed.tag] = MoveInfo{motion, line_number_};
+    CompensatedMoves out;
+    try {
+      out = compensation_.add(programmed);
+    } catch (const CompensationError& e) {
+      fail_message(motion.column, e.what(), Error::GcodeCutterCompensation);
+    }
+    flush(out.finished);
+    if (out.corner) emit_compensated(*out.corner, true);
+  }
+
+  /// G40, G41/G42 as this block's motion has them: starts or stops the compensation first.
+  void follow_compensation(const machine::Motion& motion, const MachinePoint& before) {
+    const bool wanted = motion.compensation_side != machine::CompensationSide::Off && motion.compensation_radius_mm > 0;
+    const bool on = compensation_.active() && !compensation_.exiting();
+    if (on && !wanted) flush(compensation_.stop());
+    if (wanted && !on) {
+      const auto side = motion.compensation_side == machine::CompensationSide::Left ? CutterCompensation::Side::Left
+                                                                                    : CutterCompensation::Side::Right;
+      compensation_.start(side, motion.compensation_radius_mm, compensation_.active() ? compensation_.tool() : before);
+    }
+  }
+
+  /// A compensated move that became final, then what was held behind it (events, Z moves at its end).
+  void flush(const std::optional<PlanarMove>& finished) {
+    if (!finished) return;
+    emit_compensated(*finished, false);
+    for (Held& h : held_) {
+      if (h.is_event) {
+        h.event.before_segment = job_.segments.size();
+        job_.events.push_back(std::move(h.event));
+      } else {
+        emit(at_xy(h.motion, finished->end), h.line);
+      }
+    }
+    held_.clear();
+  }
+
+  /// `motion` moved to the XY of `point`.
+  static machine::Motion at_xy(machine::Motion motion, const MachinePoint& point) {
+    for (std::size_t axis = 0; axis < 2; ++axis) {
+      motion.start[axis] = point[axis];
+      motion.end[axis] = point[axis];
+    }
+    return motion;
+  }
+
+  /// A move of the compensated path as a segment of its program line (a corner arc: the next move's).
+  void emit_compensated(const PlanarMove& move, bool corner) {
+    const auto info = moves_.find(move.tag);
+    machine::Motion motion = info->second.motion;
+    motion.kind = move.arc ? machine::MotionKind::Arc : (move.rapid ? machine::MotionKind::Rapid : machine::MotionKind::Line);
+    motion.start = move.start;
+    motion.end = move.end;
+    motion.center = move.center;
+    motion.plane = machine::Plane::XY;
+    motion.direction = move.direction;
+    motion.full_turns = move.full_turns;
+    motion.has_pre_rapid = false;
+    if (move.arc) {
+      const double r0 = std::hypot(move.start[0] - move.center[0], move.start[1] - move.center[1]);
+      const double r1 = std::hypot(move.end[0] - move.center[0], move.end[1] - move.center[1]);
+      motion.radius_difference_mm = std::fabs(r1 - r0);
+    }
+    const std::size_t line = info->second.line;
+    if (!corner) moves_.erase(info);
+    emit(motion, line, corner && move.rapid);
+  }
+
+  /// A motion as segments of program line `line`; `rapid_arc`: an arc traversed at rapid speed.
+  void emit(const machine::Motion& motion, std::size_t line, bool rapid_arc = false) {
+    if (motion.kind == machine::MotionKind::None) return;
     SourceSegment source;
-    source.line = line_number_;
+    source.line = line;
     const std::size_t column = motion.column;
-    if (motion.kind != machine::MotionKind::Rapid && motion.feed_given && motion.feed_mm_per_min == 0) {
+    if (motion.kind != machine::MotionKind::Rapid && !rapid_arc && motion.feed_given && motion.feed_mm_per_min == 0) {
       fail_message(feed_column(column), "a feed move at F0: the feed rate is zero (give F > 0; LinuxCNC refuses it too)",
                    Error::GcodeBadNumber);
     }
-    source.feed_mm_per_s = motion.kind == machine::MotionKind::Rapid
+    source.feed_mm_per_s = motion.kind == machine::MotionKind::Rapid || rapid_arc
                                ? 0.0
                                : wire_value(motion.feed_mm_per_min / seconds_per_minute, WireQuantity::Feed, feed_column(column), "feed (mm/s)");
     std::vector<PathSegment> pieces;
@@ -391,6 +525,7 @@ class GcodeLoader {
         }
         const double tolerance = motion.radius_difference_mm + quantisation_radius_slack_mm;
         pieces.push_back(made(PathSegment::make_arc(start, end, center, motion.direction, motion.full_turns, tolerance), column));
+        pieces.back().set_rapid(rapid_arc);
         break;
       }
       case machine::MotionKind::Cubic:
@@ -505,7 +640,7 @@ class GcodeLoader {
         case machine::CycleStepKind::Feed:
           leg.kind = step.kind == machine::CycleStepKind::Rapid ? machine::MotionKind::Rapid : machine::MotionKind::Line;
           leg.end = step.end;
-          add(leg);
+          emit(leg, line_number_);
           leg.start = step.end;
           return;
         case machine::CycleStepKind::Dwell: add_event(JobEventKind::Dwell, step.seconds, false, word); return;
@@ -525,7 +660,11 @@ class GcodeLoader {
     event.flag = flag;
     event.line = line_number_;
     event.text = text;
-    job_.events.push_back(event);
+    if (compensation_.holding()) {
+      held_.push_back(Held{true, std::move(event), {}, 0});  // after the held move
+      return;
+    }
+    job_.events.push_back(std::move(event));
   }
 
   void add_nurbs(const machine::Motion& motion, SourceSegment& source, std::vector<PathSegment>& pieces) {
@@ -562,8 +701,25 @@ class GcodeLoader {
     if (!extracted) fail_message(column, "NURBS block: " + std::string(describe(extracted.error())), Error::GcodeNurbsBlock);
   }
 
+  /// What waits behind a held compensated move: an event, or a Z move (at that move's end).
+  struct Held {
+    bool is_event = false;
+    JobEvent event;
+    machine::Motion motion;
+    std::size_t line = 0;
+  };
+  /// A programmed move inside the compensation, by tag: its words and line.
+  struct MoveInfo {
+    machine::Motion motion;
+    std::size_t line = 0;
+  };
+
   Job job_;
   Interpreter interpreter_;
+  CutterCompensation compensation_;
+  std::vector<Held> held_;
+  std::map<std::size_t, MoveInfo> moves_;
+  std::size_t next_tag_ = 0;
   std::string source_;     ///< the line being executed, as written
   std::size_t feed_column_ = 0;  ///< the column of its F word, 0 if none
   std::array<std::array<double, 3>, 10> written_offsets_{};  ///< the offset parameters as last written (program units)
@@ -573,14 +729,18 @@ class GcodeLoader {
 
 }  // namespace
 
-Job parse_gcode_job(std::string_view text, std::string name) {
-  GcodeLoader loader(std::move(name));
+Job parse_gcode_job(std::string_view text, std::string name) { return parse_gcode_job(text, std::move(name), GcodeOptions{}); }
+
+Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options) {
+  GcodeLoader loader(std::move(name), options);
   return loader.load(text);
 }
 
-Job import_gcode(const std::filesystem::path& path) {
+Job import_gcode(const std::filesystem::path& path) { return import_gcode(path, GcodeOptions{}); }
+
+Job import_gcode(const std::filesystem::path& path, const GcodeOptions& options) {
   const std::string text = read_text_file(path);
-  return parse_gcode_job(text, path.string());
+  return parse_gcode_job(text, path.string(), options);
 }
 
 }  // namespace curvestep::host

@@ -376,3 +376,52 @@ TEST_CASE("gcode interpreter: splines in G91 and G20 use incremental ends and sc
   motion = run(k, {"G20 G5 I0 J1 P0 Q-1 X1 Y1", "G21 G5 P0 Q0 X30 Y30"});
   CHECK(motion.control[1] == pt(25.4, 25.4 + 25.4));
 }
+
+TEST_CASE("gcode interpreter: G40 G41 G42 G41.1 G42.1 set the compensation each motion carries", "[gcode][interpreter][compensation]") {
+  Machine m;
+  m.set_tool_diameter_mm(1, 6.0);
+  CHECK(m.tool_diameter_mm(1) == 6.0);
+  CHECK(m.tool_diameter_mm(2) < 0);  // not in the table
+  auto motion = run(m, {"G41 D1 G1 X10 F100"});
+  CHECK(motion.compensation_side == CompensationSide::Left);
+  CHECK(motion.compensation_radius_mm == 3.0);
+  CHECK(motion.end == pt(10, 0));  // the programmed path: the host offsets it
+  motion = run(m, {"G40 X20"});
+  CHECK(motion.compensation_side == CompensationSide::Off);
+  motion = run(m, {"G20 G42.1 D0.5 X1"});  // diameter in inches
+  CHECK(motion.compensation_side == CompensationSide::Right);
+  CHECK(motion.compensation_radius_mm == Approx(6.35));
+  motion = run(m, {"G40 G21", "G42 D0"});  // D0: no offset
+  CHECK(motion.compensation_side == CompensationSide::Right);
+  CHECK(motion.compensation_radius_mm == 0.0);
+  run(m, {"M2"});
+  CHECK(m.compensation_side() == CompensationSide::Off);  // M2 resets to G40
+}
+
+TEST_CASE("gcode interpreter: compensation errors at the word at fault", "[gcode][interpreter][compensation]") {
+  const struct {
+    std::initializer_list<std::string_view> lines;
+    Error code;
+    std::size_t column;
+  } cases[] = {
+      {{"G41 D1"}, Error::GcodeCutterCompensation, 5},         // tool 1 has no diameter
+      {{"T3 M6", "G42"}, Error::GcodeMissingWord, 1},           // the loaded tool has none either
+      {{"G41 D0", "G42 D0"}, Error::GcodeCutterCompensation, 1},  // already on
+      {{"G18 G41 D0"}, Error::GcodeUnsupportedWord, 5},         // G17 only
+      {{"G41 D0", "G19"}, Error::GcodeCutterCompensation, 1},   // no plane change while on
+      {{"G41.1"}, Error::GcodeMissingWord, 1},
+      {{"G41.1 D-1"}, Error::GcodeBadNumber, 7},
+      {{"G41.1 D2 L1"}, Error::GcodeCutterCompensation, 10},    // lathe orientation
+      {{"G41 D1.5"}, Error::GcodeBadNumber, 5},
+      {{"G41 D0", "G5.1 X1 Y1 I1 J0"}, Error::GcodeCutterCompensation, 1},
+      {{"G41 D0", "G81 X1 Y1 Z-1 R1"}, Error::GcodeCutterCompensation, 1},
+      {{"G41 D0", "G53 G0 X1"}, Error::GcodeCutterCompensation, 1},
+      {{"G41 D0", "G30"}, Error::GcodeCutterCompensation, 1},
+  };
+  for (const auto& c : cases) {
+    INFO(*(c.lines.end() - 1));
+    const Failure failure = run_failing(c.lines);
+    CHECK(failure.code == c.code);
+    CHECK(failure.index == c.column);
+  }
+}

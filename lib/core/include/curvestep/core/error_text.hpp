@@ -72,6 +72,7 @@ namespace curvestep {
     case Error::GcodeConflictingWords: return "GcodeConflictingWords";
     case Error::GcodeNurbsBlock: return "GcodeNurbsBlock";
     case Error::GcodeCannedCycle: return "GcodeCannedCycle";
+    case Error::GcodeCutterCompensation: return "GcodeCutterCompensation";
     case Error::InvalidState: return "InvalidState";
     case Error::QueueUnderrun: return "QueueUnderrun";
     case Error::HardFault: return "HardFault";
@@ -145,6 +146,7 @@ namespace curvestep {
     case Error::GcodeConflictingWords: return "words that cannot appear together";
     case Error::GcodeNurbsBlock: return "G5.2/G5.3 block malformed";
     case Error::GcodeCannedCycle: return "canned cycle words inconsistent (R below Z, Q or P missing, spindle stopped)";
+    case Error::GcodeCutterCompensation: return "cutter radius compensation impossible (gouge, arc entry or exit move, tool without diameter, already on)";
     case Error::InvalidState: return "command not allowed in the current machine state";
     case Error::QueueUnderrun: return "the queue ran out of segments (or planned pieces) while moving";
     case Error::HardFault: return "the controller faulted and reported it";
@@ -217,6 +219,7 @@ inline constexpr Error all_errors[] = {
     Error::GcodeConflictingWords,
     Error::GcodeNurbsBlock,
     Error::GcodeCannedCycle,
+    Error::GcodeCutterCompensation,
     Error::InvalidState,
     Error::QueueUnderrun,
     Error::HardFault,

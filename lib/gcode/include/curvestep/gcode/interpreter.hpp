@@ -30,6 +30,12 @@
 //   G73 G81 G82 G83 G85 G86 G89 canned cycles (G17): MotionKind::Cycle with the holes and levels
 //                      resolved (canned_cycle.hpp expands them); Z R Q P sticky through the series;
 //                      G98 (default) / G99 retract modes; G80 cancels.
+//   G40 G41 G42 G41.1 G42.1 cutter radius compensation (G17 only): the interpreter keeps producing the
+//                      *programmed* path and tells each Motion the side and tool radius in force; the
+//                      host offsets it (host_tools/src/gcode/cutter_compensation.hpp). G41/G42 D<tool>
+//                      take the radius from the tool table (set_tool_diameter_mm; no D: the loaded
+//                      tool; tool 0: radius 0), G41.1/G42.1 D<diameter> directly (L only as 0).
+//                      Refused while on: G41/G42 again, a plane change, G28/G30, G53, splines, cycles.
 // Arcs turn in the selected plane: G17 X Y with I J (K refused), G18 Z X with K I (J refused), G19
 // Y Z with J K (I refused); the third axis makes a helix. Motion::plane says which.
 //
@@ -71,6 +77,9 @@ enum class MotionKind : std::uint8_t {
 enum class Plane : std::uint8_t { XY, ZX, YZ };
 /// Active units (G21, G20).
 enum class Units : std::uint8_t { Millimetres, Inches };
+
+/// Cutter radius compensation in force (G40, G41/G41.1 left of the path, G42/G42.1 right).
+enum class CompensationSide : std::uint8_t { Off, Left, Right };
 
 /// A machine word that is not motion (docs/gcode.md), in LinuxCNC's order of execution.
 enum class MachineEventKind : std::uint8_t {
@@ -120,6 +129,8 @@ struct Motion {
   Point pre_rapid{};                          ///< that intermediate point, mm (machine coordinates)
   double path_tolerance_mm = 0;               ///< path control in force: 0 G64, > 0 G64 P, < 0 G61/G61.1 (exact stop)
   CannedCycle cycle{};                        ///< Cycle: the holes and levels, machine coordinates
+  CompensationSide compensation_side = CompensationSide::Off;  ///< cutter compensation in force for this motion
+  double compensation_radius_mm = 0;          ///< its tool radius, mm (0 with D0)
   /// The events, in execution order (the Pause and ProgramEnd kinds happen after the motion).
   [[nodiscard]] constexpr std::span<const MachineEvent> machine_events() const noexcept { return {events.data(), event_count}; }
 };
@@ -221,6 +232,16 @@ class Interpreter {
   constexpr void set_tool_length_mm(std::size_t tool, double length_mm) noexcept {
     if (tool < max_tools) tool_lengths_[tool] = length_mm;
   }
+  /// Sets the diameter of tool `tool` (0 .. max_tools-1) for G41/G42 D, mm (the machine file's tool
+  /// table); a negative diameter marks it unknown (then G41/G42 with that tool is refused).
+  constexpr void set_tool_diameter_mm(std::size_t tool, double diameter_mm) noexcept {
+    if (tool < max_tools) tool_diameters_[tool] = diameter_mm;
+  }
+  /// The diameter of tool `tool`, mm; negative if the tool table does not give it.
+  [[nodiscard]] constexpr double tool_diameter_mm(std::size_t tool) const noexcept { return tool < max_tools ? tool_diameters_[tool] : -1.0; }
+  /// Cutter radius compensation in force and its tool radius, mm.
+  [[nodiscard]] constexpr CompensationSide compensation_side() const noexcept { return compensation_side_; }
+  [[nodiscard]] constexpr double compensation_radius_mm() const noexcept { return compensation_radius_mm_; }
   /// Sets the G28 / G30 positions (machine coordinates, mm; the machine file's).
   constexpr void set_home_positions(const Point& g28, const Point& g30) noexcept {
     home28_ = g28;
@@ -264,7 +285,7 @@ class Interpreter {
           case 900: case 910: slot = &distance_word; break;
           case 901: case 911: slot = &arc_distance_word; break;
           case 940: slot = &feed_mode_word; break;
-          case 400: slot = &compensation_word; break;
+          case 400: case 410: case 411: case 420: case 421: slot = &compensation_word; break;
           case 430: case 490: slot = &tool_length_word; break;
           case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593: slot = &coordinate_word; break;
           case 610: case 611: case 640: slot = &path_word; break;
@@ -298,6 +319,9 @@ class Interpreter {
     if (uses_axes && motion_word != nullptr) return fail(Error::GcodeConflictingWords, motion_word->column);
     if (in_nurbs_ && (group0_word != nullptr || g53_word != nullptr)) {
       return fail(Error::GcodeNurbsBlock, (group0_word != nullptr ? group0_word : g53_word)->column);
+    }
+    if (in_nurbs_ && compensation_word != nullptr && compensation_word->code_tenths != 400) {
+      return fail(Error::GcodeNurbsBlock, compensation_word->column);
     }
 
     Motion motion;
@@ -358,9 +382,23 @@ class Interpreter {
       add_event(MachineEventKind::Dwell, p->value, false, group0_word->column);
     }
     if (plane_word != nullptr) {
-      plane_ = plane_word->code_tenths == 170 ? Plane::XY : plane_word->code_tenths == 180 ? Plane::ZX : Plane::YZ;
+      const Plane plane = plane_word->code_tenths == 170 ? Plane::XY : plane_word->code_tenths == 180 ? Plane::ZX : Plane::YZ;
+      const bool cancelled = compensation_word != nullptr && compensation_word->code_tenths == 400;
+      if (plane != plane_ && compensation_side_ != CompensationSide::Off && !cancelled) {
+        return fail(Error::GcodeCutterCompensation, plane_word->column);
+      }
+      plane_ = plane;
     }
     if (units_word != nullptr) units_ = units_word->code_tenths == 200 ? Units::Inches : Units::Millimetres;
+    if (compensation_word != nullptr) CURVESTEP_CHECK(compensation(block, *compensation_word));
+    if (compensation_side_ != CompensationSide::Off) {
+      if (group0_word != nullptr && (group0_word->code_tenths == 280 || group0_word->code_tenths == 300)) {
+        return fail(Error::GcodeCutterCompensation, group0_word->column);
+      }
+      if (g53_word != nullptr) return fail(Error::GcodeCutterCompensation, g53_word->column);
+    }
+    motion.compensation_side = compensation_side_;
+    motion.compensation_radius_mm = compensation_radius_mm_;
     if (tool_length_word != nullptr) {
       if (tool_length_word->code_tenths == 490) {
         tool_length_mm_ = 0;
@@ -411,6 +449,7 @@ class Interpreter {
       }
       if (w.letter == 'Q' && path_word != nullptr && path_word->code_tenths == 640) consumed = true;
       if (w.letter == 'L' && group0_word != nullptr && group0_word->code_tenths == 100) consumed = true;
+      if (w.letter == 'L' && compensation_word != nullptr && compensation_word->code_tenths % 10 == 1) consumed = true;
       if (uses_axes && (w.letter == 'X' || w.letter == 'Y' || w.letter == 'Z')) consumed = true;
       if (!consumed) (void)motion_block.try_push(w);
     }
@@ -451,6 +490,8 @@ class Interpreter {
         plane_ = Plane::XY;
         incremental_ = false;
         spindle_on_ = false;
+        compensation_side_ = CompensationSide::Off;
+        compensation_radius_mm_ = 0;
       }
     }
     return motion;
@@ -466,6 +507,48 @@ class Interpreter {
     Point o = work_offsets_[coordinate_system_] + g92_offset_;
     o[2] += tool_length_mm_;
     return o;
+  }
+
+  /// G40 / G41 / G42 / G41.1 / G42.1 (LinuxCNC semantics, G17 only).
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> compensation(const Block<Capacity>& block, const Word& g) noexcept {
+    if (g.code_tenths == 400) {
+      compensation_side_ = CompensationSide::Off;
+      compensation_radius_mm_ = 0;
+      return ok();
+    }
+    if (plane_ != Plane::XY) return fail(Error::GcodeUnsupportedWord, g.column);
+    if (compensation_side_ != CompensationSide::Off) return fail(Error::GcodeCutterCompensation, g.column);
+    const Word* d = block.find('D');
+    double radius = 0;
+    if (g.code_tenths % 10 == 1) {  // G41.1 / G42.1 D<diameter> [L0]
+      if (d == nullptr) return fail(Error::GcodeMissingWord, g.column);
+      if (!(d->value >= 0 && d->value * scale() <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, d->column);
+      if (const Word* l = block.find('L'); l != nullptr && l->value != 0) return fail(Error::GcodeCutterCompensation, l->column);
+      radius = d->value * scale() / 2;
+    } else {  // G41 / G42 [D<tool>]: the tool table's diameter; no D: the loaded tool; tool 0: no offset
+      std::size_t tool = loaded_tool_;
+      if (d != nullptr) {
+        if (!(d->value >= 0) || d->value != std::floor(d->value) || d->value >= max_tools) return fail(Error::GcodeBadNumber, d->column);
+        tool = static_cast<std::size_t>(d->value);
+      }
+      if (tool != 0) {
+        if (!(tool_diameters_[tool] >= 0)) {
+          return d != nullptr ? fail(Error::GcodeCutterCompensation, d->column) : fail(Error::GcodeMissingWord, g.column);
+        }
+        radius = tool_diameters_[tool] / 2;
+      }
+    }
+    compensation_side_ = g.code_tenths / 10 == 41 ? CompensationSide::Left : CompensationSide::Right;
+    compensation_radius_mm_ = radius;
+    return ok();
+  }
+
+  /// Tool diameters all unknown (negative) until the tool table gives them.
+  [[nodiscard]] static constexpr std::array<double, max_tools> unknown_diameters() noexcept {
+    std::array<double, max_tools> diameters{};
+    for (double& d : diameters) d = -1.0;
+    return diameters;
   }
 
   /// G10 L2/L20, G28/G30, G92: the group-0 codes that use the axis words (LinuxCNC semantics).
@@ -640,7 +723,10 @@ class Interpreter {
     if (!moves) {
       if (motion_word == nullptr) return motion;
       if (is_cycle_code(mode_)) return fail(Error::GcodeCannedCycle, motion_word->column);  // no X Y Z
-      if (mode_ == 52) return start_nurbs(block, *motion_word, motion);
+      if (mode_ == 52) {
+        if (compensation_side_ != CompensationSide::Off) return fail(Error::GcodeCutterCompensation, motion_word->column);
+        return start_nurbs(block, *motion_word, motion);
+      }
       if (mode_ == 53) return fail(Error::GcodeNurbsBlock, motion_word->column);
       return motion;  // a motion mode alone moves nothing
     }
@@ -660,6 +746,9 @@ class Interpreter {
       }
     }
     motion.column = column;
+    if (compensation_side_ != CompensationSide::Off && (mode_ == 50 || mode_ == 51 || mode_ == 52 || is_cycle_code(mode_))) {
+      return fail(Error::GcodeCutterCompensation, column);  // splines and cycles cannot be compensated
+    }
     switch (mode_) {
       case 0:
       case 10: {
@@ -931,6 +1020,9 @@ class Interpreter {
   Point g92_offset_{};
   Point g92_saved_{};
   std::array<double, max_tools> tool_lengths_{};
+  std::array<double, max_tools> tool_diameters_ = unknown_diameters();
+  CompensationSide compensation_side_ = CompensationSide::Off;
+  double compensation_radius_mm_ = 0;
   double tool_length_mm_ = 0;
   std::size_t selected_tool_ = 0;
   std::size_t loaded_tool_ = 0;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <string_view>
 
@@ -16,11 +17,20 @@
 
 namespace curvestep::host {
 
+/// What the machine file tells the importer (the tool table; a hook until machine files carry one).
+struct GcodeOptions {
+  /// Tool number -> cutter diameter, mm, for G41/G42 D<tool>. A tool not listed has no diameter:
+  /// G41/G42 with it is refused (tool 0 means no offset).
+  std::map<int, double> tool_diameter_mm;
+};
+
 /// Loads a G-code program. Throws LoadError (file:line:column, the word at fault as field, an
-/// Error code 140-148 or FixedOverflow) or std::runtime_error if the file cannot be read.
+/// Error code 140-150 or FixedOverflow) or std::runtime_error if the file cannot be read.
 [[nodiscard]] Job import_gcode(const std::filesystem::path& path);
+[[nodiscard]] Job import_gcode(const std::filesystem::path& path, const GcodeOptions& options);
 
 /// Parses G-code text; `name` is used in error messages as the file name.
 [[nodiscard]] Job parse_gcode_job(std::string_view text, std::string name);
+[[nodiscard]] Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options);
 
 }  // namespace curvestep::host
