@@ -27,6 +27,17 @@ out += [f'    Error::{n},' for n, _, _ in entries]
 out += ['};', '', '}  // namespace curvestep', '']
 (core / "error_text.hpp").write_text("\n".join(out))
 
+# docs/errors.md: the generated part is the heading, the paragraph and the code table; what follows
+# the table (the LimitField section and notes) is kept as written.
+errors_md = root / "docs/errors.md"
+old = errors_md.read_text().split("\n") if errors_md.exists() else []
+rest_start = len(old)
+for i, line in enumerate(old):
+    if line.startswith("| code | name | meaning |"):
+        rest_start = i + 2
+        while rest_start < len(old) and old[rest_start].startswith("| "):
+            rest_start += 1
+        break
 doc = ["# Error codes", "",
        "Every fallible curvestep operation returns `Result<T>`: a value, or an `Error` code plus the",
        "index of the input at fault (control point, weight, knot, segment; `0xFFFF` when none).",
@@ -35,5 +46,6 @@ doc = ["# Error codes", "",
        "`scripts/generate_error_text.py`; a test checks that every code has a row.", "",
        "| code | name | meaning |", "|---:|---|---|"]
 doc += [f"| {v} | `{n}` | {d.strip()} |" for n, v, d in entries]
-(root / "docs/errors.md").write_text("\n".join(doc) + "\n")
+text = "\n".join(doc + old[rest_start:])
+errors_md.write_text(text if text.endswith("\n") else text + "\n")
 print(f"{len(entries)} error codes")

@@ -54,7 +54,7 @@ enum class Error : std::uint8_t {
   InvalidMachine = 76,         ///< machine file malformed (the message names the field)
   PlannerBusy = 77,            ///< operation not allowed while the planner is running
   NothingQueued = 78,          ///< start requested with an empty queue
-  StepsLost = 79,              ///< step/dir edges lost (the board's edge buffer was full): position unknown
+  StepsLost = 79,              ///< step/dir edges were lost (the board's edge buffer was full): the machine position is unknown
 
   // --- protocol (100-139) ---
   BadCrc = 100,              ///< frame CRC does not match
