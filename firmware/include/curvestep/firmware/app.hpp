@@ -247,7 +247,7 @@ class App {
   [[nodiscard]] const SetpointSender& setpoint_sender() const noexcept { return stream_.sender(); }
   /// Whole wire segments the queue can take now (the credit offered to the host).
   [[nodiscard]] std::uint16_t free_segments() const noexcept {
-    if (!configured() || phase_ == Phase::Fault) return 0;
+    if (!takes_segments(phase_)) return 0;
     return static_cast<std::uint16_t>((Queue - controller_.queued()) / slots_per_command);
   }
 
@@ -310,10 +310,19 @@ class App {
 
   void on_frame(const protocol::Frame& frame, std::uint32_t now) noexcept {
     link_hold_latched_ = false;
-    const protocol::Reception r = receiver_.on_frame(frame, free_segments(), now);
+    last_heard_ms_ = now;
+    stream_.heard(now);  // the host talks: a stream it never acknowledges is RetransmitLimit, not LinkTimeout
+    // A new session starts without a configuration: its Capabilities grant no credit. Credit
+    // commands are refused by phase where no segment is taken (ConfigurationMissing, ...), not
+    // by the credit (docs/protocol.md, "State table").
+    const bool hello = frame.type == static_cast<std::uint8_t>(protocol::MessageType::Hello);
+    const protocol::Reception r = receiver_.on_frame(frame, hello ? 0 : free_segments(), now, takes_segments(phase_));
     send_reply(r);
     if (r.disposition == protocol::Disposition::Connect) {
       stop_job(moving_);
+      control_rate_hz_ = 0;  // a new session declares its machine afresh
+      axis_count_ = static_cast<std::uint8_t>(B::axis_count);
+      phase_ = Phase::Connected;
       last_error_ = 0;
       has_last_end_ = false;
       positioned_ = false;
@@ -334,7 +343,12 @@ class App {
   // deepest call chain (receive -> dispatch -> queue_segment -> planning), docs/boards.md.
   [[gnu::noinline]] void dispatch(const protocol::Frame& frame) noexcept {
     using protocol::MessageType;
-    switch (static_cast<MessageType>(frame.type)) {
+    const auto type = static_cast<MessageType>(frame.type);
+    if (phase_ == Phase::StreamFailed && moves(type)) {
+      // The setpoint stream gave up: nothing more can be streamed in this session (Hello).
+      return report(fail(stream_.sender().last_error()));
+    }
+    switch (type) {
       case MessageType::MachineConfiguration: return on_machine_configuration(frame.payload);
       case MessageType::QueueSegment:
         if constexpr (plans_on_board) {
@@ -363,12 +377,20 @@ class App {
         return report_if_failed(resume());
       case MessageType::Abort:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
-        return stop_job(true);
+        return abort();
       case MessageType::StatusRequest:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return send_status();
       default: return report(fail(Error::UnknownMessage, frame.type));
     }
+  }
+
+  /// Commands that configure, queue or move (refused once the setpoint stream has failed).
+  [[nodiscard]] static constexpr bool moves(protocol::MessageType type) noexcept {
+    using protocol::MessageType;
+    const MessageType queues = plans_on_board ? MessageType::QueueSegment : MessageType::QueuePiece;
+    return type == MessageType::MachineConfiguration || type == queues || type == MessageType::Start ||
+           type == MessageType::Resume;
   }
 
   [[gnu::noinline]] void on_machine_configuration(std::span<const std::byte> payload) noexcept {
@@ -403,6 +425,7 @@ class App {
 
   [[nodiscard, gnu::noinline]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
     // Queued segments were planned with the old limits: a new configuration needs an empty queue.
+    if (phase_ == Phase::Fault) return fail(Error::InvalidState);  // Abort first
     if (moving_ || job_started(phase_) || controller_.queued() > 0) return fail(Error::PlannerBusy);
     if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
     // The Results are used in place (no CURVESTEP_TRY copies): this frame is on the deepest
@@ -412,7 +435,14 @@ class App {
     const auto travel = to_travel_limits(m);
     if (!travel) return travel.failure();
     const auto step_config = fit_step_config(limits.value());
-    if (!step_config) return step_config.failure();
+    if (!step_config) {
+      // A control period too short for one step (StepConfig's Period) is the rate's fault.
+      const Failure f = step_config.failure();
+      if (f.code == Error::InvalidArgument && f.index == static_cast<std::size_t>(StepTimingField::Period)) {
+        return fail(Error::InvalidRate, static_cast<std::size_t>(LimitField::RateHz));
+      }
+      return f;
+    }
     if (controller_.state() != ControllerState::Idle) controller_.reset();
     CURVESTEP_CHECK(controller_.configure(limits.value()));
     steps_ = StepGenerator(step_config.value());
@@ -421,7 +451,7 @@ class App {
     has_last_end_ = false;
     axis_count_ = m.axis_count;
     control_rate_hz_ = m.control_rate_hz;
-    if (phase_ != Phase::Fault) phase_ = Phase::Configured;
+    phase_ = Phase::Configured;
     return ok();
   }
 
@@ -501,7 +531,8 @@ class App {
 
   [[nodiscard]] Result<void> start() noexcept {
     if (!configured()) return fail(Error::ConfigurationMissing);
-    if (state() != protocol::MachineState::Idle) return fail(Error::InvalidState);
+    if (phase_ == Phase::Configured) return fail(Error::NothingQueued);
+    if (phase_ != Phase::Queued) return fail(Error::InvalidState);
     phase_ = Phase::Running;  // armed: moving_ is set when the start rule holds
     apply_start_rule();
     return ok();
@@ -542,6 +573,14 @@ class App {
     CURVESTEP_CHECK(controller_.resume());
     phase_ = Phase::Running;
     return ok();
+  }
+
+  /// Abort: ends the job at once and stops the board's edges. A failed setpoint stream stays
+  /// failed (StreamFailed until the next Hello).
+  void abort() noexcept {
+    const bool stream_failed = phase_ == Phase::StreamFailed;
+    stop_job(true);
+    if (stream_failed) phase_ = Phase::StreamFailed;
   }
 
   /// Ends the job at once; `outputs` also stops the board's scheduled edges (Abort).
@@ -589,7 +628,7 @@ class App {
     moving_ = false;
     fault_ = failure;
     events_.fault = true;
-    phase_ = Phase::Fault;
+    phase_ = stream_.failed() ? Phase::StreamFailed : Phase::Fault;
   }
 
   void service_tick_events() noexcept {
@@ -654,7 +693,11 @@ class App {
     // Without a planner a stall is usually a queue the host did not refill in time.
     bool starved = false;
     if constexpr (!plans_on_board) starved = !controller_.can_step();
-    raise_fault(fail(starved ? Error::QueueUnderrun : Error::LinkTimeout, now - stalled_since_ms_));
+    // A host heard during the stall talks but does not take the setpoints (RetransmitLimit);
+    // a silent one is gone (LinkTimeout), as the sender itself tells them apart.
+    const bool heard = static_cast<std::int32_t>(last_heard_ms_ - stalled_since_ms_) > 0;
+    const Error code = starved ? Error::QueueUnderrun : (heard ? Error::RetransmitLimit : Error::LinkTimeout);
+    raise_fault(fail(code, now - stalled_since_ms_));
   }
 
   void watch_link(std::uint32_t now) noexcept {
@@ -738,6 +781,7 @@ class App {
   std::uint32_t setpoint_index_ = 0;
   std::uint32_t job_segments_ = 0;
   std::uint32_t stalled_since_ms_ = 0;
+  std::uint32_t last_heard_ms_ = 0;  ///< when the last valid frame from the host arrived
   std::uint32_t edges_dropped_seen_ = 0;  ///< the board's edges_dropped() at the last check
   Phase phase_ = Phase::NotConnected;
   TickEvents events_{};

@@ -17,6 +17,7 @@ enum class Phase : std::uint8_t {
   Running,       ///< Start accepted: armed until the start rule holds, then moving (or starved)
   Holding,       ///< FeedHold or link loss: braking, stopped on the path, or held before the start
   Fault,         ///< stopped by a fault; Abort leaves it
+  StreamFailed,  ///< the setpoint stream gave up (RetransmitLimit): reported Fault, only a new session leaves it
 };
 
 /// The state a StatusReport carries for `phase`.
@@ -24,9 +25,15 @@ enum class Phase : std::uint8_t {
   switch (phase) {
     case Phase::Running: return protocol::MachineState::Running;
     case Phase::Holding: return protocol::MachineState::Holding;
-    case Phase::Fault: return protocol::MachineState::Fault;
+    case Phase::Fault:
+    case Phase::StreamFailed: return protocol::MachineState::Fault;
     default: return protocol::MachineState::Idle;
   }
+}
+
+/// True in the phases that take segments (or pieces) under the credit.
+[[nodiscard]] constexpr bool takes_segments(Phase phase) noexcept {
+  return phase == Phase::Configured || phase == Phase::Queued || phase == Phase::Running || phase == Phase::Holding;
 }
 
 /// True in the phases of a job that has been started (Running or Holding).
