@@ -37,6 +37,10 @@
 //                           Flag "end of job" marks the last one.
 //   Start                -> arms the job; motion begins when the queue holds Lookahead + 1
 //                           segments or the job's last segment (the start rule, below).
+//                           ConfigurationMissing / NothingQueued before a configuration / segment.
+// Which command is taken in which phase (Phase, phase.hpp) is the state table of docs/protocol.md;
+// a new session drops the configuration; a failed setpoint stream (Phase::StreamFailed) refuses
+// new jobs until the next Hello.
 //   FeedHold / Resume    -> MotionController::hold / resume (braking along the path); a StatusReport
 //                           follows once the machine stands; Resume while still braking continues
 //                           from the stop.
