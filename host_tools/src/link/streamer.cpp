@@ -37,16 +37,10 @@ class Upload {
       }
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
-      // Start at once: the controller arms the job and begins by itself when its look-ahead
-      // window is full or the job's last segment (flag end_of_job) has arrived.
-      link_.submit(protocol::Message(protocol::Start{}));
-      submitted_.push_back(start_marker);
-      started_ = true;
-      start_ms_ = link_.now_ms();
-      last_status_ms_ = start_ms_;
       while (!finished()) {
         settle_acknowledged();
         submit_units();
+        submit_start();
         link_.pump(5, handler);
         request_status();
         report_progress(false);
@@ -151,6 +145,20 @@ class Upload {
       ++sequence_;
       ++next_;
     }
+  }
+
+  /// Start right after the first unit (Start on an empty queue is NothingQueued): the controller
+  /// arms the job and begins by itself when its look-ahead window is full or the job's last
+  /// segment (flag end_of_job) has arrived.
+  void submit_start() {
+    if (started_ || next_ == 0 || !link_.can_submit(protocol::MessageType::Start)) return;
+    link_.submit(protocol::Message(protocol::Start{}));
+    submitted_.push_back(start_marker);
+    sequence_to_unit_[sequence_] = start_marker;
+    ++sequence_;
+    started_ = true;
+    start_ms_ = link_.now_ms();
+    last_status_ms_ = start_ms_;
   }
 
   void request_status() {
@@ -297,14 +305,14 @@ class Upload {
   std::vector<protocol::QueuePiece> pieces_;  // piece mode: the pieces planned here
   bool piece_mode_ = false;                   // the controller has no planner (Capabilities::lookahead 0)
   std::map<std::uint32_t, protocol::WirePoint> setpoints_;
-  std::map<std::uint8_t, std::size_t> sequence_to_unit_{{0, configuration_marker}, {1, start_marker}};
+  std::map<std::uint8_t, std::size_t> sequence_to_unit_{{0, configuration_marker}};
   protocol::StatusReport last_status_{};
   double rate_hz_ = 1000;
   std::size_t next_ = 0;
   std::deque<std::size_t> submitted_;  // what each unacknowledged frame carries, oldest first
   std::size_t acknowledged_units_ = 0;
   std::size_t duplicates_ = 0;
-  std::uint8_t sequence_ = 2;  // the configuration is sequence 0, Start 1
+  std::uint8_t sequence_ = 1;  // the configuration is sequence 0
   std::uint32_t idle_since_ms_ = 0;
   bool idle_seen_ = false;
   std::uint32_t last_status_ms_ = 0;

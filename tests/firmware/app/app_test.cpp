@@ -737,6 +737,7 @@ TEST_CASE_METHOD(Bench, "firmware: a new session declares the position afresh wi
   REQUIRE(app.position() == p(2, 0));
   Host<TestApp> second_host(board, app);
   REQUIRE(second_host.connect(0x4321));
+  REQUIRE(second_host.send(Message(machine())));  // a new session starts without a configuration
   queue_and_start(second_host, {ending(line(p(10, 10), p(12, 10)))});
   second_host.run_ticks(1000);
   CHECK(second_host.received.errors.empty());

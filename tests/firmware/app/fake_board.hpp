@@ -227,7 +227,7 @@ class Host {
 };
 
 /// The host's side of streaming a job while the App runs, one step per control tick: every segment
-/// the window and the credit allow, Start once it fits, and a StatusRequest every 100 ticks (a host
+/// the window and the credit allow, Start once it fits after the first segment, and a StatusRequest every 100 ticks (a host
 /// polls the status now and then; that traffic also keeps the link watchdog quiet).
 class JobUpload {
  public:
@@ -240,7 +240,8 @@ class JobUpload {
       if (!sender.submit(protocol::Message(job_[next_])).has_value()) return false;
       ++next_;
     }
-    if (!started_ && sender.can_submit(protocol::MessageType::Start)) {
+    // Start once a segment is on its way (Start on an empty queue is NothingQueued).
+    if (!started_ && next_ > 0 && sender.can_submit(protocol::MessageType::Start)) {
       if (!sender.submit(protocol::Message(protocol::Start{})).has_value()) return false;
       started_ = true;
     }

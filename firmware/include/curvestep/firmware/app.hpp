@@ -37,6 +37,10 @@
 //                           Flag "end of job" marks the last one.
 //   Start                -> arms the job; motion begins when the queue holds Lookahead + 1
 //                           segments or the job's last segment (the start rule, below).
+//                           ConfigurationMissing / NothingQueued before a configuration / segment.
+// Which command is taken in which phase (Phase, phase.hpp) is the state table of docs/protocol.md;
+// a new session drops the configuration; a failed setpoint stream (Phase::StreamFailed) refuses
+// new jobs until the next Hello.
 //   FeedHold / Resume    -> MotionController::hold / resume (braking along the path); a StatusReport
 //                           follows once the machine stands; Resume while still braking continues
 //                           from the stop.
@@ -65,21 +69,13 @@
 //     controller stops, board.fault_stop(), state Fault, ErrorReport(code, index); only Abort or
 //     a new session leaves Fault.
 //
-// Setpoints are also streamed to the host (settings.stream_setpoints) as SetpointBatch messages
-// of up to 24 setpoints, in the controller's own reliable stream (protocol version 2): the App's
-// LinkSender<Window> numbers them, keeps them until the host acknowledges them and resends them
-// on a timeout or a Nak (the same go-back-N code the host uses for its commands). Nothing is
-// ever dropped: when the 48-entry setpoint buffer is full (the window of unacknowledged batches
-// is full and two more batches wait), on_tick() does not advance the controller at all; it
-// counts a stalled tick and returns. The host board's fast mode simply waits (ready_to_tick());
-// in real time a stall longer than settings.stall_timeout_ms is a Fault with LinkTimeout (the
-// host stopped acknowledging setpoints), because a machine cannot keep a paused interpolator
-// waiting for ever. On a noisy line the batches shrink (halved on every go-back, down to 4
-// setpoints, grown by one per clean batch), because a short frame is much more likely to arrive
-// whole: at 2 % damaged bytes a 160-byte frame arrives 4 % of the time, a 40-byte one 45 %.
-// Setpoints while held or starved are not sent; a stalled App sends what it has (a short batch).
-// The window is a board parameter: `static constexpr std::size_t setpoint_window` in the board
-// (default 4 frames, about 0.7 KiB; the host board uses 8).
+// Setpoints are also streamed to the host (settings.stream_setpoints) in the controller's own
+// reliable stream (setpoint_stream.hpp). Nothing is ever dropped: when the stream's buffer is
+// full, on_tick() does not advance the controller at all; it counts a stalled tick and returns.
+// The host board's fast mode simply waits (ready_to_tick()); in real time a stall longer than
+// settings.stall_timeout_ms is a Fault, because a machine cannot keep a paused interpolator
+// waiting for ever. Setpoints while held or starved are not sent; a stalled App sends what it
+// has (a short batch).
 //
 // Time budget of on_tick(): one MotionController::next_setpoint (a profile evaluation, a table
 // search, one de Casteljau evaluation in double) plus StepGenerator::advance (see its header:
@@ -102,71 +98,24 @@
 #include <span>
 #include <type_traits>
 
-#include <curvestep/core/container/ring_buffer.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
-#include <curvestep/core/motion/cusps.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
 #include <curvestep/core/motion/piece_executor.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/core/motion/step_output.hpp>
 #include <curvestep/core/scalar.hpp>
+#include <curvestep/firmware/app_settings.hpp>
 #include <curvestep/firmware/board.hpp>
 #include <curvestep/firmware/conversions.hpp>
+#include <curvestep/firmware/phase.hpp>
+#include <curvestep/firmware/setpoint_stream.hpp>
+#include <curvestep/firmware/transmit_buffer.hpp>
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
 #include <curvestep/protocol/link_receiver.hpp>
-#include <curvestep/protocol/link_sender.hpp>
 #include <curvestep/protocol/messages.hpp>
 
 namespace curvestep::firmware {
-
-/// Run-time settings of the App (link timing, streaming).
-struct AppSettings {
-  std::uint32_t link_timeout_ms = 1000;  ///< no valid frame for this long while connected: feed hold (0: never)
-  std::uint32_t ack_interval_ms = 250;   ///< heartbeat Ack period while connected (0: none)
-  bool stream_setpoints = true;          ///< send SetpointBatch messages while moving
-  std::uint32_t stall_timeout_ms = 1000; ///< setpoint stream backed up this long while moving: Fault (0: wait for ever)
-  std::uint32_t retransmit_timeout_ms = 100;  ///< resend unacknowledged setpoint batches after this silence
-};
-
-/// Counters of the App's link work (nothing is dropped that matters: see each field).
-struct AppStatistics {
-  std::uint32_t dropped_frames = 0;     ///< unsequenced frames (Acks, reports) that found the transmit buffer full
-  std::uint32_t dropped_setpoints = 0;  ///< always 0 since protocol version 2 (kept for the API)
-  std::uint32_t stalled_ticks = 0;      ///< ticks that did not advance because the setpoint stream was backed up
-  std::uint32_t setpoint_go_backs = 0;  ///< retransmission rounds of the setpoint stream
-  std::uint16_t max_queue_depth = 0;    ///< deepest the segment queue has been this session
-};
-
-/// Frames of the board's setpoint window: B::setpoint_window if the board says, else 4.
-template <class B>
-[[nodiscard]] constexpr std::size_t board_setpoint_window() noexcept {
-  if constexpr (requires { B::setpoint_window; }) {
-    return static_cast<std::size_t>(B::setpoint_window);
-  } else {
-    return 4;
-  }
-}
-/// Smallest setpoint batch the App shrinks to on a noisy line.
-inline constexpr std::size_t min_setpoints_per_batch = 4;
-/// Transmit-buffer bytes kept free of setpoint frames, for Acks and reports.
-inline constexpr std::size_t transmit_reserve_bytes = 64;
-
-/// Bytes of the transmit buffer (three largest frames).
-inline constexpr std::size_t transmit_buffer_bytes = 3 * protocol::max_encoded_frame_size;
-/// Setpoints buffered for SetpointBatch messages: B::setpoint_buffer if the board says (at least
-/// one full batch), else two batches.
-template <class B>
-[[nodiscard]] constexpr std::size_t board_setpoint_buffer() noexcept {
-  if constexpr (requires { B::setpoint_buffer; }) {
-    static_assert(B::setpoint_buffer >= protocol::max_setpoints_per_batch, "the setpoint buffer must hold a full batch");
-    return static_cast<std::size_t>(B::setpoint_buffer);
-  } else {
-    return 2 * protocol::max_setpoints_per_batch;
-  }
-}
-/// Queue slots one wire segment may need (a Bézier split at every cusp the planner finds).
-inline constexpr std::size_t slots_per_segment = CuspList<>::capacity + 1;
 
 /// The controller application for board B; S is the setpoint scalar (Q16.16 for bit-identity).
 /// Lookahead == 0: no planner on board; the App replays pieces the host planned (PieceExecutor).
@@ -189,17 +138,16 @@ class App {
   using Controller = std::conditional_t<plans_on_board, MotionController<S, Queue, plans_on_board ? Lookahead : 1>, PieceExecutor<S, Queue>>;
 
   /// Frames of setpoint batches that may be unacknowledged at once.
-  static constexpr std::size_t setpoint_window = board_setpoint_window<B>();
-  /// The sender of the setpoint stream: it sends SetpointBatch only (so links only its encoder)
-  /// and has no handshake of its own.
-  using SetpointSender = protocol::LinkSender<setpoint_window, protocol::MessageSet<protocol::SetpointBatch>>;
+  static constexpr std::size_t setpoint_window = SetpointStream<B>::window;
+  /// The sender of the setpoint stream (SetpointBatch only, no handshake of its own).
+  using SetpointSender = typename SetpointStream<B>::Sender;
 
-  /// An App driving `board` (which must outlive it), idle and unconfigured.
+  /// An App driving `board` (which must outlive it), not connected and unconfigured.
   explicit App(B& board, AppSettings settings = {}) noexcept
       : board_(board),
         settings_(settings),
         receiver_(make_capabilities(), make_receiver_settings(settings)),
-        sender_(protocol::SenderSettings{settings.retransmit_timeout_ms, 255, 0}, protocol::Endpoint::Controller) {
+        stream_(settings.retransmit_timeout_ms) {
     edges_dropped_seen_ = edges_dropped_by(board);  // edges lost before this App existed are not its to report
   }
 
@@ -213,8 +161,8 @@ class App {
     watch_link(now);
     watch_stall(now);
     send_setpoints();
-    transmit_setpoints(now);
-    flush();
+    if (auto sent = stream_.transmit(now, transmit_); !sent) raise_fault(sent.failure());
+    transmit_.flush(board_);
   }
 
   /// One control period: the next setpoint, its step edges to the board, the setpoint to the stream.
@@ -260,25 +208,25 @@ class App {
     position_ = wire;
     setpoint_index_ = static_cast<std::uint32_t>(job_tick);
     const bool in_motion = before == ControllerState::Running || before == ControllerState::Holding;
-    if (settings_.stream_setpoints && in_motion) {
-      [[maybe_unused]] const bool pushed = setpoints_.try_push(IndexedSetpoint{setpoint_index_, wire});  // room checked above
-    }
+    if (settings_.stream_setpoints && in_motion) stream_.push(setpoint_index_, wire);  // room checked above
     const ControllerState after = controller_.state();
     if (after == ControllerState::Finished) {
       moving_ = false;
-      job_done_ = true;
+      events_.finished = true;
     } else if (after == ControllerState::Starved && before == ControllerState::Running) {
-      underrun_ = true;
+      events_.underrun = true;
     } else if (after == ControllerState::Held && before == ControllerState::Holding) {
-      held_ = true;
+      events_.held = true;
     }
   }
 
   /// The state reported to the host.
-  [[nodiscard]] protocol::MachineState state() const noexcept { return state_; }
-  /// True once a MachineConfiguration was accepted.
-  [[nodiscard]] bool configured() const noexcept { return configured_; }
-  /// The configured setpoint rate in Hz (0 before configuration): call on_tick() this often.
+  [[nodiscard]] protocol::MachineState state() const noexcept { return reported_state(phase_); }
+  /// The session and job phase (the row of the state table in docs/protocol.md).
+  [[nodiscard]] Phase phase() const noexcept { return phase_; }
+  /// True while a MachineConfiguration is in force.
+  [[nodiscard]] bool configured() const noexcept { return control_rate_hz_ != 0; }
+  /// The configured setpoint rate in Hz (0 without a configuration): call on_tick() this often.
   [[nodiscard]] std::uint32_t control_rate_hz() const noexcept { return control_rate_hz_; }
   /// True while on_tick() produces setpoints.
   [[nodiscard]] bool moving() const noexcept { return moving_; }
@@ -293,24 +241,27 @@ class App {
   /// True if on_tick() may advance: no setpoint stream, or room for one more setpoint in it.
   /// Without a planner also false while the next setpoint needs a piece that has not arrived.
   [[nodiscard]] bool ready_to_tick() const noexcept {
-    if (settings_.stream_setpoints && setpoints_.full()) return false;
+    if (settings_.stream_setpoints && stream_.full()) return false;
     if constexpr (!plans_on_board) return !moving_ || controller_.state() != ControllerState::Running || controller_.can_step();
     return true;
   }
   /// True once the job's last segment (flag end of job) has been queued.
   [[nodiscard]] bool job_end_known() const noexcept { return job_end_known_; }
   /// The setpoint stream's sender (window, go-backs), for diagnostics and tests.
-  [[nodiscard]] const SetpointSender& setpoint_sender() const noexcept { return sender_; }
+  [[nodiscard]] const SetpointSender& setpoint_sender() const noexcept { return stream_.sender(); }
   /// Whole wire segments the queue can take now (the credit offered to the host).
   [[nodiscard]] std::uint16_t free_segments() const noexcept {
-    if (!configured_ || state_ == protocol::MachineState::Fault) return 0;
+    if (!takes_segments(phase_)) return 0;
     return static_cast<std::uint16_t>((Queue - controller_.queued()) / slots_per_command);
   }
 
  private:
-  struct IndexedSetpoint {
-    std::uint32_t index = 0;
-    protocol::WirePoint position{};
+  /// What on_tick() met, for poll() to act on and report (the tick itself never sends).
+  struct TickEvents {
+    bool finished = false;  ///< the job's last setpoint was produced
+    bool underrun = false;  ///< the queue ran dry while moving (stopped on the path)
+    bool held = false;      ///< a feed hold came to a stop
+    bool fault = false;     ///< raise_fault() stopped the machine: report fault_
   };
 
   [[nodiscard]] static constexpr protocol::Capabilities make_capabilities() noexcept {
@@ -335,6 +286,14 @@ class App {
     }
   }
 
+  /// The phase of a session whose job is not started: by its configuration and queue.
+  [[nodiscard]] Phase settled_phase() const noexcept {
+    if (!configured()) return Phase::Connected;
+    return controller_.queued() > 0 ? Phase::Queued : Phase::Configured;
+  }
+  /// Started and waiting for the start rule (Running) or held before it began (Holding).
+  [[nodiscard]] bool armed() const noexcept { return job_started(phase_) && !moving_; }
+
   // --- receiving ---------------------------------------------------------------------------
 
   void receive(std::uint32_t now) noexcept {
@@ -355,35 +314,32 @@ class App {
 
   void on_frame(const protocol::Frame& frame, std::uint32_t now) noexcept {
     link_hold_latched_ = false;
-    const protocol::Reception r = receiver_.on_frame(frame, free_segments(), now);
+    last_heard_ms_ = now;
+    stream_.heard(now);  // the host talks: a stream it never acknowledges is RetransmitLimit, not LinkTimeout
+    // A new session starts without a configuration: its Capabilities grant no credit. Credit
+    // commands are refused by phase where no segment is taken (ConfigurationMissing, ...), not
+    // by the credit (docs/protocol.md, "State table").
+    const bool hello = frame.type == static_cast<std::uint8_t>(protocol::MessageType::Hello);
+    const protocol::Reception r = receiver_.on_frame(frame, hello ? 0 : free_segments(), now, takes_segments(phase_));
     send_reply(r);
     if (r.disposition == protocol::Disposition::Connect) {
       stop_job(moving_);
+      control_rate_hz_ = 0;  // a new session declares its machine afresh
+      axis_count_ = static_cast<std::uint8_t>(B::axis_count);
+      phase_ = Phase::Connected;
       last_error_ = 0;
       has_last_end_ = false;
       positioned_ = false;
-      setpoints_.clear();
-      sender_.open(now);
-      batch_limit_ = protocol::max_setpoints_per_batch;
-      seen_go_backs_ = 0;
+      stream_.open(now);
       statistics_.max_queue_depth = 0;
     } else if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::Ack) ||
                frame.type == static_cast<std::uint8_t>(protocol::MessageType::Nak)) {
-      on_stream_reply(frame, now);
+      if (!receiver_.connected()) return;
+      if (auto handled = stream_.on_reply(frame, now); !handled) raise_fault(handled.failure());
     } else if (r.disposition == protocol::Disposition::Deliver) {
       sequence_ = frame.sequence;
       dispatch(frame);
     }
-  }
-
-  /// The host's Ack or Nak of the setpoint stream (decoded with those two decoders only). Not
-  /// inlined: its decoded Message (about 300 bytes) must not sit in receive()'s frame, under
-  /// the deepest call chain (dispatch -> queue_segment -> planning).
-  [[gnu::noinline]] void on_stream_reply(const protocol::Frame& frame, std::uint32_t now) noexcept {
-    if (!receiver_.connected()) return;
-    const auto m = protocol::decode_message<protocol::MessageSet<protocol::Ack, protocol::Nak>>(frame);
-    if (!m) return;
-    if (auto handled = sender_.on_message(m.value(), now); !handled) raise_fault(handled.failure());
   }
 
   // dispatch and the two decoding handlers are separate frames (noinline): with LTO, a decoded
@@ -391,7 +347,12 @@ class App {
   // deepest call chain (receive -> dispatch -> queue_segment -> planning), docs/boards.md.
   [[gnu::noinline]] void dispatch(const protocol::Frame& frame) noexcept {
     using protocol::MessageType;
-    switch (static_cast<MessageType>(frame.type)) {
+    const auto type = static_cast<MessageType>(frame.type);
+    if (phase_ == Phase::StreamFailed && moves(type)) {
+      // The setpoint stream gave up: nothing more can be streamed in this session (Hello).
+      return report(fail(stream_.sender().last_error()));
+    }
+    switch (type) {
       case MessageType::MachineConfiguration: return on_machine_configuration(frame.payload);
       case MessageType::QueueSegment:
         if constexpr (plans_on_board) {
@@ -420,12 +381,20 @@ class App {
         return report_if_failed(resume());
       case MessageType::Abort:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
-        return stop_job(true);
+        return abort();
       case MessageType::StatusRequest:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return send_status();
       default: return report(fail(Error::UnknownMessage, frame.type));
     }
+  }
+
+  /// Commands that configure, queue or move (refused once the setpoint stream has failed).
+  [[nodiscard]] static constexpr bool moves(protocol::MessageType type) noexcept {
+    using protocol::MessageType;
+    const MessageType queues = plans_on_board ? MessageType::QueueSegment : MessageType::QueuePiece;
+    return type == MessageType::MachineConfiguration || type == queues || type == MessageType::Start ||
+           type == MessageType::Resume;
   }
 
   [[gnu::noinline]] void on_machine_configuration(std::span<const std::byte> payload) noexcept {
@@ -460,7 +429,8 @@ class App {
 
   [[nodiscard, gnu::noinline]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
     // Queued segments were planned with the old limits: a new configuration needs an empty queue.
-    if (moving_ || start_pending_ || held_before_start_ || controller_.queued() > 0) return fail(Error::PlannerBusy);
+    if (phase_ == Phase::Fault) return fail(Error::InvalidState);  // Abort first
+    if (moving_ || job_started(phase_) || controller_.queued() > 0) return fail(Error::PlannerBusy);
     if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
     // The Results are used in place (no CURVESTEP_TRY copies): this frame is on the deepest
     // call chain of a small board's stack (docs/boards.md, "Footprint").
@@ -469,16 +439,23 @@ class App {
     const auto travel = to_travel_limits(m);
     if (!travel) return travel.failure();
     const auto step_config = fit_step_config(limits.value());
-    if (!step_config) return step_config.failure();
+    if (!step_config) {
+      // A control period too short for one step (StepConfig's Period) is the rate's fault.
+      const Failure f = step_config.failure();
+      if (f.code == Error::InvalidArgument && f.index == static_cast<std::size_t>(StepTimingField::Period)) {
+        return fail(Error::InvalidRate, static_cast<std::size_t>(LimitField::RateHz));
+      }
+      return f;
+    }
     if (controller_.state() != ControllerState::Idle) controller_.reset();
     CURVESTEP_CHECK(controller_.configure(limits.value()));
     steps_ = StepGenerator(step_config.value());
     travel_ = travel.value();
     positioned_ = false;
     has_last_end_ = false;
-    configured_ = true;
     axis_count_ = m.axis_count;
     control_rate_hz_ = m.control_rate_hz;
+    phase_ = Phase::Configured;
     return ok();
   }
 
@@ -498,9 +475,17 @@ class App {
     return fail(Error::BufferTooSmall, B::step_events_per_tick);
   }
 
+  /// Counts one more accepted segment or piece: the deepest queue, and Configured becomes Queued.
+  void note_queued() noexcept {
+    const auto depth = static_cast<std::uint16_t>(controller_.queued());
+    if (depth > statistics_.max_queue_depth) statistics_.max_queue_depth = depth;
+    ++job_segments_;
+    if (phase_ == Phase::Configured) phase_ = Phase::Queued;
+  }
+
   [[nodiscard, gnu::noinline]] Result<void> queue_segment(const protocol::QueueSegment& s) noexcept {
-    if (!configured_) return fail(Error::ConfigurationMissing);
-    if (state_ == protocol::MachineState::Fault || job_end_known_) return fail(Error::InvalidState);
+    if (!configured()) return fail(Error::ConfigurationMissing);
+    if (phase_ == Phase::Fault || job_end_known_) return fail(Error::InvalidState);
     if (s.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
     const protocol::WirePoint start = segment_start(s);
     if (has_last_end_ && start != last_end_) return fail(Error::SegmentsNotConnected, job_segments_);
@@ -509,11 +494,9 @@ class App {
     const PathSegment& segment = made.value();
     CURVESTEP_CHECK(check_travel(segment, travel_));
     CURVESTEP_CHECK(controller_.try_push(segment, job_segments_));
-    const auto depth = static_cast<std::uint16_t>(controller_.queued());
-    if (depth > statistics_.max_queue_depth) statistics_.max_queue_depth = depth;
     last_end_ = segment_end(s);
     has_last_end_ = true;
-    ++job_segments_;
+    note_queued();
     if (s.end_of_job) {
       controller_.end_of_job();
       job_end_known_ = true;
@@ -526,8 +509,8 @@ class App {
   /// exact run must be inside the travel range (OutsideTravel, index = axis). The stepped setpoints of a chunk stay within
   /// chunk_error_bound of the host's exact path, which ends on the checked end points.
   [[nodiscard, gnu::noinline]] Result<void> queue_piece(const protocol::QueuePiece& m) noexcept {
-    if (!configured_) return fail(Error::ConfigurationMissing);
-    if (state_ == protocol::MachineState::Fault || job_end_known_) return fail(Error::InvalidState);
+    if (!configured()) return fail(Error::ConfigurationMissing);
+    if (phase_ == Phase::Fault || job_end_known_) return fail(Error::InvalidState);
     if (m.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
     const PlannedPiece piece = to_planned_piece(m);
     CURVESTEP_CHECK(check_travel(piece.end, travel_));
@@ -541,9 +524,7 @@ class App {
     }
     CURVESTEP_TRY(const protocol::WirePoint end, to_wire_point(piece.end));  // checked before anything is queued
     CURVESTEP_CHECK(controller_.push(piece));
-    const auto depth = static_cast<std::uint16_t>(controller_.queued());
-    if (depth > statistics_.max_queue_depth) statistics_.max_queue_depth = depth;
-    ++job_segments_;
+    note_queued();
     if (m.end_of_job) {
       job_end_known_ = true;
       last_end_ = end;  // where the next job must start
@@ -553,43 +534,39 @@ class App {
   }
 
   [[nodiscard]] Result<void> start() noexcept {
-    if (!configured_) return fail(Error::ConfigurationMissing);
-    if (state_ != protocol::MachineState::Idle) return fail(Error::InvalidState);
-    start_pending_ = true;
-    state_ = protocol::MachineState::Running;
+    if (!configured()) return fail(Error::ConfigurationMissing);
+    if (phase_ == Phase::Configured) return fail(Error::NothingQueued);
+    if (phase_ != Phase::Queued) return fail(Error::InvalidState);
+    phase_ = Phase::Running;  // armed: moving_ is set when the start rule holds
     apply_start_rule();
     return ok();
   }
 
   void feed_hold() noexcept {
     resume_when_held_ = false;
-    if (start_pending_) {
-      start_pending_ = false;
-      held_before_start_ = true;
-      state_ = protocol::MachineState::Holding;
+    if (phase_ == Phase::Running && armed()) {
+      phase_ = Phase::Holding;  // held before the start
       return;
     }
     if (!moving_) return;
     if (controller_.state() == ControllerState::Starved) {
-      state_ = protocol::MachineState::Holding;  // already stopped on the path: stay there
+      phase_ = Phase::Holding;  // already stopped on the path: stay there
       return;
     }
     if (controller_.state() != ControllerState::Running) return;
     controller_.hold();
-    state_ = protocol::MachineState::Holding;
+    phase_ = Phase::Holding;
   }
 
   [[nodiscard]] Result<void> resume() noexcept {
-    if (held_before_start_) {
-      held_before_start_ = false;
-      start_pending_ = true;
-      state_ = protocol::MachineState::Running;
+    if (phase_ == Phase::Holding && armed()) {
+      phase_ = Phase::Running;  // armed again
       apply_start_rule();
       return ok();
     }
-    if (state_ != protocol::MachineState::Holding) return fail(Error::InvalidState);
+    if (phase_ != Phase::Holding) return fail(Error::InvalidState);
     if (controller_.state() == ControllerState::Starved) {
-      state_ = protocol::MachineState::Running;  // continues under the start rule
+      phase_ = Phase::Running;  // continues under the start rule
       apply_start_rule();
       return ok();
     }
@@ -598,8 +575,16 @@ class App {
       return ok();
     }
     CURVESTEP_CHECK(controller_.resume());
-    state_ = protocol::MachineState::Running;
+    phase_ = Phase::Running;
     return ok();
+  }
+
+  /// Abort: ends the job at once and stops the board's edges. A failed setpoint stream stays
+  /// failed (StreamFailed until the next Hello).
+  void abort() noexcept {
+    const bool stream_failed = phase_ == Phase::StreamFailed;
+    stop_job(true);
+    if (stream_failed) phase_ = Phase::StreamFailed;
   }
 
   /// Ends the job at once; `outputs` also stops the board's scheduled edges (Abort).
@@ -608,20 +593,15 @@ class App {
     controller_.abort();
     controller_.reset();
     moving_ = false;
-    start_pending_ = false;
-    held_before_start_ = false;
     job_end_known_ = false;
-    job_done_ = false;
-    underrun_ = false;
-    held_ = false;
+    events_ = TickEvents{};
     resume_when_held_ = false;
-    fault_pending_ = false;
     stalled_ = false;  // a stall of the stopped job is not the next job's
     job_segments_ = 0;
     // The next job starts where the machine stands.
     has_last_end_ = positioned_;
     last_end_ = position_;
-    state_ = protocol::MachineState::Idle;
+    phase_ = settled_phase();
   }
 
   // --- tick events, start rule, link watch ----------------------------------------------------
@@ -645,44 +625,44 @@ class App {
     return true;
   }
 
+  /// Stops the machine at once (phase Fault); poll() reports `failure`.
   void raise_fault(Failure failure) noexcept {
     board_.fault_stop();
     controller_.abort();
     moving_ = false;
     fault_ = failure;
-    fault_pending_ = true;
+    events_.fault = true;
+    phase_ = stream_.failed() ? Phase::StreamFailed : Phase::Fault;
   }
 
   void service_tick_events() noexcept {
-    if (fault_pending_) {
-      fault_pending_ = false;
-      state_ = protocol::MachineState::Fault;
-      start_pending_ = false;
+    if (events_.fault) {
+      events_.fault = false;
       report(fault_);
       send_status();
     }
-    if (job_done_) {
-      job_done_ = false;
+    if (events_.finished) {
+      events_.finished = false;
       controller_.reset();
       job_end_known_ = false;
       job_segments_ = 0;
-      state_ = protocol::MachineState::Idle;
+      phase_ = settled_phase();
       send_status();
     }
-    if (held_) {
-      held_ = false;
+    if (events_.held) {
+      events_.held = false;
       if (resume_when_held_) {
         resume_when_held_ = false;
         if (auto resumed = controller_.resume(); resumed) {
-          state_ = protocol::MachineState::Running;
+          phase_ = Phase::Running;
         } else {
           report(resumed.failure());
         }
       }
       send_status();
     }
-    if (underrun_) {
-      underrun_ = false;
+    if (events_.underrun) {
+      events_.underrun = false;
       last_error_ = static_cast<std::uint8_t>(Error::QueueUnderrun);
       send_status();
     }
@@ -696,17 +676,15 @@ class App {
   }
 
   void apply_start_rule() noexcept {
-    if (start_pending_ && window_ready(0)) {
-      start_pending_ = false;
+    if (phase_ == Phase::Running && armed() && window_ready(0)) {
       if (auto started = controller_.start(); !started) {
-        state_ = protocol::MachineState::Idle;
+        phase_ = settled_phase();
         return report(started.failure());
       }
       moving_ = true;
     }
     // After an underrun the finished segment is still at the front: resume() drops it.
-    if (moving_ && controller_.state() == ControllerState::Starved && state_ == protocol::MachineState::Running &&
-        window_ready(1)) {
+    if (moving_ && controller_.state() == ControllerState::Starved && phase_ == Phase::Running && window_ready(1)) {
       if (auto resumed = controller_.resume(); !resumed) report(resumed.failure());
     }
   }
@@ -719,14 +697,19 @@ class App {
     // Without a planner a stall is usually a queue the host did not refill in time.
     bool starved = false;
     if constexpr (!plans_on_board) starved = !controller_.can_step();
-    raise_fault(fail(starved ? Error::QueueUnderrun : Error::LinkTimeout, now - stalled_since_ms_));
+    // A host heard during the stall talks but does not take the setpoints (RetransmitLimit);
+    // a silent one is gone (LinkTimeout), as the sender itself tells them apart.
+    const bool heard = static_cast<std::int32_t>(last_heard_ms_ - stalled_since_ms_) > 0;
+    const Error code = starved ? Error::QueueUnderrun : (heard ? Error::RetransmitLimit : Error::LinkTimeout);
+    raise_fault(fail(code, now - stalled_since_ms_));
   }
 
   void watch_link(std::uint32_t now) noexcept {
     send_reply(receiver_.poll(free_segments(), now));
     if (link_hold_latched_ || receiver_.check_link(now)) return;
     link_hold_latched_ = true;
-    if (!(moving_ && controller_.state() == ControllerState::Running) && !start_pending_) return;
+    const bool running = moving_ && controller_.state() == ControllerState::Running;
+    if (!running && !(phase_ == Phase::Running && armed())) return;
     // Without a planner there is no braking: the queued pieces run out (QueueUnderrun).
     if constexpr (plans_on_board) feed_hold();
     report(fail(Error::LinkTimeout));
@@ -753,11 +736,7 @@ class App {
   }
 
   void queue_bytes(std::span<const std::byte> bytes) noexcept {
-    if (transmit_.available() < bytes.size()) {
-      ++statistics_.dropped_frames;
-      return;
-    }
-    for (const std::byte b : bytes) [[maybe_unused]] const bool pushed = transmit_.try_push(b);
+    if (!transmit_.queue(bytes)) ++statistics_.dropped_frames;
   }
 
   void report(Failure failure) noexcept {
@@ -770,7 +749,7 @@ class App {
 
   void send_status() noexcept {
     protocol::StatusReport s;
-    s.state = state_;
+    s.state = state();
     s.error = last_error_;
     s.axis_count = axis_count_;
     s.queue_depth = static_cast<std::uint16_t>(controller_.queued());
@@ -782,75 +761,21 @@ class App {
 
   /// Moves buffered setpoints into the setpoint stream's window as batches (never drops any).
   void send_setpoints() noexcept {
-    adapt_batch_size();
     // Stopped, or stalled (a paused interpolator must not hold back what it already produced).
     const bool stopped = !moving_ || stalled_ || controller_.state() == ControllerState::Held ||
                          controller_.state() == ControllerState::Starved;
-    while (!setpoints_.empty() && sender_.can_submit(protocol::MessageType::SetpointBatch)) {
-      if (setpoints_.size() < batch_limit_ && !stopped) return;
-      protocol::SetpointBatch batch;
-      batch.axis_count = axis_count_;
-      batch.first_index = setpoints_.front().index;
-      std::size_t count = 0;
-      while (count < setpoints_.size() && count < batch_limit_ &&
-             setpoints_[count].index == batch.first_index + count) {
-        batch.setpoints[count] = setpoints_[count].position;
-        ++count;
-      }
-      // Fast axes take up to 5 varint bytes per delta: keep the batch within one payload.
-      while (count > 1 && protocol::encoded_size(batch, count) > protocol::max_message_size) --count;
-      batch.count = static_cast<std::uint8_t>(count);
-      if (!sender_.submit(batch)) return;  // cannot happen: checked can_submit and size
-      for (std::size_t i = 0; i < count; ++i) setpoints_.pop_front();
-      if (batch_limit_ < protocol::max_setpoints_per_batch && sender_.go_backs() == seen_go_backs_) ++batch_limit_;
-    }
-  }
-
-  /// Halves the batch size after each retransmission round (short frames survive a noisy line).
-  void adapt_batch_size() noexcept {
-    if (sender_.go_backs() == seen_go_backs_) return;
-    statistics_.setpoint_go_backs += sender_.go_backs() - seen_go_backs_;
-    seen_go_backs_ = sender_.go_backs();
-    batch_limit_ = batch_limit_ / 2 < min_setpoints_per_batch ? min_setpoints_per_batch : batch_limit_ / 2;
-  }
-
-  /// Hands due setpoint frames (new or resent) to the transmit buffer, keeping room for replies.
-  /// Not inlined: its frame buffer must not sit in poll()'s frame, under the command handlers.
-  [[gnu::noinline]] void transmit_setpoints(std::uint32_t now) noexcept {
-    if (sender_.state() != protocol::LinkState::Connected) return;
-    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
-    while (transmit_.available() >= protocol::max_encoded_frame_size + transmit_reserve_bytes) {
-      const auto size = sender_.poll(now, frame);
-      if (!size) return raise_fault(size.failure());
-      if (size.value() == 0) return;
-      queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
-    }
-  }
-
-  void flush() noexcept {
-    std::array<std::byte, 64> chunk{};
-    while (!transmit_.empty()) {
-      std::size_t count = 0;
-      while (count < chunk.size() && count < transmit_.size()) {
-        chunk[count] = transmit_[count];
-        ++count;
-      }
-      const std::size_t written = board_.write(std::span<const std::byte>(chunk.data(), count));
-      for (std::size_t i = 0; i < written && i < count; ++i) transmit_.pop_front();
-      if (written < count) return;
-    }
+    stream_.submit(stopped, axis_count_, statistics_.setpoint_go_backs);
   }
 
   B& board_;
   AppSettings settings_;
   protocol::FrameDecoder<> decoder_{};
   protocol::LinkReceiver receiver_;
-  SetpointSender sender_;
+  SetpointStream<B> stream_;
   Controller controller_{};
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
-  RingBuffer<std::byte, transmit_buffer_bytes> transmit_{};
-  RingBuffer<IndexedSetpoint, board_setpoint_buffer<B>()> setpoints_{};
+  TransmitBuffer transmit_{};
   AppStatistics statistics_{};
   protocol::WirePoint position_{};
   protocol::WirePoint last_end_{};
@@ -860,27 +785,20 @@ class App {
   std::uint32_t setpoint_index_ = 0;
   std::uint32_t job_segments_ = 0;
   std::uint32_t stalled_since_ms_ = 0;
+  std::uint32_t last_heard_ms_ = 0;  ///< when the last valid frame from the host arrived
   std::uint32_t edges_dropped_seen_ = 0;  ///< the board's edges_dropped() at the last check
-  std::uint32_t seen_go_backs_ = 0;
-  std::size_t batch_limit_ = protocol::max_setpoints_per_batch;
-  protocol::MachineState state_ = protocol::MachineState::Idle;
+  Phase phase_ = Phase::NotConnected;
+  TickEvents events_{};
   std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
   std::uint8_t last_error_ = 0;
   std::uint8_t sequence_ = 0;
-  bool configured_ = false;
-  bool moving_ = false;
-  bool positioned_ = false;
-  bool start_pending_ = false;
-  bool held_before_start_ = false;
-  bool job_end_known_ = false;
-  bool job_done_ = false;
-  bool underrun_ = false;
-  bool held_ = false;
-  bool resume_when_held_ = false;
-  bool fault_pending_ = false;
-  bool has_last_end_ = false;
-  bool link_hold_latched_ = false;
-  bool stalled_ = false;
+  bool moving_ = false;               ///< the interpolator produces setpoints (started, not finished)
+  bool positioned_ = false;           ///< the step generator knows where the machine is
+  bool has_last_end_ = false;         ///< the next segment must start at last_end_
+  bool job_end_known_ = false;        ///< the job's last segment has been queued
+  bool resume_when_held_ = false;     ///< a Resume arrived while still braking
+  bool link_hold_latched_ = false;    ///< the link loss was acted on (until the next frame)
+  bool stalled_ = false;              ///< the last tick found the setpoint stream backed up
 };
 
 }  // namespace curvestep::firmware

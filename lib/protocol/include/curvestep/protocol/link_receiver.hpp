@@ -26,9 +26,9 @@
 // never shrink what the host was promised, and the host, which counts the segments it sent,
 // can never overrun the queue. Control messages (Start, FeedHold, Abort, StatusRequest, ...)
 // take no credit, so Abort gets through even when the queue is full.
-// Handshake: Hello carries a version and a host-chosen session number. A version mismatch is
-// refused with Nak(VersionMismatch); a new session resets sequence and credit; a repeated
-// Hello of the current session (a retransmission) only repeats the Capabilities answer.
+// Handshake: Hello carries a version and a host-chosen session number. A version mismatch (or a
+// Hello of the wrong length) is refused with Nak(VersionMismatch); a new session resets sequence
+// and credit; a repeated Hello of the current session (a retransmission) only repeats the Capabilities answer.
 // Sequenced frames before any handshake get Nak(NotConnected), which tells a host that was
 // connected that the controller restarted.
 // At the host (Endpoint::Host) there is no Hello to receive: open() starts the stream when the
@@ -108,9 +108,11 @@ class LinkReceiver {
   constexpr void close() noexcept { connected_ = false; }
 
   /// Handles one checked frame from the host. `free_queue_slots` is the number of empty queue
-  /// slots before this frame is processed.
+  /// slots before this frame is processed. `enforce_credit` false: a credit command is delivered
+  /// (and counted) even beyond the credit, because the application refuses it by its state
+  /// anyway (the controller without a configuration answers ConfigurationMissing, not QueueFull).
   [[nodiscard]] constexpr Reception on_frame(const Frame& frame, std::uint16_t free_queue_slots,
-                                             std::uint32_t now_ms) noexcept {
+                                             std::uint32_t now_ms, bool enforce_credit = true) noexcept {
     last_frame_ms_ = now_ms;
     const bool controller = local_ == Endpoint::Controller;
     if (controller && frame.type == static_cast<std::uint8_t>(MessageType::Hello)) {
@@ -133,7 +135,9 @@ class LinkReceiver {
     }
     last_ahead_ = 0;
     grow_credit(free_queue_slots);
-    if (consumes_credit(type) && segments_accepted_ == credit_end_) return nak(Error::QueueFull, true, now_ms);
+    if (enforce_credit && consumes_credit(type) && segments_accepted_ == credit_end_) {
+      return nak(Error::QueueFull, true, now_ms);
+    }
     ++expected_;
     nak_sent_ = false;
     if (consumes_credit(type)) ++segments_accepted_;
@@ -203,8 +207,9 @@ class LinkReceiver {
                                              std::uint32_t now_ms) noexcept {
     Reception r;
     const auto hello = decode<Hello>(frame.payload);
-    if (!hello) return r;
-    if (hello.value().version != capabilities_.version) {
+    // A Hello of another layout (the wrong length) is another protocol version's: refused like
+    // one that names another version. Its sequence byte is not looked at.
+    if (!hello || hello.value().version != capabilities_.version) {
       // Refused, but an established session (and its link watchdog) stays as it is: a stray
       // Hello from another host version must not silently disconnect the running job.
       r.reply = ReplyKind::Nak;
