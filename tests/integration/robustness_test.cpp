@@ -153,7 +153,8 @@ TEST_CASE("soak: a long job through faults in both directions arrives bit-identi
 TEST_CASE("soak: a device killed and restarted mid-job is detected and the host names where the job stopped",
           "[integration][hil][restart]") {
   const auto machine = ct::wire_exact_machine();
-  const auto job = ct::zigzag_job(200);
+  // Long enough to be mid-job 300 ms after "running", also now that Start comes with the first segment.
+  const auto job = ct::zigzag_job(1000);
   SwitchableLine line;
   auto first = std::make_unique<ct::Process>(std::vector<std::string>{"device", "--fast"}, "device_restart_1.stderr");
   line.connect_device(first->first_line());
