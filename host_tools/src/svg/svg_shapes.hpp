@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: MIT
+// Internal: the basic shapes (rect, circle, ellipse, line, polyline, polygon) as subpaths in user space.
+#pragma once
+
+#include <vector>
+
+#include <tinyxml2.h>
+
+#include "svg_diagnostics.hpp"
+#include "svg_geometry.hpp"
+
+namespace curvestep::host::svg {
+
+/// A rect's outline (rounded corners as quarter arcs); empty if a size is zero.
+[[nodiscard]] std::vector<Subpath> rect_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element);
+
+/// A circle's (`circle`) or ellipse's outline: four quarter arcs from (cx + rx, cy); empty if a radius is zero.
+[[nodiscard]] std::vector<Subpath> ellipse_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element, bool circle);
+
+/// A line from (x1, y1) to (x2, y2).
+[[nodiscard]] std::vector<Subpath> line_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element);
+
+/// A polyline or (`closed`) polygon from its points.
+[[nodiscard]] std::vector<Subpath> poly_outline(Diagnostics& diagnostics, const tinyxml2::XMLElement& element, bool closed);
+
+}  // namespace curvestep::host::svg
