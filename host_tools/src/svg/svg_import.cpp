@@ -64,7 +64,8 @@ SvgImport read_document(std::string_view text, std::string name, const SvgOption
     diagnostics.fail(*root, "", "the root element is <" + std::string(root->Name()) + ">, expected <svg>");
   }
   svg::ElementWalk walk(diagnostics);
-  walk.walk(*root, svg::root_viewport(diagnostics, *root));
+  const svg::RootViewport viewport = svg::root_viewport(diagnostics, *root);
+  walk.walk(*root, svg::Scope{viewport.map, viewport.lengths});
   if (walk.drawn().empty()) diagnostics.fail(*root, "", "the drawing has no paths or shapes to draw");
   return svg::build_import(diagnostics, std::move(walk.drawn()), options, diagnostics.take_warnings());
 }

@@ -9,14 +9,15 @@
 
 namespace curvestep::host::svg {
 
-std::vector<Subpath> rect_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element) {
-  const double x = length(diagnostics, element, "x", 0);
-  const double y = length(diagnostics, element, "y", 0);
-  const double w = size(diagnostics, element, "width").value_or(0);
-  const double h = size(diagnostics, element, "height").value_or(0);
+std::vector<Subpath> rect_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element,
+                                  const LengthContext& context) {
+  const double x = length(diagnostics, element, "x", 0, context, LengthAxis::X);
+  const double y = length(diagnostics, element, "y", 0, context, LengthAxis::Y);
+  const double w = size(diagnostics, element, "width", context, LengthAxis::X).value_or(0);
+  const double h = size(diagnostics, element, "height", context, LengthAxis::Y).value_or(0);
   if (w == 0 || h == 0) return {};  // not rendered
-  auto rx = size(diagnostics, element, "rx");
-  auto ry = size(diagnostics, element, "ry");
+  auto rx = size(diagnostics, element, "rx", context, LengthAxis::X);
+  auto ry = size(diagnostics, element, "ry", context, LengthAxis::Y);
   if (!rx) rx = ry;
   if (!ry) ry = rx;
   const double r_x = std::min(rx.value_or(0), w / 2);
@@ -43,16 +44,17 @@ std::vector<Subpath> rect_outline(const Diagnostics& diagnostics, const tinyxml2
   return {outline};
 }
 
-std::vector<Subpath> ellipse_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element, bool circle) {
-  const double cx = length(diagnostics, element, "cx", 0);
-  const double cy = length(diagnostics, element, "cy", 0);
+std::vector<Subpath> ellipse_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element, bool circle,
+                                      const LengthContext& context) {
+  const double cx = length(diagnostics, element, "cx", 0, context, LengthAxis::X);
+  const double cy = length(diagnostics, element, "cy", 0, context, LengthAxis::Y);
   double rx = 0;
   double ry = 0;
   if (circle) {
-    rx = ry = size(diagnostics, element, "r").value_or(0);
+    rx = ry = size(diagnostics, element, "r", context, LengthAxis::Other).value_or(0);
   } else {
-    auto a = size(diagnostics, element, "rx");
-    auto b = size(diagnostics, element, "ry");
+    auto a = size(diagnostics, element, "rx", context, LengthAxis::X);
+    auto b = size(diagnostics, element, "ry", context, LengthAxis::Y);
     if (!a) a = b;
     if (!b) b = a;
     rx = a.value_or(0);
@@ -69,9 +71,14 @@ std::vector<Subpath> ellipse_outline(const Diagnostics& diagnostics, const tinyx
   return {outline};
 }
 
-std::vector<Subpath> line_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element) {
-  Subpath line{{length(diagnostics, element, "x1", 0), length(diagnostics, element, "y1", 0)}, {}, false};
-  append_line(line, {length(diagnostics, element, "x2", 0), length(diagnostics, element, "y2", 0)});
+std::vector<Subpath> line_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element,
+                                  const LengthContext& context) {
+  const double x1 = length(diagnostics, element, "x1", 0, context, LengthAxis::X);
+  const double y1 = length(diagnostics, element, "y1", 0, context, LengthAxis::Y);
+  const double x2 = length(diagnostics, element, "x2", 0, context, LengthAxis::X);
+  const double y2 = length(diagnostics, element, "y2", 0, context, LengthAxis::Y);
+  Subpath line{{x1, y1}, {}, false};
+  append_line(line, {x2, y2});
   return {line};
 }
 

@@ -62,9 +62,11 @@ Affine with_transform(const Diagnostics& diagnostics, const tinyxml2::XMLElement
   }
 }
 
-Affine root_viewport(const Diagnostics& diagnostics, const tinyxml2::XMLElement& root) {
-  auto width = page_size_mm(diagnostics, root, "width");
-  auto height = page_size_mm(diagnostics, root, "height");
+RootViewport root_viewport(const Diagnostics& diagnostics, const tinyxml2::XMLElement& root) {
+  RootViewport viewport;
+  viewport.lengths.font_size = font_size(diagnostics, root, property(root, "font-size"), default_font_size_px, viewport.lengths);
+  auto width = page_size_mm(diagnostics, root, "width", viewport.lengths.font_size);
+  auto height = page_size_mm(diagnostics, root, "height", viewport.lengths.font_size);
   const auto box = view_box(diagnostics, root);
   Affine to_mm{mm_per_px, 0, 0, mm_per_px, 0, 0};
   if (box) {
@@ -76,7 +78,14 @@ Affine root_viewport(const Diagnostics& diagnostics, const tinyxml2::XMLElement&
     to_mm = viewbox_map(diagnostics, root, *box, *width, *height);
   }
   const Affine flip = height ? Affine{1, 0, 0, -1, 0, *height} : Affine{1, 0, 0, -1, 0, 0};
-  return flip * with_transform(diagnostics, root, to_mm);
+  viewport.map = flip * with_transform(diagnostics, root, to_mm);
+  viewport.width_mm = width;
+  viewport.height_mm = height;
+  viewport.lengths.root_width = width.value_or(0) / mm_per_px;
+  viewport.lengths.root_height = height.value_or(0) / mm_per_px;
+  viewport.lengths.viewport_width = box ? (*box)[2] : viewport.lengths.root_width;
+  viewport.lengths.viewport_height = box ? (*box)[3] : viewport.lengths.root_height;
+  return viewport;
 }
 
 }  // namespace curvestep::host::svg

@@ -10,6 +10,7 @@
 
 #include "svg_diagnostics.hpp"
 #include "svg_geometry.hpp"
+#include "svg_lengths.hpp"
 
 namespace curvestep::host::svg {
 
@@ -24,7 +25,15 @@ namespace curvestep::host::svg {
 /// `parent` ∘ the element's transform attribute (parent alone if it has none).
 [[nodiscard]] Affine with_transform(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element, const Affine& parent);
 
-/// User space of the root -> machine mm, y up (y_machine = H - y_mm, H the page height).
-[[nodiscard]] Affine root_viewport(const Diagnostics& diagnostics, const tinyxml2::XMLElement& root);
+/// The root viewport: its map to machine mm and what its children's lengths refer to.
+struct RootViewport {
+  Affine map;                        ///< root user space -> machine mm, y up (y_machine = H - y_mm, H the page height)
+  std::optional<double> width_mm;    ///< the page width, if known
+  std::optional<double> height_mm;   ///< the page height, if known
+  LengthContext lengths;             ///< viewport size in user units, root size in px, the root's font-size
+};
+
+/// The root's viewport from width, height, viewBox, preserveAspectRatio, font-size and transform.
+[[nodiscard]] RootViewport root_viewport(const Diagnostics& diagnostics, const tinyxml2::XMLElement& root);
 
 }  // namespace curvestep::host::svg

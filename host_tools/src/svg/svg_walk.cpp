@@ -14,9 +14,9 @@
 
 namespace curvestep::host::svg {
 
-void ElementWalk::walk(const tinyxml2::XMLElement& root, const Affine& root_map) {
+void ElementWalk::walk(const tinyxml2::XMLElement& root, const Scope& root_scope) {
   index_ids(root);
-  visit_children(root, root_map);
+  visit_children(root, root_scope);
 }
 
 void ElementWalk::index_ids(const tinyxml2::XMLElement& element) {
@@ -24,11 +24,11 @@ void ElementWalk::index_ids(const tinyxml2::XMLElement& element) {
   for (const auto* child = element.FirstChildElement(); child != nullptr; child = child->NextSiblingElement()) index_ids(*child);
 }
 
-void ElementWalk::visit_children(const tinyxml2::XMLElement& parent, const Affine& map) {
-  for (const auto* child = parent.FirstChildElement(); child != nullptr; child = child->NextSiblingElement()) visit(*child, map);
+void ElementWalk::visit_children(const tinyxml2::XMLElement& parent, const Scope& scope) {
+  for (const auto* child = parent.FirstChildElement(); child != nullptr; child = child->NextSiblingElement()) visit(*child, scope);
 }
 
-void ElementWalk::visit(const tinyxml2::XMLElement& element, const Affine& parent_map) {
+void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent, const ViewportSize& use_size) {
   // Nested <use> fans out geometrically (a 1.3 KB file drew billions of elements): bound the total.
   if (!active_uses_.empty() && ++expanded_elements_ > max_svg_expanded_elements) {
     const tinyxml2::XMLElement& outer = *active_uses_.front();
@@ -45,22 +45,19 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Affine& paren
     if (name == skip) return;
   }
   if (property(element, "display") == "none") return;
+  Scope scope = parent;
+  scope.lengths.font_size = font_size(diagnostics_, element, property(element, "font-size"), parent.lengths.font_size, parent.lengths);
   if (name == "g" || name == "a" || name == "switch") {
-    visit_children(element, with_transform(diagnostics_, element, parent_map));
+    scope.map = with_transform(diagnostics_, element, parent.map);
+    visit_children(element, scope);
     return;
   }
-  if (name == "svg") {  // a nested viewport: x, y and its own viewBox
-    Affine map = with_transform(diagnostics_, element, parent_map) *
-                 Affine{1, 0, 0, 1, length(diagnostics_, element, "x", 0), length(diagnostics_, element, "y", 0)};
-    if (const auto box = view_box(diagnostics_, element)) {
-      const auto width = size(diagnostics_, element, "width");
-      const auto height = size(diagnostics_, element, "height");
-      map = map * viewbox_map(diagnostics_, element, *box, width.value_or((*box)[2]), height.value_or((*box)[3]));
-    }
-    visit_children(element, map);
+  if (name == "svg") {
+    viewport(element, scope, with_transform(diagnostics_, element, parent.map), use_size);
     return;
   }
-  const Affine map = with_transform(diagnostics_, element, parent_map);
+  scope.map = with_transform(diagnostics_, element, parent.map);
+  const LengthContext& lengths = scope.lengths;
   std::vector<Subpath> subpaths;
   if (name == "path") {
     const char* data = element.Attribute("d");
@@ -71,15 +68,15 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Affine& paren
       diagnostics_.fail_syntax(element, "d", error);
     }
   } else if (name == "rect") {
-    subpaths = rect_outline(diagnostics_, element);
+    subpaths = rect_outline(diagnostics_, element, lengths);
   } else if (name == "circle" || name == "ellipse") {
-    subpaths = ellipse_outline(diagnostics_, element, name == "circle");
+    subpaths = ellipse_outline(diagnostics_, element, name == "circle", lengths);
   } else if (name == "line") {
-    subpaths = line_outline(diagnostics_, element);
+    subpaths = line_outline(diagnostics_, element, lengths);
   } else if (name == "polyline" || name == "polygon") {
     subpaths = poly_outline(diagnostics_, element, name == "polygon");
   } else if (name == "use") {
-    use(element, map);
+    use(element, scope);
     return;
   } else if (name == "text" || name == "image" || name == "foreignObject") {
     diagnostics_.warn(element, name == "text" ? "is not drawn (convert text to paths first)" : "is not drawn");
@@ -88,10 +85,33 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Affine& paren
     diagnostics_.warn(element, "is not drawn (unknown element)");
     return;
   }
-  append_machine_subpaths(diagnostics_, element, name == "path" ? "d" : "", map, subpaths, drawn_);
+  append_machine_subpaths(diagnostics_, element, name == "path" ? "d" : "", scope.map, subpaths, drawn_);
 }
 
-void ElementWalk::use(const tinyxml2::XMLElement& element, const Affine& map) {
+void ElementWalk::viewport(const tinyxml2::XMLElement& element, const Scope& scope, const Affine& placed, const ViewportSize& size) {
+  const LengthContext& outer = scope.lengths;
+  const double x = length(diagnostics_, element, "x", 0, outer, LengthAxis::X);
+  const double y = length(diagnostics_, element, "y", 0, outer, LengthAxis::Y);
+  const auto box = view_box(diagnostics_, element);
+  // width and height: the use's, else the element's own, else 100% (the viewBox size if that is unknown).
+  auto width = size.width ? size.width : svg::size(diagnostics_, element, "width", outer, LengthAxis::X);
+  auto height = size.height ? size.height : svg::size(diagnostics_, element, "height", outer, LengthAxis::Y);
+  if (!width && outer.viewport_width > 0) width = outer.viewport_width;
+  if (!height && outer.viewport_height > 0) height = outer.viewport_height;
+  Scope inner = scope;
+  inner.map = placed * Affine{1, 0, 0, 1, x, y};
+  if (box) {
+    inner.map = inner.map * viewbox_map(diagnostics_, element, *box, width.value_or((*box)[2]), height.value_or((*box)[3]));
+    inner.lengths.viewport_width = (*box)[2];
+    inner.lengths.viewport_height = (*box)[3];
+  } else {
+    inner.lengths.viewport_width = width.value_or(0);
+    inner.lengths.viewport_height = height.value_or(0);
+  }
+  visit_children(element, inner);
+}
+
+void ElementWalk::use(const tinyxml2::XMLElement& element, const Scope& scope) {
   const char* attribute = element.Attribute("href") != nullptr ? "href" : "xlink:href";
   const char* raw = element.Attribute(attribute);
   if (raw == nullptr) return;  // nothing referenced: nothing drawn
@@ -107,17 +127,21 @@ void ElementWalk::use(const tinyxml2::XMLElement& element, const Affine& map) {
     diagnostics_.fail(element, attribute, "the reference \"" + quoted_excerpt(reference) + "\" refers back to itself");
   }
   active_uses_.push_back(&element);
-  const Affine placed = map * Affine{1, 0, 0, 1, length(diagnostics_, element, "x", 0), length(diagnostics_, element, "y", 0)};
+  const LengthContext& lengths = scope.lengths;
+  const ViewportSize given{svg::size(diagnostics_, element, "width", lengths, LengthAxis::X),
+                           svg::size(diagnostics_, element, "height", lengths, LengthAxis::Y)};
+  Scope placed = scope;
+  placed.map = scope.map * Affine{1, 0, 0, 1, length(diagnostics_, element, "x", 0, lengths, LengthAxis::X),
+                                  length(diagnostics_, element, "y", 0, lengths, LengthAxis::Y)};
   if (local_name(target) == "symbol") {
-    Affine inner = with_transform(diagnostics_, target, placed);
-    if (const auto box = view_box(diagnostics_, target)) {
-      const auto width = size(diagnostics_, element, "width");
-      const auto height = size(diagnostics_, element, "height");
-      inner = inner * viewbox_map(diagnostics_, target, *box, width.value_or((*box)[2]), height.value_or((*box)[3]));
+    if (property(target, "display") != "none") {
+      Scope symbol = placed;
+      symbol.lengths.font_size =
+          font_size(diagnostics_, target, property(target, "font-size"), placed.lengths.font_size, placed.lengths);
+      viewport(target, symbol, with_transform(diagnostics_, target, placed.map), given);
     }
-    visit_children(target, inner);
   } else {
-    visit(target, placed);
+    visit(target, placed, given);
   }
   active_uses_.pop_back();
 }

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,26 +13,41 @@
 
 #include "svg_diagnostics.hpp"
 #include "svg_geometry.hpp"
+#include "svg_lengths.hpp"
 #include "svg_machine.hpp"
 
 namespace curvestep::host::svg {
+
+/// What an element inherits from its parent.
+struct Scope {
+  Affine map;             ///< user space -> machine mm
+  LengthContext lengths;  ///< viewport, font-size and root size for relative lengths
+};
+
+/// Width and height a <use> gives the <svg> or <symbol> it references (nullopt: not given).
+struct ViewportSize {
+  std::optional<double> width;   ///< user units of the use
+  std::optional<double> height;  ///< user units of the use
+};
 
 /// Walks a document's elements and collects what they draw.
 class ElementWalk {
  public:
   explicit ElementWalk(Diagnostics& diagnostics) : diagnostics_(diagnostics) {}
 
-  /// Draws the root's children through `root_map` (root user space -> machine mm).
-  void walk(const tinyxml2::XMLElement& root, const Affine& root_map);
+  /// Draws the root's children in the root's scope (its map to machine mm and its lengths).
+  void walk(const tinyxml2::XMLElement& root, const Scope& root_scope);
 
   /// What was drawn, in document order.
   [[nodiscard]] std::vector<DrawnSubpath>& drawn() noexcept { return drawn_; }
 
  private:
   void index_ids(const tinyxml2::XMLElement& element);
-  void visit_children(const tinyxml2::XMLElement& parent, const Affine& map);
-  void visit(const tinyxml2::XMLElement& element, const Affine& parent_map);
-  void use(const tinyxml2::XMLElement& element, const Affine& map);
+  void visit_children(const tinyxml2::XMLElement& parent, const Scope& scope);
+  void visit(const tinyxml2::XMLElement& element, const Scope& parent, const ViewportSize& use_size = {});
+  /// A nested viewport (<svg>, or a <symbol> through <use>) at x, y of width × height with its viewBox.
+  void viewport(const tinyxml2::XMLElement& element, const Scope& scope, const Affine& placed, const ViewportSize& size);
+  void use(const tinyxml2::XMLElement& element, const Scope& scope);
 
   Diagnostics& diagnostics_;
   std::vector<DrawnSubpath> drawn_;
