@@ -7,6 +7,7 @@
 
 #include "svg_attributes.hpp"
 #include "svg_lengths.hpp"
+#include "svg_transform.hpp"
 
 namespace curvestep::host::svg {
 
@@ -52,16 +53,6 @@ std::optional<std::vector<double>> view_box(const Diagnostics& diagnostics, cons
   return box;
 }
 
-Affine with_transform(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element, const Affine& parent) {
-  const char* raw = element.Attribute("transform");
-  if (raw == nullptr) return parent;
-  try {
-    return parent * parse_transform(raw);
-  } catch (const SyntaxError& error) {
-    diagnostics.fail_syntax(element, "transform", error);
-  }
-}
-
 RootViewport root_viewport(const Diagnostics& diagnostics, const tinyxml2::XMLElement& root) {
   RootViewport viewport;
   viewport.lengths.font_size = font_size(diagnostics, root, property(root, "font-size"), default_font_size_px, viewport.lengths);
@@ -77,14 +68,14 @@ RootViewport root_viewport(const Diagnostics& diagnostics, const tinyxml2::XMLEl
     if (!height) height = (*box)[3] * mm_per_px;
     to_mm = viewbox_map(diagnostics, root, *box, *width, *height);
   }
-  const Affine flip = height ? Affine{1, 0, 0, -1, 0, *height} : Affine{1, 0, 0, -1, 0, 0};
-  viewport.map = flip * with_transform(diagnostics, root, to_mm);
   viewport.width_mm = width;
   viewport.height_mm = height;
   viewport.lengths.root_width = width.value_or(0) / mm_per_px;
   viewport.lengths.root_height = height.value_or(0) / mm_per_px;
   viewport.lengths.viewport_width = box ? (*box)[2] : viewport.lengths.root_width;
   viewport.lengths.viewport_height = box ? (*box)[3] : viewport.lengths.root_height;
+  const Affine flip = height ? Affine{1, 0, 0, -1, 0, *height} : Affine{1, 0, 0, -1, 0, 0};
+  viewport.map = flip * with_transform(diagnostics, root, to_mm, viewport.lengths);
   return viewport;
 }
 

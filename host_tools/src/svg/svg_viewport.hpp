@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Internal: viewports (viewBox, preserveAspectRatio), the root's map to machine millimetres, and
-// an element's transform attribute.
+// Internal: viewports (viewBox, preserveAspectRatio) and the root's map to machine millimetres.
 #pragma once
 
 #include <optional>
@@ -21,9 +20,6 @@ namespace curvestep::host::svg {
 /// the element's preserveAspectRatio.
 [[nodiscard]] Affine viewbox_map(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element,
                                  const std::vector<double>& box, double width, double height);
-
-/// `parent` ∘ the element's transform attribute (parent alone if it has none).
-[[nodiscard]] Affine with_transform(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element, const Affine& parent);
 
 /// The root viewport: its map to machine mm and what its children's lengths refer to.
 struct RootViewport {

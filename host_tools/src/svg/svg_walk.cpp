@@ -10,6 +10,7 @@
 #include "svg_attributes.hpp"
 #include "svg_lengths.hpp"
 #include "svg_shapes.hpp"
+#include "svg_transform.hpp"
 #include "svg_viewport.hpp"
 
 namespace curvestep::host::svg {
@@ -48,15 +49,15 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   Scope scope = parent;
   scope.lengths.font_size = font_size(diagnostics_, element, property(element, "font-size"), parent.lengths.font_size, parent.lengths);
   if (name == "g" || name == "a" || name == "switch") {
-    scope.map = with_transform(diagnostics_, element, parent.map);
+    scope.map = with_transform(diagnostics_, element, parent.map, scope.lengths);
     visit_children(element, scope);
     return;
   }
   if (name == "svg") {
-    viewport(element, scope, with_transform(diagnostics_, element, parent.map), use_size);
+    viewport(element, scope, with_transform(diagnostics_, element, parent.map, scope.lengths), use_size);
     return;
   }
-  scope.map = with_transform(diagnostics_, element, parent.map);
+  scope.map = with_transform(diagnostics_, element, parent.map, scope.lengths);
   const LengthContext& lengths = scope.lengths;
   std::vector<Subpath> subpaths;
   if (name == "path") {
@@ -138,7 +139,7 @@ void ElementWalk::use(const tinyxml2::XMLElement& element, const Scope& scope) {
       Scope symbol = placed;
       symbol.lengths.font_size =
           font_size(diagnostics_, target, property(target, "font-size"), placed.lengths.font_size, placed.lengths);
-      viewport(target, symbol, with_transform(diagnostics_, target, placed.map), given);
+      viewport(target, symbol, with_transform(diagnostics_, target, placed.map, symbol.lengths), given);
     }
   } else {
     visit(target, placed, given);
