@@ -10,9 +10,12 @@
 
 namespace curvestep::host {
 
-/// Adds --optimize, --blend-tolerance and --strict-step-rate to `command`, filling `options`.
+/// Adds --optimize, --strict, --blend-tolerance and --strict-step-rate to `command`, filling `options`.
 inline void add_job_pipeline_options(CLI::App* command, JobPipelineOptions& options) {
   command->add_flag("--optimize", options.optimize, "SVG: order subpaths to shorten pen-up travel");
+  command->add_flag("--strict", options.strict_svg,
+                    "SVG: refuse a file with malformed path data or points (by default SVG's rule: drawn up to the error, "
+                    "with a warning naming file:line and character)");
   command->add_option("--blend-tolerance", options.blend_tolerance_mm,
                       "Path smoothing tolerance in mm (corner blends and line-run fits; 0 = off), overriding the machine "
                       "file's \"blend_tolerance\" (docs/motion.md, \"Path smoothing\")")

@@ -25,9 +25,10 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
   if (extension == ".svg") {
     SvgOptions svg;
     svg.optimize = options.optimize;
+    svg.strict = options.strict_svg;
     SvgImport imported = load_svg(path, svg);
     if (notes != nullptr) {
-      for (const auto& warning : imported.warnings) notes->push_back(path.string() + ": " + warning);
+      for (const auto& warning : imported.warnings) notes->push_back(warning);  // each names the file and line
       if (options.optimize) {
         std::ostringstream line;
         line << "optimised pen-up travel: " << imported.travel_document_mm << " mm -> " << imported.travel_mm << " mm (saved "

@@ -36,4 +36,12 @@ void Diagnostics::warn(const tinyxml2::XMLElement& element, const std::string& m
   warnings_.push_back(file_ + ":" + std::to_string(element.GetLineNum()) + ": " + label(element) + " " + message);
 }
 
+void Diagnostics::warn_at(const tinyxml2::XMLElement& element, const char* attribute, const std::string& message) {
+  SourceLocation location;
+  location.file = file_;
+  location.line = static_cast<std::size_t>(element.GetLineNum());
+  location.field = field(element, attribute);
+  warnings_.push_back(format_load_error(location, message));
+}
+
 }  // namespace curvestep::host::svg

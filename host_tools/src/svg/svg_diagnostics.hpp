@@ -38,6 +38,8 @@ class Diagnostics {
 
   /// Records "file:line: <element> message".
   void warn(const tinyxml2::XMLElement& element, const std::string& message);
+  /// Records a warning located like a LoadError: "file:line: <element> "attribute": message".
+  void warn_at(const tinyxml2::XMLElement& element, const char* attribute, const std::string& message);
   /// Records a whole warning line.
   void warn_line(std::string line) { warnings_.push_back(std::move(line)); }
 

@@ -63,7 +63,7 @@ SvgImport read_document(std::string_view text, std::string name, const SvgOption
   if (svg::local_name(*root) != "svg") {
     diagnostics.fail(*root, "", "the root element is <" + std::string(root->Name()) + ">, expected <svg>");
   }
-  svg::ElementWalk walk(diagnostics);
+  svg::ElementWalk walk(diagnostics, options.strict);
   const svg::RootViewport viewport = svg::root_viewport(diagnostics, *root);
   walk.walk(*root, svg::Scope{viewport.map, viewport.lengths});
   if (walk.drawn().empty()) diagnostics.fail(*root, "", "the drawing has no paths or shapes to draw");

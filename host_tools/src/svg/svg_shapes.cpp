@@ -82,19 +82,24 @@ std::vector<Subpath> line_outline(const Diagnostics& diagnostics, const tinyxml2
   return {line};
 }
 
-std::vector<Subpath> poly_outline(Diagnostics& diagnostics, const tinyxml2::XMLElement& element, bool closed) {
+std::vector<Subpath> poly_outline(Diagnostics& diagnostics, const tinyxml2::XMLElement& element, bool closed, bool strict) {
   const char* raw = element.Attribute("points");
   if (raw == nullptr) return {};
-  std::vector<double> numbers;
-  try {
-    numbers = parse_number_list(raw);
-  } catch (const SyntaxError& error) {
-    diagnostics.fail_syntax(element, "points", error);
+  NumberList list = parse_number_list_until_error(raw);
+  std::vector<double>& numbers = list.numbers;
+  if (list.error) {
+    if (strict) diagnostics.fail_syntax(element, "points", *list.error);
+    diagnostics.warn_at(element, "points",
+                        "at character " + std::to_string(list.error->position()) + ": " + list.error->what() +
+                            " (drawn with the " + std::to_string(numbers.size() - numbers.size() % 2) +
+                            " numbers before it, as SVG renders; strict import refuses the file)");
+  } else if (numbers.size() % 2 != 0) {
+    const std::string count = "an odd count (" + std::to_string(numbers.size()) + " numbers)";
+    if (strict) diagnostics.fail(element, "points", "expected pairs of coordinates, got " + count);
+    diagnostics.warn_at(element, "points",
+                        count + ": the last number is dropped, as SVG does (strict import refuses the file)");
   }
-  if (numbers.size() % 2 != 0) {
-    diagnostics.fail(element, "points",
-                     "expected pairs of coordinates, got an odd count (" + std::to_string(numbers.size()) + " numbers)");
-  }
+  numbers.resize(numbers.size() - numbers.size() % 2);
   if (numbers.empty()) return {};
   Subpath outline{{numbers[0], numbers[1]}, {}, closed};
   for (std::size_t i = 2; i < numbers.size(); i += 2) append_line(outline, {numbers[i], numbers[i + 1]});

@@ -24,7 +24,9 @@ namespace curvestep::host::svg {
 [[nodiscard]] std::vector<Subpath> line_outline(const Diagnostics& diagnostics, const tinyxml2::XMLElement& element,
                                    const LengthContext& context);
 
-/// A polyline or (`closed`) polygon from its points.
-[[nodiscard]] std::vector<Subpath> poly_outline(Diagnostics& diagnostics, const tinyxml2::XMLElement& element, bool closed);
+/// A polyline or (`closed`) polygon from its points. A malformed list or an odd count is an error
+/// if `strict`; otherwise the numbers before the error are used, an odd last one dropped, with a warning.
+[[nodiscard]] std::vector<Subpath> poly_outline(Diagnostics& diagnostics, const tinyxml2::XMLElement& element, bool closed,
+                                                bool strict);
 
 }  // namespace curvestep::host::svg

@@ -63,11 +63,15 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   if (name == "path") {
     const char* data = element.Attribute("d");
     if (data == nullptr) return;  // no d: nothing to draw
-    try {
-      subpaths = parse_path_data(data);
-    } catch (const SyntaxError& error) {
-      diagnostics_.fail_syntax(element, "d", error);
+    PathData parsed = parse_path_data_until_error(data);
+    if (parsed.error) {  // SVG's error rule: render up to the error (strict: refuse the file)
+      if (strict_) diagnostics_.fail_syntax(element, "d", *parsed.error);
+      const std::string at = std::to_string(parsed.error->position());
+      diagnostics_.warn_at(element, "d",
+                           "at character " + at + ": " + parsed.error->what() + " (drawn up to character " + at +
+                               ", as SVG renders; strict import refuses the file)");
     }
+    subpaths = std::move(parsed.subpaths);
   } else if (name == "rect") {
     subpaths = rect_outline(diagnostics_, element, lengths);
   } else if (name == "circle" || name == "ellipse") {
@@ -75,7 +79,7 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   } else if (name == "line") {
     subpaths = line_outline(diagnostics_, element, lengths);
   } else if (name == "polyline" || name == "polygon") {
-    subpaths = poly_outline(diagnostics_, element, name == "polygon");
+    subpaths = poly_outline(diagnostics_, element, name == "polygon", strict_);
   } else if (name == "use") {
     use(element, scope);
     return;

@@ -33,7 +33,8 @@ struct ViewportSize {
 /// Walks a document's elements and collects what they draw.
 class ElementWalk {
  public:
-  explicit ElementWalk(Diagnostics& diagnostics) : diagnostics_(diagnostics) {}
+  /// `strict`: a path-data or points error refuses the file (else: drawn up to the error, with a warning).
+  ElementWalk(Diagnostics& diagnostics, bool strict) : diagnostics_(diagnostics), strict_(strict) {}
 
   /// Draws the root's children in the root's scope (its map to machine mm and its lengths).
   void walk(const tinyxml2::XMLElement& root, const Scope& root_scope);
@@ -50,6 +51,7 @@ class ElementWalk {
   void use(const tinyxml2::XMLElement& element, const Scope& scope);
 
   Diagnostics& diagnostics_;
+  bool strict_ = false;
   std::vector<DrawnSubpath> drawn_;
   std::map<std::string, const tinyxml2::XMLElement*> ids_;
   std::vector<const tinyxml2::XMLElement*> active_uses_;

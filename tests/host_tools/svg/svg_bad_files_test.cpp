@@ -55,7 +55,10 @@ TEST_CASE("svg: each malformed file names the file, line, element and what is wr
       {"bad_viewbox.svg", 1, "<svg> \"viewBox\"", Error::InvalidJob, "expected 4 numbers (min-x min-y width height), got 3"},
       {"bad_nothing_to_draw.svg", 2, "<svg>", Error::InvalidJob, "the drawing has no paths or shapes to draw"},
   };
-  check_bad_files(cases, svg_data, [](const auto& path) { return load_svg(path); },
+  // Strict import: path data and points errors refuse the file (svg_error_rule_test.cpp: the default).
+  SvgOptions strict;
+  strict.strict = true;
+  check_bad_files(cases, svg_data, [&](const auto& path) { return load_svg(path, strict); },
                   [](const BadFile& bad, const LoadError&, const std::string& path, const std::string& what) {
                     const std::string prefix = path + (bad.line > 0 ? ":" + std::to_string(bad.line) : std::string()) + ": ";
                     CHECK(what.rfind(prefix, 0) == 0);

@@ -12,7 +12,8 @@ namespace curvestep::host {
 
 /// How to read a job file.
 struct JobFileOptions {
-  bool optimize = false;  ///< SVG: order subpaths to shorten pen-up travel (greedy nearest neighbour)
+  bool optimize = false;    ///< SVG: order subpaths to shorten pen-up travel (greedy nearest neighbour)
+  bool strict_svg = false;  ///< SVG: refuse malformed path data or points (else drawn up to the error, with a note)
 };
 
 /// Loads the job in `path`, choosing the format by its extension (case-insensitive). Lines worth

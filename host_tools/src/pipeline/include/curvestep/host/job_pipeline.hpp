@@ -13,6 +13,7 @@
 
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/job_file.hpp>
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/smoothing/path_smoothing.hpp>
 
@@ -23,7 +24,11 @@ struct JobPipelineOptions {
   bool optimize = false;            ///< --optimize: order SVG subpaths to shorten pen-up travel
   double blend_tolerance_mm = -1;   ///< --blend-tolerance; < 0: the machine file's
   bool strict_step_rate = false;    ///< --strict-step-rate: refuse instead of planning slower
+  bool strict_svg = false;          ///< --strict: refuse SVG path data or points errors (SVG's rule draws up to them)
 };
+
+/// The job-file options (import) of the pipeline options.
+[[nodiscard]] JobFileOptions job_file_options(const JobPipelineOptions& options);
 
 /// A job ready to plan or send, with the limits to plan it with.
 struct PreparedJob {
