@@ -17,7 +17,27 @@ namespace curvestep::host::svg {
 
 void ElementWalk::walk(const tinyxml2::XMLElement& root, const Scope& root_scope) {
   index_ids(root);
+  collect_style_sheets(root);
   visit_children(root, root_scope);
+}
+
+void ElementWalk::collect_style_sheets(const tinyxml2::XMLElement& element) {
+  if (local_name(element) == "style" && element.GetText() != nullptr) styles_.add(element.GetText());
+  for (const auto* child = element.FirstChildElement(); child != nullptr; child = child->NextSiblingElement()) {
+    collect_style_sheets(*child);
+  }
+}
+
+const tinyxml2::XMLElement* ElementWalk::switch_choice(const tinyxml2::XMLElement& element) {
+  for (const auto* child = element.FirstChildElement(); child != nullptr; child = child->NextSiblingElement()) {
+    const std::string full_name = child->Name();
+    if (full_name.find(':') != std::string::npos && full_name.rfind("svg:", 0) != 0) continue;  // another namespace
+    const std::string name = local_name(*child);
+    if (name == "title" || name == "desc" || name == "metadata") continue;
+    if (child->Attribute("requiredExtensions") != nullptr) continue;
+    return child;
+  }
+  return nullptr;
 }
 
 void ElementWalk::index_ids(const tinyxml2::XMLElement& element) {
@@ -45,12 +65,23 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   for (const char* skip : not_rendered) {
     if (name == skip) return;
   }
-  if (property(element, "display") == "none") return;
+  if (styles_.property(element, "display") == "none") return;
   Scope scope = parent;
-  scope.lengths.font_size = font_size(diagnostics_, element, property(element, "font-size"), parent.lengths.font_size, parent.lengths);
-  if (name == "g" || name == "a" || name == "switch") {
+  scope.lengths.font_size =
+      font_size(diagnostics_, element, styles_.property(element, "font-size"), parent.lengths.font_size, parent.lengths);
+  if (const std::string visibility = styles_.property(element, "visibility"); !visibility.empty() && visibility != "inherit") {
+    scope.visible = visibility == "visible";
+  }
+  if (const std::string stroke = styles_.property(element, "stroke"); !stroke.empty() && stroke != "inherit") scope.stroke = stroke;
+  if (const std::string fill = styles_.property(element, "fill"); !fill.empty() && fill != "inherit") scope.fill = fill;
+  if (name == "g" || name == "a") {
     scope.map = with_transform(diagnostics_, element, parent.map, scope.lengths);
     visit_children(element, scope);
+    return;
+  }
+  if (name == "switch") {
+    scope.map = with_transform(diagnostics_, element, parent.map, scope.lengths);
+    if (const auto* chosen = switch_choice(element)) visit(*chosen, scope);
     return;
   }
   if (name == "svg") {
@@ -59,6 +90,13 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   }
   scope.map = with_transform(diagnostics_, element, parent.map, scope.lengths);
   const LengthContext& lengths = scope.lengths;
+  const bool shape = name == "path" || name == "rect" || name == "circle" || name == "ellipse" || name == "line" ||
+                     name == "polyline" || name == "polygon";
+  if (shape && !scope.visible) return;  // visibility: hidden / collapse
+  if (shape && scope.stroke == "none" && scope.fill == "none") {
+    diagnostics_.warn(element, "is not drawn (stroke and fill are none: invisible)");
+    return;
+  }
   std::vector<Subpath> subpaths;
   if (name == "path") {
     const char* data = element.Attribute("d");
@@ -139,10 +177,10 @@ void ElementWalk::use(const tinyxml2::XMLElement& element, const Scope& scope) {
   placed.map = scope.map * Affine{1, 0, 0, 1, length(diagnostics_, element, "x", 0, lengths, LengthAxis::X),
                                   length(diagnostics_, element, "y", 0, lengths, LengthAxis::Y)};
   if (local_name(target) == "symbol") {
-    if (property(target, "display") != "none") {
+    if (styles_.property(target, "display") != "none") {
       Scope symbol = placed;
       symbol.lengths.font_size =
-          font_size(diagnostics_, target, property(target, "font-size"), placed.lengths.font_size, placed.lengths);
+          font_size(diagnostics_, target, styles_.property(target, "font-size"), placed.lengths.font_size, placed.lengths);
       viewport(target, symbol, with_transform(diagnostics_, target, placed.map, symbol.lengths), given);
     }
   } else {

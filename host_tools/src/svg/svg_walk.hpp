@@ -11,6 +11,7 @@
 
 #include <tinyxml2.h>
 
+#include "svg_css.hpp"
 #include "svg_diagnostics.hpp"
 #include "svg_geometry.hpp"
 #include "svg_lengths.hpp"
@@ -22,6 +23,9 @@ namespace curvestep::host::svg {
 struct Scope {
   Affine map;             ///< user space -> machine mm
   LengthContext lengths;  ///< viewport, font-size and root size for relative lengths
+  bool visible = true;    ///< computed visibility (inherited): hidden and collapse are not drawn
+  std::string stroke = "none";   ///< computed stroke (inherited)
+  std::string fill = "black";    ///< computed fill (inherited)
 };
 
 /// Width and height a <use> gives the <svg> or <symbol> it references (nullopt: not given).
@@ -49,10 +53,15 @@ class ElementWalk {
   /// A nested viewport (<svg>, or a <symbol> through <use>) at x, y of width × height with its viewBox.
   void viewport(const tinyxml2::XMLElement& element, const Scope& scope, const Affine& placed, const ViewportSize& size);
   void use(const tinyxml2::XMLElement& element, const Scope& scope);
+  void collect_style_sheets(const tinyxml2::XMLElement& element);
+  /// The child a <switch> renders: the first SVG element that is not title/desc/metadata and has no
+  /// requiredExtensions (no extension is supported; every other condition passes).
+  [[nodiscard]] static const tinyxml2::XMLElement* switch_choice(const tinyxml2::XMLElement& element);
 
   Diagnostics& diagnostics_;
   bool strict_ = false;
   std::vector<DrawnSubpath> drawn_;
+  StyleSheet styles_;
   std::map<std::string, const tinyxml2::XMLElement*> ids_;
   std::vector<const tinyxml2::XMLElement*> active_uses_;
   std::size_t expanded_elements_ = 0;  ///< elements visited through <use>, all uses together
