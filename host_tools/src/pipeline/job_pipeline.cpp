@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include <curvestep/host/job_file.hpp>
 
@@ -35,6 +36,15 @@ JobFileOptions job_file_options(const JobPipelineOptions& options) {
   JobFileOptions file;
   file.optimize = options.optimize;
   file.strict_svg = options.strict_svg;
+  if (!options.page.empty()) file.page.page = parse_page_size(options.page);
+  file.page.landscape = options.landscape;
+  file.page.center = options.center;
+  file.page.fit = options.fit;
+  if (!options.margin.empty()) file.page.margin_mm = parse_page_length(options.margin);
+  file.page.rotate_deg = options.rotate_deg;
+  if ((options.landscape || !options.margin.empty()) && options.page.empty()) {
+    throw std::invalid_argument("--landscape and --margin need --page");
+  }
   return file;
 }
 

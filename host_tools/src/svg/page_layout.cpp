@@ -6,6 +6,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -90,6 +91,13 @@ double curve_max(const PathSegment& segment, std::size_t axis, double sign) {
     else a = c;
   }
   return std::max(best_value, f((a + b) / 2));
+}
+
+/// A length for messages: six significant digits ("47", "1.9", "148.5").
+std::string mm(double value) {
+  std::ostringstream out;
+  out << std::setprecision(6) << (std::fabs(value) < 5e-7 ? 0.0 : value);
+  return out.str();
 }
 
 }  // namespace
@@ -245,14 +253,14 @@ PageLayoutReport lay_out_on_page(Job& job, const PageLayout& layout, const Machi
   report.low = placed->first;
   report.high = placed->second;
   std::ostringstream note;
-  note << "page layout: drawing " << format_number(w) << " x " << format_number(h) << " mm";
+  note << "page layout: drawing " << mm(w) << " x " << mm(h) << " mm";
   if (layout.rotate_deg != 0) note << ", rotated " << layout.rotate_deg << "° clockwise";
-  if (s != 1) note << ", scaled by " << format_number(s);
-  note << ", at x " << format_number(report.low[0]) << " .. " << format_number(report.high[0]) << ", y "
-       << format_number(report.low[1]) << " .. " << format_number(report.high[1]) << " mm";
+  if (std::fabs(s - 1) > 1e-12) note << ", scaled by " << mm(s);
+  note << ", at x " << mm(report.low[0]) << " .. " << mm(report.high[0]) << ", y "
+       << mm(report.low[1]) << " .. " << mm(report.high[1]) << " mm";
   if (layout.page) {
-    note << " on " << layout.page->name << (layout.landscape ? " landscape" : "") << " (" << format_number(report.page_width_mm)
-         << " x " << format_number(report.page_height_mm) << " mm)";
+    note << " on " << layout.page->name << (layout.landscape ? " landscape" : "") << " (" << mm(report.page_width_mm)
+         << " x " << mm(report.page_height_mm) << " mm)";
     // The machine file gives no travel range: the page is the limit. One Q16.16 step of slack.
     constexpr double slack = 1.0 / 65536;
     const double over[4] = {-report.low[0], report.high[0] - report.page_width_mm, -report.low[1],
@@ -260,14 +268,14 @@ PageLayoutReport lay_out_on_page(Job& job, const PageLayout& layout, const Machi
     const char* sides[4] = {"left of the page", "right of the page", "below the page", "above the page"};
     std::string overflow;
     for (int i = 0; i < 4; ++i) {
-      if (over[i] > slack) overflow += (overflow.empty() ? "" : ", ") + format_number(over[i]) + " mm " + sides[i];
+      if (over[i] > slack) overflow += (overflow.empty() ? "" : ", ") + mm(over[i]) + " mm " + sides[i];
     }
     if (!overflow.empty()) {
       throw LoadError(SourceLocation{job.name, 0, 0, std::nullopt, "", "page"},
                       "the drawing does not fit the page " + layout.page->name + (layout.landscape ? " landscape" : "") + " (" +
-                          format_number(report.page_width_mm) + " x " + format_number(report.page_height_mm) + " mm): it reaches " +
-                          overflow + " (x " + format_number(report.low[0]) + " .. " + format_number(report.high[0]) + ", y " +
-                          format_number(report.low[1]) + " .. " + format_number(report.high[1]) +
+                          mm(report.page_width_mm) + " x " + mm(report.page_height_mm) + " mm): it reaches " +
+                          overflow + " (x " + mm(report.low[0]) + " .. " + mm(report.high[0]) + ", y " +
+                          mm(report.low[1]) + " .. " + mm(report.high[1]) +
                           " mm); use --fit, --center or a larger --page",
                       Error::OutsideTravel);
     }
