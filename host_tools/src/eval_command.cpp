@@ -27,7 +27,9 @@ struct EvalOptions {
 
 void run_eval(const EvalOptions& options) {
   std::vector<std::string> notes;
-  const Job job = load_job_file(options.job, JobFileOptions{options.optimize}, &notes);
+  JobFileOptions file;
+  file.optimize = options.optimize;
+  const Job job = load_job_file(options.job, file, &notes);
   for (const auto& note : notes) std::cerr << "curvestep: " << note << "\n";
   std::vector<MachinePoint> points;
   for (const double u : options.parameters) points.push_back(evaluate_segment(job, static_cast<std::size_t>(options.segment), u));

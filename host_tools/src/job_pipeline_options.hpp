@@ -10,9 +10,22 @@
 
 namespace curvestep::host {
 
-/// Adds --optimize, --blend-tolerance and --strict-step-rate to `command`, filling `options`.
+/// Adds --optimize, --strict, the page options (--page, --landscape, --center, --fit, --margin,
+/// --rotate), --blend-tolerance and --strict-step-rate to `command`, filling `options`.
 inline void add_job_pipeline_options(CLI::App* command, JobPipelineOptions& options) {
   command->add_flag("--optimize", options.optimize, "SVG: order subpaths to shorten pen-up travel");
+  command->add_flag("--strict", options.strict_svg,
+                    "SVG: refuse a file with malformed path data or points (by default SVG's rule: drawn up to the error, "
+                    "with a warning naming file:line and character)");
+  command->add_option("--page", options.page,
+                      "SVG: the page (a5, a4, a3, letter, legal, tabloid or WxH with mm/cm/in, e.g. 210x297mm); the drawing "
+                      "must fit it before anything moves");
+  command->add_flag("--landscape", options.landscape, "SVG: turn the page so its longer side runs along x");
+  command->add_flag("--center", options.center, "SVG: centre the drawing on the page");
+  command->add_flag("--fit", options.fit, "SVG: scale the drawing uniformly to the page minus --margin, centred");
+  command->add_option("--margin", options.margin, "SVG: margin kept free by --fit (mm, or with mm/cm/in)");
+  command->add_option("--rotate", options.rotate_deg, "SVG: rotate the drawing clockwise about its centre by 90, 180 or 270 degrees")
+      ->check(CLI::IsMember({0, 90, 180, 270}));
   command->add_option("--blend-tolerance", options.blend_tolerance_mm,
                       "Path smoothing tolerance in mm (corner blends and line-run fits; 0 = off), overriding the machine "
                       "file's \"blend_tolerance\" (docs/motion.md, \"Path smoothing\")")

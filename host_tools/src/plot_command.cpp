@@ -29,7 +29,7 @@ void run_plot(const PlotOptions& o) {
   PathPlotOptions plot;
   if (o.machine.empty()) {
     // Without a machine: the programmed path (nothing to smooth for).
-    const Job job = load_job_file(o.job, JobFileOptions{o.pipeline.optimize});
+    const Job job = load_job_file(o.job, job_file_options(o.pipeline));
     plot.title = job.name;
     write_path_plot(o.output, job, nullptr, plot);
   } else {

@@ -27,7 +27,9 @@ struct SampleOptions {
 void run_sample(const SampleOptions& options) {
   if (!(options.tolerance_mm >= 1e-6)) throw std::invalid_argument("--tolerance must be at least 1e-6 mm");
   std::vector<std::string> notes;
-  const Job job = load_job_file(options.job, JobFileOptions{options.optimize}, &notes);
+  JobFileOptions file;
+  file.optimize = options.optimize;
+  const Job job = load_job_file(options.job, file, &notes);
   for (const auto& note : notes) std::cerr << "curvestep: " << note << "\n";
   const auto points = flatten_path(job.segments, options.tolerance_mm);
   write_output(options.out, [&](std::ostream& out) { write_points_csv(out, points); });

@@ -20,20 +20,30 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const bool svg_file = extension == ".svg";
+  if (!svg_file && options.page.active()) {
+    throw std::invalid_argument(path.string() + ": --page, --center, --fit and --rotate apply to SVG drawings only");
+  }
   if (extension == ".json") return load_job(path);
   if (extension == ".ngc" || extension == ".nc" || extension == ".gcode" || extension == ".tap") return import_gcode(path);
   if (extension == ".svg") {
     SvgOptions svg;
     svg.optimize = options.optimize;
+    svg.strict = options.strict_svg;
     SvgImport imported = load_svg(path, svg);
     if (notes != nullptr) {
-      for (const auto& warning : imported.warnings) notes->push_back(path.string() + ": " + warning);
+      for (const auto& warning : imported.warnings) notes->push_back(warning);  // each names the file and line
       if (options.optimize) {
         std::ostringstream line;
         line << "optimised pen-up travel: " << imported.travel_document_mm << " mm -> " << imported.travel_mm << " mm (saved "
              << imported.travel_saved_mm() << " mm, " << imported.reversed_count << " subpaths reversed)";
         notes->push_back(line.str());
       }
+    }
+    if (options.page.active()) {
+      // Before anything moves: the drawing placed on the page and checked against it.
+      const PageLayoutReport report = lay_out_on_page(imported.job, options.page, svg.start);
+      if (notes != nullptr) notes->push_back(report.note);
     }
     return std::move(imported.job);
   }

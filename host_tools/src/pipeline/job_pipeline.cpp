@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include <curvestep/host/job_file.hpp>
 
@@ -31,10 +32,26 @@ MachineLimits step_rate_aware(const MachineLimits& machine, std::vector<std::str
   return out;
 }
 
+JobFileOptions job_file_options(const JobPipelineOptions& options) {
+  JobFileOptions file;
+  file.optimize = options.optimize;
+  file.strict_svg = options.strict_svg;
+  if (!options.page.empty()) file.page.page = parse_page_size(options.page);
+  file.page.landscape = options.landscape;
+  file.page.center = options.center;
+  file.page.fit = options.fit;
+  if (!options.margin.empty()) file.page.margin_mm = parse_page_length(options.margin);
+  file.page.rotate_deg = options.rotate_deg;
+  if ((options.landscape || !options.margin.empty()) && options.page.empty()) {
+    throw std::invalid_argument("--landscape and --margin need --page");
+  }
+  return file;
+}
+
 PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineLimits& machine, double machine_blend_tolerance_mm,
                         const JobPipelineOptions& options) {
   PreparedJob prepared;
-  const Job programmed = load_job_file(job_file, JobFileOptions{options.optimize}, &prepared.notes);
+  const Job programmed = load_job_file(job_file, job_file_options(options), &prepared.notes);
   prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &prepared.notes);
   prepared.job = smoothing::smooth_for_machine(
       programmed, prepared.machine, smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm),

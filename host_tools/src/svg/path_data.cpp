@@ -135,6 +135,18 @@ class PathParser {
  public:
   explicit PathParser(std::string_view data) : scan_(data) {}
 
+  /// The subpaths up to the first error, and that error (SVG's rule: render up to the error).
+  PathData parse_until_error() {
+    PathData result;
+    try {
+      result.subpaths = parse();
+    } catch (const SyntaxError& error) {
+      result.error = error;
+      result.subpaths = std::move(subpaths_);
+    }
+    return result;
+  }
+
   std::vector<Subpath> parse() {
     char command = 0;
     while (true) {
@@ -435,6 +447,8 @@ void append_elliptical_arc(Subpath& subpath, Point2 from, double rx, double ry, 
 
 std::vector<Subpath> parse_path_data(std::string_view data) { return PathParser(data).parse(); }
 
+PathData parse_path_data_until_error(std::string_view data) { return PathParser(data).parse_until_error(); }
+
 Length parse_length(std::string_view text) {
   Scanner scan(text);
   scan.skip_space();
@@ -450,18 +464,28 @@ Length parse_length(std::string_view text) {
 }
 
 std::vector<double> parse_number_list(std::string_view text) {
+  NumberList list = parse_number_list_until_error(text);
+  if (list.error) throw *list.error;
+  return std::move(list.numbers);
+}
+
+NumberList parse_number_list_until_error(std::string_view text) {
+  NumberList list;
   Scanner scan(text);
-  std::vector<double> numbers;
-  scan.skip_space();
-  while (!scan.at_end()) {
-    numbers.push_back(scan.number());
-    const std::size_t before = scan.position();
-    scan.skip_separator();
-    if (scan.at_end() && scan.position() != before && text.substr(before).find(',') != std::string_view::npos) {
-      scan.fail("the list ends with a comma");
+  try {
+    scan.skip_space();
+    while (!scan.at_end()) {
+      list.numbers.push_back(scan.number());
+      const std::size_t before = scan.position();
+      scan.skip_separator();
+      if (scan.at_end() && scan.position() != before && text.substr(before).find(',') != std::string_view::npos) {
+        scan.fail("the list ends with a comma");
+      }
     }
+  } catch (const SyntaxError& error) {
+    list.error = error;
   }
-  return numbers;
+  return list;
 }
 
 Affine parse_transform(std::string_view text) {

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -70,11 +71,29 @@ class SyntaxError : public std::runtime_error {
 /// Path data (the "d" attribute) -> subpaths in user space. SyntaxError on malformed data.
 [[nodiscard]] std::vector<Subpath> parse_path_data(std::string_view data);
 
+/// Path data read up to its first error (SVG's error rule).
+struct PathData {
+  std::vector<Subpath> subpaths;     ///< every complete command before the error
+  std::optional<SyntaxError> error;  ///< the first error, if any
+};
+
+/// Path data -> the subpaths of the commands before the first error, and that error.
+[[nodiscard]] PathData parse_path_data_until_error(std::string_view data);
+
 /// A transform list ("translate(10) rotate(45 5 5)") -> its affine map. SyntaxError if malformed.
 [[nodiscard]] Affine parse_transform(std::string_view text);
 
 /// Numbers separated by whitespace and/or commas (points, viewBox). SyntaxError if malformed.
 [[nodiscard]] std::vector<double> parse_number_list(std::string_view text);
+
+/// A number list read up to its first error.
+struct NumberList {
+  std::vector<double> numbers;       ///< the numbers before the error
+  std::optional<SyntaxError> error;  ///< the first error, if any
+};
+
+/// Numbers -> those before the first error, and that error.
+[[nodiscard]] NumberList parse_number_list_until_error(std::string_view text);
 
 /// A length attribute: a number and its unit text ("", "mm", "%", ...).
 struct Length {

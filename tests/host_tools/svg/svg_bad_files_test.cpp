@@ -49,13 +49,16 @@ TEST_CASE("svg: each malformed file names the file, line, element and what is wr
       {"bad_arc_huge.svg", 3, "<path> \"d\"", Error::InvalidJob, "at character 31: the arc's ellipse is too large to compute (radii 1e+300 and 1e+300 for a chord of 10)"},
       {"bad_transform.svg", 3, "<g> \"transform\"", Error::InvalidJob, "rotate takes 1 or 3 numbers, got 2"},
       {"bad_transform_name.svg", 3, "<path> \"transform\"", Error::InvalidJob, "at character 1: unknown transform \"spin\""},
-      {"bad_unit.svg", 1, "<svg> \"width\"", Error::InvalidJob, "unsupported unit \"em\""},
+      {"bad_unit.svg", 1, "<svg> \"width\"", Error::InvalidJob, "unsupported unit \"ft\""},
       {"bad_points_odd.svg", 3, "<polyline> \"points\"", Error::InvalidJob, "odd count (5 numbers)"},
       {"bad_negative_radius.svg", 5, "<circle> \"r\"", Error::InvalidJob, "must not be negative, got -2"},
       {"bad_viewbox.svg", 1, "<svg> \"viewBox\"", Error::InvalidJob, "expected 4 numbers (min-x min-y width height), got 3"},
       {"bad_nothing_to_draw.svg", 2, "<svg>", Error::InvalidJob, "the drawing has no paths or shapes to draw"},
   };
-  check_bad_files(cases, svg_data, [](const auto& path) { return load_svg(path); },
+  // Strict import: path data and points errors refuse the file (svg_error_rule_test.cpp: the default).
+  SvgOptions strict;
+  strict.strict = true;
+  check_bad_files(cases, svg_data, [&](const auto& path) { return load_svg(path, strict); },
                   [](const BadFile& bad, const LoadError&, const std::string& path, const std::string& what) {
                     const std::string prefix = path + (bad.line > 0 ? ":" + std::to_string(bad.line) : std::string()) + ": ";
                     CHECK(what.rfind(prefix, 0) == 0);

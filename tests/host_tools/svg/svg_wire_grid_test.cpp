@@ -107,7 +107,9 @@ TEST_CASE("svg: every coordinate, weight and feed imported from the example and 
     INFO(file.string());
     const bool bad = file.filename().string().rfind("bad_", 0) == 0;
     if (bad) {
-      CHECK_THROWS_AS(load_svg(file), LoadError);
+      SvgOptions strict;
+      strict.strict = true;
+      CHECK_THROWS_AS(load_svg(file, strict), LoadError);
       continue;
     }
     for (const SvgOptions& options : {SvgOptions{}, optimised}) {

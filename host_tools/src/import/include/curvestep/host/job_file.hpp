@@ -7,16 +7,20 @@
 #include <vector>
 
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/page_layout.hpp>
 
 namespace curvestep::host {
 
 /// How to read a job file.
 struct JobFileOptions {
-  bool optimize = false;  ///< SVG: order subpaths to shorten pen-up travel (greedy nearest neighbour)
+  bool optimize = false;    ///< SVG: order subpaths to shorten pen-up travel (greedy nearest neighbour)
+  bool strict_svg = false;  ///< SVG: refuse malformed path data or points (else drawn up to the error, with a note)
+  PageLayout page;          ///< SVG: page size, centring, fit, rotation and the page check (page_layout.hpp)
 };
 
 /// Loads the job in `path`, choosing the format by its extension (case-insensitive). Lines worth
-/// telling the user (SVG warnings, travel saved by --optimize) are appended to `notes`. Throws
+/// telling the user (SVG warnings, travel saved by --optimize, the page layout) are appended to
+/// `notes`. A page layout applies to SVG only (std::invalid_argument for other formats). Throws
 /// LoadError for a malformed file (naming file, line and what is wrong) and std::runtime_error for
 /// an unreadable file or an unknown extension (naming the extensions understood).
 [[nodiscard]] Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options = {},

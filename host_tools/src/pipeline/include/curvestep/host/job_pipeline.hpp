@@ -13,6 +13,7 @@
 
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/job_file.hpp>
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/smoothing/path_smoothing.hpp>
 
@@ -23,7 +24,18 @@ struct JobPipelineOptions {
   bool optimize = false;            ///< --optimize: order SVG subpaths to shorten pen-up travel
   double blend_tolerance_mm = -1;   ///< --blend-tolerance; < 0: the machine file's
   bool strict_step_rate = false;    ///< --strict-step-rate: refuse instead of planning slower
+  bool strict_svg = false;          ///< --strict: refuse SVG path data or points errors (SVG's rule draws up to them)
+  std::string page;                 ///< --page: a4, letter, WxH... (empty: none)
+  bool landscape = false;           ///< --landscape
+  bool center = false;              ///< --center
+  bool fit = false;                 ///< --fit
+  std::string margin;               ///< --margin (mm, or with a unit mm/cm/in; empty: 0)
+  int rotate_deg = 0;               ///< --rotate: 0, 90, 180, 270 clockwise
 };
+
+/// The job-file options (import, page layout) of the pipeline options. std::invalid_argument for a
+/// malformed --page or --margin.
+[[nodiscard]] JobFileOptions job_file_options(const JobPipelineOptions& options);
 
 /// A job ready to plan or send, with the limits to plan it with.
 struct PreparedJob {

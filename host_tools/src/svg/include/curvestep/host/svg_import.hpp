@@ -30,6 +30,10 @@ struct SvgOptions {
   bool optimize = false;             ///< reorder subpaths (greedy nearest neighbour, open ones may be reversed)
   MachinePoint start{};              ///< where the machine stands before the job, mm (the first rapid starts here)
   double feed_mm_per_s = 0;          ///< feed of the drawing segments (rounded to Q16.16), 0 for the machine default
+  /// Refuse a file with malformed path data or points (LoadError). Otherwise SVG's error rule: a
+  /// path is drawn up to its first error, a points list up to its error or odd last number, and
+  /// SvgImport::warnings names file, line, element, attribute and character.
+  bool strict = false;
 };
 
 /// A job made from a drawing, with what the import did.
@@ -39,7 +43,7 @@ struct SvgImport {
   std::size_t reversed_count = 0;       ///< subpaths the optimiser drew backwards
   double travel_document_mm = 0;        ///< rapid travel in document order
   double travel_mm = 0;                 ///< rapid travel of `job`
-  std::vector<std::string> warnings;    ///< elements not drawn ("file:line: <text> is not drawn ...")
+  std::vector<std::string> warnings;    ///< elements not drawn, data drawn up to an error ("file:line: <path> "d": at character 9: ...")
   /// Rapid travel the optimiser saved, mm.
   [[nodiscard]] double travel_saved_mm() const noexcept { return travel_document_mm - travel_mm; }
 };

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+// Internal: the element walk — groups, nested viewports, <use>, shapes and paths, each drawn through
+// its affine map into machine subpaths.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <tinyxml2.h>
+
+#include "svg_css.hpp"
+#include "svg_diagnostics.hpp"
+#include "svg_geometry.hpp"
+#include "svg_lengths.hpp"
+#include "svg_machine.hpp"
+
+namespace curvestep::host::svg {
+
+/// What an element inherits from its parent.
+struct Scope {
+  Affine map;             ///< user space -> machine mm
+  LengthContext lengths;  ///< viewport, font-size and root size for relative lengths
+  bool visible = true;    ///< computed visibility (inherited): hidden and collapse are not drawn
+  std::string stroke = "none";   ///< computed stroke (inherited)
+  std::string fill = "black";    ///< computed fill (inherited)
+};
+
+/// Width and height a <use> gives the <svg> or <symbol> it references (nullopt: not given).
+struct ViewportSize {
+  std::optional<double> width;   ///< user units of the use
+  std::optional<double> height;  ///< user units of the use
+};
+
+/// Walks a document's elements and collects what they draw.
+class ElementWalk {
+ public:
+  /// `strict`: a path-data or points error refuses the file (else: drawn up to the error, with a warning).
+  ElementWalk(Diagnostics& diagnostics, bool strict) : diagnostics_(diagnostics), strict_(strict) {}
+
+  /// Draws the root's children in the root's scope (its map to machine mm and its lengths).
+  void walk(const tinyxml2::XMLElement& root, const Scope& root_scope);
+
+  /// What was drawn, in document order.
+  [[nodiscard]] std::vector<DrawnSubpath>& drawn() noexcept { return drawn_; }
+
+ private:
+  void index_ids(const tinyxml2::XMLElement& element);
+  void visit_children(const tinyxml2::XMLElement& parent, const Scope& scope);
+  void visit(const tinyxml2::XMLElement& element, const Scope& parent, const ViewportSize& use_size = {});
+  /// A nested viewport (<svg>, or a <symbol> through <use>) at x, y of width × height with its viewBox.
+  void viewport(const tinyxml2::XMLElement& element, const Scope& scope, const Affine& placed, const ViewportSize& size);
+  void use(const tinyxml2::XMLElement& element, const Scope& scope);
+  void collect_style_sheets(const tinyxml2::XMLElement& element);
+  /// The child a <switch> renders: the first SVG element that is not title/desc/metadata and has no
+  /// requiredExtensions (no extension is supported; every other condition passes).
+  [[nodiscard]] static const tinyxml2::XMLElement* switch_choice(const tinyxml2::XMLElement& element);
+
+  Diagnostics& diagnostics_;
+  bool strict_ = false;
+  std::vector<DrawnSubpath> drawn_;
+  StyleSheet styles_;
+  std::map<std::string, const tinyxml2::XMLElement*> ids_;
+  std::vector<const tinyxml2::XMLElement*> active_uses_;
+  std::size_t expanded_elements_ = 0;  ///< elements visited through <use>, all uses together
+};
+
+}  // namespace curvestep::host::svg
