@@ -82,12 +82,15 @@ std::string look_ahead_text(const link::StreamResult& result, bool by_distance) 
 
 int run_stream(const StreamCommandOptions& o) {
   const MachineFile machine_file = load_machine_for_stream(o.machine);
-  const PreparedJob prepared = prepare_job(o.job, machine_file.limits, machine_file.blend_tolerance_mm, o.pipeline);
+  const PreparedJob prepared = prepare_job(o.job, machine_file, machine_file.limits, o.pipeline);
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
   for (const auto& note : prepared.notes) std::cerr << "curvestep stream: note: " << note << "\n";
   auto transport = link::open_port(o.port, o.baud);
   link::StreamOptions options;
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    if (machine_file.travel[axis]) options.travel_mm[axis] = std::pair{machine_file.travel[axis]->low_mm, machine_file.travel[axis]->high_mm};
+  }
   options.link.link_timeout_ms = o.link_timeout_ms;
   options.lookahead = o.lookahead;
   if (!o.lookahead_given) options.lookahead_distance_mm = lookahead_distance_for(machine);

@@ -170,6 +170,10 @@ class GcodeLoader {
  public:
   GcodeLoader(std::string name, const GcodeOptions& options) {
     job_.name = std::move(name);
+    for (const auto& [tool, length] : options.tool_length_mm) {
+      if (tool >= 0) interpreter_.set_tool_length_mm(static_cast<std::size_t>(tool), length);
+    }
+    interpreter_.set_home_positions(options.g28_position, options.g30_position);
     for (const auto& [tool, diameter] : options.tool_diameter_mm) {
       if (tool >= 0) interpreter_.set_tool_diameter_mm(static_cast<std::size_t>(tool), diameter);
     }

@@ -25,7 +25,7 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
     throw std::invalid_argument(path.string() + ": --page, --center, --fit and --rotate apply to SVG drawings only");
   }
   if (extension == ".json") return load_job(path);
-  if (extension == ".ngc" || extension == ".nc" || extension == ".gcode" || extension == ".tap") return import_gcode(path);
+  if (extension == ".ngc" || extension == ".nc" || extension == ".gcode" || extension == ".tap") return import_gcode(path, options.gcode);
   if (extension == ".svg") {
     SvgOptions svg;
     svg.optimize = options.optimize;

@@ -3,6 +3,7 @@
 #include <curvestep/host/machine_file.hpp>
 
 #include <array>
+#include <cmath>
 #include <map>
 #include <string>
 
@@ -93,13 +94,59 @@ std::string machine_field_name(LimitField field, std::size_t axis) {
   return "\"?\"";
 }
 
+namespace {
+
+/// A length inside the Q16.16 range the controller works in, mm.
+double machine_length(const Reader& reader, const Node& node) {
+  const double value = reader.number(node);
+  if (!(std::fabs(value) <= 32767.0)) reader.fail(node, "value " + format_number(value) + " mm is outside -32767 .. 32767 mm");
+  return value;
+}
+
+/// "travel": [low, high] with low < high.
+AxisTravel parse_travel(const Reader& reader, const Node& node) {
+  const auto ends = reader.array(node, 2, 2);
+  AxisTravel travel{machine_length(reader, ends[0]), machine_length(reader, ends[1])};
+  if (!(travel.low_mm < travel.high_mm)) reader.fail(node, "the low end must be below the high end ([low, high] in mm)");
+  return travel;
+}
+
+/// "g28" / "g30": [x, y, z] (z may be left out: 0).
+MachinePoint parse_position(const Reader& reader, const Node& node) {
+  const auto coordinates = reader.array(node, 2, motion_axes);
+  MachinePoint p{};
+  for (std::size_t axis = 0; axis < coordinates.size(); ++axis) p[axis] = machine_length(reader, coordinates[axis]);
+  return p;
+}
+
+/// "tools": [{"number": n, "length": mm, "diameter": mm}, ...], each number once.
+std::map<int, MachineTool> parse_tools(const Reader& reader, const Node& node) {
+  std::map<int, MachineTool> tools;
+  for (const Node& entry : reader.array(node, 0, max_tool_number + 1)) {
+    reader.check_keys(entry, {"number", "length", "diameter"});
+    const auto number = static_cast<int>(reader.integer(reader.require(entry, "number"), 0, max_tool_number));
+    MachineTool tool;
+    if (const auto length = reader.optional(entry, "length")) tool.length_mm = machine_length(reader, *length);
+    if (const auto diameter = reader.optional(entry, "diameter")) {
+      const double d = reader.number(*diameter);
+      if (!(d >= 0 && d <= 1000)) reader.fail(*diameter, "value " + format_number(d) + " mm is outside 0 .. 1000 mm");
+      tool.diameter_mm = d;
+    }
+    if (!tools.emplace(number, tool).second) reader.fail(entry, "tool " + std::to_string(number) + " is listed twice");
+  }
+  return tools;
+}
+
+}  // namespace
+
 MachineFile parse_machine_file(std::string_view text, std::string name) {
   const detail::JsonDocument document(text, std::move(name), Error::InvalidMachine);
   const Reader reader(document, Error::InvalidMachine);
   const Node root = reader.root();
   reader.check_keys(root, {"version", "v_max", "a_max", "j_max", "feed", "rapid", "tolerance", "rate_hz",
-                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance"});
+                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance", "tools", "g28", "g30"});
   MachineFile file;
+  file.name = document.name();
   if (const auto version = reader.optional(root, "version")) {
     const auto value = reader.integer(*version, 0, 1000000);
     if (value != 1) reader.fail(*version, "unsupported version " + std::to_string(value) + " (this program reads version 1)");
@@ -133,11 +180,12 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
     for (std::size_t axis = 0; axis < motion_axes; ++axis) {
       const auto entry = reader.optional(*axes, axis_names[axis]);
       if (!entry) continue;
-      reader.check_keys(*entry, {"steps_per_mm", "v_max", "a_max"});
+      reader.check_keys(*entry, {"steps_per_mm", "v_max", "a_max", "travel"});
       AxisLimits& limit = limits.axes[axis];
       if (const auto node = reader.optional(*entry, "steps_per_mm")) limit.steps_per_mm = reader.number(*node);
       if (const auto node = reader.optional(*entry, "v_max")) limit.v_max_mm_per_s = reader.number(*node);
       if (const auto node = reader.optional(*entry, "a_max")) limit.a_max_mm_per_s2 = reader.number(*node);
+      if (const auto node = reader.optional(*entry, "travel")) file.travel[axis] = parse_travel(reader, *node);
     }
   }
   const auto valid = limits.validate();
@@ -171,6 +219,9 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
     reader.fail(at, message, valid.error());
   }
   if (const auto gpio = reader.optional(root, "gpio")) file.gpio = parse_gpio(reader, *gpio);
+  if (const auto tools = reader.optional(root, "tools")) file.tools = parse_tools(reader, *tools);
+  if (const auto node = reader.optional(root, "g28")) file.g28_position = parse_position(reader, *node);
+  if (const auto node = reader.optional(root, "g30")) file.g30_position = parse_position(reader, *node);
   if (const auto node = reader.optional(root, "blend_tolerance")) {
     const double value = reader.number(*node);
     if (!(value >= 0 && value <= max_blend_tolerance_mm)) {

@@ -2,6 +2,8 @@
 // The job pipeline of every machine-moving command (job_pipeline.hpp).
 #include <curvestep/host/job_pipeline.hpp>
 
+#include <curvestep/host/swept_extent.hpp>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -48,14 +50,51 @@ JobFileOptions job_file_options(const JobPipelineOptions& options) {
   return file;
 }
 
-PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineLimits& machine, double machine_blend_tolerance_mm,
-                        const JobPipelineOptions& options) {
+namespace {
+
+PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions& file_options, const MachineLimits& machine,
+                    double machine_blend_tolerance_mm, const JobPipelineOptions& options) {
   PreparedJob prepared;
-  const Job programmed = load_job_file(job_file, job_file_options(options), &prepared.notes);
+  const Job programmed = load_job_file(job_file, file_options, &prepared.notes);
   prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &prepared.notes);
   prepared.job = smoothing::smooth_for_machine(
       programmed, prepared.machine, smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm),
       &prepared.smoothing);
+  return prepared;
+}
+
+}  // namespace
+
+PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineLimits& machine, double machine_blend_tolerance_mm,
+                        const JobPipelineOptions& options) {
+  return prepare(job_file, job_file_options(options), machine, machine_blend_tolerance_mm, options);
+}
+
+GcodeOptions gcode_options(const MachineFile& machine_file) {
+  GcodeOptions gcode;
+  for (const auto& [number, tool] : machine_file.tools) {
+    gcode.tool_length_mm[number] = tool.length_mm;
+    if (tool.diameter_mm) gcode.tool_diameter_mm[number] = *tool.diameter_mm;
+  }
+  if (machine_file.g28_position) gcode.g28_position = *machine_file.g28_position;
+  if (machine_file.g30_position) gcode.g30_position = *machine_file.g30_position;
+  return gcode;
+}
+
+PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
+                        const JobPipelineOptions& options) {
+  JobFileOptions file_options = job_file_options(options);
+  file_options.gcode = gcode_options(machine_file);
+  PreparedJob prepared = prepare(job_file, file_options, machine, machine_file.blend_tolerance_mm, options);
+  TravelLimits travel;
+  travel.source = machine_file.name;
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    if (!machine_file.travel[axis]) continue;
+    travel.limited[axis] = true;
+    travel.low[axis] = machine_file.travel[axis]->low_mm;
+    travel.high[axis] = machine_file.travel[axis]->high_mm;
+  }
+  check_travel(prepared.job, travel);
   return prepared;
 }
 

@@ -2,6 +2,7 @@
 // stream_job against a firmware App in this process (in_process_device.hpp): the real upload loop,
 // link and App, without a pseudo-terminal. The reference is the simulator: the captured setpoints
 // equal simulate()'s raw Q16.16 stream with the device's window, bit for bit.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -144,4 +145,29 @@ TEST_CASE("stream in process: a window outside 1..16 for a controller without a 
     CHECK(what.find("between 1 and 16") != std::string::npos);
     CHECK(what.find('\n') == std::string::npos);
   }
+}
+
+TEST_CASE("stream in process: the machine file's travel reaches the controller, which refuses a segment beyond it",
+          "[host_tools][stream][travel]") {
+  using WindowApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 17, 9>;
+  const auto machine = host::load_machine(examples / "machine.json");
+  const auto job = host::load_job(examples / "seed_cubic.json");
+  double high_x = 0;
+  for (const auto& s : job.segments) high_x = std::max({high_x, s.start()[0], s.end()[0]});
+  REQUIRE(high_x > 2);
+  hl::StreamOptions options;
+  options.travel_mm[0] = std::pair{-1.0, 1.0};  // far less than the job needs: the device must refuse
+  hl::testing::InProcessDevice<WindowApp> device;
+  try {
+    (void)hl::stream_job(device, job, machine, options);
+    FAIL("the controller ran a job beyond its travel");
+  } catch (const hl::StreamError& e) {
+    INFO(e.what());
+    CHECK(e.code() == Error::OutsideTravel);
+  }
+  // With the travel the job needs, it runs.
+  options.travel_mm[0] = std::pair{-1.0, high_x + 1.0};
+  hl::testing::InProcessDevice<WindowApp> roomy;
+  const hl::StreamResult result = hl::stream_job(roomy, job, machine, options);
+  CHECK_FALSE(result.setpoints.empty());
 }

@@ -17,11 +17,16 @@
 
 namespace curvestep::host {
 
-/// What the machine file tells the importer (the tool table; a hook until machine files carry one).
+/// What the machine file tells the importer: its tool table and the G28/G30 positions.
 struct GcodeOptions {
   /// Tool number -> cutter diameter, mm, for G41/G42 D<tool>. A tool not listed has no diameter:
   /// G41/G42 with it is refused (tool 0 means no offset).
   std::map<int, double> tool_diameter_mm;
+  /// Tool number -> length, mm, for G43 H<tool> (a tool not listed has length 0).
+  std::map<int, double> tool_length_mm;
+  /// Where G28 and G30 go, machine coordinates, mm (machine 0 by default, as G28.1/G30.1 set them).
+  MachinePoint g28_position{};
+  MachinePoint g30_position{};
 };
 
 /// Loads a G-code program. Throws LoadError (file:line:column, the word at fault as field, an

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <curvestep/host/gcode_import.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/page_layout.hpp>
 
@@ -16,6 +17,7 @@ struct JobFileOptions {
   bool optimize = false;    ///< SVG: order subpaths to shorten pen-up travel (greedy nearest neighbour)
   bool strict_svg = false;  ///< SVG: refuse malformed path data or points (else drawn up to the error, with a note)
   PageLayout page;          ///< SVG: page size, centring, fit, rotation and the page check (page_layout.hpp)
+  GcodeOptions gcode;       ///< G-code: the machine file's tool table and G28/G30 positions
 };
 
 /// Loads the job in `path`, choosing the format by its extension (case-insensitive). Lines worth

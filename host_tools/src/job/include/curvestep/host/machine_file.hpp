@@ -5,11 +5,13 @@
 
 #include <array>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/core/motion/path_segment.hpp>
 #include <curvestep/host/load_error.hpp>
 
 namespace curvestep::host {
@@ -27,16 +29,40 @@ struct GpioWiring {
   std::array<std::optional<GpioAxisWiring>, motion_axes> axes{};  ///< x, y, z
 };
 
+/// A tool of the "tools" table: its length (G43 H) and cutter diameter (G41/G42 D), mm.
+struct MachineTool {
+  double length_mm = 0;
+  std::optional<double> diameter_mm;  ///< none: G41/G42 with this tool is refused
+};
+
+/// How far an axis may go, mm in machine coordinates: low <= position <= high.
+struct AxisTravel {
+  double low_mm = 0;
+  double high_mm = 0;
+};
+
+/// Tool numbers a "tools" table may hold (0 .. max_tool_number; tool 0 is "no tool").
+inline constexpr int max_tool_number = 99;
+
 /// Largest "blend_tolerance" a machine file may give, mm.
 inline constexpr double max_blend_tolerance_mm = 10;
 
 /// Everything a machine file holds.
 struct MachineFile {
+  std::string name;                ///< the file's name, for messages
   MachineLimits limits;            ///< planning and stepping limits, validated
   std::optional<GpioWiring> gpio;  ///< the "gpio" section, if present (validated)
   /// "blend_tolerance": path smoothing's largest deviation from the programmed path, mm (0 = off,
   /// the default; G64 P overrides it per move). Host-side: the controller gets smoothed segments.
   double blend_tolerance_mm = 0;
+  /// "tools": [{"number": 1, "length": 12.5, "diameter": 6}, ...]: G43 H and G41/G42 D read it.
+  std::map<int, MachineTool> tools;
+  /// "g28", "g30": [x, y, z], the positions G28 and G30 go to (machine coordinates, mm); machine 0 if absent.
+  std::optional<MachinePoint> g28_position;
+  std::optional<MachinePoint> g30_position;
+  /// "axes"."x"."travel": [low, high], mm: soft limits. Every job is checked against them before
+  /// anything moves (its swept extent, arcs included) and the controller gets them.
+  std::array<std::optional<AxisTravel>, motion_axes> travel{};
 };
 
 /// Loads a machine file with its optional "gpio" section; throws as load_machine.

@@ -3,6 +3,9 @@
 // check that every segment of a job stays inside the Q16.16 range.
 #pragma once
 
+#include <array>
+#include <string>
+
 #include <curvestep/core/motion/path_segment.hpp>
 #include <curvestep/host/job.hpp>
 
@@ -23,5 +26,18 @@ struct SweptBox {
 /// `job` whose swept box leaves the Q16.16 range (-32768 .. 32767.99998 mm), so that no job starts
 /// that the controller would refuse halfway (issue 19 item 3).
 void check_swept_extent(const Job& job);
+
+/// An axis's soft limits for check_travel: low <= position <= high, mm (none: unlimited).
+struct TravelLimits {
+  std::array<bool, motion_axes> limited{};
+  MachinePoint low{};
+  MachinePoint high{};
+  std::string source;  ///< where they come from, for the message ("machine.json")
+};
+
+/// Throws LoadError (OutsideTravel, naming the job file, line and segment, the axis and by how much)
+/// for the first segment of `job` whose swept box leaves `travel` (issue 22.5: soft limits checked
+/// before anything moves, arcs by their extremes, curves by their control hull).
+void check_travel(const Job& job, const TravelLimits& travel);
 
 }  // namespace curvestep::host

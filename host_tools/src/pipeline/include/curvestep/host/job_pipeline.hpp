@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <curvestep/core/motion/machine_limits.hpp>
+#include <curvestep/host/gcode_import.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/machine_file.hpp>
@@ -58,5 +59,15 @@ inline constexpr double step_rate_share = 0.99;
 /// override) and the machine file's `blend_tolerance_mm`. Throws what load_job_file throws.
 [[nodiscard]] PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineLimits& machine,
                                       double machine_blend_tolerance_mm, const JobPipelineOptions& options);
+
+/// prepare_job with the whole machine file: a G-code job reads its tool table and G28/G30
+/// positions (gcode_options), and the prepared job is checked against its travel (soft limits,
+/// check_travel: OutsideTravel naming file:line) before anything moves. `machine` is the file's
+/// limits, possibly with a rate override.
+[[nodiscard]] PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineFile& machine_file,
+                                      const MachineLimits& machine, const JobPipelineOptions& options);
+
+/// What a machine file tells the G-code importer: tool lengths and diameters, G28/G30 positions.
+[[nodiscard]] GcodeOptions gcode_options(const MachineFile& machine_file);
 
 }  // namespace curvestep::host

@@ -17,11 +17,14 @@
 // DeviceRestarted, naming the last acknowledged segment and the last setpoint received.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <curvestep/core/error.hpp>
@@ -59,6 +62,9 @@ struct StreamOptions {
   /// With it: the window extended by distance (SimulationOptions::lookahead_distance_mm; 0 = off).
   /// `curvestep stream` without --lookahead uses lookahead_distance_for(machine), as `curvestep sim` does.
   double lookahead_distance_mm = 0;
+  /// Soft limits sent in MachineConfiguration, per axis [low, high] mm (the machine file's
+  /// "travel"); an axis without them travels unlimited (the whole Q16.16 range).
+  std::array<std::optional<std::pair<double, double>>, motion_axes> travel_mm{};
 };
 
 /// The controller stopped the job or the link died: a one-line cause naming what failed.
