@@ -9,6 +9,8 @@
 // and conservatively for Béziers (the control points' hull holds the curve), and checked here once.
 #include <curvestep/host/swept_extent.hpp>
 
+#include <curvestep/core/motion/segment_bounds.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -23,37 +25,6 @@ namespace {
 /// The Q16.16 range in mm: [-2^15, 2^15 - 2^-16].
 constexpr double q16_low = -32768.0;
 constexpr double q16_high = 32768.0 - 1.0 / 65536.0;
-
-void include(SweptBox& box, const MachinePoint& p) {
-  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-    box.low[axis] = std::min(box.low[axis], p[axis]);
-    box.high[axis] = std::max(box.high[axis], p[axis]);
-  }
-}
-
-/// Adds the arc's extreme points: where the swept angle crosses a multiple of 90°, at the largest
-/// radius the (spiral) arc has.
-void include_arc_extremes(SweptBox& box, const PathSegment& arc) {
-  const CompactSegment c = arc.compact();
-  const double cx = c.values[6];
-  const double cy = c.values[7];
-  const double radius = c.values[9];
-  const double sweep = c.values[10];
-  const double end_scale = c.values[12];
-  const double r_max = radius * std::max(1.0, end_scale);
-  const double start_angle = std::atan2(c.values[1] - cy, c.values[0] - cx);
-  const double from = std::min(start_angle, start_angle + sweep);
-  const double to = std::max(start_angle, start_angle + sweep);
-  const double quarter = std::numbers::pi / 2;
-  const double z = c.values[2];
-  const double first = std::ceil(from / quarter);
-  for (double k = first; k * quarter <= to && k < first + 4; ++k) {
-    const auto direction = static_cast<int>(std::fmod(std::fmod(k, 4.0) + 4.0, 4.0));
-    const double dx = direction == 0 ? 1.0 : direction == 2 ? -1.0 : 0.0;
-    const double dy = direction == 1 ? 1.0 : direction == 3 ? -1.0 : 0.0;
-    include(box, MachinePoint{{cx + r_max * dx, cy + r_max * dy, z}});
-  }
-}
 
 /// "x = 59982 mm" for the first coordinate of `box` outside the Q16.16 range, empty if none.
 std::string outside_q16(const SweptBox& box) {
@@ -75,17 +46,7 @@ std::string_view kind_name(SegmentKind kind) {
 
 }  // namespace
 
-SweptBox swept_box(const PathSegment& segment) {
-  SweptBox box{segment.start(), segment.start()};
-  include(box, segment.end());
-  const CompactSegment c = segment.compact();
-  if (segment.kind() == SegmentKind::Arc) {
-    include_arc_extremes(box, segment);
-  } else {
-    for (std::size_t i = 0; i <= c.degree; ++i) include(box, MachinePoint{{c.values[3 * i], c.values[3 * i + 1], c.values[3 * i + 2]}});
-  }
-  return box;
-}
+SweptBox swept_box(const PathSegment& segment) { return segment_bounds(segment); }
 
 namespace {
 

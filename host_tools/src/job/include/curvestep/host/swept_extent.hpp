@@ -7,15 +7,13 @@
 #include <string>
 
 #include <curvestep/core/motion/path_segment.hpp>
+#include <curvestep/core/motion/segment_bounds.hpp>
 #include <curvestep/host/job.hpp>
 
 namespace curvestep::host {
 
-/// An axis-aligned box: low[axis] <= high[axis].
-struct SweptBox {
-  MachinePoint low;   ///< smallest coordinate on each axis
-  MachinePoint high;  ///< largest coordinate on each axis
-};
+/// An axis-aligned box: low[axis] <= high[axis] (the core's SegmentBounds, which a controller checks too).
+using SweptBox = SegmentBounds;
 
 /// A box holding every point `segment` passes through: exact for lines and arcs (their ends and the
 /// axis-direction angles inside the sweep), the control-point hull for (rational) Béziers, which
