@@ -58,7 +58,7 @@ DemoRun run_one(const std::filesystem::path& file, const MachineFile& machine_fi
   std::vector<std::string> notes;
   JobPipelineOptions pipeline;
   pipeline.optimize = true;
-  const PreparedJob prepared = prepare_job(file, machine_file.limits, machine_file.blend_tolerance_mm, pipeline);
+  const PreparedJob prepared = prepare_job(file, machine_file.limits, machine_file.blend_tolerance_mm, pipeline, machine_file.pen);
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
   const auto [device_job, device_machine] = link::as_device_sees(job, machine);

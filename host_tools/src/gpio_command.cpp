@@ -231,7 +231,7 @@ int run_gpio(const GpioCommandOptions& o) {
     machine.rate_hz = o.rate_hz;
     if (auto valid = machine.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
-  const PreparedJob prepared = prepare_job(o.job, machine, file.blend_tolerance_mm, o.pipeline);
+  const PreparedJob prepared = prepare_job(o.job, machine, file.blend_tolerance_mm, o.pipeline, file.pen);
   const Job& job = prepared.job;
   machine = prepared.machine;
   for (const auto& note : prepared.notes) std::cerr << "curvestep gpio: note: " << note << "\n";

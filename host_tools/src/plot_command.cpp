@@ -35,7 +35,7 @@ void run_plot(const PlotOptions& o) {
   } else {
     // With a machine: the path the machine runs (the job pipeline of sim, stream and gpio).
     const MachineFile machine_file = load_machine_file(o.machine);
-    const PreparedJob prepared = prepare_job(o.job, machine_file.limits, machine_file.blend_tolerance_mm, o.pipeline);
+    const PreparedJob prepared = prepare_job(o.job, machine_file.limits, machine_file.blend_tolerance_mm, o.pipeline, machine_file.pen);
     const Job& job = prepared.job;
     const MachineLimits& machine = prepared.machine;
     plot.title = job.name;

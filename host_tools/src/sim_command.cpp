@@ -82,7 +82,7 @@ int run_sim(const SimOptions& o) {
     file_limits.rate_hz = o.rate_hz;
     if (auto valid = file_limits.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
-  const PreparedJob prepared = prepare_job(o.job, file_limits, machine_file.blend_tolerance_mm, o.pipeline);
+  const PreparedJob prepared = prepare_job(o.job, file_limits, machine_file.blend_tolerance_mm, o.pipeline, machine_file.pen);
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
   const smoothing::SmoothingReport& smoothing_report = prepared.smoothing;

@@ -82,7 +82,7 @@ std::string look_ahead_text(const link::StreamResult& result, bool by_distance) 
 
 int run_stream(const StreamCommandOptions& o) {
   const MachineFile machine_file = load_machine_for_stream(o.machine);
-  const PreparedJob prepared = prepare_job(o.job, machine_file.limits, machine_file.blend_tolerance_mm, o.pipeline);
+  const PreparedJob prepared = prepare_job(o.job, machine_file.limits, machine_file.blend_tolerance_mm, o.pipeline, machine_file.pen);
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
   for (const auto& note : prepared.notes) std::cerr << "curvestep stream: note: " << note << "\n";

@@ -11,6 +11,7 @@
 #include <curvestep/host/job.hpp>
 
 #include "json_document.hpp"
+#include "machine_pen.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -98,7 +99,7 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
   const Reader reader(document, Error::InvalidMachine);
   const Node root = reader.root();
   reader.check_keys(root, {"version", "v_max", "a_max", "j_max", "feed", "rapid", "tolerance", "rate_hz",
-                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance"});
+                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance", "pen"});
   MachineFile file;
   if (const auto version = reader.optional(root, "version")) {
     const auto value = reader.integer(*version, 0, 1000000);
@@ -171,6 +172,7 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
     reader.fail(at, message, valid.error());
   }
   if (const auto gpio = reader.optional(root, "gpio")) file.gpio = parse_gpio(reader, *gpio);
+  if (const auto pen = reader.optional(root, "pen")) file.pen = detail::parse_pen(reader, *pen);
   if (const auto node = reader.optional(root, "blend_tolerance")) {
     const double value = reader.number(*node);
     if (!(value >= 0 && value <= max_blend_tolerance_mm)) {
