@@ -164,8 +164,11 @@ PageLayoutReport lay_out_on_page(Job& job, const PageLayout& layout, const Machi
                                   std::string(segment_type_name(source.type)) + " segments");
     }
   }
-  if (!job.events.empty() || !job.blend_tolerance_mm.empty()) {
-    throw std::invalid_argument(job.name + ": page layout applies to imported drawings, not to jobs with events or blend tolerances");
+  const bool layer_changes_only =
+      std::all_of(job.events.begin(), job.events.end(), [](const JobEvent& e) { return e.kind == JobEventKind::LayerChange; });
+  if (!layer_changes_only || !job.blend_tolerance_mm.empty()) {
+    throw std::invalid_argument(job.name + ": page layout applies to imported drawings (whose only events are layer changes), "
+                                           "not to jobs with other events or blend tolerances");
   }
   const auto extent = drawing_extent(job);
   if (!extent) throw std::invalid_argument(job.name + ": nothing drawn to lay out");
