@@ -184,6 +184,30 @@ TEST_CASE("pen: curvestep sim runs the demo drawing on the plotter machine withi
   INFO(out);
   CHECK(status == 0);
   CHECK(out.find("limit violations:    none") != std::string::npos);
-  CHECK(out.find("pen up before segment 0") != std::string::npos);
+  CHECK(out.find("pen up 11 times, pen down 10 times") != std::string::npos);
   CHECK(out.find("note: pen: ") != std::string::npos);
+}
+
+TEST_CASE("pen: curvestep sim names the layer at each layer change, with --layers selecting", "[host][pipeline][pen]") {
+  const std::filesystem::path svg = std::filesystem::temp_directory_path() / "curvestep_pen_layers.svg";
+  {
+    std::ofstream out(svg);
+    out << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" "
+           "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 100 100\">\n"
+           "<g inkscape:groupmode=\"layer\" inkscape:label=\"Red\"><path d=\"M 10 10 L 20 10\"/></g>\n"
+           "<g inkscape:groupmode=\"layer\" inkscape:label=\"Blue\"><path d=\"M 30 10 L 40 10\"/></g>\n</svg>\n";
+  }
+  const std::string machine = (source_dir / "examples/jobs/plotter_machine.json").string();
+  int status = -1;
+  const std::string both = run("sim " + svg.string() + " -m " + machine, &status);
+  CHECK(status == 0);
+  // Red: up 0, travel 1, down 2, draw 3; up 4, the change, travel 5, down 6, draw 7, up 8.
+  CHECK(both.find("layer change (Blue) before segment 5") != std::string::npos);
+  const std::string blue = run("sim " + svg.string() + " -m " + machine + " --layers Blue", &status);
+  CHECK(status == 0);
+  CHECK(blue.find("layer change") == std::string::npos);
+  const std::string green = run("sim " + svg.string() + " -m " + machine + " --layers Green,Red", &status);
+  std::filesystem::remove(svg);
+  CHECK(status != 0);
+  CHECK(green.find("no layer is labelled \"Green\" (the layers are \"Red\", \"Blue\")") != std::string::npos);
 }
