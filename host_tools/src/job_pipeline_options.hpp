@@ -10,13 +10,16 @@
 
 namespace curvestep::host {
 
-/// Adds --optimize, --strict, the page options (--page, --landscape, --center, --fit, --margin,
+/// Adds --optimize, --strict, --layers, the page options (--page, --landscape, --center, --fit, --margin,
 /// --rotate), --blend-tolerance and --strict-step-rate to `command`, filling `options`.
 inline void add_job_pipeline_options(CLI::App* command, JobPipelineOptions& options) {
   command->add_flag("--optimize", options.optimize, "SVG: order subpaths to shorten pen-up travel");
   command->add_flag("--strict", options.strict_svg,
                     "SVG: refuse a file with malformed path data or points (by default SVG's rule: drawn up to the error, "
                     "with a warning naming file:line and character)");
+  command->add_option("--layers", options.layers,
+                      "SVG: draw only these Inkscape layers (labels, comma-separated), in document order")
+      ->delimiter(',');
   command->add_option("--page", options.page,
                       "SVG: the page (a5, a4, a3, letter, legal, tabloid or WxH with mm/cm/in, e.g. 210x297mm); the drawing "
                       "must fit it before anything moves");

@@ -38,7 +38,7 @@ struct SimOptions {
   JobPipelineOptions pipeline;
 };
 
-/// The job's machine events as summary lines (count, then up to 8 with where they happen).
+/// The job's machine events as summary lines (count, pen moves counted, then up to 8 others with where they happen).
 std::string format_events(const Job& job) {
   if (job.events.empty()) return {};
   static const char* names[] = {"dwell", "pause", "program end", "spindle on", "spindle off", "spindle speed", "mist",
@@ -46,8 +46,17 @@ std::string format_events(const Job& job) {
   std::ostringstream out;
   out << "  job events:          " << job.events.size()
       << " (in program order; the motion does not stop or wait for them yet: dwells and pauses take no time here nor on a device)\n";
+  // Pen moves come in their hundreds on plotter art: counted, so that the layer changes show.
+  std::size_t pen_up = 0;
+  std::size_t pen_down = 0;
+  for (const JobEvent& e : job.events) {
+    pen_up += e.kind == JobEventKind::PenUp ? 1 : 0;
+    pen_down += e.kind == JobEventKind::PenDown ? 1 : 0;
+  }
+  if (pen_up + pen_down > 0) out << "                       pen up " << pen_up << " times, pen down " << pen_down << " times\n";
   std::size_t shown = 0;
   for (const JobEvent& e : job.events) {
+    if (e.kind == JobEventKind::PenUp || e.kind == JobEventKind::PenDown) continue;
     if (++shown > 8) {
       out << "                       ...\n";
       break;

@@ -24,15 +24,22 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
   if (!svg_file && options.page.active()) {
     throw std::invalid_argument(path.string() + ": --page, --center, --fit and --rotate apply to SVG drawings only");
   }
+  if (!svg_file && !options.layers.empty()) throw std::invalid_argument(path.string() + ": --layers applies to SVG drawings only");
   if (extension == ".json") return load_job(path);
   if (extension == ".ngc" || extension == ".nc" || extension == ".gcode" || extension == ".tap") return import_gcode(path, options.gcode);
   if (extension == ".svg") {
     SvgOptions svg;
     svg.optimize = options.optimize;
     svg.strict = options.strict_svg;
+    svg.layers = options.layers;
     SvgImport imported = load_svg(path, svg);
     if (notes != nullptr) {
       for (const auto& warning : imported.warnings) notes->push_back(warning);  // each names the file and line
+      if (imported.layers.size() > 1) {
+        std::string line = "layers drawn in order, a pen change (layer change event) before each after the first:";
+        for (const auto& layer : imported.layers) line += " \"" + layer + "\"";
+        notes->push_back(line);
+      }
       if (options.optimize) {
         std::ostringstream line;
         line << "optimised pen-up travel: " << imported.travel_document_mm << " mm -> " << imported.travel_mm << " mm (saved "

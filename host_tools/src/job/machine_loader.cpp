@@ -12,6 +12,7 @@
 #include <curvestep/host/job.hpp>
 
 #include "json_document.hpp"
+#include "machine_pen.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -144,7 +145,8 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
   const Reader reader(document, Error::InvalidMachine);
   const Node root = reader.root();
   reader.check_keys(root, {"version", "v_max", "a_max", "j_max", "feed", "rapid", "tolerance", "rate_hz",
-                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance", "tools", "g28", "g30"});
+                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance", "tools", "g28", "g30",
+                           "pen"});
   MachineFile file;
   file.name = document.name();
   if (const auto version = reader.optional(root, "version")) {
@@ -222,6 +224,7 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
   if (const auto tools = reader.optional(root, "tools")) file.tools = parse_tools(reader, *tools);
   if (const auto node = reader.optional(root, "g28")) file.g28_position = parse_position(reader, *node);
   if (const auto node = reader.optional(root, "g30")) file.g30_position = parse_position(reader, *node);
+  if (const auto pen = reader.optional(root, "pen")) file.pen = detail::parse_pen(reader, *pen);
   if (const auto node = reader.optional(root, "blend_tolerance")) {
     const double value = reader.number(*node);
     if (!(value >= 0 && value <= max_blend_tolerance_mm)) {

@@ -2,15 +2,25 @@
 // The job pipeline of every machine-moving command (job_pipeline.hpp).
 #include <curvestep/host/job_pipeline.hpp>
 
-#include <curvestep/host/swept_extent.hpp>
-
+#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include <curvestep/host/job_file.hpp>
+#include <curvestep/host/pen_moves.hpp>
+#include <curvestep/host/swept_extent.hpp>
 
 namespace curvestep::host {
+namespace {
+
+bool is_svg(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".svg";
+}
+
+}  // namespace
 
 MachineLimits step_rate_aware(const MachineLimits& machine, std::vector<std::string>* notes) {
   MachineLimits out = machine;
@@ -38,6 +48,7 @@ JobFileOptions job_file_options(const JobPipelineOptions& options) {
   JobFileOptions file;
   file.optimize = options.optimize;
   file.strict_svg = options.strict_svg;
+  file.layers = options.layers;
   if (!options.page.empty()) file.page.page = parse_page_size(options.page);
   file.page.landscape = options.landscape;
   file.page.center = options.center;
@@ -53,9 +64,18 @@ JobFileOptions job_file_options(const JobPipelineOptions& options) {
 namespace {
 
 PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions& file_options, const MachineLimits& machine,
-                    double machine_blend_tolerance_mm, const JobPipelineOptions& options) {
+                    double machine_blend_tolerance_mm, const JobPipelineOptions& options, const std::optional<PenModel>& pen) {
   PreparedJob prepared;
-  const Job programmed = load_job_file(job_file, file_options, &prepared.notes);
+  Job programmed = load_job_file(job_file, file_options, &prepared.notes);
+  if (pen && is_svg(job_file)) {  // plotter art: the pen moves become part of the motion
+    PenMovesReport report;
+    programmed = add_pen_moves(programmed, *pen, &report);
+    check_swept_extent(programmed);
+    std::ostringstream line;
+    line << "pen: " << report.lifts << " lifts to z " << pen->up_mm << " mm (rapid), " << report.lowers << " moves down to z "
+         << pen->down_mm << " mm at " << pen->feed_mm_per_s << " mm/s";
+    prepared.notes.push_back(line.str());
+  }
   prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &prepared.notes);
   prepared.job = smoothing::smooth_for_machine(
       programmed, prepared.machine, smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm),
@@ -66,8 +86,8 @@ PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions&
 }  // namespace
 
 PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineLimits& machine, double machine_blend_tolerance_mm,
-                        const JobPipelineOptions& options) {
-  return prepare(job_file, job_file_options(options), machine, machine_blend_tolerance_mm, options);
+                        const JobPipelineOptions& options, const std::optional<PenModel>& pen) {
+  return prepare(job_file, job_file_options(options), machine, machine_blend_tolerance_mm, options, pen);
 }
 
 GcodeOptions gcode_options(const MachineFile& machine_file) {
@@ -85,7 +105,7 @@ PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineFile
                         const JobPipelineOptions& options) {
   JobFileOptions file_options = job_file_options(options);
   file_options.gcode = gcode_options(machine_file);
-  PreparedJob prepared = prepare(job_file, file_options, machine, machine_file.blend_tolerance_mm, options);
+  PreparedJob prepared = prepare(job_file, file_options, machine, machine_file.blend_tolerance_mm, options, machine_file.pen);
   TravelLimits travel;
   travel.source = machine_file.name;
   for (std::size_t axis = 0; axis < motion_axes; ++axis) {

@@ -164,8 +164,11 @@ PageLayoutReport lay_out_on_page(Job& job, const PageLayout& layout, const Machi
                                   std::string(segment_type_name(source.type)) + " segments");
     }
   }
-  if (!job.events.empty() || !job.blend_tolerance_mm.empty()) {
-    throw std::invalid_argument(job.name + ": page layout applies to imported drawings, not to jobs with events or blend tolerances");
+  const bool layer_changes_only =
+      std::all_of(job.events.begin(), job.events.end(), [](const JobEvent& e) { return e.kind == JobEventKind::LayerChange; });
+  if (!layer_changes_only || !job.blend_tolerance_mm.empty()) {
+    throw std::invalid_argument(job.name + ": page layout applies to imported drawings (whose only events are layer changes), "
+                                           "not to jobs with other events or blend tolerances");
   }
   const auto extent = drawing_extent(job);
   if (!extent) throw std::invalid_argument(job.name + ": nothing drawn to lay out");
@@ -220,7 +223,10 @@ PageLayoutReport lay_out_on_page(Job& job, const PageLayout& layout, const Machi
     out.segments.push_back(segment);
     out.sources.push_back(std::move(source));
   };
+  // moved_index[k]: where the job's segment k (one per source) lands, so that events keep their place.
+  std::vector<std::size_t> moved_index;
   for (const auto& source : job.sources) {
+    moved_index.push_back(out.segments.size());
     if (source.type == SegmentType::Rapid) continue;
     SourceSegment moved = source;
     for (auto& p : moved.points) p = on_grid(place(p), job.name);
@@ -248,6 +254,10 @@ PageLayoutReport lay_out_on_page(Job& job, const PageLayout& layout, const Machi
     at = moved.points.back();
     push(std::move(moved), made.value());
   }
+
+  moved_index.push_back(out.segments.size());
+  out.events = job.events;
+  for (auto& event : out.events) event.before_segment = moved_index[std::min(event.before_segment, moved_index.size() - 1)];
 
   const auto placed = drawing_extent(out);
   report.low = placed->first;

@@ -22,6 +22,7 @@
 #include "svg_attributes.hpp"
 #include "svg_diagnostics.hpp"
 #include "svg_job_builder.hpp"
+#include "svg_layers.hpp"
 #include "svg_viewport.hpp"
 #include "svg_walk.hpp"
 
@@ -67,7 +68,8 @@ SvgImport read_document(std::string_view text, std::string name, const SvgOption
   const svg::RootViewport viewport = svg::root_viewport(diagnostics, *root);
   walk.walk(*root, svg::Scope{viewport.map, viewport.lengths});
   if (walk.drawn().empty()) diagnostics.fail(*root, "", "the drawing has no paths or shapes to draw");
-  return svg::build_import(diagnostics, std::move(walk.drawn()), options, diagnostics.take_warnings());
+  svg::select_layers(diagnostics, walk.layers(), options.layers, walk.drawn());
+  return svg::build_import(diagnostics, std::move(walk.drawn()), options, diagnostics.take_warnings(), walk.layers());
 }
 
 }  // namespace

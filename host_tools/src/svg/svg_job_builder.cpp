@@ -2,7 +2,9 @@
 // Drawn subpaths -> the SvgImport (svg_job_builder.hpp).
 #include "svg_job_builder.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <optional>
 
@@ -92,7 +94,7 @@ double wire_feed(const std::string& file, double feed) {
 }  // namespace
 
 SvgImport build_import(const Diagnostics& diagnostics, std::vector<DrawnSubpath> drawn, const SvgOptions& options,
-                       std::vector<std::string> warnings) {
+                       std::vector<std::string> warnings, const std::vector<Layer>& layers) {
   SvgImport result;
   MachinePoint start{};
   for (std::size_t axis = 0; axis < motion_axes; ++axis) {
@@ -105,7 +107,18 @@ SvgImport build_import(const Diagnostics& diagnostics, std::vector<DrawnSubpath>
   }
   const double feed = wire_feed(diagnostics.file(), options.feed_mm_per_s);
   result.travel_document_mm = travel(start, drawn);
-  if (options.optimize) result.reversed_count = optimise(start, drawn);
+  if (options.optimize) {
+    // Layer by layer (drawn is grouped by layer): a pen is never taken back to an earlier layer.
+    MachinePoint from = start;
+    for (auto first = drawn.begin(); first != drawn.end();) {
+      const auto last = std::find_if(first, drawn.end(), [&](const DrawnSubpath& s) { return s.layer != first->layer; });
+      std::vector<DrawnSubpath> group(std::make_move_iterator(first), std::make_move_iterator(last));
+      result.reversed_count += optimise(from, group);
+      std::move(group.begin(), group.end(), first);
+      from = std::prev(last)->end();
+      first = last;
+    }
+  }
   result.travel_mm = travel(start, drawn);
   result.subpath_count = drawn.size();
   result.warnings = std::move(warnings);
@@ -114,7 +127,19 @@ SvgImport build_import(const Diagnostics& diagnostics, std::vector<DrawnSubpath>
   job.version = 1;
   job.name = diagnostics.file();
   MachinePoint at = start;
-  for (const auto& subpath : drawn) {
+  for (std::size_t n = 0; n < drawn.size(); ++n) {
+    const DrawnSubpath& subpath = drawn[n];
+    if (subpath.layer < layers.size() && (n == 0 || drawn[n - 1].layer != subpath.layer)) {
+      result.layers.push_back(layer_text(layers[subpath.layer]));
+      if (n > 0) {  // the pen change: after the previous layer's last segment, before the travel to this one
+        JobEvent change;
+        change.kind = JobEventKind::LayerChange;
+        change.before_segment = job.segments.size();
+        change.line = subpath.line;
+        change.text = result.layers.back();
+        job.events.push_back(std::move(change));
+      }
+    }
     if (!(subpath.start() == at)) {
       auto move = PathSegment::make_line(at, subpath.start());
       move.value().set_rapid(true);

@@ -25,7 +25,8 @@ struct MachinePiece {
 /// One pen-down stretch.
 struct DrawnSubpath {
   std::vector<MachinePiece> pieces;
-  std::size_t line = 0;  ///< line of the element in the file
+  std::size_t line = 0;   ///< line of the element in the file
+  std::size_t layer = 0;  ///< index of its layer in the walk's layers (svg_layers.hpp)
   [[nodiscard]] const MachinePoint& start() const { return pieces.front().points.front(); }
   [[nodiscard]] const MachinePoint& end() const { return pieces.back().points.back(); }
   [[nodiscard]] bool closed() const { return start() == end(); }

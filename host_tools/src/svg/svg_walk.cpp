@@ -3,6 +3,8 @@
 #include "svg_walk.hpp"
 
 #include <algorithm>
+#include <optional>
+#include <string_view>
 
 #include <curvestep/host/printable.hpp>
 #include <curvestep/host/svg_import.hpp>
@@ -18,7 +20,28 @@ namespace curvestep::host::svg {
 void ElementWalk::walk(const tinyxml2::XMLElement& root, const Scope& root_scope) {
   index_ids(root);
   collect_style_sheets(root);
-  visit_children(root, root_scope);
+  std::optional<std::size_t> outside;  // the layer of what is drawn outside Inkscape layers
+  for (const auto* child = root.FirstChildElement(); child != nullptr; child = child->NextSiblingElement()) {
+    const char* mode = child->Attribute("inkscape:groupmode");
+    const bool layer = local_name(*child) == "g" && mode != nullptr && std::string_view(mode) == "layer";
+    std::optional<std::size_t> index;
+    if (layer) {
+      const char* label = child->Attribute("inkscape:label");
+      if (label == nullptr) label = child->Attribute("id");
+      layers_.push_back(Layer{label != nullptr ? std::string(label) : "layer " + std::to_string(layers_.size() + 1), true});
+      index = layers_.size() - 1;
+    }
+    const std::size_t first = drawn_.size();
+    visit(*child, root_scope);
+    if (!index && drawn_.size() > first) {
+      if (!outside) {
+        layers_.push_back(Layer{"", false});
+        outside = layers_.size() - 1;
+      }
+      index = outside;
+    }
+    for (std::size_t i = first; i < drawn_.size(); ++i) drawn_[i].layer = index.value_or(0);
+  }
 }
 
 void ElementWalk::collect_style_sheets(const tinyxml2::XMLElement& element) {

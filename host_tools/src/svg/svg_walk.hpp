@@ -14,6 +14,7 @@
 #include "svg_css.hpp"
 #include "svg_diagnostics.hpp"
 #include "svg_geometry.hpp"
+#include "svg_layers.hpp"
 #include "svg_lengths.hpp"
 #include "svg_machine.hpp"
 
@@ -45,6 +46,9 @@ class ElementWalk {
 
   /// What was drawn, in document order.
   [[nodiscard]] std::vector<DrawnSubpath>& drawn() noexcept { return drawn_; }
+  /// The top-level layers in document order (DrawnSubpath::layer indexes them); the content outside
+  /// layers is one more entry, placed where the first of it is drawn.
+  [[nodiscard]] const std::vector<Layer>& layers() const noexcept { return layers_; }
 
  private:
   void index_ids(const tinyxml2::XMLElement& element);
@@ -61,6 +65,7 @@ class ElementWalk {
   Diagnostics& diagnostics_;
   bool strict_ = false;
   std::vector<DrawnSubpath> drawn_;
+  std::vector<Layer> layers_;
   StyleSheet styles_;
   std::map<std::string, const tinyxml2::XMLElement*> ids_;
   std::vector<const tinyxml2::XMLElement*> active_uses_;

@@ -16,6 +16,7 @@ namespace curvestep::host {
 struct JobFileOptions {
   bool optimize = false;    ///< SVG: order subpaths to shorten pen-up travel (greedy nearest neighbour)
   bool strict_svg = false;  ///< SVG: refuse malformed path data or points (else drawn up to the error, with a note)
+  std::vector<std::string> layers;  ///< SVG: Inkscape layers to draw, by label (empty: all)
   PageLayout page;          ///< SVG: page size, centring, fit, rotation and the page check (page_layout.hpp)
   GcodeOptions gcode;       ///< G-code: the machine file's tool table and G28/G30 positions
 };

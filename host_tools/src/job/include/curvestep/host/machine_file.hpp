@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Machine files (JSON, docs/job_format.md): limits, rates and axes, mapped onto MachineLimits, and
-// the optional "gpio" section (which Linux GPIO lines drive the axes, for boards/host).
+// the optional "gpio" section (which Linux GPIO lines drive the axes, for boards/host) and "pen"
+// section (a plotter pen on z).
 #pragma once
 
 #include <array>
@@ -44,6 +45,15 @@ struct AxisTravel {
 /// Tool numbers a "tools" table may hold (0 .. max_tool_number; tool 0 is "no tool").
 inline constexpr int max_tool_number = 99;
 
+/// The "pen" section: a plotter pen on the z axis, {"axis": "z", "up": 5, "down": 0, "feed": 20}.
+/// SVG jobs then lift the pen for every rapid between subpaths (job_pipeline.hpp, pen_moves.hpp).
+/// Heights and the feed are on the Q16.16 grid the wire carries. A servo pen is not modelled.
+struct PenModel {
+  double up_mm = 0;          ///< z of the lifted pen, mm
+  double down_mm = 0;        ///< z of the pen on the paper, mm (differs from up_mm)
+  double feed_mm_per_s = 0;  ///< feed of the move down onto the paper, mm/s (> 0); the lift is a rapid
+};
+
 /// Largest "blend_tolerance" a machine file may give, mm.
 inline constexpr double max_blend_tolerance_mm = 10;
 
@@ -52,6 +62,7 @@ struct MachineFile {
   std::string name;                ///< the file's name, for messages
   MachineLimits limits;            ///< planning and stepping limits, validated
   std::optional<GpioWiring> gpio;  ///< the "gpio" section, if present (validated)
+  std::optional<PenModel> pen;     ///< the "pen" section, if present (validated)
   /// "blend_tolerance": path smoothing's largest deviation from the programmed path, mm (0 = off,
   /// the default; G64 P overrides it per move). Host-side: the controller gets smoothed segments.
   double blend_tolerance_mm = 0;

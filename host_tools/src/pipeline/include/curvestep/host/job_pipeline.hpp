@@ -2,12 +2,14 @@
 // One job pipeline for every command that moves a machine (sim, plot, stream, gpio, demo), so that
 // what was simulated is what runs:
 //
-//   file ─► load_job_file (by extension; --optimize orders SVG subpaths)
+//   file ─► load_job_file (by extension; --optimize orders SVG subpaths, --layers selects layers)
+//        ─► pen moves (SVG with a machine-file "pen": z up for rapids, down to draw; pen_moves.hpp)
 //        ─► step-rate-aware limits (each axis's v_max lowered to what its drivers can step)
 //        ─► path smoothing (blend_tolerance / --blend-tolerance)  ─► Job + MachineLimits to plan/send
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,7 @@ struct JobPipelineOptions {
   bool fit = false;                 ///< --fit
   std::string margin;               ///< --margin (mm, or with a unit mm/cm/in; empty: 0)
   int rotate_deg = 0;               ///< --rotate: 0, 90, 180, 270 clockwise
+  std::vector<std::string> layers;  ///< --layers: Inkscape layers to draw, by label (empty: all)
 };
 
 /// The job-file options (import, page layout) of the pipeline options. std::invalid_argument for a
@@ -56,9 +59,11 @@ inline constexpr double step_rate_share = 0.99;
 [[nodiscard]] MachineLimits step_rate_aware(const MachineLimits& machine, std::vector<std::string>* notes = nullptr);
 
 /// Loads `job_file` and prepares it for `machine` (the machine file's limits, possibly with a rate
-/// override) and the machine file's `blend_tolerance_mm`. Throws what load_job_file throws.
+/// override), the machine file's `blend_tolerance_mm` and its `pen` (applied to SVG drawings only,
+/// before smoothing). Throws what load_job_file throws.
 [[nodiscard]] PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineLimits& machine,
-                                      double machine_blend_tolerance_mm, const JobPipelineOptions& options);
+                                      double machine_blend_tolerance_mm, const JobPipelineOptions& options,
+                                      const std::optional<PenModel>& pen = std::nullopt);
 
 /// prepare_job with the whole machine file: a G-code job reads its tool table and G28/G30
 /// positions (gcode_options), and the prepared job is checked against its travel (soft limits,

@@ -7,7 +7,9 @@
 // (Béziers are affine invariant), and elliptical arcs become rational quadratic Béziers of at most
 // 90° of the underlying circle each, which represent an ellipse exactly. Control points, weights
 // and the feed are rounded to the nearest Q16.16 value like job files (the wire's format, so the
-// simulator sees what a device receives). Subpaths are joined by rapid moves.
+// simulator sees what a device receives). Subpaths are joined by rapid moves. Top-level Inkscape
+// layers are drawn one after the other in document order (the optimiser reorders within a layer),
+// with a LayerChange event (a pen change) before each layer after the first.
 #pragma once
 
 #include <cstddef>
@@ -34,6 +36,9 @@ struct SvgOptions {
   /// path is drawn up to its first error, a points list up to its error or odd last number, and
   /// SvgImport::warnings names file, line, element, attribute and character.
   bool strict = false;
+  /// Inkscape layers to draw, by label (empty: all, and the content outside layers). LoadError for
+  /// a label no top-level layer has, listing the layers there are.
+  std::vector<std::string> layers;
 };
 
 /// A job made from a drawing, with what the import did.
@@ -43,6 +48,7 @@ struct SvgImport {
   std::size_t reversed_count = 0;       ///< subpaths the optimiser drew backwards
   double travel_document_mm = 0;        ///< rapid travel in document order
   double travel_mm = 0;                 ///< rapid travel of `job`
+  std::vector<std::string> layers;      ///< labels of the layers drawn, in order ("(outside layers)" for the rest); a LayerChange event between each two
   std::vector<std::string> warnings;    ///< elements not drawn, data drawn up to an error ("file:line: <path> "d": at character 9: ...")
   /// Rapid travel the optimiser saved, mm.
   [[nodiscard]] double travel_saved_mm() const noexcept { return travel_document_mm - travel_mm; }
