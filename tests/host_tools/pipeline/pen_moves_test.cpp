@@ -157,7 +157,7 @@ TEST_CASE("pen: a layer change lifts the pen even without travel, and a first st
 }
 
 TEST_CASE("pen: prepare_job adds the pen moves to SVG jobs only, before smoothing", "[host][pipeline][pen]") {
-  const MachineFile plotter = load_machine_file(source_dir / "examples/jobs/plotter_machine.json");
+  const MachineFile plotter = load_machine_file(source_dir / "examples/machines/plotter.json");
   REQUIRE(plotter.pen.has_value());
   const std::filesystem::path svg = std::filesystem::temp_directory_path() / "curvestep_pen_two_strokes.svg";
   {
@@ -179,7 +179,7 @@ TEST_CASE("pen: prepare_job adds the pen moves to SVG jobs only, before smoothin
 TEST_CASE("pen: curvestep sim runs the demo drawing on the plotter machine within its limits", "[host][pipeline][pen]") {
   int status = -1;
   const std::string out = run("sim " + (source_dir / "examples/svg/curvestep_demo.svg").string() + " -m " +
-                                  (source_dir / "examples/jobs/plotter_machine.json").string(),
+                                  (source_dir / "examples/machines/plotter.json").string(),
                               &status);
   INFO(out);
   CHECK(status == 0);
@@ -197,7 +197,7 @@ TEST_CASE("pen: curvestep sim names the layer at each layer change, with --layer
            "<g inkscape:groupmode=\"layer\" inkscape:label=\"Red\"><path d=\"M 10 10 L 20 10\"/></g>\n"
            "<g inkscape:groupmode=\"layer\" inkscape:label=\"Blue\"><path d=\"M 30 10 L 40 10\"/></g>\n</svg>\n";
   }
-  const std::string machine = (source_dir / "examples/jobs/plotter_machine.json").string();
+  const std::string machine = (source_dir / "examples/machines/plotter.json").string();
   int status = -1;
   const std::string both = run("sim " + svg.string() + " -m " + machine, &status);
   CHECK(status == 0);
