@@ -476,6 +476,20 @@ std::string read_text_file(const std::filesystem::path& path) {
   return text.str();
 }
 
+SourceLocation piece_location(const Job& job, std::size_t piece) {
+  SourceLocation location;
+  location.file = job.name;
+  if (piece < job.source_index.size()) {
+    const std::size_t index = job.source_index[piece];
+    location.segment = index;
+    if (index < job.sources.size()) {
+      location.line = job.sources[index].line;
+      location.segment_type = std::string(segment_type_name(job.sources[index].type));
+    }
+  }
+  return location;
+}
+
 Job parse_job(std::string_view text, std::string name) { return JobParser(text, std::move(name)).parse(); }
 
 Job load_job(const std::filesystem::path& path) { return parse_job(read_text_file(path), path.string()); }

@@ -53,17 +53,7 @@ void check_parameter_speed(const Job& job) {
     if (segment.kind() != SegmentKind::RationalBezier) continue;  // polynomial speeds are followed
     const double factor = table_speed_factor(segment);
     if (factor <= max_table_speed_factor) continue;
-    SourceLocation location;
-    location.file = job.name;
-    if (k < job.source_index.size()) {
-      const std::size_t index = job.source_index[k];
-      location.segment = index;
-      if (index < job.sources.size()) {
-        location.line = job.sources[index].line;
-        location.segment_type = std::string(segment_type_name(job.sources[index].type));
-      }
-    }
-    throw LoadError(std::move(location),
+    throw LoadError(piece_location(job, k),
                     "the weights vary too strongly: the controller's arc-length table cannot follow this curve's "
                     "parameter speed (the machine would move " + three_digits(factor) +
                         " times faster than planned); lower the weight ratio or split the curve",

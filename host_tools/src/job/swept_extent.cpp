@@ -48,24 +48,6 @@ std::string_view kind_name(SegmentKind kind) {
 
 SweptBox swept_box(const PathSegment& segment) { return segment_bounds(segment); }
 
-namespace {
-
-/// Where piece k of `job` comes from: the file, its line and segment.
-SourceLocation location_of(const Job& job, std::size_t k) {
-  SourceLocation location;
-  location.file = job.name;
-  if (k < job.source_index.size()) {
-    const std::size_t index = job.source_index[k];
-    location.segment = index;
-    if (index < job.sources.size()) {
-      location.line = job.sources[index].line;
-      location.segment_type = std::string(segment_type_name(job.sources[index].type));
-    }
-  }
-  return location;
-}
-
-}  // namespace
 
 void check_travel(const Job& job, const TravelLimits& travel) {
   constexpr const char* names[] = {"x", "y", "z"};
@@ -78,7 +60,7 @@ void check_travel(const Job& job, const TravelLimits& travel) {
       if (!below && !above) continue;
       const double reached = below ? box.low[axis] : box.high[axis];
       const double beyond = below ? travel.low[axis] - reached : reached - travel.high[axis];
-      throw LoadError(location_of(job, k),
+      throw LoadError(piece_location(job, k),
                       "the " + std::string(kind_name(job.segments[k].kind())) + " reaches " + names[axis] + " = " +
                           format_number(reached) + " mm, " + format_number(beyond) + " mm " + (below ? "below" : "beyond") +
                           " the machine's travel " + format_number(travel.low[axis]) + " .. " + format_number(travel.high[axis]) +
@@ -92,7 +74,7 @@ void check_swept_extent(const Job& job) {
   for (std::size_t k = 0; k < job.segments.size(); ++k) {
     const std::string outside = outside_q16(swept_box(job.segments[k]));
     if (outside.empty()) continue;
-    throw LoadError(location_of(job, k),
+    throw LoadError(piece_location(job, k),
                     "the " + std::string(kind_name(job.segments[k].kind())) + " reaches " + outside +
                         ", outside the Q16.16 range (-32768 to 32768 mm) the controller works in",
                     Error::FixedOverflow);

@@ -103,6 +103,10 @@ struct Job {
 /// std::out_of_range (one-line message) for a bad index or a u outside the domain.
 [[nodiscard]] MachinePoint evaluate_segment(const Job& job, std::size_t index, double u);
 
+/// Where Job::segments[piece] comes from, for a message: the job's file, the line and index of
+/// the file's segment it belongs to, and that segment's type.
+[[nodiscard]] SourceLocation piece_location(const Job& job, std::size_t piece);
+
 /// Reads a whole text file; std::runtime_error naming the file if it cannot be read.
 [[nodiscard]] std::string read_text_file(const std::filesystem::path& path);
 
