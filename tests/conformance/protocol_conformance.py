@@ -339,6 +339,18 @@ def run_device_checks(program, codes):
         naks = [struct.unpack('<BB', f[2]) for f in frames if f and f[0] == NAK]
         check((d.sequence, codes['BadCrc']) in naks and not any(f and f[0] == STATUS_REPORT for f in frames),
               'a damaged frame gets Nak(expected, BadCrc) and is not delivered')
+        # More than 167 bytes before a delimiter: FrameTooLong, reported once (one Nak), not delivered.
+        d.write(bytes([0x55]) * 200 + b'\x00')
+        frames = d.answers()
+        naks = [struct.unpack('<BB', f[2]) for f in frames if f and f[0] == NAK]
+        # (Acks may come: the 250 ms heartbeat; none may acknowledge anything new.)
+        check(naks == [(d.sequence, codes['FrameTooLong'])] and all(a[0] == d.sequence for a in acks(frames)),
+              'an oversized block gets exactly one Nak(expected, FrameTooLong) and is not delivered')
+        # A block that decodes to 8 or more bytes whose CRC fails: BadCrc (the checks' order).
+        d.write(bytes([0x01]) * 20 + b'\x00')
+        frames = d.answers()
+        naks = [struct.unpack('<BB', f[2]) for f in frames if f and f[0] == NAK]
+        check(naks == [(d.sequence, codes['BadCrc'])], 'a block of zeros long enough for a frame fails on its CRC: Nak(BadCrc)')
         # StatusRequest in connected: Ack + StatusReport Idle.
         d.command(STATUS_REQUEST)
         report, _ = d.wait_for(lambda t, s, m: t == STATUS_REPORT)
@@ -398,7 +410,7 @@ def main():
     program, docs_dir = sys.argv[1], sys.argv[2]
     codes = error_codes(docs_dir)
     check(all(name in codes for name in ('NotConnected', 'VersionMismatch', 'ConfigurationMissing', 'UnknownMessage', 'BadPayload',
-                                         'BadCrc', 'NothingQueued')), 'docs/errors.md names every code this suite checks')
+                                         'BadCrc', 'NothingQueued', 'FrameTooLong')), 'docs/errors.md names every code this suite checks')
     document_examples()
     run_device_checks(program, codes)
     print('%d failed' % len(failures))
