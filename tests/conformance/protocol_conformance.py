@@ -360,6 +360,14 @@ def run_device_checks(program, codes):
         frames = d.answers(0.5)
         check(not error_reports(frames), 'a valid MachineConfiguration is taken without an ErrorReport')
         check(d.credit_end == queue_capacity // 7, 'credit after the configuration: queue slots / 7 (%d)' % (queue_capacity // 7))
+        # Limits outside their documented ranges are refused, the configuration in force stays (24.3, 24.4).
+        seq = d.command(CONFIGURATION, configuration_message(axes=axis_count, v=5e-324))
+        frames = d.answers()
+        check((codes['InvalidLimit'], 0, seq) in error_reports(frames), 'v_max 5e-324 gets InvalidLimit, index 0 (LimitField v_max)')
+        seq = d.command(CONFIGURATION, configuration_message(axes=axis_count, rate=300))
+        frames = d.answers()
+        check((codes['InvalidRate'], 5, seq) in error_reports(frames),
+              'a control rate the 1 MHz step timer cannot hold (300 Hz) gets InvalidRate, index 5')
         # configured: Start on an empty queue is NothingQueued.
         seq = d.command(START)
         frames = d.answers()
@@ -410,7 +418,8 @@ def main():
     program, docs_dir = sys.argv[1], sys.argv[2]
     codes = error_codes(docs_dir)
     check(all(name in codes for name in ('NotConnected', 'VersionMismatch', 'ConfigurationMissing', 'UnknownMessage', 'BadPayload',
-                                         'BadCrc', 'NothingQueued', 'FrameTooLong')), 'docs/errors.md names every code this suite checks')
+                                         'BadCrc', 'NothingQueued', 'FrameTooLong', 'InvalidLimit',
+                                         'InvalidRate')), 'docs/errors.md names every code this suite checks')
     document_examples()
     run_device_checks(program, codes)
     print('%d failed' % len(failures))

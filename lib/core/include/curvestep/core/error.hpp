@@ -48,7 +48,7 @@ enum class Error : std::uint8_t {
   InvalidLimit = 70,           ///< a machine limit is not finite or outside its documented range
   SegmentsNotConnected = 71,   ///< segment does not start where the previous one ended
   StepRateTooHigh = 72,        ///< job needs more steps per second than the machine allows
-  InvalidRate = 73,            ///< control rate outside 100 Hz .. 100 kHz
+  InvalidRate = 73,            ///< control rate outside 100 Hz .. 100 kHz, or one the step timer cannot hold
   UnknownSegmentType = 74,     ///< segment type not known
   InvalidJob = 75,             ///< job file malformed (the message names the field)
   InvalidMachine = 76,         ///< machine file malformed (the message names the field)

@@ -117,7 +117,7 @@ namespace curvestep {
     case Error::InvalidLimit: return "a machine limit is not finite or outside its documented range";
     case Error::SegmentsNotConnected: return "segment does not start where the previous one ended";
     case Error::StepRateTooHigh: return "job needs more steps per second than the machine allows";
-    case Error::InvalidRate: return "control rate outside 100 Hz .. 100 kHz";
+    case Error::InvalidRate: return "control rate outside 100 Hz .. 100 kHz, or one the step timer cannot hold";
     case Error::UnknownSegmentType: return "segment type not known";
     case Error::InvalidJob: return "job file malformed (the message names the field)";
     case Error::InvalidMachine: return "machine file malformed (the message names the field)";
