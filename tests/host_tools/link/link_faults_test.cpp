@@ -158,7 +158,6 @@ TEST_CASE("link faults: 20 % duplicated bytes both ways after a clean handshake 
     CHECK((e.code() == Error::RetransmitLimit || e.code() == Error::LinkTimeout));
     CHECK(took.count() <= 3000 + 1500);
     CHECK(text.find("no progress") != std::string::npos);
-    WARN(text << " after " << took.count() << " ms");
   }
   // The host is gone: the device stops (held by its own link timeout, 1 s) and moves no more.
   device.run_unattended(std::chrono::milliseconds(1500));

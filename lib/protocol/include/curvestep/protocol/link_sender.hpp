@@ -171,6 +171,7 @@ class LinkSender {
     if (transmitted_ == 0) {  // the oldest frame's first transmission starts the timer and the progress watch
       timer_ms_ = now_ms;
       progress_ms_ = now_ms;
+      heard_since_timeout_ = false;
     }
     ++sent_;
     if (sent_ > transmitted_) transmitted_ = sent_;
@@ -305,6 +306,7 @@ class LinkSender {
     first_sequence_ = next_expected;
     timer_ms_ = now_ms;
     progress_ms_ = now_ms;
+    heard_since_timeout_ = false;  // a new timer: the next timeout counts if the peer is heard before it
     timeouts_ = 0;
   }
 
@@ -340,7 +342,7 @@ class LinkSender {
   std::uint8_t timeouts_ = 0;  // timeouts in a row without progress
   Endpoint peer_ = Endpoint::Controller;
   bool hello_due_ = false;
-  bool heard_since_timeout_ = false;  // the peer was heard since the last retransmission timeout
+  bool heard_since_timeout_ = false;  // the peer was heard since the timer last started or expired
   LinkState state_ = LinkState::Disconnected;
   Error error_ = Error::NotConnected;
 };
