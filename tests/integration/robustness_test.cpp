@@ -359,10 +359,13 @@ TEST_CASE("hil: 20 % duplicated bytes both ways after a clean handshake end the 
   const auto took = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
   INFO(errors << "\nafter " << took.count() << " ms");
   CHECK(status == 4);
-  // A short frame gets through now and then (a segment a second or so): the upload ends at the
-  // first stretch of the link timeout (3 s by default) without any acknowledged progress.
-  CHECK(took.count() < 120000);
-  CHECK_THAT(errors, (Catch::Contains("RetransmitLimit") && Catch::Contains("no progress for")) || Catch::Contains("LinkTimeout"));
+  // A short frame gets through now and then (a segment a second or so) but no setpoint batch: the
+  // upload ends at the first stretch of the link timeout (3 s by default) without acknowledged
+  // progress, or once Start is acknowledged, without a setpoint batch (11 to 13 s measured).
+  CHECK(took.count() < 60000);
+  CHECK_THAT(errors, (Catch::Contains("RetransmitLimit") &&
+                      (Catch::Contains("no progress for") || Catch::Contains("no setpoint batch arrived whole"))) ||
+                         Catch::Contains("LinkTimeout"));
   std::this_thread::sleep_for(1500ms);  // the device's link timeout (1 s): it stops
   const std::string log = device.stderr_text();
   INFO(log);
