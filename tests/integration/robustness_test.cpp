@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -15,8 +16,10 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <random>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/protocol/frame.hpp>
@@ -225,4 +228,148 @@ TEST_CASE("hil: curvestep stream refuses a controller of another protocol versio
   CHECK(status == 4);
   CHECK_THAT(errors, Catch::Contains("VersionMismatch") &&
                          Catch::Contains("the controller speaks protocol version 1, this host speaks version 4"));
+}
+
+TEST_CASE("hil: a device frozen for 2 s (SIGSTOP) with --link-timeout-ms 30000 on both ends finishes the job",
+          "[integration][hil][freeze]") {
+  // Issue 19.6: the host's sender counted its retransmission timeouts during the silence and gave up
+  // after ten (about 1.1 s) although the link timeout was 30 s.
+  const auto machine = ct::wire_exact_machine();
+  const auto job = ct::zigzag_job(16);  // about 5 s in real time
+  ct::Process device({"device", "--link-timeout-ms", "30000"}, "device_freeze.stderr");
+  const std::string port = device.first_line();
+  ct::Process host({"stream", job.string(), "--machine", machine.string(), "--port", port, "--link-timeout-ms", "30000"},
+                   "stream_freeze.stderr");
+  std::string log;
+  for (int i = 0; i < 250 && log.find("running") == std::string::npos; ++i) {
+    std::this_thread::sleep_for(20ms);
+    log = device.stderr_text();
+  }
+  REQUIRE_THAT(log, Catch::Contains("running"));
+  std::this_thread::sleep_for(500ms);
+  ::kill(device.pid(), SIGSTOP);
+  std::this_thread::sleep_for(2000ms);
+  ::kill(device.pid(), SIGCONT);
+  const int status = host.wait(60s);
+  const std::string errors = host.stderr_text();
+  INFO(errors);
+  INFO(device.stderr_text());
+  CHECK(status == 0);
+  CHECK(device.stop() == 0);
+}
+
+TEST_CASE("hil: after a host vanished and the device held the job, the first job of a new session runs",
+          "[integration][hil][stale]") {
+  // Issue 19.5: the held device's ErrorReport(LinkTimeout) waited in the port and ended the next
+  // host's first job.
+  const auto machine = ct::wire_exact_machine();
+  ct::Process device({"device", "--fast"}, "device_stale.stderr");
+  const std::string port = device.first_line();
+  {
+    ct::Process first({"stream", ct::zigzag_job(1000).string(), "--machine", machine.string(), "--port", port},
+                      "stream_stale_1.stderr");
+    std::string log;
+    for (int i = 0; i < 250 && log.find("running") == std::string::npos; ++i) {
+      std::this_thread::sleep_for(20ms);
+      log = device.stderr_text();
+    }
+    REQUIRE_THAT(log, Catch::Contains("running"));
+    std::this_thread::sleep_for(200ms);
+    ::kill(first.pid(), SIGKILL);
+    CHECK(first.wait(5s) == 128 + SIGKILL);
+  }
+  std::this_thread::sleep_for(1500ms);  // the device's link timeout (1 s): held, LinkTimeout reported into the port
+  REQUIRE_THAT(device.stderr_text(), Catch::Contains("LinkTimeout"));
+  std::string errors;
+  const int status = ct::run_program({"stream", ct::zigzag_job(4).string(), "--machine", machine.string(), "--port", port},
+                                     errors, "stream_stale_2", std::chrono::seconds(30));
+  INFO(errors);
+  INFO(device.stderr_text());
+  CHECK(status == 0);
+  CHECK(device.stop() == 0);
+}
+
+namespace {
+
+/// A relay between a pseudo-terminal the host connects to and a device port that duplicates each
+/// byte with probability `rate`, both ways, from just after the device's first answer on (a
+/// clean handshake first).
+class DuplicatingRelay {
+ public:
+  DuplicatingRelay(const std::string& device_port, double rate)
+      : host_(pty_.master_transport()), device_(hl::open_port(device_port, 115200)), rate_(rate), thread_([this] { run(); }) {}
+  DuplicatingRelay(const DuplicatingRelay&) = delete;
+  DuplicatingRelay& operator=(const DuplicatingRelay&) = delete;
+  ~DuplicatingRelay() {
+    stop_.store(true);
+    thread_.join();
+  }
+  [[nodiscard]] std::string host_port() const { return pty_.slave_path(); }
+
+ private:
+  void run() {
+    std::array<std::byte, 512> buffer{};
+    std::vector<std::byte> out;
+    std::mt19937 random(1919);
+    std::uniform_real_distribution<double> chance(0.0, 1.0);
+    std::chrono::steady_clock::time_point faults_from = std::chrono::steady_clock::time_point::max();
+    const auto relay = [&](hl::Transport& to, std::size_t n) {
+      const bool faulty = std::chrono::steady_clock::now() >= faults_from;
+      out.clear();
+      for (std::size_t i = 0; i < n; ++i) {
+        out.push_back(buffer[i]);
+        if (faulty && chance(random) < rate_) out.push_back(buffer[i]);
+      }
+      if (!out.empty()) to.write(out);
+    };
+    try {
+      while (!stop_.load()) {
+        relay(*device_, host_->read(buffer, 2));
+        const std::size_t back = device_->read(buffer, 0);
+        if (back > 0 && faults_from == std::chrono::steady_clock::time_point::max()) {
+          faults_from = std::chrono::steady_clock::now() + 1ms;  // from the frame after Capabilities on
+        }
+        relay(*host_, back);
+      }
+    } catch (const hl::TransportError&) {
+    }
+  }
+
+  hl::PseudoTerminal pty_;
+  std::unique_ptr<hl::FdTransport> host_;
+  std::unique_ptr<hl::Transport> device_;
+  double rate_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+}  // namespace
+
+TEST_CASE("hil: 20 % duplicated bytes both ways after a clean handshake end the upload with a clear error in bounded time",
+          "[integration][hil][livelock]") {
+  // Issue 19.4: curvestep stream made no progress and reported nothing for at least 300 s.
+  const auto machine = ct::wire_exact_machine();
+  ct::Process device({"device", "--fast"}, "device_livelock.stderr");
+  DuplicatingRelay relay(device.first_line(), 0.2);
+  const auto start = std::chrono::steady_clock::now();
+  std::string errors;
+  const int status = ct::run_program({"stream", ct::zigzag_job(1000).string(), "--machine", machine.string(), "--port",
+                                      relay.host_port()},
+                                     errors, "stream_livelock", std::chrono::seconds(120));
+  const auto took = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - start);
+  INFO(errors << "\nafter " << took.count() << " ms");
+  CHECK(status == 4);
+  // A short frame gets through now and then (a segment a second or so) but no setpoint batch: the
+  // upload ends at the first stretch of the link timeout (3 s by default) without acknowledged
+  // progress, or once Start is acknowledged, without a setpoint batch (11 to 13 s measured).
+  CHECK(took.count() < 60000);
+  CHECK_THAT(errors, (Catch::Contains("RetransmitLimit") &&
+                      (Catch::Contains("no progress for") || Catch::Contains("no setpoint batch arrived whole"))) ||
+                         Catch::Contains("LinkTimeout"));
+  std::this_thread::sleep_for(1500ms);  // the device's link timeout (1 s): it stops
+  const std::string log = device.stderr_text();
+  INFO(log);
+  const bool stopped = log.rfind("running") == std::string::npos || log.rfind("running") < log.rfind("LinkTimeout");
+  CHECK(stopped);
+  CHECK(device.stop() == 0);
 }

@@ -26,7 +26,12 @@ std::uint32_t HostLink::now_ms() const noexcept {
 
 void HostLink::raise(const Failure& failure) const {
   std::string text = transport_.name() + ": link failed: " + describe_error(failure.code);
-  if (failure.code == Error::RetransmitLimit) text += " (frame " + std::to_string(failure.index) + " never acknowledged)";
+  if (failure.code == Error::RetransmitLimit) {
+    text += " (frame " + std::to_string(failure.index) + " never acknowledged): no progress for " +
+            std::to_string(sender_.ms_without_progress(now_ms())) + " ms although the controller answered (" +
+            std::to_string(statistics_.frames_received) + " good and " + std::to_string(statistics_.frames_rejected) +
+            " damaged frame(s) received so far: a line too noisy to carry a whole frame?)";
+  }
   if (failure.code == Error::LinkTimeout) text += ": the controller stopped answering";
   if (failure.code == Error::DeviceRestarted) text += ": the controller restarted and lost the session";
   if (failure.code == Error::VersionMismatch) {
@@ -119,6 +124,9 @@ void HostLink::on_frame(const protocol::Frame& frame, const Handler& handler) {
     const auto handled = sender_.on_message(message.value(), now_ms());
     if (!handled) raise(handled.failure());
   }
+  // Reports before this session's Capabilities were sent to an earlier session (a serial port
+  // keeps what a controller sent after its last host left, e.g. ErrorReport(LinkTimeout)).
+  if (sender_.state() != protocol::LinkState::Connected) return;
   const auto type = message.value().type();
   if (type != protocol::MessageType::Capabilities && type != protocol::MessageType::Ack &&
       type != protocol::MessageType::Nak && handler) {

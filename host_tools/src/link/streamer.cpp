@@ -48,6 +48,7 @@ class Upload {
         submit_units();
         submit_start();
         link_.pump(5, handler);
+        watch_setpoint_stream();
         request_status();
         report_progress(false);
       }
@@ -122,8 +123,39 @@ class Upload {
   void settle_acknowledged() {
     while (submitted_.size() > link_.in_flight()) {
       if (submitted_.front() < status_marker) acknowledged_units_ = submitted_.front() + 1;
+      if (submitted_.front() == start_marker) {
+        start_acknowledged_ = true;
+        mark_stream_progress();
+      }
       submitted_.pop_front();
     }
+  }
+
+  void mark_stream_progress() {
+    stream_progress_ms_ = link_.now_ms();
+    rejected_at_progress_ = link_.statistics().frames_rejected;
+    delivered_seen_ = link_.statistics().batches_delivered;
+  }
+
+  /// The setpoint stream's progress watch (issue 19.4): once Start was acknowledged, damaged frames
+  /// arriving for the link timeout with no setpoint batch delivered (and no report of a state that
+  /// streams nothing) end the upload: the host's commands may still trickle through, one short
+  /// frame now and then, while no batch, a longer frame, ever arrives whole. A quiet controller
+  /// (armed, held) is not streaming and is left alone.
+  void watch_setpoint_stream() {
+    const std::uint32_t limit = options_.link.link_timeout_ms;
+    if (!start_acknowledged_ || limit == 0) return;
+    const LinkStatistics& statistics = link_.statistics();
+    if (statistics.batches_delivered != delivered_seen_) return mark_stream_progress();
+    const std::uint32_t waited = link_.now_ms() - stream_progress_ms_;
+    if (waited < limit) return;
+    const std::size_t damaged = statistics.frames_rejected - rejected_at_progress_;
+    if (damaged == 0) return mark_stream_progress();
+    throw StreamError(Error::RetransmitLimit,
+                      transport_.name() + ": link failed: " + describe_error(Error::RetransmitLimit) +
+                          ": no setpoint batch arrived whole for " + std::to_string(waited) + " ms although " +
+                          std::to_string(damaged) + " damaged frame(s) did (a line too noisy to carry a whole frame?)" +
+                          progress_text() + last_state_text());
   }
 
   std::string last_state_text() const {
@@ -191,6 +223,7 @@ class Upload {
       case protocol::MessageType::StatusReport: {
         last_status_ = m.get<protocol::StatusReport>();
         have_status_ = true;
+        if (last_status_.state != protocol::MachineState::Running) mark_stream_progress();  // nothing to stream
         if (last_status_.state == protocol::MachineState::Running || last_status_.setpoint_index > 0) seen_running_ = true;
         if (last_status_.state == protocol::MachineState::Fault) {
           const auto code = static_cast<Error>(last_status_.error);
@@ -324,6 +357,10 @@ class Upload {
   std::uint32_t last_status_ms_ = 0;
   std::uint32_t last_progress_ms_ = 0;
   std::uint32_t start_ms_ = 0;
+  std::uint32_t stream_progress_ms_ = 0;  // the last setpoint batch delivered (or Start acknowledged, or a non-running report)
+  std::size_t rejected_at_progress_ = 0;  // damaged frames counted then
+  std::size_t delivered_seen_ = 0;        // batches delivered then
+  bool start_acknowledged_ = false;
   bool started_ = false;
   bool have_status_ = false;
   bool seen_running_ = false;

@@ -12,8 +12,10 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <thread>
 
 #include <curvestep/boards/host/fast_mode.hpp>
+#include <curvestep/firmware/app_settings.hpp>
 #include <curvestep/host/link/transport.hpp>
 
 #include "fake_board.hpp"  // tests/firmware/app
@@ -24,6 +26,8 @@ template <class AppType>
 class InProcessDevice final : public Transport {
  public:
   InProcessDevice() : app_(std::make_unique<AppType>(board_)) {}
+  /// A device whose App runs with `settings` (link timeout, stall timeout, ...).
+  explicit InProcessDevice(const firmware::AppSettings& settings) : app_(std::make_unique<AppType>(board_, settings)) {}
 
   std::size_t read(std::span<std::byte> out, int /*timeout_ms*/) override {
     run();
@@ -40,6 +44,18 @@ class InProcessDevice final : public Transport {
   void write(std::span<const std::byte> bytes) override { board_.put_incoming(bytes); }
 
   [[nodiscard]] const std::string& name() const override { return name_; }
+
+  /// Runs the App for `ms` of wall-clock time with no host reading: what it sends stays queued
+  /// for the next host, as in a serial port's buffer.
+  void run_unattended(std::chrono::milliseconds ms) {
+    const auto end = std::chrono::steady_clock::now() + ms;
+    while (std::chrono::steady_clock::now() < end) {
+      run();
+      if (may_tick()) app_->on_tick();
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    run();
+  }
 
   /// The App (its statistics and state, after the job).
   [[nodiscard]] AppType& app() { return *app_; }

@@ -604,3 +604,46 @@ TEST_CASE("link: the host's receiver ignores setpoint frames until its handshake
   CHECK(r.disposition == Disposition::Deliver);
   CHECK(r.reply == ReplyKind::Ack);
 }
+
+TEST_CASE("link: Naks that never end still fail the link after the link timeout without progress (issue 19.4)",
+          "[protocol][link]") {
+  // A line that damages every long frame: the controller Naks each damaged copy, each Nak sends the
+  // host back at once and restarts its timer, so no timeout ever expires and the count stays 0.
+  Host<> host(SenderSettings{100, 10, 3000});
+  Controller controller(4);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  CHECK(host.transmit(0).size() == 1);
+  std::uint32_t now = 0;
+  for (now = 50; now < 10000 && host.link_errors.empty(); now += 50) {
+    host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Nak, Ack{}, Nak{0, Error::BadCrc}}), now);
+    (void)host.transmit(now);
+  }
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::RetransmitLimit);  // the controller talks: it never takes the frame
+  CHECK(host.sender.timeouts_without_progress() == 0);
+  CHECK(now - 50 == 3000);
+}
+
+TEST_CASE("link: with a link timeout a silent pause is judged by it, not by max_retransmits (issue 19.6)", "[protocol][link]") {
+  Host<> host(SenderSettings{100, 10, 30000});
+  Controller controller(4);
+  handshake(host, controller, 0);
+  REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  CHECK(host.transmit(0).size() == 1);
+  for (std::uint32_t now = 100; now <= 5000; now += 100) (void)host.transmit(now);  // frozen for 5 s: resent, never counted
+  CHECK(host.link_errors.empty());
+  CHECK(host.sender.timeouts_without_progress() == 0);
+  host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Ack, Ack{1, 4}, Nak{}}), 5003);  // thawed
+  CHECK(host.sender.idle());
+  CHECK(host.transmit(5004).empty());
+  CHECK(host.link_errors.empty());
+  // Still silent for the whole link timeout: LinkTimeout.
+  REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  CHECK(host.transmit(6000).size() == 1);
+  for (std::uint32_t now = 6100; now < 5003 + 30000; now += 100) (void)host.transmit(now);
+  CHECK(host.link_errors.empty());
+  (void)host.transmit(5003 + 30000);
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::LinkTimeout);
+}

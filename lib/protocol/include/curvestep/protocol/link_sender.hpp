@@ -16,6 +16,14 @@
 // of no progress: with LinkTimeout if nothing at all was heard from the peer in that time (it
 // is gone), else with RetransmitLimit (index = the oldest sequence number: the peer talks but
 // never takes the frame).
+// With link_timeout_ms set, that timeout governs a silent peer and every lack of progress:
+//   * a timeout counts toward max_retransmits only if the peer was heard since the previous
+//     one, so a peer that is merely paused (a frozen process, a busy USB hub) is given the whole
+//     link_timeout_ms of silence, not max_retransmits x retransmit_timeout_ms;
+//   * frames outstanding and no acknowledgement that moves the window for link_timeout_ms fail
+//     the link (RetransmitLimit if the peer was heard meanwhile, else LinkTimeout), however many
+//     Naks and go-backs kept the retransmission timer from expiring: on a line that damages
+//     every long frame the Naks never stop, and without this bound nothing would ever fail.
 // Sequence numbers are 8 bits; Window is at most 127, so "behind" and "ahead" can never be
 // confused by the receiver.
 // Flow control has two limits, both enforced by can_submit()/submit():
@@ -61,7 +69,9 @@ enum class LinkState : std::uint8_t {
 struct SenderSettings {
   std::uint32_t retransmit_timeout_ms = 100;  ///< resend unacknowledged frames after this silence
   std::uint8_t max_retransmits = 10;          ///< timeouts in a row without progress (or Hellos) before failing
-  std::uint32_t link_timeout_ms = 0;          ///< connected and nothing heard for this long: LinkTimeout (0: never)
+  /// Connected and nothing heard, or frames outstanding and none acknowledged, for this long:
+  /// LinkTimeout or RetransmitLimit (0: never; then max_retransmits alone bounds both).
+  std::uint32_t link_timeout_ms = 0;
 };
 
 /// A sending link end; `Window` frames may be unacknowledged at once; `Sends` (a MessageSet) is
@@ -138,20 +148,31 @@ class LinkSender {
     if (settings_.link_timeout_ms != 0 && now_ms - heard_ms_ >= settings_.link_timeout_ms) {
       return give_up(Error::LinkTimeout, now_ms - heard_ms_);
     }
+    if (transmitted_ > 0 && settings_.link_timeout_ms != 0 && now_ms - progress_ms_ >= settings_.link_timeout_ms) {
+      if (static_cast<std::int32_t>(heard_ms_ - progress_ms_) > 0) return give_up(Error::RetransmitLimit, first_sequence_);
+      return give_up(Error::LinkTimeout, now_ms - heard_ms_);
+    }
     if (transmitted_ > 0 && now_ms - timer_ms_ >= settings_.retransmit_timeout_ms) {
-      if (timeouts_ >= settings_.max_retransmits) {
+      // With a link timeout a silent peer is judged by it alone: only timeouts the peer was heard in count.
+      const bool counts = settings_.link_timeout_ms == 0 || heard_since_timeout_;
+      heard_since_timeout_ = false;
+      if (counts && timeouts_ >= settings_.max_retransmits) {
         const std::uint32_t silence = now_ms - heard_ms_;
         if (silence >= settings_.retransmit_timeout_ms * timeouts_) return give_up(Error::LinkTimeout, silence);
         return give_up(Error::RetransmitLimit, first_sequence_);
       }
-      ++timeouts_;
+      if (counts) ++timeouts_;
       go_back(now_ms);
     }
     if (sent_ >= count_) return std::size_t{0};
     const Slot& slot = slots_[(oldest_ + sent_) % Window];
     if (out.size() < slot.size) return fail(Error::BufferTooSmall, slot.size);
     for (std::size_t i = 0; i < slot.size; ++i) out[i] = slot.bytes[i];
-    if (transmitted_ == 0) timer_ms_ = now_ms;  // the oldest frame's first transmission starts the timer
+    if (transmitted_ == 0) {  // the oldest frame's first transmission starts the timer and the progress watch
+      timer_ms_ = now_ms;
+      progress_ms_ = now_ms;
+      heard_since_timeout_ = false;
+    }
     ++sent_;
     if (sent_ > transmitted_) transmitted_ = sent_;
     return std::size_t{slot.size};
@@ -161,7 +182,7 @@ class LinkSender {
   /// link; other messages are the application's and ignored here. Fails with VersionMismatch,
   /// DeviceRestarted or RetransmitLimit (state becomes Failed).
   [[nodiscard]] constexpr Result<void> on_message(const Message& m, std::uint32_t now_ms) noexcept {
-    heard_ms_ = now_ms;
+    heard(now_ms);
     switch (m.type()) {
       case MessageType::Capabilities:
         if constexpr (handshake) return on_capabilities(m.get<Capabilities>(), now_ms);
@@ -173,7 +194,10 @@ class LinkSender {
   }
 
   /// The peer was heard at `now_ms` (any frame of its, also those handled elsewhere).
-  constexpr void heard(std::uint32_t now_ms) noexcept { heard_ms_ = now_ms; }
+  constexpr void heard(std::uint32_t now_ms) noexcept {
+    heard_ms_ = now_ms;
+    heard_since_timeout_ = true;
+  }
 
   /// Where the link is.
   [[nodiscard]] constexpr LinkState state() const noexcept { return state_; }
@@ -199,6 +223,8 @@ class LinkSender {
   [[nodiscard]] static constexpr std::size_t window() noexcept { return Window; }
   /// Go-backs so far (timeouts and Naks), a measure of line quality; wraps.
   [[nodiscard]] constexpr std::uint32_t go_backs() const noexcept { return go_backs_; }
+  /// Milliseconds since the window last moved (or its oldest frame was first sent), at `now_ms`.
+  [[nodiscard]] constexpr std::uint32_t ms_without_progress(std::uint32_t now_ms) const noexcept { return now_ms - progress_ms_; }
   /// Timeouts in a row without progress (compared with max_retransmits).
   [[nodiscard]] constexpr std::uint8_t timeouts_without_progress() const noexcept { return timeouts_; }
 
@@ -229,6 +255,8 @@ class LinkSender {
     capabilities_ = Capabilities{};
     capabilities_.version = 0;  // none heard yet
     timer_ms_ = now_ms;
+    progress_ms_ = now_ms;
+    heard_since_timeout_ = false;
     count_ = 0;
     sent_ = 0;
     transmitted_ = 0;
@@ -277,6 +305,8 @@ class LinkSender {
     sent_ = sent_ > acknowledged ? sent_ - acknowledged : 0;
     first_sequence_ = next_expected;
     timer_ms_ = now_ms;
+    progress_ms_ = now_ms;
+    heard_since_timeout_ = false;  // a new timer: the next timeout counts if the peer is heard before it
     timeouts_ = 0;
   }
 
@@ -298,6 +328,7 @@ class LinkSender {
   SenderSettings settings_;
   std::uint32_t timer_ms_ = 0;
   std::uint32_t heard_ms_ = 0;  // when the controller last sent anything
+  std::uint32_t progress_ms_ = 0;  // the last acknowledgement that moved the window (or the first transmission)
   std::size_t oldest_ = 0;  // slot index of the oldest unacknowledged frame
   std::size_t count_ = 0;   // unacknowledged frames
   std::size_t sent_ = 0;    // of those, how many have been (re)transmitted since the last go-back
@@ -311,6 +342,7 @@ class LinkSender {
   std::uint8_t timeouts_ = 0;  // timeouts in a row without progress
   Endpoint peer_ = Endpoint::Controller;
   bool hello_due_ = false;
+  bool heard_since_timeout_ = false;  // the peer was heard since the timer last started or expired
   LinkState state_ = LinkState::Disconnected;
   Error error_ = Error::NotConnected;
 };

@@ -48,10 +48,11 @@ struct StreamProgress {
 
 /// Options of one upload.
 struct StreamOptions {
-  /// Retransmission and link timeout. Only timeouts in a row without any progress count toward
-  /// max_retransmits (Nak-triggered go-backs on a noisy line do not), so the default 10 gives
-  /// up after about a second of no progress at all; a dead line is also caught by the link
-  /// timeout (the controller's heartbeat stops).
+  /// Retransmission and link timeout. Only timeouts in a row without any progress, each with
+  /// the controller heard since the last, count toward max_retransmits (Nak-triggered go-backs
+  /// on a noisy line do not), so the default 10 gives up after about a second of no progress
+  /// while the controller talks; a silent controller, and any lack of progress however many
+  /// Naks arrive, are bounded by the link timeout (docs/protocol.md, "Sequence numbers, acknowledgements, retransmission").
   protocol::SenderSettings link{100, 10, 3000};
   std::function<void(const StreamProgress&)> progress;  ///< called about 10 times a second (may be empty)
   std::function<void(const std::string&)> warn;         ///< called for each value the wire cannot carry exactly

@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: MIT
+// The link after the handshake under faults (issue 19 items 4, 5, 6), against a firmware App in
+// this process (in_process_device.hpp) behind Transport wrappers that damage or interrupt it:
+//   * 20 % duplicated bytes both ways: the upload ends with a clear error within the link
+//     timeout instead of running for ever, and the device stops;
+//   * a host that vanishes mid-job leaves a held device with a LinkTimeout report in the line;
+//     the next session's first job runs;
+//   * a device frozen for 1.5 s (its clock jumps, as after SIGSTOP/SIGCONT) with a 30 s link
+//     timeout on both ends: the job goes on.
+#include <chrono>
+#include <cstddef>
+#include <random>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include <curvestep/firmware/app.hpp>
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/link/streamer.hpp>
+#include <curvestep/host/machine_file.hpp>
+
+#include "in_process_device.hpp"
+
+using namespace curvestep;
+namespace hl = curvestep::host::link;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+using PlanningApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 17, 9>;
+const std::filesystem::path examples = CURVESTEP_EXAMPLE_JOBS;
+
+/// Ends a test that would run for ever: the transport throws after `limit`.
+class Deadline {
+ public:
+  explicit Deadline(std::chrono::seconds limit) : end_(Clock::now() + limit), limit_(limit) {}
+  void check() const {
+    if (Clock::now() > end_) throw std::runtime_error("no result after " + std::to_string(limit_.count()) + " s");
+  }
+
+ private:
+  Clock::time_point end_;
+  std::chrono::seconds limit_;
+};
+
+/// Duplicates each byte with probability `rate` in both directions, once the host has sent its
+/// first frame after Hello (a clean handshake).
+class DuplicatingLine final : public hl::Transport {
+ public:
+  DuplicatingLine(hl::Transport& device, double rate) : device_(device), rate_(rate) {}
+
+  std::size_t read(std::span<std::byte> out, int timeout_ms) override {
+    deadline_.check();
+    if (writes_ < 2) return device_.read(out, timeout_ms);
+    std::array<std::byte, 256> raw{};
+    const std::size_t n = device_.read(std::span<std::byte>(raw.data(), out.size() / 2 < raw.size() ? out.size() / 2 : raw.size()), timeout_ms);
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      out[k++] = raw[i];
+      if (chance_(random_) < rate_) out[k++] = raw[i];
+    }
+    return k;
+  }
+  void write(std::span<const std::byte> bytes) override {
+    if (++writes_ <= 2) return device_.write(bytes);
+    std::vector<std::byte> copy;
+    for (const std::byte b : bytes) {
+      copy.push_back(b);
+      if (chance_(random_) < rate_) copy.push_back(b);
+    }
+    device_.write(copy);
+  }
+  [[nodiscard]] const std::string& name() const override { return name_; }
+
+ private:
+  hl::Transport& device_;
+  double rate_;
+  std::size_t writes_ = 0;
+  std::mt19937 random_{19};
+  std::uniform_real_distribution<double> chance_{0.0, 1.0};
+  Deadline deadline_{std::chrono::seconds(40)};
+  std::string name_ = "duplicating line";
+};
+
+/// Passes everything until the device has sent `cut_after` bytes, then the host's line closes.
+class CutLine final : public hl::Transport {
+ public:
+  CutLine(hl::Transport& device, std::size_t cut_after) : device_(device), cut_after_(cut_after) {}
+  std::size_t read(std::span<std::byte> out, int timeout_ms) override {
+    if (received_ >= cut_after_) throw hl::TransportError("cut line: closed");
+    const std::size_t n = device_.read(out, timeout_ms);
+    received_ += n;
+    return n;
+  }
+  void write(std::span<const std::byte> bytes) override { device_.write(bytes); }
+  [[nodiscard]] const std::string& name() const override { return name_; }
+
+ private:
+  hl::Transport& device_;
+  std::size_t cut_after_;
+  std::size_t received_ = 0;
+  std::string name_ = "cut line";
+};
+
+/// Freezes the device for `pause` once it has sent `after` bytes: it neither runs nor answers
+/// (the host's bytes wait in its input), and its clock jumps when it thaws, as after SIGSTOP and
+/// SIGCONT.
+class FreezingLine final : public hl::Transport {
+ public:
+  FreezingLine(hl::Transport& device, std::size_t after, std::chrono::milliseconds pause)
+      : device_(device), after_(after), pause_(pause) {}
+  std::size_t read(std::span<std::byte> out, int timeout_ms) override {
+    deadline_.check();
+    if (received_ >= after_ && !frozen_once_) {
+      frozen_once_ = true;
+      thaw_ = Clock::now() + pause_;
+    }
+    if (frozen_once_ && Clock::now() < thaw_) return 0;
+    const std::size_t n = device_.read(out, timeout_ms);
+    received_ += n;
+    return n;
+  }
+  void write(std::span<const std::byte> bytes) override { device_.write(bytes); }
+  [[nodiscard]] const std::string& name() const override { return name_; }
+  [[nodiscard]] bool froze() const { return frozen_once_; }
+
+ private:
+  hl::Transport& device_;
+  std::size_t after_;
+  std::chrono::milliseconds pause_;
+  std::size_t received_ = 0;
+  bool frozen_once_ = false;
+  Clock::time_point thaw_{};
+  Deadline deadline_{std::chrono::seconds(60)};
+  std::string name_ = "freezing line";
+};
+
+}  // namespace
+
+TEST_CASE("link faults: 20 % duplicated bytes both ways after a clean handshake end in a clear error within the link timeout",
+          "[host_tools][link][robustness]") {
+  const auto machine = host::load_machine(examples / "machine.json");
+  const auto job = host::load_job(examples / "helix.json");
+  hl::testing::InProcessDevice<PlanningApp> device;
+  DuplicatingLine line(device, 0.2);
+  hl::StreamOptions options;  // link timeout 3000 ms
+  const auto start = Clock::now();
+  try {
+    (void)hl::stream_job(line, job, machine, options);
+    FAIL("a job streamed through 20 % duplicated bytes");
+  } catch (const hl::StreamError& e) {
+    const auto took = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - start);
+    const std::string text = e.what();
+    INFO(text << " after " << took.count() << " ms");
+    CHECK((e.code() == Error::RetransmitLimit || e.code() == Error::LinkTimeout));
+    CHECK(took.count() <= 3000 + 1500);
+    CHECK(text.find("no progress") != std::string::npos);
+  }
+  // The host is gone: the device stops (held by its own link timeout, 1 s) and moves no more.
+  device.run_unattended(std::chrono::milliseconds(1500));
+  CHECK(device.app().state() != protocol::MachineState::Running);
+}
+
+TEST_CASE("link faults: after a link-timeout hold the first job of a new session runs", "[host_tools][link][robustness]") {
+  const auto machine = host::load_machine(examples / "machine.json");
+  hl::testing::InProcessDevice<PlanningApp> device;
+  {
+    CutLine line(device, 4000);
+    CHECK_THROWS(hl::stream_job(line, host::load_job(examples / "helix.json"), machine, {}));
+  }
+  device.run_unattended(std::chrono::milliseconds(1500));  // link timeout 1000 ms: held, ErrorReport(LinkTimeout) queued
+  REQUIRE(device.app().phase() == firmware::Phase::Holding);
+  REQUIRE(device.app().last_error() == static_cast<std::uint8_t>(Error::LinkTimeout));
+  const hl::StreamResult result = hl::stream_job(device, host::load_job(examples / "seed_cubic.json"), machine, {});
+  CHECK(!result.setpoints.empty());
+  CHECK(device.app().last_error() == 0);
+}
+
+TEST_CASE("link faults: a device frozen for 1.5 s with a 30 s link timeout on both ends finishes its job",
+          "[host_tools][link][robustness]") {
+  const auto machine = host::load_machine(examples / "machine.json");
+  const auto job = host::load_job(examples / "helix.json");
+  firmware::AppSettings settings;
+  settings.link_timeout_ms = 30000;  // as `curvestep device --link-timeout-ms 30000` (stall timeout stays 1000)
+  hl::testing::InProcessDevice<PlanningApp> device(settings);
+  FreezingLine line(device, 6000, std::chrono::milliseconds(1500));
+  hl::StreamOptions options;
+  options.link.link_timeout_ms = 30000;
+  const hl::StreamResult result = hl::stream_job(line, job, machine, options);
+  CHECK(line.froze());
+  CHECK(result.standing_ticks == 0);
+  CHECK(!result.setpoints.empty());
+}
