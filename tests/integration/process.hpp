@@ -41,21 +41,25 @@ class Process {
  public:
   explicit Process(const std::vector<std::string>& arguments, const std::string& stderr_name) {
     stderr_path_ = scratch_dir() / stderr_name;
+    // Everything the child needs is made here: between fork and exec a child of a threaded process
+    // (a test's relay thread) may only make async-signal-safe calls, no allocation (with the
+    // sanitizers' allocator a child that allocated there died at once, now and then).
+    std::string program = CURVESTEP_PROGRAM;
+    std::vector<std::string> copy = arguments;
+    std::vector<char*> argv;
+    argv.push_back(program.data());
+    for (auto& a : copy) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    const std::string stderr_file = stderr_path_.string();
     int out[2];
     if (::pipe(out) != 0) throw std::runtime_error("pipe failed");
     pid_ = ::fork();
     if (pid_ < 0) throw std::runtime_error("fork failed");
     if (pid_ == 0) {
       ::dup2(out[1], STDOUT_FILENO);
-      const int err = ::open(stderr_path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int err = ::open(stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       if (err >= 0) ::dup2(err, STDERR_FILENO);
       ::close(out[0]);
-      std::vector<char*> argv;
-      std::string program = CURVESTEP_PROGRAM;
-      argv.push_back(program.data());
-      std::vector<std::string> copy = arguments;
-      for (auto& a : copy) argv.push_back(a.data());
-      argv.push_back(nullptr);
       ::execv(program.c_str(), argv.data());
       ::_exit(127);
     }

@@ -22,20 +22,26 @@ namespace {
 
 using PlanningApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 17, 9>;
 
-/// The device's bytes with the byte before every frame delimiter flipped (a CRC byte: the frame is
-/// damaged, the framing kept) while `damaging()` says so.
+/// The device's bytes with the first byte of every frame (its COBS code byte) changed while
+/// `damaging()` says so: the frame is damaged, the delimiters kept. Frame starts are tracked across
+/// reads, so a frame split between two reads is damaged too.
 class DamagingLine final : public hl::Transport {
  public:
   explicit DamagingLine(std::chrono::milliseconds damage_for) : until_(std::chrono::steady_clock::now() + damage_for) {}
 
   std::size_t read(std::span<std::byte> out, int timeout_ms) override {
     const std::size_t n = device_.read(out, timeout_ms);
-    if (!damaging()) return n;
-    for (std::size_t i = 1; i < n; ++i) {
-      if (out[i] == std::byte{0} && out[i - 1] != std::byte{0}) {
-        out[i - 1] ^= std::byte{0x55};
-        if (out[i - 1] == std::byte{0}) out[i - 1] = std::byte{0x55};  // never make a delimiter
+    const bool damage = damaging();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (out[i] == std::byte{0}) {
+        at_frame_start_ = true;
+        continue;
       }
+      if (at_frame_start_ && damage) {
+        out[i] ^= std::byte{0x55};
+        if (out[i] == std::byte{0}) out[i] = std::byte{0x55};  // never make a delimiter
+      }
+      at_frame_start_ = false;
     }
     return n;
   }
@@ -47,6 +53,7 @@ class DamagingLine final : public hl::Transport {
 
   hl::testing::InProcessDevice<PlanningApp> device_;
   std::chrono::steady_clock::time_point until_;
+  bool at_frame_start_ = true;
   std::string name_ = "noisy line";
 };
 
