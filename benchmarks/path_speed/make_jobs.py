@@ -147,7 +147,14 @@ def all_jobs(small=False):
 
 
 def main():
-    out = sys.argv[1] if len(sys.argv) > 1 else "."
+    if "-h" in sys.argv or "--help" in sys.argv:
+        print(__doc__)
+        return
+    unknown = [a for a in sys.argv[1:] if a.startswith("-") and a != "--small"]
+    if unknown:
+        sys.exit("make_jobs.py: unknown option " + unknown[0] + " (usage: make_jobs.py OUT_DIR [--small])")
+    folders = [a for a in sys.argv[1:] if not a.startswith("-")]
+    out = folders[0] if folders else "."
     small = "--small" in sys.argv
     os.makedirs(out, exist_ok=True)
     for job in all_jobs(small):
