@@ -197,7 +197,7 @@ class GcodeLoader {
       const MachinePoint before = interpreter_.position();
       const auto motion = interpreter_.execute(block);
       if (!motion) {
-        if (motion.error() == Error::GcodeArcRadiusMismatch) fail_radii(block, before, motion.where());
+        if (motion.error() == Error::GcodeArcRadiusMismatch) fail_radii(block, motion.where());
         fail(motion.where(), motion.error());
       }
       if (!was_in_nurbs && interpreter_.in_nurbs_block()) {
@@ -294,30 +294,14 @@ class GcodeLoader {
     throw LoadError(SourceLocation{job_.name, line_number_, column, std::nullopt, {}, word}, explain(code, word), code);
   }
 
-  /// GcodeArcRadiusMismatch of a centre-form arc, with both radii as LinuxCNC reports them. The
-  /// interpreter has already applied the block's modal settings (units, distance modes, plane).
-  template <std::size_t Capacity>
-  [[noreturn]] void fail_radii(const machine::Block<Capacity>& block, const MachinePoint& start, std::size_t column) {
-    constexpr std::string_view axis_letters = "XYZ";
-    constexpr std::string_view offset_letters = "IJK";
-    const machine::PlaneAxes axes = machine::axes_of(interpreter_.plane());
-    const machine::Word* i = block.find(offset_letters[axes.first]);
-    const machine::Word* j = block.find(offset_letters[axes.second]);
-    if (block.find('R') != nullptr || (i == nullptr && j == nullptr)) fail(column, Error::GcodeArcRadiusMismatch);
-    const bool inches = interpreter_.units() == machine::Units::Inches;
-    const double scale = inches ? machine::millimetres_per_inch : 1.0;
-    MachinePoint end = start;
-    for (const std::size_t axis : {axes.first, axes.second}) {
-      if (const machine::Word* w = block.find(axis_letters[axis])) end[axis] = w->value * scale + (interpreter_.incremental() ? start[axis] : 0.0);
-    }
-    const double ci = i != nullptr ? i->value * scale : 0.0;
-    const double cj = j != nullptr ? j->value * scale : 0.0;
-    const double cu = interpreter_.arc_centers_absolute() ? ci : start[axes.first] + ci;
-    const double cv = interpreter_.arc_centers_absolute() ? cj : start[axes.second] + cj;
-    const double r0 = std::hypot(start[axes.first] - cu, start[axes.second] - cv);
-    const double r1 = std::hypot(end[axes.first] - cu, end[axes.second] - cv);
-    const char* allowed = inches ? "allowed: 0.05 in, or 0.0005 in when within 0.1 % of the radius"
-                                 : "allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius";
+  /// GcodeArcRadiusMismatch of a centre-form arc, with both radii as the interpreter measured them
+  /// (LinuxCNC's message quotes them too); an R-form arc gets the message of its R word.
+  [[noreturn]] void fail_radii(const Block& block, std::size_t column) {
+    if (block.find('R') != nullptr) fail(column, Error::GcodeArcRadiusMismatch);
+    const auto [r0, r1] = interpreter_.refused_arc_radii();
+    const char* allowed = interpreter_.units() == machine::Units::Inches
+                              ? "allowed: 0.05 in, or 0.0005 in when within 0.1 % of the radius"
+                              : "allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius";
     fail_message(column,
                  r0 == 0 ? std::string("zero radius: the centre is the start point")
                          : "radius to end of arc differs from radius to start: start radius " + format_number(r0) +

@@ -264,6 +264,13 @@ TEST_CASE("gcode import: a radius mismatch reports both radii", "[gcode][import]
   const LoadError zero = error_of("G2 X1 Y1 I0 J0\n");
   CHECK(zero.code() == Error::GcodeArcRadiusMismatch);
   CHECK_THAT(zero.what(), Catch::Contains("zero radius"));
+  // Under a work offset with absolute centres (G90.1) the radii are those of the arc that was
+  // refused: start (10, 0) and centre (0, 0) of G54, shifted by 100 mm, radius 10 (not 110).
+  const LoadError shifted = error_of("G21 G90 G10 L2 P1 X100\nG54 G0 X10 Y0\nG90.1 G2 X-10.02 Y0 I0 J0 F100\n");
+  CHECK_THAT(shifted.what(), Catch::Contains("start radius 10 mm, end radius 10.0"));
+  // In G18 the radii are measured in the Z-X plane: start (x 0, z 10) about (0, 0) and end (x 10.02, z 0).
+  const LoadError zx = error_of("G21 G90 G18 G0 Z10\nG2 X10.02 Z0 I0 K-10 F100\n");
+  CHECK_THAT(zx.what(), Catch::Contains("start radius 10 mm, end radius 10.0"));
 }
 
 TEST_CASE("gcode import: every G-code error code reaches the user with its word", "[gcode][import][errors]") {

@@ -215,6 +215,9 @@ class Interpreter {
   [[nodiscard]] constexpr Point program_position() const noexcept { return position_ - offset_in_force(); }
   /// The tool loaded by the last M6.
   [[nodiscard]] constexpr std::size_t loaded_tool() const noexcept { return loaded_tool_; }
+  /// The radii to start and end (mm, in the arc's plane) of the last centre-form arc refused with
+  /// GcodeArcRadiusMismatch, for a message that quotes them.
+  [[nodiscard]] constexpr const std::array<double, 2>& refused_arc_radii() const noexcept { return refused_arc_radii_; }
   /// The spindle speed last set with S, rev/min, and the direction of the last M3/M4.
   [[nodiscard]] constexpr double spindle_rpm() const noexcept { return spindle_rpm_; }
   [[nodiscard]] constexpr bool spindle_counter_clockwise() const noexcept { return spindle_ccw_; }
@@ -825,7 +828,10 @@ class Interpreter {
     }
     const double r0 = std::sqrt((su - cu) * (su - cu) + (sv - cv) * (sv - cv));
     const double r1 = std::sqrt((eu - cu) * (eu - cu) + (ev - cv) * (ev - cv));
-    if (!(r0 > 0) || arc_radii_mismatch(r0, r1, units_)) return fail(Error::GcodeArcRadiusMismatch, column);
+    if (!(r0 > 0) || arc_radii_mismatch(r0, r1, units_)) {
+      refused_arc_radii_ = {r0, r1};
+      return fail(Error::GcodeArcRadiusMismatch, column);
+    }
     if (!(std::fabs(cu) <= max_coordinate_mm && std::fabs(cv) <= max_coordinate_mm)) {
       return fail(Error::GcodeBadNumber, r_word != nullptr ? r_word->column : column);
     }
@@ -1013,6 +1019,7 @@ class Interpreter {
   };
 
   Point position_{};
+  std::array<double, 2> refused_arc_radii_{};
   CycleSticky cycle_sticky_{};
   bool retract_to_initial_ = true;  ///< G98 (LinuxCNC's start-up mode); G99 returns to R
   std::array<Point, 9> work_offsets_{};  ///< G54 … G59.3
