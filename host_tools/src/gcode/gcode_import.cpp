@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <initializer_list>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,7 +40,6 @@ constexpr std::size_t machine_block_capacity = 32;
 using Interpreter = machine::Interpreter<max_nurbs_points>;
 using RationalSpline = Nurbs<double, motion_axes, PathSegment::max_degree, max_nurbs_points>;
 constexpr double seconds_per_minute = 60.0;
-constexpr double two_pi = 6.283185307179586;
 /// Largest pitch error of a G18/G19 helix piece, mm, and most pieces per arc.
 constexpr double helix_tolerance_mm = 1e-4;
 constexpr std::size_t max_arc_pieces = 4096;
@@ -551,17 +551,19 @@ class GcodeLoader {
     const machine::PlaneAxes axes = machine::axes_of(motion.plane);
     const double cu = motion.center[axes.first];
     const double cv = motion.center[axes.second];
+    // The sweep as the core measures an XY arc (direction, full circle, extra turns), in the plane's
+    // own coordinates (u, v) = (first, second), counter-clockwise seen from the positive normal.
+    const auto in_plane = [&axes](const MachinePoint& p) { return MachinePoint{{p[axes.first], p[axes.second], 0.0}}; };
+    const PathSegment planar = made(PathSegment::make_arc(in_plane(start), in_plane(end), in_plane(motion.center), motion.direction,
+                                                          motion.full_turns, motion.radius_difference_mm + quantisation_radius_slack_mm),
+                                    column);
+    const double sign = planar.arc_sweep_rad() >= 0 ? 1.0 : -1.0;
+    const double sweep = std::fabs(planar.arc_sweep_rad());
     const double a0 = std::atan2(start[axes.second] - cv, start[axes.first] - cu);
-    const double a1 = std::atan2(end[axes.second] - cv, end[axes.first] - cu);
     const double r0 = std::hypot(start[axes.first] - cu, start[axes.second] - cv);
     const double r1 = std::hypot(end[axes.first] - cu, end[axes.second] - cv);
-    const double sign = motion.direction == ArcDirection::CounterClockwise ? 1.0 : -1.0;
-    const bool closed = start[axes.first] == end[axes.first] && start[axes.second] == end[axes.second];
-    double sweep = closed ? two_pi : std::fmod(sign * (a1 - a0) + 2 * two_pi, two_pi);
-    if (!closed && sweep == 0) sweep = two_pi;
-    sweep += two_pi * static_cast<double>(motion.full_turns);
     const double rise = end[axes.normal] - start[axes.normal];
-    std::size_t count = static_cast<std::size_t>(std::ceil(sweep / (two_pi / 4) - 1e-12));
+    std::size_t count = static_cast<std::size_t>(std::ceil(sweep / (std::numbers::pi / 2) - 1e-12));
     if (count == 0) count = 1;
     while (count < max_arc_pieces && std::fabs(rise / static_cast<double>(count)) * helix_pitch_error(sweep / static_cast<double>(count)) >
                                          helix_tolerance_mm) {
