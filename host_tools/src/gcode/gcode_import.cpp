@@ -247,7 +247,7 @@ class GcodeLoader {
   /// #5220 the coordinate system (1 = G54), #5221 + 20 n the offsets of system n + 1, #5400 the tool,
   /// #5420-#5422 the position in the coordinate system in use.
   void write_parameters(language::ParameterStore& parameters) {
-    const double unit = interpreter_.units() == machine::Units::Inches ? machine::millimetres_per_inch : 1.0;
+    const double unit = interpreter_.scale();
     const MachinePoint position = interpreter_.program_position();
     for (std::size_t axis = 0; axis < 3; ++axis) {
       parameters.set(5420 + static_cast<int>(axis), position[axis] / unit);
@@ -263,7 +263,7 @@ class GcodeLoader {
 
   /// A program that assigns a work-offset or G92 parameter changes that offset, as G10 L2 or G92 would.
   void read_offset_parameters(const language::ParameterStore& parameters) {
-    const double unit = interpreter_.units() == machine::Units::Inches ? machine::millimetres_per_inch : 1.0;
+    const double unit = interpreter_.scale();
     for (std::size_t system = 0; system <= coordinate_systems; ++system) {
       MachinePoint offset = system == coordinate_systems ? interpreter_.g92_offset() : interpreter_.work_offset(system);
       bool changed = false;

@@ -193,6 +193,8 @@ class Interpreter {
   [[nodiscard]] constexpr const Point& position() const noexcept { return position_; }
   [[nodiscard]] constexpr Plane plane() const noexcept { return plane_; }
   [[nodiscard]] constexpr Units units() const noexcept { return units_; }
+  /// Millimetres per program unit: 25.4 under G20, 1 under G21.
+  [[nodiscard]] constexpr double scale() const noexcept { return units_ == Units::Inches ? millimetres_per_inch : 1.0; }
   [[nodiscard]] constexpr bool incremental() const noexcept { return incremental_; }
   [[nodiscard]] constexpr bool arc_centers_absolute() const noexcept { return arc_absolute_; }
   /// Inside a G5.2 … G5.3 block.
@@ -501,7 +503,7 @@ class Interpreter {
   }
 
  private:
-  [[nodiscard]] constexpr double scale() const noexcept { return units_ == Units::Inches ? millimetres_per_inch : 1.0; }
+
 
   /// Program coordinates -> machine coordinates: work offset + G92 offset + tool length (z), or
   /// nothing for a G53 move.
