@@ -88,9 +88,7 @@ int run_stream(const StreamCommandOptions& o) {
   for (const auto& note : prepared.notes) std::cerr << "curvestep stream: note: " << note << "\n";
   auto transport = link::open_port(o.port, o.baud);
   link::StreamOptions options;
-  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-    if (machine_file.travel[axis]) options.travel_mm[axis] = std::pair{machine_file.travel[axis]->low_mm, machine_file.travel[axis]->high_mm};
-  }
+  options.travel = machine_file.travel;
   options.link.link_timeout_ms = o.link_timeout_ms;
   options.lookahead = o.lookahead;
   if (!o.lookahead_given) options.lookahead_distance_mm = lookahead_distance_for(machine);

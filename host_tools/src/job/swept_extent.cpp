@@ -49,22 +49,23 @@ std::string_view kind_name(SegmentKind kind) {
 SweptBox swept_box(const PathSegment& segment) { return segment_bounds(segment); }
 
 
-void check_travel(const Job& job, const TravelLimits& travel) {
+void check_travel(const Job& job, const MachineTravel& travel, const std::string& machine_file) {
   constexpr const char* names[] = {"x", "y", "z"};
   for (std::size_t k = 0; k < job.segments.size(); ++k) {
     const SweptBox box = swept_box(job.segments[k]);
     for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      if (!travel.limited[axis]) continue;
-      const bool below = box.low[axis] < travel.low[axis];
-      const bool above = box.high[axis] > travel.high[axis];
+      if (!travel[axis]) continue;
+      const AxisTravel& range = *travel[axis];
+      const bool below = box.low[axis] < range.low_mm;
+      const bool above = box.high[axis] > range.high_mm;
       if (!below && !above) continue;
       const double reached = below ? box.low[axis] : box.high[axis];
-      const double beyond = below ? travel.low[axis] - reached : reached - travel.high[axis];
+      const double beyond = below ? range.low_mm - reached : reached - range.high_mm;
       throw LoadError(piece_location(job, k),
                       "the " + std::string(kind_name(job.segments[k].kind())) + " reaches " + names[axis] + " = " +
                           format_number(reached) + " mm, " + format_number(beyond) + " mm " + (below ? "below" : "beyond") +
-                          " the machine's travel " + format_number(travel.low[axis]) + " .. " + format_number(travel.high[axis]) +
-                          " mm (\"axes\".\"" + names[axis] + "\".\"travel\" in " + travel.source + ")",
+                          " the machine's travel " + format_number(range.low_mm) + " .. " + format_number(range.high_mm) +
+                          " mm (\"axes\".\"" + names[axis] + "\".\"travel\" in " + machine_file + ")",
                       Error::OutsideTravel);
     }
   }

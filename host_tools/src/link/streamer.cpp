@@ -27,10 +27,10 @@ class Upload {
       const std::size_t axes = link_.capabilities().axis_count;
       WireMachine wire_machine = to_wire(machine_, axes);
       for (std::size_t a = 0; a < axes && a < motion_axes; ++a) {
-        if (!options_.travel_mm[a]) continue;
+        if (!options_.travel[a]) continue;
         auto& axis = wire_machine.configuration.axes[a];
-        axis.min_position_mm = Q16_16::from_double(options_.travel_mm[a]->first).value().raw();
-        axis.max_position_mm = Q16_16::from_double(options_.travel_mm[a]->second).value().raw();
+        axis.min_position_mm = Q16_16::from_double(options_.travel[a]->low_mm).value().raw();
+        axis.max_position_mm = Q16_16::from_double(options_.travel[a]->high_mm).value().raw();
       }
       for (const auto& note : wire_machine.notes) warn("machine: " + note);
       rate_hz_ = wire_machine.configuration.control_rate_hz;

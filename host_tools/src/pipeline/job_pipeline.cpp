@@ -106,15 +106,7 @@ PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineFile
   JobFileOptions file_options = job_file_options(options);
   file_options.gcode = gcode_options(machine_file);
   PreparedJob prepared = prepare(job_file, file_options, machine, machine_file.blend_tolerance_mm, options, machine_file.pen);
-  TravelLimits travel;
-  travel.source = machine_file.name;
-  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-    if (!machine_file.travel[axis]) continue;
-    travel.limited[axis] = true;
-    travel.low[axis] = machine_file.travel[axis]->low_mm;
-    travel.high[axis] = machine_file.travel[axis]->high_mm;
-  }
-  check_travel(prepared.job, travel);
+  check_travel(prepared.job, machine_file.travel, machine_file.name);
   return prepared;
 }
 

@@ -156,7 +156,7 @@ TEST_CASE("stream in process: the machine file's travel reaches the controller, 
   for (const auto& s : job.segments) high_x = std::max({high_x, s.start()[0], s.end()[0]});
   REQUIRE(high_x > 2);
   hl::StreamOptions options;
-  options.travel_mm[0] = std::pair{-1.0, 1.0};  // far less than the job needs: the device must refuse
+  options.travel[0] = host::AxisTravel{-1.0, 1.0};  // far less than the job needs: the device must refuse
   hl::testing::InProcessDevice<WindowApp> device;
   try {
     (void)hl::stream_job(device, job, machine, options);
@@ -166,7 +166,7 @@ TEST_CASE("stream in process: the machine file's travel reaches the controller, 
     CHECK(e.code() == Error::OutsideTravel);
   }
   // With the travel the job needs, it runs.
-  options.travel_mm[0] = std::pair{-1.0, high_x + 1.0};
+  options.travel[0] = host::AxisTravel{-1.0, high_x + 1.0};
   hl::testing::InProcessDevice<WindowApp> roomy;
   const hl::StreamResult result = hl::stream_job(roomy, job, machine, options);
   CHECK_FALSE(result.setpoints.empty());

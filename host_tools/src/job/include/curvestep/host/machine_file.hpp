@@ -42,6 +42,9 @@ struct AxisTravel {
   double high_mm = 0;
 };
 
+/// The travel of x, y, z (none: the axis is not limited).
+using MachineTravel = std::array<std::optional<AxisTravel>, motion_axes>;
+
 /// Tool numbers a "tools" table may hold (0 .. max_tool_number; tool 0 is "no tool").
 inline constexpr int max_tool_number = 99;
 
@@ -73,7 +76,7 @@ struct MachineFile {
   std::optional<MachinePoint> g30_position;
   /// "axes"."x"."travel": [low, high], mm: soft limits. Every job is checked against them before
   /// anything moves (its swept extent, arcs included) and the controller gets them.
-  std::array<std::optional<AxisTravel>, motion_axes> travel{};
+  MachineTravel travel{};
 };
 
 /// Loads a machine file with its optional "gpio" section; throws as load_machine.

@@ -3,12 +3,12 @@
 // check that every segment of a job stays inside the Q16.16 range.
 #pragma once
 
-#include <array>
 #include <string>
 
 #include <curvestep/core/motion/path_segment.hpp>
 #include <curvestep/core/motion/segment_bounds.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/machine_file.hpp>
 
 namespace curvestep::host {
 
@@ -25,17 +25,10 @@ using SweptBox = SegmentBounds;
 /// that the controller would refuse halfway (issue 19 item 3).
 void check_swept_extent(const Job& job);
 
-/// An axis's soft limits for check_travel: low <= position <= high, mm (none: unlimited).
-struct TravelLimits {
-  std::array<bool, motion_axes> limited{};
-  MachinePoint low{};
-  MachinePoint high{};
-  std::string source;  ///< where they come from, for the message ("machine.json")
-};
-
 /// Throws LoadError (OutsideTravel, naming the job file, line and segment, the axis and by how much)
 /// for the first segment of `job` whose swept box leaves `travel` (issue 22.5: soft limits checked
 /// before anything moves, arcs by their extremes, curves by their control hull).
-void check_travel(const Job& job, const TravelLimits& travel);
+/// `machine_file` names the travel's file in the message.
+void check_travel(const Job& job, const MachineTravel& travel, const std::string& machine_file);
 
 }  // namespace curvestep::host

@@ -17,20 +17,18 @@
 // DeviceRestarted, naming the last acknowledged segment and the last setpoint received.
 #pragma once
 
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-#include <optional>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <curvestep/core/error.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/link/transport.hpp>
+#include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/simulator.hpp>
 #include <curvestep/protocol/link_sender.hpp>
 
@@ -65,7 +63,7 @@ struct StreamOptions {
   double lookahead_distance_mm = 0;
   /// Soft limits sent in MachineConfiguration, per axis [low, high] mm (the machine file's
   /// "travel"); an axis without them travels unlimited (the whole Q16.16 range).
-  std::array<std::optional<std::pair<double, double>>, motion_axes> travel_mm{};
+  MachineTravel travel{};
 };
 
 /// The controller stopped the job or the link died: a one-line cause naming what failed.
