@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -19,7 +20,7 @@ namespace {
 const std::string limits = R"("version": 1, "v_max": 200, "a_max": 2000, "j_max": 50000, "feed": 50, "tolerance": 0.01, "rate_hz": 1000)";
 
 std::filesystem::path write(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / ("curvestep_machine_setup_" + name);
+  const auto path = std::filesystem::temp_directory_path() / ("curvestep_machine_setup_" + std::to_string(::getpid()) + "_" + name);
   std::ofstream(path) << text;
   return path;
 }

@@ -8,6 +8,7 @@
 #include <string>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -159,7 +160,7 @@ TEST_CASE("pen: a layer change lifts the pen even without travel, and a first st
 TEST_CASE("pen: prepare_job adds the pen moves to SVG jobs only, before smoothing", "[host][pipeline][pen]") {
   const MachineFile plotter = load_machine_file(source_dir / "examples/machines/plotter.json");
   REQUIRE(plotter.pen.has_value());
-  const std::filesystem::path svg = std::filesystem::temp_directory_path() / "curvestep_pen_two_strokes.svg";
+  const std::filesystem::path svg = std::filesystem::temp_directory_path() / ("curvestep_pen_two_strokes_" + std::to_string(::getpid()) + ".svg");
   {
     std::ofstream out(svg);
     out << two_strokes;
@@ -189,7 +190,7 @@ TEST_CASE("pen: curvestep sim runs the demo drawing on the plotter machine withi
 }
 
 TEST_CASE("pen: curvestep sim names the layer at each layer change, with --layers selecting", "[host][pipeline][pen]") {
-  const std::filesystem::path svg = std::filesystem::temp_directory_path() / "curvestep_pen_layers.svg";
+  const std::filesystem::path svg = std::filesystem::temp_directory_path() / ("curvestep_pen_layers_" + std::to_string(::getpid()) + ".svg");
   {
     std::ofstream out(svg);
     out << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" "

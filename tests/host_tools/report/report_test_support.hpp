@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -36,8 +37,10 @@ inline Run run_curvestep(const std::string& arguments) { return run_command(std:
 /// A file of the source tree.
 inline std::string source(const std::string& relative) { return std::string(CURVESTEP_SOURCE_DIR) + "/" + relative; }
 
-/// A scratch path for this suite.
-inline std::string scratch(const std::string& name) { return "/tmp/curvestep_report_test_" + name; }
+/// A scratch path for this suite, unique to this process: CTest runs test cases in parallel.
+inline std::string scratch(const std::string& name) {
+  return "/tmp/curvestep_report_test_" + std::to_string(::getpid()) + "_" + name;
+}
 
 /// The whole content of a file ("" if it cannot be read).
 inline std::string read_file(const std::string& path) {

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 
@@ -37,8 +38,11 @@ Run run(const std::string& arguments) {
 
 std::string source(const std::string& relative) { return std::string(CURVESTEP_SOURCE_DIR) + "/" + relative; }
 
+/// A scratch path unique to this process: CTest runs test cases in parallel.
+std::string scratch(const std::string& name) { return "/tmp/curvestep_sim_test_" + std::to_string(::getpid()) + "_" + name; }
+
 std::string temporary(const std::string& name, const std::string& content) {
-  const std::string path = std::string("/tmp/curvestep_sim_test_") + name;
+  const std::string path = scratch(name);
   std::ofstream(path) << content;
   return path;
 }
@@ -46,7 +50,7 @@ std::string temporary(const std::string& name, const std::string& content) {
 }  // namespace
 
 TEST_CASE("sim: the bundled jobs run within the limits and write CSV", "[host_tools][sim]") {
-  const std::string csv = "/tmp/curvestep_sim_test_out.csv";
+  const std::string csv = scratch("out.csv");
   const Run r = run("sim " + source("examples/jobs/every_type.json") + " --machine " + source("examples/jobs/machine.json") + " -o " + csv);
   INFO(r.output);
   CHECK(r.status == 0);
@@ -167,18 +171,18 @@ TEST_CASE("sim: --lookahead replays a shorter window, and the default is 16 exte
   // Path smoothing off (it would merge the collinear lines into one): the window alone matters.
   const std::string job = short_lines_job();
   const std::string machine = source("examples/jobs/machine.json") + " --blend-tolerance 0";
-  const Run nine = run("sim " + job + " --machine " + machine + " --lookahead 9 -o /tmp/curvestep_sim_test_la9.csv");
-  const Run sixteen = run("sim " + job + " --machine " + machine + " --lookahead 16 -o /tmp/curvestep_sim_test_la16.csv");
-  const Run by_default = run("sim " + job + " --machine " + machine + " -o /tmp/curvestep_sim_test_la_default.csv");
+  const Run nine = run("sim " + job + " --machine " + machine + " --lookahead 9 -o " + scratch("la9.csv"));
+  const Run sixteen = run("sim " + job + " --machine " + machine + " --lookahead 16 -o " + scratch("la16.csv"));
+  const Run by_default = run("sim " + job + " --machine " + machine + " -o " + scratch("la_default.csv"));
   INFO(nine.output);
   REQUIRE(nine.status == 0);
   REQUIRE(sixteen.status == 0);
   REQUIRE(by_default.status == 0);
   CHECK(nine.output.find("look-ahead 9") != std::string::npos);
   CHECK(by_default.output.find("look-ahead") == std::string::npos);
-  const std::string csv9 = file_text("/tmp/curvestep_sim_test_la9.csv");
-  const std::string csv16 = file_text("/tmp/curvestep_sim_test_la16.csv");
-  const std::string csv_default = file_text("/tmp/curvestep_sim_test_la_default.csv");
+  const std::string csv9 = file_text(scratch("la9.csv"));
+  const std::string csv16 = file_text(scratch("la16.csv"));
+  const std::string csv_default = file_text(scratch("la_default.csv"));
   CHECK(csv9 != csv16);
   // 100 lines of 0.04 mm: 16 of them (0.64 mm) hide the braking distance, the default does not.
   CHECK(csv_default != csv16);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -51,7 +52,7 @@ TEST_CASE("simulate_stream: the sink sees simulate()'s setpoints in order, and t
 }
 
 TEST_CASE("simulate_stream: sim -o writes the CSV of the kept setpoints", "[host_tools][sim][stream]") {
-  const std::string csv = "/tmp/curvestep_simulate_stream_test.csv";
+  const std::string csv = "/tmp/curvestep_simulate_stream_test_" + std::to_string(::getpid()) + ".csv";
   const std::string command = std::string(CURVESTEP_BINARY) + " sim " + source("examples/jobs/seed_cubic.json") + " --machine " +
                               source("examples/jobs/machine.json") + " --lookahead 16 -o " + csv + " > /dev/null 2>&1";
   REQUIRE(std::system(command.c_str()) == 0);
