@@ -36,6 +36,7 @@ struct DeviceCommandOptions {
   bool fast = false;
   bool executor = false;
   unsigned link_timeout_ms = 1000;
+  unsigned retransmit_timeout_ms = 100;
 };
 
 /// The "gpio" section of a machine file: {"chip": "gpiochip0", "x": {"step": "...", "dir": "...",
@@ -63,6 +64,7 @@ int serve(int fd, Output& output, const DeviceCommandOptions& o) {
   boards::host::DeviceOptions options;
   options.fast = o.fast;
   options.app.link_timeout_ms = o.link_timeout_ms;
+  options.app.retransmit_timeout_ms = o.retransmit_timeout_ms;
   if (o.executor) return boards::host::run_device<Output, 0>(fd, output, options, stop_requested, stderr);
   return boards::host::run_device(fd, output, options, stop_requested, stderr);
 }
@@ -106,6 +108,11 @@ void add_device_command(CLI::App& app) {
   device->add_flag("--executor", options->executor,
                    "No planner on the device: it replays motion planned by the host (curvestep stream plans it)");
   device->add_option("--link-timeout-ms", options->link_timeout_ms, "Feed hold after this long without a frame (0: never)");
+  device
+      ->add_option("--retransmit-timeout-ms", options->retransmit_timeout_ms,
+                   "Resend unacknowledged setpoints after this silence; 255 timeouts without progress end the stream "
+                   "(RetransmitLimit)")
+      ->check(CLI::Range(1u, 60000u));
   device->callback([options] {
     const int status = run_device_command(*options);
     if (status != 0) throw CLI::RuntimeError(status);

@@ -7,7 +7,9 @@ It frames, sends and checks the documented examples and rules: the byte examples
 the handshake, the state table's answers in the states a job passes through (NotConnected before a
 Hello, a Hello of the wrong length, ConfigurationMissing, NothingQueued, UnknownMessage, BadPayload
 with its byte offset, a damaged frame, a duplicate), the credit formula, and a job that runs: its
-setpoints arrive in SetpointBatches, in order, and end at the segment's end point.
+setpoints arrive in SetpointBatches, in order, and end at the segment's end point. A second device
+(with a short retransmission timeout) meets a host that talks but never acknowledges setpoints:
+RetransmitLimit, then every new job of that session refused with the reason, until a new Hello.
 
 Nothing here reads the C++ sources: error numbers come from docs/errors.md's table, layouts from the
 document's message tables.
@@ -209,8 +211,8 @@ def document_examples():
 class Device:
     """`curvestep device --fast` on its pseudo-terminal, and this host's end of the link."""
 
-    def __init__(self, program):
-        self.process = subprocess.Popen([program, 'device', '--fast'], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    def __init__(self, program, options=()):
+        self.process = subprocess.Popen([program, 'device', '--fast', *options], stdout=subprocess.PIPE, stderr=subprocess.PIPE)
         path = self.process.stdout.readline().decode().strip()
         self.fd = os.open(path, os.O_RDWR | os.O_NOCTTY)
         tty.setraw(self.fd)
@@ -221,6 +223,7 @@ class Device:
         self.setpoints = {}        # index -> raw position
         self.credit_end = 0
         self.acked = 0             # next_expected of the last Ack
+        self.acknowledge = True    # take and acknowledge SetpointBatches (False: a host that never does)
 
     def close(self):
         os.close(self.fd)
@@ -264,6 +267,8 @@ class Device:
 
     def on_batch(self, parsed):
         _, sequence, message = parsed
+        if not self.acknowledge:
+            return
         if sequence == self.setpoint_expected:
             first, points = decode_setpoints(message)
             for k, p in enumerate(points):
@@ -291,6 +296,96 @@ def error_reports(frames):
 
 def acks(frames):
     return [struct.unpack('<BH', f[2]) for f in frames if f and f[0] == ACK]
+
+
+def handshake(d, session):
+    """Hello; the Capabilities fields as a tuple, or None if none came."""
+    d.unsequenced(HELLO, struct.pack('<HH', VERSION, session))
+    caps, _ = d.wait_for(lambda t, s, m: t == CAPABILITIES)
+    if caps is None:
+        return None
+    d.sequence = 0
+    d.setpoint_expected = 0
+    d.setpoints = {}
+    return struct.unpack('<HHHHHBBBBIH', caps[2])
+
+
+def status(d):
+    """(state, error, queue depth, setpoint index) of a fresh StatusReport, or None."""
+    d.command(STATUS_REQUEST)
+    report, _ = d.wait_for(lambda t, s, m: t == STATUS_REPORT, 0.5)
+    if report is None:
+        return None
+    state, error, _, depth, _, index = struct.unpack('<BBBHHI', report[2][:11])
+    return state, error, depth, index
+
+
+def run_job_to_end(d, seconds=10):
+    """Polls status until the job ends: Idle with an empty queue after Running, every setpoint up to its index arrived."""
+    running_seen = False
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        now = status(d)
+        if now is None:
+            continue
+        state, _, depth, index = now
+        running_seen = running_seen or state == 1
+        # docs/protocol.md, "The end of a job": Idle with an empty queue after Running (or after setpoints arrived).
+        if (running_seen or bool(d.setpoints)) and state == 0 and depth == 0 and all(i in d.setpoints for i in range(index + 1)):
+            return True
+    return False
+
+
+def run_stream_failure_checks(program, codes):
+    """Issue 24.1 and 24.2: a host that keeps talking but never acknowledges setpoints. The device is
+    started with a 5 ms retransmission timeout, so its sender's 255 timeouts take about 1.3 s."""
+    d = Device(program, ('--retransmit-timeout-ms', '5'))
+    try:
+        caps = handshake(d, 0x1357)
+        check(caps is not None, 'stream failure: Hello is answered')
+        if caps is None:
+            return
+        axes = caps[7]
+        d.command(CONFIGURATION, configuration_message(axes=axes))
+        d.command(SEGMENT, line_message((0.0, 0.0, 0.0), (300.0, 0.0, 0.0), feed=50.0, end_of_job=True))
+        check(not error_reports(d.answers()), 'stream failure: the configuration and a 300 mm line are taken')
+        d.acknowledge = False
+        d.command(START)
+        reports, fault = [], None
+        deadline = time.monotonic() + 15
+        while time.monotonic() < deadline and fault is None:
+            d.command(STATUS_REQUEST)  # the host talks, so the stream's end is RetransmitLimit, not LinkTimeout
+            frames = d.answers(0.05)
+            reports += error_reports(frames)
+            for f in frames:
+                if f and f[0] == STATUS_REPORT and f[2][0] == 3:
+                    fault = f[2][1]
+        check([r[0] for r in reports] == [codes['RetransmitLimit']],
+              'a host that talks but never acknowledges setpoints gets one ErrorReport(RetransmitLimit) (24.2), got %s' % reports)
+        check(fault == codes['RetransmitLimit'], 'the StatusReport says Fault with RetransmitLimit as its last error')
+        # 24.1: after Abort the session cannot stream; a new job is refused with the reason, never "Running" without motion.
+        d.acknowledge = True
+        d.command(ABORT)
+        seq_segment = d.command(SEGMENT, line_message((0.0, 0.0, 0.0), (1.0, 0.0, 0.0), feed=50.0, end_of_job=True))
+        seq_start = d.command(START)
+        frames = d.answers(0.5)
+        refused = error_reports(frames)
+        check(any(r[0] == codes['RetransmitLimit'] and r[2] == seq_segment for r in refused),
+              'after the stream failed, a new segment is refused with RetransmitLimit (24.1)')
+        check(any(r[0] == codes['RetransmitLimit'] and r[2] == seq_start for r in refused),
+              'after the stream failed, Start is refused with RetransmitLimit (24.1)')
+        now = status(d)
+        check(now is not None and now[0] != 1, 'after the stream failed, the device never reports Running')
+        # A new session restores the stream: a job runs to its end.
+        caps = handshake(d, 0x2469)
+        check(caps is not None, 'a new Hello after the failed stream is answered')
+        d.command(CONFIGURATION, configuration_message(axes=axes))
+        d.command(SEGMENT, line_message((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), feed=50.0, end_of_job=True))
+        d.command(START)
+        check(run_job_to_end(d), 'in the new session a job streams its setpoints to its end')
+        check(d.setpoints and d.setpoints[max(d.setpoints)] == (q16(2.0), 0, 0), 'the new job ends at (2, 0, 0) exactly')
+    finally:
+        d.close()
 
 
 def run_device_checks(program, codes):
@@ -383,19 +478,7 @@ def run_device_checks(program, codes):
         d.command(START)
         frames = d.answers(0.3)
         check(not error_reports(frames), 'a line and Start are taken')
-        finished = False
-        running_seen = False
-        deadline = time.monotonic() + 10
-        while time.monotonic() < deadline and not finished:
-            d.command(STATUS_REQUEST)
-            report, _ = d.wait_for(lambda t, s, m: t == STATUS_REPORT, 0.5)
-            if report is None:
-                continue
-            state, _, _, depth, _, index = struct.unpack('<BBBHHI', report[2][:11])
-            running_seen = running_seen or state == 1
-            # docs/protocol.md, "The end of a job": Idle with an empty queue after Running (or after setpoints arrived).
-            finished = (running_seen or bool(d.setpoints)) and state == 0 and depth == 0 and all(i in d.setpoints for i in range(index + 1))
-        check(finished, 'the job ends: Idle with an empty queue after Running, every setpoint up to its index arrived')
+        check(run_job_to_end(d), 'the job ends: Idle with an empty queue after Running, every setpoint up to its index arrived')
         indices = sorted(d.setpoints)
         check(indices == list(range(len(indices))) and len(indices) > 10, 'setpoint indices run 0, 1, 2, ... without a gap')
         if indices:
@@ -419,9 +502,10 @@ def main():
     codes = error_codes(docs_dir)
     check(all(name in codes for name in ('NotConnected', 'VersionMismatch', 'ConfigurationMissing', 'UnknownMessage', 'BadPayload',
                                          'BadCrc', 'NothingQueued', 'FrameTooLong', 'InvalidLimit',
-                                         'InvalidRate')), 'docs/errors.md names every code this suite checks')
+                                         'InvalidRate', 'RetransmitLimit')), 'docs/errors.md names every code this suite checks')
     document_examples()
     run_device_checks(program, codes)
+    run_stream_failure_checks(program, codes)
     print('%d failed' % len(failures))
     return 1 if failures else 0
 
