@@ -379,6 +379,10 @@ def run_stream_failure_checks(program, codes):
         # A new session restores the stream: a job runs to its end.
         caps = handshake(d, 0x2469)
         check(caps is not None, 'a new Hello after the failed stream is answered')
+        # 24.10: the configuration belongs to its session.
+        seq = d.command(START)
+        check(any(r[0] == codes['ConfigurationMissing'] and r[2] == seq for r in error_reports(d.answers())),
+              'a new session starts without a configuration: Start gets ConfigurationMissing (24.10)')
         d.command(CONFIGURATION, configuration_message(axes=axes))
         d.command(SEGMENT, line_message((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), feed=50.0, end_of_job=True))
         d.command(START)
@@ -463,6 +467,17 @@ def run_device_checks(program, codes):
         frames = d.answers()
         check((codes['InvalidRate'], 5, seq) in error_reports(frames),
               'a control rate the 1 MHz step timer cannot hold (300 Hz) gets InvalidRate, index 5')
+        # 24.3: the document's whole rate range: 100 kHz divides the 1 MHz step timer and is taken.
+        seq = d.command(CONFIGURATION, configuration_message(axes=axis_count, rate=100000))
+        frames = d.answers()
+        check(not error_reports(frames), 'a control rate of 100 kHz is taken (24.3)')
+        d.command(CONFIGURATION, configuration_message(axes=axis_count))
+        check(not error_reports(d.answers()), 'the 1 kHz configuration is taken again')
+        # 24.10: a zero-length segment is DegenerateCurve, the queue stays empty.
+        seq = d.command(SEGMENT, line_message((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), feed=50.0))
+        frames = d.answers()
+        check(any(r[0] == codes['DegenerateCurve'] and r[2] == seq for r in error_reports(frames)),
+              'a zero-length line is refused with DegenerateCurve (24.10)')
         # configured: Start on an empty queue is NothingQueued.
         seq = d.command(START)
         frames = d.answers()
@@ -502,7 +517,7 @@ def main():
     codes = error_codes(docs_dir)
     check(all(name in codes for name in ('NotConnected', 'VersionMismatch', 'ConfigurationMissing', 'UnknownMessage', 'BadPayload',
                                          'BadCrc', 'NothingQueued', 'FrameTooLong', 'InvalidLimit',
-                                         'InvalidRate', 'RetransmitLimit')), 'docs/errors.md names every code this suite checks')
+                                         'InvalidRate', 'RetransmitLimit', 'DegenerateCurve')), 'docs/errors.md names every code this suite checks')
     document_examples()
     run_device_checks(program, codes)
     run_stream_failure_checks(program, codes)
