@@ -171,11 +171,11 @@ class GcodeLoader {
   GcodeLoader(std::string name, const GcodeOptions& options) {
     job_.name = std::move(name);
     for (const auto& [tool, length] : options.tool_length_mm) {
-      if (tool >= 0) interpreter_.set_tool_length_mm(static_cast<std::size_t>(tool), length);
+      if (tool < 0 || !interpreter_.set_tool_length_mm(static_cast<std::size_t>(tool), length)) refuse_tool(tool);
     }
     interpreter_.set_home_positions(options.g28_position, options.g30_position);
     for (const auto& [tool, diameter] : options.tool_diameter_mm) {
-      if (tool >= 0) interpreter_.set_tool_diameter_mm(static_cast<std::size_t>(tool), diameter);
+      if (tool < 0 || !interpreter_.set_tool_diameter_mm(static_cast<std::size_t>(tool), diameter)) refuse_tool(tool);
     }
   }
 
@@ -287,6 +287,14 @@ class GcodeLoader {
   static int offset_parameter(std::size_t system, std::size_t axis) {
     const int a = static_cast<int>(axis);
     return system == coordinate_systems ? 5211 + a : 5221 + 20 * static_cast<int>(system) + a;
+  }
+
+  /// A tool table the interpreter cannot hold (the machine loader checks the same bounds first).
+  [[noreturn]] void refuse_tool(int tool) const {
+    throw LoadError(SourceLocation{job_.name, 0, 0, std::nullopt, {}, "tools"},
+                    "tool " + std::to_string(tool) + ": tool numbers are 0 .. " + std::to_string(Interpreter::max_tool_number) +
+                        ", at most " + std::to_string(Interpreter::max_tools) + " tools",
+                    Error::InvalidMachine);
   }
 
   [[noreturn]] void fail(std::size_t column, Error code) {

@@ -123,7 +123,7 @@ MachinePoint parse_position(const Reader& reader, const Node& node) {
 /// "tools": [{"number": n, "length": mm, "diameter": mm}, ...], each number once.
 std::map<int, MachineTool> parse_tools(const Reader& reader, const Node& node) {
   std::map<int, MachineTool> tools;
-  for (const Node& entry : reader.array(node, 0, max_tool_number + 1)) {
+  for (const Node& entry : reader.array(node, 0, max_tool_table_size)) {
     reader.check_keys(entry, {"number", "length", "diameter"});
     const auto number = static_cast<int>(reader.integer(reader.require(entry, "number"), 0, max_tool_number));
     MachineTool tool;

@@ -425,3 +425,33 @@ TEST_CASE("gcode interpreter: compensation errors at the word at fault", "[gcode
     CHECK(failure.index == c.column);
   }
 }
+
+TEST_CASE("gcode interpreter: tool numbers are any whole number up to 99999, the table keyed by number (CAM posts: M6 T102)",
+          "[gcode][interpreter][tools]") {
+  Machine m;
+  REQUIRE(m.set_tool_length_mm(102, 12.5));
+  REQUIRE(m.set_tool_diameter_mm(102, 3.175));
+  REQUIRE(m.set_tool_length_mm(7, 40.0));
+  CHECK(m.tool_length_mm(102) == 12.5);
+  CHECK(m.tool_diameter_mm(102) == 3.175);
+  CHECK(m.tool_diameter_mm(7) < 0);  // a length alone leaves the diameter unknown
+  CHECK(m.tool_length_mm(8) == 0.0);  // not in the table
+  // Carbide Create's tool change, then G43 with the loaded tool's length: Z5 is Z 17.5 in machine coordinates.
+  auto motion = run(m, {"G21 G90 M6 T102", "G43 G0 Z5"});
+  CHECK(m.loaded_tool() == 102);
+  CHECK(motion.end == pt(0, 0, 17.5));
+  motion = run(m, {"G43 H7 G0 Z5"});
+  CHECK(motion.end == pt(0, 0, 45.0));
+  motion = run(m, {"G41 D102 G1 X10 F100"});
+  CHECK(motion.compensation_radius_mm == 3.175 / 2);
+  // Beyond 99999, negative or fractional: a bad number at the word.
+  CHECK(run_failing({"T100000"}).code == Error::GcodeBadNumber);
+  CHECK(run_failing({"T-1"}).code == Error::GcodeBadNumber);
+  CHECK(run_failing({"G43 H1.5"}).code == Error::GcodeBadNumber);
+  // The table holds max_tools tools; one more is refused, numbers above 99999 too.
+  Machine full;
+  for (std::size_t tool = 0; tool < Machine::max_tools; ++tool) REQUIRE(full.set_tool_length_mm(1000 + tool, 1.0));
+  CHECK(full.set_tool_length_mm(1000, 2.0));  // an existing tool can still change
+  CHECK_FALSE(full.set_tool_length_mm(5, 1.0));
+  CHECK_FALSE(m.set_tool_diameter_mm(100000, 1.0));
+}

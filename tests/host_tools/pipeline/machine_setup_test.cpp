@@ -60,7 +60,12 @@ TEST_CASE("machine setup: a malformed table, position or travel names its field"
   CHECK_THAT(load_error_of("{" + limits + R"(, "axes": {"x": {"travel": [300, 0]}}})"), Catch::Contains("low end must be below"));
   CHECK_THAT(load_error_of("{" + limits + R"(, "tools": [{"number": 1}, {"number": 1}]})"), Catch::Contains("tool 1 is listed twice"));
   CHECK_THAT(load_error_of("{" + limits + R"(, "tools": [{"number": 1, "diameter": -2}]})"), Catch::Contains("0 .. 1000 mm"));
-  CHECK_THAT(load_error_of("{" + limits + R"(, "tools": [{"number": 100}]})"), Catch::Contains("number"));
+  // Tool numbers as CAM posts use them (T102) are taken up to 99999, in a table of at most 100 tools.
+  CHECK_THAT(load_error_of("{" + limits + R"(, "tools": [{"number": 100000}]})"), Catch::Contains("number"));
+  CHECK(parse_machine_file("{" + limits + R"(, "tools": [{"number": 102, "length": 20}]})", "m.json").tools.at(102).length_mm == 20);
+  std::string hundred_and_one;
+  for (int tool = 1; tool <= 101; ++tool) hundred_and_one += (tool > 1 ? ", " : "") + std::string(R"({"number": )") + std::to_string(tool) + "}";
+  CHECK_THAT(load_error_of("{" + limits + R"(, "tools": [)" + hundred_and_one + "]}"), Catch::Contains("tools"));
   CHECK_THAT(load_error_of("{" + limits + R"(, "g28": [1, 2, 99999]})"), Catch::Contains("-32767 .. 32767"));
   CHECK_THAT(load_error_of("{" + limits + R"(, "tools": [{"number": 1, "radius": 2}]})"), Catch::Contains("radius"));
 }

@@ -233,17 +233,30 @@ class Interpreter {
   }
   /// Sets the G92 offset, mm, as G92 would.
   constexpr void set_g92_offset(const Point& offset) noexcept { g92_offset_ = offset; }
-  /// Sets the length of tool `tool` (0 .. max_tools-1) for G43, mm (the machine file's tool table).
-  constexpr void set_tool_length_mm(std::size_t tool, double length_mm) noexcept {
-    if (tool < max_tools) tool_lengths_[tool] = length_mm;
+  /// Sets the length of tool number `tool` for G43, mm (the machine file's tool table). False if
+  /// the number is above max_tool_number or the table already holds max_tools other tools.
+  constexpr bool set_tool_length_mm(std::size_t tool, double length_mm) noexcept {
+    ToolEntry* entry = tool_entry(tool);
+    if (entry != nullptr) entry->length_mm = length_mm;
+    return entry != nullptr;
   }
-  /// Sets the diameter of tool `tool` (0 .. max_tools-1) for G41/G42 D, mm (the machine file's tool
-  /// table); a negative diameter marks it unknown (then G41/G42 with that tool is refused).
-  constexpr void set_tool_diameter_mm(std::size_t tool, double diameter_mm) noexcept {
-    if (tool < max_tools) tool_diameters_[tool] = diameter_mm;
+  /// Sets the diameter of tool number `tool` for G41/G42 D, mm (the machine file's tool table); a
+  /// negative diameter marks it unknown (then G41/G42 with that tool is refused). False as above.
+  constexpr bool set_tool_diameter_mm(std::size_t tool, double diameter_mm) noexcept {
+    ToolEntry* entry = tool_entry(tool);
+    if (entry != nullptr) entry->diameter_mm = diameter_mm;
+    return entry != nullptr;
   }
-  /// The diameter of tool `tool`, mm; negative if the tool table does not give it.
-  [[nodiscard]] constexpr double tool_diameter_mm(std::size_t tool) const noexcept { return tool < max_tools ? tool_diameters_[tool] : -1.0; }
+  /// The diameter of tool number `tool`, mm; negative if the tool table does not give it.
+  [[nodiscard]] constexpr double tool_diameter_mm(std::size_t tool) const noexcept {
+    const ToolEntry* entry = find_tool(tool);
+    return entry != nullptr ? entry->diameter_mm : -1.0;
+  }
+  /// The length of tool number `tool`, mm; 0 if the tool table does not give it.
+  [[nodiscard]] constexpr double tool_length_mm(std::size_t tool) const noexcept {
+    const ToolEntry* entry = find_tool(tool);
+    return entry != nullptr ? entry->length_mm : 0.0;
+  }
   /// Cutter radius compensation in force and its tool radius, mm.
   [[nodiscard]] constexpr CompensationSide compensation_side() const noexcept { return compensation_side_; }
   [[nodiscard]] constexpr double compensation_radius_mm() const noexcept { return compensation_radius_mm_; }
@@ -254,6 +267,8 @@ class Interpreter {
   }
   /// Tools a tool table may hold.
   static constexpr std::size_t max_tools = 100;
+  /// Largest tool number of a T, H or D word (CAM posts number tools freely, e.g. T102).
+  static constexpr std::size_t max_tool_number = 99999;
 
   /// Executes one block. Failures carry the column of the word at fault.
   template <std::size_t Capacity>
@@ -348,7 +363,7 @@ class Interpreter {
       if (spindle_on_ && spindle_word == nullptr) add_event(MachineEventKind::SpindleSpeed, spindle_rpm_, spindle_ccw_, sw->column);
     }
     if (const Word* t = block.find('T')) {
-      if (!(t->value >= 0) || t->value != std::floor(t->value) || t->value >= max_tools) return fail(Error::GcodeBadNumber, t->column);
+      if (!valid_tool_number(t->value)) return fail(Error::GcodeBadNumber, t->column);
       selected_tool_ = static_cast<std::size_t>(t->value);
     }
     if (tool_change_word != nullptr) {
@@ -410,10 +425,10 @@ class Interpreter {
       } else {
         std::size_t tool = loaded_tool_;
         if (const Word* h = block.find('H')) {
-          if (!(h->value >= 0) || h->value != std::floor(h->value) || h->value >= max_tools) return fail(Error::GcodeBadNumber, h->column);
+          if (!valid_tool_number(h->value)) return fail(Error::GcodeBadNumber, h->column);
           tool = static_cast<std::size_t>(h->value);
         }
-        tool_length_mm_ = tool_lengths_[tool];
+        tool_length_mm_ = tool_length_mm(tool);
       }
     }
     if (coordinate_word != nullptr) {
@@ -534,14 +549,15 @@ class Interpreter {
     } else {  // G41 / G42 [D<tool>]: the tool table's diameter; no D: the loaded tool; tool 0: no offset
       std::size_t tool = loaded_tool_;
       if (d != nullptr) {
-        if (!(d->value >= 0) || d->value != std::floor(d->value) || d->value >= max_tools) return fail(Error::GcodeBadNumber, d->column);
+        if (!valid_tool_number(d->value)) return fail(Error::GcodeBadNumber, d->column);
         tool = static_cast<std::size_t>(d->value);
       }
       if (tool != 0) {
-        if (!(tool_diameters_[tool] >= 0)) {
+        const double diameter = tool_diameter_mm(tool);
+        if (!(diameter >= 0)) {
           return d != nullptr ? fail(Error::GcodeCutterCompensation, d->column) : fail(Error::GcodeMissingWord, g.column);
         }
-        radius = tool_diameters_[tool] / 2;
+        radius = diameter / 2;
       }
     }
     compensation_side_ = g.code_tenths / 10 == 41 ? CompensationSide::Left : CompensationSide::Right;
@@ -549,11 +565,32 @@ class Interpreter {
     return ok();
   }
 
-  /// Tool diameters all unknown (negative) until the tool table gives them.
-  [[nodiscard]] static constexpr std::array<double, max_tools> unknown_diameters() noexcept {
-    std::array<double, max_tools> diameters{};
-    for (double& d : diameters) d = -1.0;
-    return diameters;
+  /// One tool of the tool table: its number, length (G43) and diameter (G41/G42; negative: unknown), mm.
+  struct ToolEntry {
+    std::size_t number = 0;
+    double length_mm = 0;
+    double diameter_mm = -1.0;
+  };
+
+  /// A T, H or D value: a whole number 0 .. max_tool_number.
+  [[nodiscard]] static constexpr bool valid_tool_number(double value) noexcept {
+    return value >= 0 && value <= static_cast<double>(max_tool_number) && value == std::floor(value);
+  }
+
+  /// The tool table's entry of tool `number`, or null.
+  [[nodiscard]] constexpr const ToolEntry* find_tool(std::size_t number) const noexcept {
+    for (std::size_t i = 0; i < tool_count_; ++i) {
+      if (tools_[i].number == number) return &tools_[i];
+    }
+    return nullptr;
+  }
+  /// The entry of tool `number`, added if new; null if the number is out of range or the table is full.
+  constexpr ToolEntry* tool_entry(std::size_t number) noexcept {
+    if (number > max_tool_number) return nullptr;
+    if (const ToolEntry* found = find_tool(number)) return &tools_[static_cast<std::size_t>(found - tools_.data())];
+    if (tool_count_ == max_tools) return nullptr;
+    tools_[tool_count_] = ToolEntry{number, 0.0, -1.0};
+    return &tools_[tool_count_++];
   }
 
   /// G10 L2/L20, G28/G30, G92: the group-0 codes that use the axis words (LinuxCNC semantics).
@@ -1028,8 +1065,8 @@ class Interpreter {
   std::size_t coordinate_system_ = 0;
   Point g92_offset_{};
   Point g92_saved_{};
-  std::array<double, max_tools> tool_lengths_{};
-  std::array<double, max_tools> tool_diameters_ = unknown_diameters();
+  std::array<ToolEntry, max_tools> tools_{};
+  std::size_t tool_count_ = 0;
   CompensationSide compensation_side_ = CompensationSide::Off;
   double compensation_radius_mm_ = 0;
   double tool_length_mm_ = 0;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -45,8 +46,11 @@ struct AxisTravel {
 /// The travel of x, y, z (none: the axis is not limited).
 using MachineTravel = std::array<std::optional<AxisTravel>, motion_axes>;
 
-/// Tool numbers a "tools" table may hold (0 .. max_tool_number; tool 0 is "no tool").
-inline constexpr int max_tool_number = 99;
+/// Tool numbers a "tools" table may hold (0 .. max_tool_number; tool 0 is "no tool"), as the G-code
+/// interpreter's T, H and D words (CAM posts number tools freely: T102, T1001).
+inline constexpr int max_tool_number = 99999;
+/// Tools a "tools" table may list (the interpreter's table size).
+inline constexpr std::size_t max_tool_table_size = 100;
 
 /// The "pen" section: a plotter pen on the z axis, {"axis": "z", "up": 5, "down": 0, "feed": 20}.
 /// SVG jobs then lift the pen for every rapid between subpaths (job_pipeline.hpp, pen_moves.hpp).
