@@ -33,6 +33,13 @@ void check_l(const std::vector<SourceSegment>& pieces, std::size_t first, double
   check_points(pieces[first + 1], {on_page(x + 4 * s, y), on_page(x + 16 * s, y)});
 }
 
+/// Imports `body` and checks it draws exactly one 'L' of size 32 per pen x in `pens`, on the baseline y = 50.
+void check_ls(const std::string& body, const std::vector<double>& pens) {
+  const auto pieces = text_pieces(body);
+  REQUIRE(pieces.size() == 2 * pens.size());
+  for (std::size_t i = 0; i < pens.size(); ++i) check_l(pieces, 2 * i, pens[i], 50);
+}
+
 }  // namespace
 
 TEST_CASE("svg text: the glyph L at a known size and position", "[host_tools][svg][text]") {
@@ -67,10 +74,7 @@ TEST_CASE("svg text: font-size and positions with units, on a page without viewB
 
 TEST_CASE("svg text: advance widths and text-anchor", "[host_tools][svg][text]") {
   // "LL": the second L's pen is 17 to the right.
-  const auto two = text_pieces("<text x=\"10\" y=\"50\" font-size=\"32\">LL</text>");
-  REQUIRE(two.size() == 4);
-  check_l(two, 0, 10, 50);
-  check_l(two, 2, 27, 50);
+  check_ls("<text x=\"10\" y=\"50\" font-size=\"32\">LL</text>", {10, 27});
   // "HI" has the advance 22 + 8 = 30; middle shifts it by 15: H's pen at 35, I's at 57.
   const auto middle = text_pieces("<text x=\"50\" y=\"50\" font-size=\"32\" text-anchor=\"middle\">HI</text>");
   REQUIRE(middle.size() == 4);
@@ -79,10 +83,7 @@ TEST_CASE("svg text: advance widths and text-anchor", "[host_tools][svg][text]")
   check_points(middle[2], {on_page(39, 39), on_page(53, 39)});   // crossbar at 50 + (-2 - 9)
   check_points(middle[3], {on_page(61, 29), on_page(61, 50)});   // 57 + (0 + 4)
   // end: shifted by the whole advance 51 of "LLL" (the anchor is inherited from the group).
-  const auto end = text_pieces("<g text-anchor=\"end\"><text x=\"60\" y=\"50\" font-size=\"32\">LLL</text></g>");
-  REQUIRE(end.size() == 6);
-  check_l(end, 0, 9, 50);
-  check_l(end, 4, 43, 50);
+  check_ls("<g text-anchor=\"end\"><text x=\"60\" y=\"50\" font-size=\"32\">LLL</text></g>", {9, 26, 43});
 }
 
 TEST_CASE("svg text: tspans with their own position, offsets and font-size", "[host_tools][svg][text]") {
@@ -95,11 +96,7 @@ TEST_CASE("svg text: tspans with their own position, offsets and font-size", "[h
   // After the half-size L the pen is at 60 + 8.5; dx 5, dy -10 move it to (73.5, 70); the text's size again.
   check_l(pieces, 4, 73.5, 70);
   // A tspan with x starts a new chunk with its own anchor; only the first value of a list is used.
-  const auto chunks = text_pieces(
-      "<text x=\"10 90\" y=\"50\" font-size=\"32\">L<tspan x=\"60\" text-anchor=\"end\">L</tspan></text>");
-  REQUIRE(chunks.size() == 4);
-  check_l(chunks, 0, 10, 50);
-  check_l(chunks, 2, 43, 50);
+  check_ls("<text x=\"10 90\" y=\"50\" font-size=\"32\">L<tspan x=\"60\" text-anchor=\"end\">L</tspan></text>", {10, 43});
 }
 
 TEST_CASE("svg text: transforms of the text and its parents", "[host_tools][svg][text]") {
@@ -114,18 +111,11 @@ TEST_CASE("svg text: transforms of the text and its parents", "[host_tools][svg]
 
 TEST_CASE("svg text: white space is collapsed unless xml:space is preserve", "[host_tools][svg][text]") {
   // "  L \n  L  " -> "L L": the second pen at 10 + 17 + 16.
-  const auto collapsed = text_pieces("<text x=\"10\" y=\"50\" font-size=\"32\">  L \n  L  </text>");
-  REQUIRE(collapsed.size() == 4);
-  check_l(collapsed, 0, 10, 50);
-  check_l(collapsed, 2, 43, 50);
+  check_ls("<text x=\"10\" y=\"50\" font-size=\"32\">  L \n  L  </text>", {10, 43});
   // Trailing spaces do not count for the anchor: "L " with end anchor at 60 puts the pen at 43.
-  const auto trailing = text_pieces("<text x=\"60\" y=\"50\" font-size=\"32\" text-anchor=\"end\">L   </text>");
-  REQUIRE(trailing.size() == 2);
-  check_l(trailing, 0, 43, 50);
+  check_ls("<text x=\"60\" y=\"50\" font-size=\"32\" text-anchor=\"end\">L   </text>", {43});
   // preserve: the two leading spaces advance 32.
-  const auto preserved = text_pieces("<text xml:space=\"preserve\" x=\"10\" y=\"50\" font-size=\"32\">  L</text>");
-  REQUIRE(preserved.size() == 2);
-  check_l(preserved, 0, 42, 50);
+  check_ls("<text xml:space=\"preserve\" x=\"10\" y=\"50\" font-size=\"32\">  L</text>", {42});
 }
 
 TEST_CASE("svg text: a character the font lacks is a gap the width of a space, with a warning", "[host_tools][svg][text]") {
@@ -148,10 +138,8 @@ TEST_CASE("svg text: a text-only drawing imports; font-family gets one note; hid
         "test.svg:2: <text> font-family Arial is not used: text is drawn in the Hershey Roman simplex single-stroke font "
         "(noted once per file)");
   // A hidden tspan advances but draws nothing; display:none neither.
-  const auto hidden = text_pieces(
-      "<text x=\"10\" y=\"50\" font-size=\"32\"><tspan visibility=\"hidden\">L</tspan><tspan display=\"none\">LL</tspan>L</text>");
-  REQUIRE(hidden.size() == 2);
-  check_l(hidden, 0, 27, 50);
+  check_ls("<text x=\"10\" y=\"50\" font-size=\"32\"><tspan visibility=\"hidden\">L</tspan><tspan display=\"none\">LL</tspan>L</text>",
+           {27});
   // Only spaces: nothing to draw, which is still an error.
   CHECK_THROWS_WITH(import_page("<text x=\"10\" y=\"50\">   </text>"), Catch::Contains("no paths or shapes to draw"));
 }
