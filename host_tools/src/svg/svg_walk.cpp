@@ -115,7 +115,7 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   const LengthContext& lengths = scope.lengths;
   const bool shape = name == "path" || name == "rect" || name == "circle" || name == "ellipse" || name == "line" ||
                      name == "polyline" || name == "polygon" || name == "text";
-  if (shape && !scope.visible) return;  // visibility: hidden / collapse
+  if (shape && name != "text" && !scope.visible) return;  // visibility: hidden / collapse (a tspan may be visible again)
   if (shape && scope.stroke == "none" && scope.fill == "none") {
     diagnostics_.warn(element, "is not drawn (stroke and fill are none: invisible)");
     return;
@@ -145,7 +145,7 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
     use(element, scope);
     return;
   } else if (name == "text") {
-    subpaths = text_.strokes(element, lengths);
+    subpaths = text_.strokes(element, lengths, scope.visible);
   } else if (name == "image" || name == "foreignObject") {
     diagnostics_.warn(element, "is not drawn");
     return;

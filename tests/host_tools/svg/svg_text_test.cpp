@@ -140,6 +140,8 @@ TEST_CASE("svg text: a text-only drawing imports; font-family gets one note; hid
   // A hidden tspan advances but draws nothing; display:none neither.
   check_ls("<text x=\"10\" y=\"50\" font-size=\"32\"><tspan visibility=\"hidden\">L</tspan><tspan display=\"none\">LL</tspan>L</text>",
            {27});
+  // A hidden text draws nothing, except a tspan made visible again (visibility is inherited).
+  check_ls("<text x=\"10\" y=\"50\" font-size=\"32\" visibility=\"hidden\">L<tspan visibility=\"visible\">L</tspan>L</text>", {27});
   // Only spaces: nothing to draw, which is still an error.
   CHECK_THROWS_WITH(import_page("<text x=\"10\" y=\"50\">   </text>"), Catch::Contains("no paths or shapes to draw"));
 }

@@ -70,7 +70,7 @@ std::optional<double> TextLayout::first_length(const tinyxml2::XMLElement& eleme
   return length_value(diagnostics_, element, attribute, first, lengths, axis);
 }
 
-std::vector<Subpath> TextLayout::strokes(const tinyxml2::XMLElement& text, const LengthContext& lengths) {
+std::vector<Subpath> TextLayout::strokes(const tinyxml2::XMLElement& text, const LengthContext& lengths, bool visible) {
   if (!family_noted_) {
     if (const std::string family = styles_.property(text, "font-family"); !family.empty()) {
       family_noted_ = true;
@@ -84,6 +84,7 @@ std::vector<Subpath> TextLayout::strokes(const tinyxml2::XMLElement& text, const
   pending_space_ = false;
   Style style;
   style.lengths = lengths;
+  style.visible = visible;
   // text-anchor is inherited: the nearest ancestor that sets it (through <use>: the referenced element's).
   for (const auto* node = text.Parent(); node != nullptr && node->ToElement() != nullptr; node = node->Parent()) {
     if (const std::string anchor = styles_.property(*node->ToElement(), "text-anchor"); !anchor.empty() && anchor != "inherit") {

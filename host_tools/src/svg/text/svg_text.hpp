@@ -37,8 +37,9 @@ class TextLayout {
  public:
   TextLayout(Diagnostics& diagnostics, const StyleSheet& styles) : diagnostics_(diagnostics), styles_(styles) {}
 
-  /// The strokes of `text` (a <text> element whose computed font-size is in `lengths`) in its user space.
-  [[nodiscard]] std::vector<Subpath> strokes(const tinyxml2::XMLElement& text, const LengthContext& lengths);
+  /// The strokes of `text` (a <text> element whose computed font-size is in `lengths` and whose
+  /// computed visibility is `visible`) in its user space.
+  [[nodiscard]] std::vector<Subpath> strokes(const tinyxml2::XMLElement& text, const LengthContext& lengths, bool visible);
 
  private:
   /// What a text-content element passes to its children.
