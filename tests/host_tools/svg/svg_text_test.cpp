@@ -8,7 +8,10 @@
 //   ' ' (Hershey 699) "JZ":                  bearings -8, 8 (advance 16)
 // With 1 em = 32 Hershey units and the baseline at Hershey y = 9, a point (hx, hy) of a glyph whose
 // pen is at (x, y) lands at (x + (hx - left)·s, y + (hy - 9)·s), s = font-size / 32.
+#include <fstream>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -144,4 +147,37 @@ TEST_CASE("svg text: a text-only drawing imports; font-family gets one note; hid
   check_ls("<text x=\"10\" y=\"50\" font-size=\"32\" visibility=\"hidden\">L<tspan visibility=\"visible\">L</tspan>L</text>", {27});
   // Only spaces: nothing to draw, which is still an error.
   CHECK_THROWS_WITH(import_page("<text x=\"10\" y=\"50\">   </text>"), Catch::Contains("no paths or shapes to draw"));
+}
+
+TEST_CASE("svg text: every glyph against the font file of the Debian package, when it is installed", "[host_tools][svg][text]") {
+  // A second reading of rowmans.jhf, independent of the generator and the decoder: each line is a
+  // glyph of ASCII 32 + i; after the 8-character header, pairs value = character - 'R'.
+  std::ifstream font("/usr/share/hershey-fonts/rowmans.jhf");
+  if (!font) {
+    WARN("hershey-fonts-data is not installed: the glyph-by-glyph comparison is skipped");
+    return;
+  }
+  std::string line;
+  for (int code = 32; code <= 126 && std::getline(font, line); ++code) {
+    const std::string data = line.substr(8);
+    const double left = data[0] - 'R';
+    // Expected lines with the pen at (10, 50) and s = 1: (10 + hx - left, 50 + hy - 9).
+    std::vector<std::pair<MachinePoint, MachinePoint>> expected;
+    std::optional<MachinePoint> previous;
+    for (std::size_t i = 2; i + 1 < data.size(); i += 2) {
+      if (data[i] == ' ' && data[i + 1] == 'R') {
+        previous.reset();
+        continue;
+      }
+      const MachinePoint point = on_page(10 + (data[i] - 'R') - left, 50 + (data[i + 1] - 'R') - 9);
+      if (previous && !(*previous == point)) expected.emplace_back(*previous, point);
+      previous = point;
+    }
+    if (expected.empty()) continue;  // the space
+    const std::string character = code == '<' ? "&lt;" : code == '&' ? "&amp;" : std::string(1, static_cast<char>(code));
+    INFO("character " << character);
+    const auto pieces = text_pieces("<text x=\"10\" y=\"50\" font-size=\"32\">" + character + "</text>");
+    REQUIRE(pieces.size() == expected.size());
+    for (std::size_t i = 0; i < expected.size(); ++i) check_points(pieces[i], {expected[i].first, expected[i].second});
+  }
 }
