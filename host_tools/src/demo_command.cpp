@@ -7,6 +7,11 @@
 // The simulator is given what the device receives: the job and the machine after a round trip
 // through the wire format and the firmware's own conversions, so a value the wire rounds (a weight,
 // a tolerance) cannot make the comparison fail, and a real difference still does.
+//
+// The job-shaping options of sim, plot and stream (job_pipeline_options.hpp: --page, --fit, --layers,
+// ...) shape the drawing (--drawing, else the bundled one); the G-code program gets the ones that are
+// not for drawings only (--blend-tolerance, --strict-step-rate). The drawing's subpaths are always
+// ordered (--optimize is the default here).
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +20,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <curvestep/boards/host/board.hpp>
@@ -30,6 +36,7 @@
 
 #include "board_thread.hpp"
 #include "command_registry.hpp"
+#include "job_pipeline_options.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -37,6 +44,9 @@ namespace {
 struct DemoOptions {
   std::string out = "build/demo";
   std::string examples = CURVESTEP_EXAMPLES_DIR;
+  std::string drawing;          ///< empty: the bundled examples/svg/curvestep_demo.svg
+  JobPipelineOptions pipeline;  ///< for the drawing; the program gets without_drawing_options(pipeline)
+  DemoOptions() { pipeline.optimize = true; }
 };
 
 /// What one demo job produced.
@@ -50,16 +60,16 @@ struct DemoRun {
   std::size_t lost = 0;        ///< setpoints the simulator produced that never arrived (must be 0: the stream is reliable)
   bool identical = false;      ///< every captured setpoint equals the simulator's at the same tick
   std::string difference;  ///< where the streams first differ, if they do
+  std::vector<std::string> notes;  ///< the job pipeline's (import warnings, page layout, optimised travel)
 };
 
-DemoRun run_one(const std::filesystem::path& file, const MachineFile& machine_file, const std::string& out) {
+DemoRun run_one(const std::filesystem::path& file, const MachineFile& machine_file, const std::string& out,
+                const JobPipelineOptions& pipeline) {
   DemoRun run;
   run.name = file.filename().string();
-  std::vector<std::string> notes;
-  JobPipelineOptions pipeline;
-  pipeline.optimize = true;
   const PreparedJob prepared = prepare_job(file, machine_file, machine_file.limits, pipeline);
   const Job& job = prepared.job;
+  run.notes = prepared.notes;
   const MachineLimits& machine = prepared.machine;
   const auto [device_job, device_machine] = link::as_device_sees(job, machine);
 
@@ -118,11 +128,13 @@ void run_demo(const DemoOptions& options) {
   std::filesystem::create_directories(options.out);
   const std::filesystem::path examples(options.examples);
   const MachineFile machine = load_machine_file(examples / "jobs" / "machine.json");
-  const std::vector<std::filesystem::path> jobs{examples / "svg" / "curvestep_demo.svg", examples / "gcode" / "cnc_pocket.ngc"};
+  const std::filesystem::path drawing = options.drawing.empty() ? examples / "svg" / "curvestep_demo.svg" : std::filesystem::path(options.drawing);
+  const std::vector<std::pair<std::filesystem::path, JobPipelineOptions>> jobs{
+      {drawing, options.pipeline}, {examples / "gcode" / "cnc_pocket.ngc", without_drawing_options(options.pipeline)}};
   std::cout << "curvestep demo: virtual device on a pseudo-terminal, real protocol, simulator check\n";
   bool all_identical = true;
-  for (const auto& file : jobs) {
-    const DemoRun run = run_one(file, machine, options.out);
+  for (const auto& [file, pipeline] : jobs) {
+    const DemoRun run = run_one(file, machine, options.out, pipeline);
     all_identical = all_identical && run.identical;
     std::cout << "  " << run.name << "\n"
               << "    duration:             " << run.duration_s << " s\n"
@@ -130,6 +142,7 @@ void run_demo(const DemoOptions& options) {
               << "    max deviation:        " << run.max_deviation_mm * 1000 << " um\n"
               << "    setpoints:            " << run.setpoints << " captured of " << run.expected << "\n"
               << "    setpoints identical:  " << (run.identical ? "yes" : "no (" + run.difference + ")") << "\n";
+    for (const auto& note : run.notes) std::cout << "    note: " << note << "\n";
     if (run.lost > 0) {
       all_identical = false;
       std::cout << "    error:                " << run.lost << " setpoints never arrived\n";
@@ -144,6 +157,8 @@ void add_demo_command(CLI::App& app) {
   auto* demo = app.add_subcommand("demo", "Stream the bundled SVG and G-code examples to a virtual device and check them against the simulator");
   demo->add_option("--out", options->out, "Output folder")->capture_default_str();
   demo->add_option("--examples", options->examples, "Folder with the bundled examples")->capture_default_str();
+  demo->add_option("--drawing", options->drawing, "SVG drawing to run instead of the bundled one (the G-code program stays)");
+  add_job_pipeline_options(demo, options->pipeline);
   demo->callback([options] { run_demo(*options); });
 }
 

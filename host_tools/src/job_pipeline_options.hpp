@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The command-line options of the job pipeline (job_pipeline.hpp), the same on every command that
-// moves a machine: sim, plot, stream, gpio.
+// moves a machine: sim, plot, stream, gpio, demo.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -44,6 +44,13 @@ MachineLimits step_rate_aware(const MachineLimits& machine, std::vector<std::str
   return out;
 }
 
+JobPipelineOptions without_drawing_options(const JobPipelineOptions& options) {
+  JobPipelineOptions machine_only;
+  machine_only.blend_tolerance_mm = options.blend_tolerance_mm;
+  machine_only.strict_step_rate = options.strict_step_rate;
+  return machine_only;
+}
+
 JobFileOptions job_file_options(const JobPipelineOptions& options) {
   JobFileOptions file;
   file.optimize = options.optimize;

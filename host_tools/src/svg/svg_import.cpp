@@ -9,7 +9,8 @@
 // ancestors and its own; pieces are mapped point by point (exact for Béziers and rational Béziers).
 //
 // The work is split by job: svg_lengths (units), svg_viewport (viewBox, the root map, transforms),
-// svg_walk (the element tree), svg_shapes (basic shapes), path_data (path data and arcs),
+// svg_walk (the element tree), svg_shapes (basic shapes), path_data (path data and arcs), text/ (<text>
+// in the Hershey single-stroke font),
 // svg_machine (machine mm on the Q16.16 grid), svg_job_builder (order, rapids, the Job).
 #include <curvestep/host/svg_import.hpp>
 

@@ -114,8 +114,8 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   scope.map = with_transform(diagnostics_, element, parent.map, scope.lengths);
   const LengthContext& lengths = scope.lengths;
   const bool shape = name == "path" || name == "rect" || name == "circle" || name == "ellipse" || name == "line" ||
-                     name == "polyline" || name == "polygon";
-  if (shape && !scope.visible) return;  // visibility: hidden / collapse
+                     name == "polyline" || name == "polygon" || name == "text";
+  if (shape && name != "text" && !scope.visible) return;  // visibility: hidden / collapse (a tspan may be visible again)
   if (shape && scope.stroke == "none" && scope.fill == "none") {
     diagnostics_.warn(element, "is not drawn (stroke and fill are none: invisible)");
     return;
@@ -144,8 +144,10 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   } else if (name == "use") {
     use(element, scope);
     return;
-  } else if (name == "text" || name == "image" || name == "foreignObject") {
-    diagnostics_.warn(element, name == "text" ? "is not drawn (convert text to paths first)" : "is not drawn");
+  } else if (name == "text") {
+    subpaths = text_.strokes(element, lengths, scope.visible);
+  } else if (name == "image" || name == "foreignObject") {
+    diagnostics_.warn(element, "is not drawn");
     return;
   } else {
     diagnostics_.warn(element, "is not drawn (unknown element)");

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// Internal: the element walk — groups, nested viewports, <use>, shapes and paths, each drawn through
+// Internal: the element walk — groups, nested viewports, <use>, shapes, paths and text, each drawn through
 // its affine map into machine subpaths.
 #pragma once
 
@@ -17,6 +17,7 @@
 #include "svg_layers.hpp"
 #include "svg_lengths.hpp"
 #include "svg_machine.hpp"
+#include "text/svg_text.hpp"
 
 namespace curvestep::host::svg {
 
@@ -67,6 +68,7 @@ class ElementWalk {
   std::vector<DrawnSubpath> drawn_;
   std::vector<Layer> layers_;
   StyleSheet styles_;
+  TextLayout text_{diagnostics_, styles_};
   std::map<std::string, const tinyxml2::XMLElement*> ids_;
   std::vector<const tinyxml2::XMLElement*> active_uses_;
   std::size_t expanded_elements_ = 0;  ///< elements visited through <use>, all uses together

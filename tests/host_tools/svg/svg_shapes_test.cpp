@@ -133,13 +133,13 @@ TEST_CASE("svg: zero-size shapes, hidden elements and definitions are not drawn"
   const auto result = import_page(
       "<rect width=\"0\" height=\"5\"/><circle r=\"0\"/><ellipse rx=\"3\" ry=\"0\"/>"
       "<g style=\"display:none\"><line x2=\"5\"/></g><line display=\"none\" x2=\"6\"/>"
-      "<defs><line x2=\"7\"/></defs><text x=\"1\">hi</text><image href=\"a.png\"/>"
+      "<defs><line x2=\"7\"/></defs><foreignObject/><image href=\"a.png\"/>"
       "<line x1=\"1\" x2=\"8\"/>");
   const auto pieces = drawn(result.job);
   REQUIRE(pieces.size() == 1);
   check_points(pieces[0], {on_page(1, 0), on_page(8, 0)});
   REQUIRE(result.warnings.size() == 2);
-  CHECK(result.warnings[0] == "test.svg:2: <text> is not drawn (convert text to paths first)");
+  CHECK(result.warnings[0] == "test.svg:2: <foreignObject> is not drawn");
   CHECK(result.warnings[1] == "test.svg:2: <image> is not drawn");
 }
 

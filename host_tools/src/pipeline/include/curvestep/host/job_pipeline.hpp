@@ -37,6 +37,10 @@ struct JobPipelineOptions {
   std::vector<std::string> layers;  ///< --layers: Inkscape layers to draw, by label (empty: all)
 };
 
+/// `options` without what applies to SVG drawings only (--optimize, --strict, --layers and the page
+/// options): what a command that runs a drawing and a program alike (demo) gives the program.
+[[nodiscard]] JobPipelineOptions without_drawing_options(const JobPipelineOptions& options);
+
 /// The job-file options (import, page layout) of the pipeline options. std::invalid_argument for a
 /// malformed --page or --margin.
 [[nodiscard]] JobFileOptions job_file_options(const JobPipelineOptions& options);
