@@ -25,7 +25,7 @@ class TickWatch {
   /// Ticks of `period_cycles` cycles; a tick more than `tolerated_periods` late is a missed deadline.
   void configure(std::uint32_t period_cycles, std::uint32_t tolerated_periods) noexcept {
     period_ = period_cycles;
-    tolerated_periods_ = tolerated_periods;
+    tolerated_periods_ = static_cast<std::uint16_t>(tolerated_periods < 0xFFFF ? tolerated_periods : 0xFFFF);
     restart();
   }
   /// The next tick starts a new schedule (motion starts or resumes after a pause of the ticks).
@@ -46,42 +46,38 @@ class TickWatch {
     due_ += period_;
     late_ = late_cycles > period_;
     if (late_) ++overruns_;
-    if (tolerated_periods_ == 0 || late_cycles <= tolerated_periods_ * period_) return 0;
+    if (tolerated_periods_ == 0 || late_cycles <= std::uint64_t{tolerated_periods_} * period_) return 0;
     return late_cycles / period_;
   }
 
   /// The tick that started last ends at cycle `now`.
   void on_end(std::uint32_t now) noexcept {
-    last_cycles_ = now - start_;
-    if (last_cycles_ > worst_cycles_) worst_cycles_ = last_cycles_;
-    if (!late_ && period_ != 0 && last_cycles_ > period_) ++overruns_;
+    const std::uint32_t cycles = now - start_;
+    if (cycles > worst_cycles_) worst_cycles_ = cycles;
+    if (!late_ && period_ != 0 && cycles > period_) ++overruns_;
   }
 
   /// Ticks that started more than a period late or ran longer than a period.
   [[nodiscard]] std::uint32_t overruns() const noexcept { return overruns_; }
   /// The longest tick so far, in cycles.
   [[nodiscard]] std::uint32_t worst_cycles() const noexcept { return worst_cycles_; }
-  /// The last tick's duration, in cycles.
-  [[nodiscard]] std::uint32_t last_cycles() const noexcept { return last_cycles_; }
   /// The period in cycles (0: not configured).
   [[nodiscard]] std::uint32_t period_cycles() const noexcept { return period_; }
   /// Forgets the counts (a new session).
   void clear() noexcept {
     overruns_ = 0;
     worst_cycles_ = 0;
-    last_cycles_ = 0;
   }
 
  private:
   std::uint32_t period_ = 0;
-  std::uint32_t tolerated_periods_ = 0;
   std::uint32_t due_ = 0;
   std::uint32_t start_ = 0;
   std::uint32_t overruns_ = 0;
   std::uint32_t worst_cycles_ = 0;
-  std::uint32_t last_cycles_ = 0;
+  std::uint16_t tolerated_periods_ = 0;  // 16 bits: the F1 executor's 8 KiB count every word
   bool anchored_ = false;
-  bool late_ = false;
+  bool late_ = false;  // the current tick was counted as an overrun at its start
 };
 
 }  // namespace curvestep::firmware
