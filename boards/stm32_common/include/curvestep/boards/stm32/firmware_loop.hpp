@@ -3,6 +3,7 @@
 // App::on_tick() paced by SysTick at the configured control rate (never concurrently: see app.hpp).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include <curvestep/boards/stm32/mmio.hpp>
@@ -23,30 +24,6 @@ template <class Board>
 namespace detail {
 inline volatile std::uint32_t ticks_due = 0;
 inline void count_tick(void*) { ticks_due = ticks_due + 1; }
-
-#if CURVESTEP_TICK_PROFILE
-/// app.poll(), recording the cycles of a poll that accepted segments or pieces (tick_profile.hpp).
-template <class Board, class App>
-void profiled_poll(Board& board, App& app, TickProfile& profile) noexcept {
-  const std::size_t queued = app.controller().queued();
-  const std::uint32_t start = board.cycle_count();
-  app.poll();
-  const std::uint32_t cycles = board.cycle_count() - start;
-  if (app.controller().queued() > queued) profile.accept(cycles, static_cast<std::uint32_t>(app.controller().queued() - queued));
-}
-/// app.on_tick(), recording its cycles while the App moves.
-template <class Board, class App>
-void profiled_tick(Board& board, App& app, TickProfile& profile) noexcept {
-  const bool moving = app.moving();
-  const std::size_t queued = app.controller().queued();
-  const std::uint32_t start = board.cycle_count();
-  app.on_tick();
-  const std::uint32_t cycles = board.cycle_count() - start;
-  if (moving) profile.tick(cycles, app.controller().queued() < queued);
-  profile.overruns = app.tick_watch().overruns();
-  profile.cycles_per_second = board.cycles_per_second();
-}
-#endif
 }  // namespace detail
 
 #if CURVESTEP_TICK_PROFILE
@@ -54,12 +31,42 @@ void profiled_tick(Board& board, App& app, TickProfile& profile) noexcept {
 extern "C" {
 inline TickProfile curvestep_tick_profile{};
 }
-#define CURVESTEP_POLL(board, app) detail::profiled_poll(board, app, curvestep_tick_profile)
-#define CURVESTEP_TICK(board, app) detail::profiled_tick(board, app, curvestep_tick_profile)
-#else
-#define CURVESTEP_POLL(board, app) app.poll()
-#define CURVESTEP_TICK(board, app) app.on_tick()
 #endif
+
+/// app.poll(); profiled builds record the cycles of a poll that accepted segments or pieces.
+template <class Board, class App>
+void poll_app(Board& board, App& app) noexcept {
+#if CURVESTEP_TICK_PROFILE
+  const std::size_t queued = app.controller().queued();
+  const std::uint32_t start = board.cycle_count();
+  app.poll();
+  const std::uint32_t cycles = board.cycle_count() - start;
+  if (app.controller().queued() > queued) {
+    curvestep_tick_profile.accept(cycles, static_cast<std::uint32_t>(app.controller().queued() - queued));
+  }
+#else
+  static_cast<void>(board);
+  app.poll();
+#endif
+}
+
+/// app.on_tick(); profiled builds record its cycles while the App moves.
+template <class Board, class App>
+void tick_app(Board& board, App& app) noexcept {
+#if CURVESTEP_TICK_PROFILE
+  const bool moving = app.moving();
+  const std::size_t queued = app.controller().queued();
+  const std::uint32_t start = board.cycle_count();
+  app.on_tick();
+  const std::uint32_t cycles = board.cycle_count() - start;
+  if (moving) curvestep_tick_profile.tick(cycles, app.controller().queued() < queued);
+  curvestep_tick_profile.overruns = app.tick_watch().overruns();
+  curvestep_tick_profile.cycles_per_second = board.cycles_per_second();
+#else
+  static_cast<void>(board);
+  app.on_tick();
+#endif
+}
 
 /// Runs `app` on `board` for ever. Each SysTick interrupt makes one on_tick() due; late ticks are
 /// all run (the setpoint stream stays complete and identical, only later). Until a
@@ -73,7 +80,7 @@ template <class Board, class App>
   board.start_tick(1000, detail::count_tick, nullptr);
   board.start_steps(1000);
   for (;;) {
-    CURVESTEP_POLL(board, app);
+    poll_app(board, app);
     if (app.control_rate_hz() != rate && app.control_rate_hz() != 0) {
       rate = app.control_rate_hz();
       board.start_tick(rate, detail::count_tick, nullptr);
@@ -82,9 +89,9 @@ template <class Board, class App>
     }
     if (rate != 0) {
       while (ticks_done != detail::ticks_due) {
-        CURVESTEP_TICK(board, app);
+        tick_app(board, app);
         ++ticks_done;
-        CURVESTEP_POLL(board, app);
+        poll_app(board, app);
       }
     } else {
       ticks_done = detail::ticks_due;
