@@ -97,7 +97,7 @@ TEST_CASE("firmware: a tick more than a period late is a TickDeadlineMissed faul
   CHECK(rig.host.received.errors[0].index == 2);
 }
 
-TEST_CASE("firmware: a tick within the tolerated lateness is an overrun, not a fault; 0 counts only",
+TEST_CASE("firmware: a tick within the tolerated lateness is an overrun, not a fault, and 0 tolerates any lateness",
           "[firmware][app][tick]") {
   AppSettings settings;
   SECTION("two periods tolerated") {
