@@ -19,6 +19,7 @@ volatile std::uint32_t tick_count = 0;
 volatile std::uint32_t milliseconds = 0;
 std::uint32_t millisecond_fraction = 0;  // milliseconds x tick_rate not yet counted
 std::uint32_t tick_rate = 1000;
+std::uint32_t tick_reload = 0;  // processor clocks per SysTick period (0: not started)
 void (*tick_callback)(void*) = nullptr;
 void* tick_context = nullptr;
 
@@ -29,6 +30,14 @@ void fault_put(char c) noexcept { curvestep_board_fault_putc(c); }
 std::uint32_t systick_count() noexcept { return tick_count; }
 std::uint32_t systick_milliseconds() noexcept { return milliseconds; }
 
+std::uint32_t systick_cycles() noexcept {
+  for (;;) {
+    const std::uint32_t ticks = tick_count;
+    const std::uint32_t counter = reg(scs::systick_cvr);  // counts down from reload - 1
+    if (ticks == tick_count) return ticks * tick_reload + (tick_reload - 1 - counter);
+  }
+}
+
 bool start_systick(std::uint32_t hclk_hz, std::uint32_t rate_hz, void (*callback)(void*), void* context) noexcept {
   if (rate_hz == 0) return false;
   const std::uint32_t reload = hclk_hz / rate_hz;
@@ -36,6 +45,7 @@ bool start_systick(std::uint32_t hclk_hz, std::uint32_t rate_hz, void (*callback
   tick_callback = callback;
   tick_context = context;
   tick_rate = rate_hz;
+  tick_reload = reload;
   millisecond_fraction = 0;
   reg(scs::systick_csr) = 0;
   reg(scs::systick_rvr) = reload - 1;

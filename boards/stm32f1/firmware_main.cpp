@@ -22,6 +22,6 @@ using App = curvestep::firmware::App<Board, curvestep::Q16_16, CURVESTEP_QUEUE_S
 extern "C" [[noreturn]] void curvestep_main() {
   static Board board;
   board.init();
-  static App app(board);
+  static App app(board, curvestep::stm32::firmware_settings(board));
   curvestep::stm32::run_firmware(board, app);
 }

@@ -30,6 +30,6 @@ using App = curvestep::firmware::App<Board, Scalar, CURVESTEP_QUEUE_SEGMENTS, CU
 extern "C" [[noreturn]] void curvestep_main() {
   static Board board;
   board.init();
-  static App app(board);
+  static App app(board, curvestep::stm32::firmware_settings(board));
   curvestep::stm32::run_firmware(board, app);
 }

@@ -13,6 +13,7 @@
 //     bool moving();      // on_tick() produces setpoints
 //     const Controller& controller();   // the MotionController, for reports and tests
 //     const AppStatistics& statistics(); // dropped frames, stalled ticks, setpoint retransmissions
+//     const TickWatch& tick_watch();     // tick overruns and the worst tick (boards with a cycle clock)
 //     bool ready_to_tick();  // on_tick() would advance (false: the setpoint stream is backed up)
 //     bool job_end_known();  // the job's last segment (flag end of job) has arrived
 //     std::uint8_t last_error();  const protocol::WirePoint& position();  // as in StatusReport
@@ -77,6 +78,9 @@
 // waiting for ever. Setpoints while held or starved are not sent; a stalled App sends what it
 // has (a short batch).
 //
+// Tick timing: on a board with a cycle clock (cycle_count(), cycles_per_second()) every tick is
+// timed (TickWatch, tick_watch.hpp): overruns are counted, and a tick that starts more than
+// settings.tick_deadline_periods periods late is a Fault (TickDeadlineMissed, index = periods late).
 // Time budget of on_tick(): one MotionController::next_setpoint (a profile evaluation, a table
 // search, one de Casteljau evaluation in double) plus StepGenerator::advance (see its header:
 // ~800 to ~3500 Cortex-M3 instructions) plus one copy into the setpoint ring; it never waits.
@@ -93,6 +97,7 @@
 #pragma once
 
 #include <array>
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -109,6 +114,7 @@
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
+#include <curvestep/firmware/tick_watch.hpp>
 #include <curvestep/firmware/transmit_buffer.hpp>
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
@@ -169,6 +175,34 @@ class App {
   /// If the setpoint stream is backed up, nothing advances (a stalled tick, see the header).
   void on_tick() noexcept {
     if (!moving_) return;
+    if constexpr (has_cycle_clock) {
+      if (!settings_.watch_ticks) return run_tick();
+      const std::uint32_t late_periods = tick_watch_.on_start(board_.cycle_count());
+      if (late_periods != 0) return raise_fault(fail(Error::TickDeadlineMissed, late_periods));
+      run_tick();
+      tick_watch_.on_end(board_.cycle_count());
+    } else {
+      run_tick();
+    }
+  }
+
+  /// The state reported to the host.
+  [[nodiscard]] protocol::MachineState state() const noexcept { return reported_state(phase_); }
+  /// The session and job phase (the row of the state table in docs/protocol.md).
+  [[nodiscard]] Phase phase() const noexcept { return phase_; }
+  /// Tick overruns and the worst tick in board cycles (TickWatch; nothing on a board without
+  /// cycle_count()); the host board's log prints them (docs/firmware.md, "Tick timing").
+  [[nodiscard]] const TickWatch& tick_watch() const noexcept { return tick_watch_; }
+
+ private:
+  /// True if the board has a free-running cycle counter to time the ticks with.
+  static constexpr bool has_cycle_clock = requires(B& b) {
+    { b.cycle_count() } -> std::convertible_to<std::uint32_t>;
+    { b.cycles_per_second() } -> std::convertible_to<std::uint32_t>;
+  };
+
+  /// The work of on_tick(), untimed.
+  void run_tick() noexcept {
     if (!ready_to_tick()) {
       if (!stalled_) stalled_since_ms_ = board_.now_ms();
       stalled_ = true;
@@ -220,10 +254,8 @@ class App {
     }
   }
 
-  /// The state reported to the host.
-  [[nodiscard]] protocol::MachineState state() const noexcept { return reported_state(phase_); }
-  /// The session and job phase (the row of the state table in docs/protocol.md).
-  [[nodiscard]] Phase phase() const noexcept { return phase_; }
+
+ public:
   /// True while a MachineConfiguration is in force.
   [[nodiscard]] bool configured() const noexcept { return control_rate_hz_ != 0; }
   /// The configured setpoint rate in Hz (0 without a configuration): call on_tick() this often.
@@ -332,6 +364,7 @@ class App {
       positioned_ = false;
       stream_.open(now);
       statistics_.max_queue_depth = 0;
+      tick_watch_.clear();
     } else if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::Ack) ||
                frame.type == static_cast<std::uint8_t>(protocol::MessageType::Nak)) {
       if (!receiver_.connected()) return;
@@ -455,8 +488,15 @@ class App {
     has_last_end_ = false;
     axis_count_ = m.axis_count;
     control_rate_hz_ = m.control_rate_hz;
+    configure_tick_watch();
     phase_ = Phase::Configured;
     return ok();
+  }
+
+  /// The tick watch for the configured rate. Not inlined: configure() is on a small board's
+  /// deepest call chain (docs/boards.md, "Footprint").
+  [[gnu::noinline]] void configure_tick_watch() noexcept {
+    if constexpr (has_cycle_clock) tick_watch_.configure(board_.cycles_per_second() / control_rate_hz_, settings_.tick_deadline_periods);
   }
 
   /// The step configuration for `limits` and the board's timing, with max_step_rate_hz lowered
@@ -682,6 +722,7 @@ class App {
         return report(started.failure());
       }
       moving_ = true;
+      tick_watch_.restart();  // the ticks of this motion keep its schedule
     }
     // After an underrun the finished segment is still at the front: resume() drops it.
     if (moving_ && controller_.state() == ControllerState::Starved && phase_ == Phase::Running && window_ready(1)) {
@@ -777,6 +818,7 @@ class App {
   StepBatch<B::step_events_per_tick> batch_{};
   TransmitBuffer transmit_{};
   AppStatistics statistics_{};
+  TickWatch tick_watch_{};
   protocol::WirePoint position_{};
   protocol::WirePoint last_end_{};
   TravelLimits travel_{};

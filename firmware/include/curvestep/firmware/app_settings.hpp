@@ -18,6 +18,8 @@ struct AppSettings {
   bool stream_setpoints = true;          ///< send SetpointBatch messages while moving
   std::uint32_t stall_timeout_ms = 1000; ///< setpoint stream backed up this long while moving: Fault (0: wait for ever)
   std::uint32_t retransmit_timeout_ms = 100;  ///< resend unacknowledged setpoint batches after this silence
+  bool watch_ticks = true;               ///< time every tick on the board's cycle clock, if it has one (off: ticks not paced by a clock)
+  std::uint32_t tick_deadline_periods = 1;  ///< a tick starting more than this many periods late is a Fault (TickDeadlineMissed); 0: count overruns only
 };
 
 /// Counters of the App's link work (nothing is dropped that matters: see each field).

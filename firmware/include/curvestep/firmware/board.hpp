@@ -18,6 +18,8 @@
 //     void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high);
 //     void fault_stop();                                         // drop scheduled edges now
 //     std::uint32_t edges_dropped();  // optional: edges that found the board's edge buffer full
+//     std::uint32_t cycle_count();       // optional, with cycles_per_second(): a free-running
+//     std::uint32_t cycles_per_second(); //   32-bit cycle counter that times the ticks (TickWatch)
 //   };
 //
 // Timing contract:
@@ -35,6 +37,8 @@
 //   * edges_dropped() (optional, for boards that buffer edges): a running count of edges the
 //     board could not keep. Any increase after a tick's edges were handed over is a fault
 //     (StepsLost, with the segment's index): a lost edge is a lost step.
+//   * cycle_count() (optional): wraps at 2^32, read at the start and end of every tick; the App
+//     counts overruns and faults on a missed deadline (tick_watch.hpp, AppSettings).
 #pragma once
 
 #include <concepts>

@@ -90,6 +90,7 @@ enum class Error : std::uint8_t {
   ConfigurationMissing = 173, ///< motion requested before machine configuration
   OutsideTravel = 174,     ///< a segment leaves the configured travel range of an axis (index = axis)
   NotSupported = 175,      ///< this controller cannot do that (a feed hold without an on-board planner)
+  TickDeadlineMissed = 176, ///< a control tick started more than the tolerated periods late: its step edges came too late (index = periods late)
 };
 
 /// The index of the offending input (control point, weight, knot, segment); `no_index` if none.

@@ -79,6 +79,7 @@ namespace curvestep {
     case Error::ConfigurationMissing: return "ConfigurationMissing";
     case Error::OutsideTravel: return "OutsideTravel";
     case Error::NotSupported: return "NotSupported";
+    case Error::TickDeadlineMissed: return "TickDeadlineMissed";
   }
   return "Unknown";
 }
@@ -153,6 +154,7 @@ namespace curvestep {
     case Error::ConfigurationMissing: return "motion requested before machine configuration";
     case Error::OutsideTravel: return "a segment leaves the configured travel range of an axis (index = axis)";
     case Error::NotSupported: return "this controller cannot do that (a feed hold without an on-board planner)";
+    case Error::TickDeadlineMissed: return "a control tick started more than the tolerated periods late: its step edges came too late (index = periods late)";
   }
   return "unknown error";
 }
@@ -226,6 +228,7 @@ inline constexpr Error all_errors[] = {
     Error::ConfigurationMissing,
     Error::OutsideTravel,
     Error::NotSupported,
+    Error::TickDeadlineMissed,
 };
 
 }  // namespace curvestep

@@ -70,6 +70,12 @@ class HostBoard {
   [[nodiscard]] std::uint32_t now_ms() const noexcept {
     return static_cast<std::uint32_t>((to_nanoseconds(monotonic_now()) - epoch_ns_) / 1'000'000);
   }
+  /// Microseconds since the board was made (wraps at 2^32): the App times its ticks with it.
+  [[nodiscard]] std::uint32_t cycle_count() const noexcept {
+    return static_cast<std::uint32_t>((to_nanoseconds(monotonic_now()) - epoch_ns_) / 1'000);
+  }
+  /// Counts of cycle_count() per second.
+  [[nodiscard]] static constexpr std::uint32_t cycles_per_second() noexcept { return 1'000'000; }
   /// Bytes already received (0 if none); never waits.
   std::size_t read(std::span<std::byte> into) noexcept {
     const ssize_t n = ::read(fd_, into.data(), into.size());

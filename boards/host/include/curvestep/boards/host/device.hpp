@@ -18,7 +18,9 @@
 //     ahead than a real-time device fed in time, nor starves, and its setpoints equal
 //     `curvestep sim`'s.
 // Real time: a tick whose setpoint cannot be streamed does not advance (App::on_tick), and a
-// stream backed up for longer than the link timeout is a Fault (LinkTimeout).
+// stream backed up for longer than the link timeout is a Fault (LinkTimeout). Every tick is timed
+// on the board's microsecond clock (App::tick_watch): overruns are counted and logged with the
+// state changes, never a fault here.
 // Wall-clock time still drives the link (timeouts, heartbeats), so link loss is detected alike.
 //
 // The tick path (App::on_tick and the Output's set_step/set_direction) does not allocate, throw
@@ -57,6 +59,11 @@ int run_device(int fd, Output& output, const DeviceOptions& options, const std::
   using Application = firmware::App<Board, Q16_16, 32, Lookahead>;
   Board board(fd, output);
   firmware::AppSettings settings = options.app;
+  // Ticks are timed against the clock in real time only; a late tick is counted, not a fault: the
+  // tick clock and the edge clock re-base after a pause (tick_clock.hpp, edge_clock.hpp), which
+  // this board tolerates (a device stopped for seconds finishes its job).
+  settings.watch_ticks = !options.fast;
+  settings.tick_deadline_periods = 0;
   if (options.fast) settings.stall_timeout_ms = 0;  // a slow host slows a fast device down, nothing else
   else if (settings.stall_timeout_ms == 0 || settings.stall_timeout_ms > settings.link_timeout_ms) {
     settings.stall_timeout_ms = settings.link_timeout_ms;  // real time: a stream stalled as long as a lost link is a fault
@@ -80,6 +87,10 @@ int run_device(int fd, Output& output, const DeviceOptions& options, const std::
       if (reported_error != 0) {
         const auto code = static_cast<Error>(reported_error);
         std::fprintf(log, " (last error: %s, %s)", describe(code).data(), error_name(code).data());
+      }
+      if (app->tick_watch().overruns() != 0) {
+        std::fprintf(log, " (tick overruns: %u, worst tick %u us)", static_cast<unsigned>(app->tick_watch().overruns()),
+                     static_cast<unsigned>(app->tick_watch().worst_cycles()));
       }
       std::fprintf(log, "\n");
       std::fflush(log);

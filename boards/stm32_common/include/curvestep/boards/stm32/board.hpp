@@ -21,6 +21,7 @@
 #include <span>
 
 #include <curvestep/boards/stm32/clocks.hpp>
+#include <curvestep/boards/stm32/cycle_counter.hpp>
 #include <curvestep/boards/stm32/mmio.hpp>
 #include <curvestep/boards/stm32/startup.hpp>
 #include <curvestep/boards/stm32/step_edges.hpp>
@@ -47,6 +48,7 @@ class Board {
     clocks_ = Chip::setup_clocks();
     Chip::setup_gpio();
     console_.start(clocks_.pclk2_hz, baud, 0x20);
+    if (!clocks_.emulated) start_cycle_counter();  // QEMU 7.2 models no DWT
     enable_interrupts();
     return clocks_;
   }
@@ -122,6 +124,11 @@ class Board {
     edges_.start(timer_clock, timer_hz, control_rate_hz == 0 ? timer_hz / 1000 : timer_hz / control_rate_hz,
                  step_pin_numbers, dir_pin_numbers, clocks_.emulated);
   }
+  /// Processor clocks, free running (wraps at 2^32): DWT CYCCNT, or in an emulator SysTick's
+  /// count and counter (QEMU with -icount: instructions). The App times its ticks with it.
+  [[nodiscard]] std::uint32_t cycle_count() const noexcept { return clocks_.emulated ? systick_cycles() : cycle_counter(); }
+  /// Clocks of cycle_count() per second (HCLK).
+  [[nodiscard]] std::uint32_t cycles_per_second() const noexcept { return clocks_.hclk_hz; }
   /// Edges lost to a full edge ring (App faults with StepsLost when this grows; 0 in an emulator).
   [[nodiscard]] std::uint32_t edges_dropped() const noexcept { return edges_.edges_dropped(); }
 

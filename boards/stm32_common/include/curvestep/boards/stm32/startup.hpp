@@ -30,6 +30,11 @@ struct VectorTable {
 /// Milliseconds counted by the SysTick handler (exact for any tick rate: 1000/rate per tick).
 [[nodiscard]] std::uint32_t systick_milliseconds() noexcept;
 
+/// Processor clocks since start_systick(), from the SysTick count and counter (wraps at 2^32;
+/// call with interrupts enabled: a wrap whose interrupt is pending reads one period short).
+/// The tick timer of an emulator, whose DWT has no cycle counter.
+[[nodiscard]] std::uint32_t systick_cycles() noexcept;
+
 /// Starts SysTick on the processor clock `hclk_hz` at `rate_hz` interrupts per second; each one
 /// increments systick_count() and then calls `callback(context)` when a callback is set.
 /// False when the reload value does not fit the 24-bit counter.
