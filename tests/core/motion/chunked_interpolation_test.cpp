@@ -73,7 +73,7 @@ TEST_CASE("motion: stepped setpoints stay within chunk_error_bound of the exact 
   }
 }
 
-TEST_CASE("motion: chunks replace most exact evaluations; the exact mode evaluates every tick", "[core][motion][chunks]") {
+TEST_CASE("motion: chunks replace most exact evaluations, the exact mode evaluates every tick", "[core][motion][chunks]") {
   const MachineLimits m = test_machine();
   // The gentle 400 mm cubic and the line-arc-line chain.
   for (const std::size_t job_number : {std::size_t{3}, std::size_t{7}}) {
@@ -97,7 +97,7 @@ TEST_CASE("motion: chunks replace most exact evaluations; the exact mode evaluat
   CHECK(straight.stats.exact_evaluations * 20 <= straight.setpoints.size());
 }
 
-TEST_CASE("motion: the longest chunk is configurable; 1 is the exact path", "[core][motion][chunks]") {
+TEST_CASE("motion: the longest chunk is configurable, 1 is the exact path", "[core][motion][chunks]") {
   MotionController<double> c;
   REQUIRE(c.configure(test_machine()).has_value());
   CHECK(c.max_chunk_ticks() == HermiteChunk::max_ticks);
@@ -207,7 +207,7 @@ TEST_CASE("motion: feed hold in the middle of a chunk brakes like the exact path
   CHECK(stepped.setpoints.back().position[1] == 0.0);
 }
 
-TEST_CASE("motion: abort in the middle of a chunk stops at once; after reset a job runs as on a fresh controller", "[core][motion][chunks]") {
+TEST_CASE("motion: abort in the middle of a chunk stops at once, after reset a job runs as on a fresh controller", "[core][motion][chunks]") {
   const MachineLimits m = test_machine();
   const auto job = jobs()[7];
   MotionController<double> c;

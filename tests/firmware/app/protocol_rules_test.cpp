@@ -199,7 +199,7 @@ TEST_CASE("protocol rules: control rates the step timer cannot hold are InvalidR
   }
 }
 
-TEST_CASE("protocol rules: a Hello of the wrong length is VersionMismatch; its sequence byte is not looked at",
+TEST_CASE("protocol rules: a Hello of the wrong length is VersionMismatch, its sequence byte is not looked at",
           "[firmware][app][rules]") {
   FakeBoard board;
   TestApp app(board);

@@ -77,7 +77,7 @@ TEST_CASE("gcode machine words: work offsets, G92, G53 and G10 L20 move the path
   CHECK(job.segments[5].end() == pt(32, 0));
 }
 
-TEST_CASE("gcode machine words: G28 goes home through the given point; G43 applies the tool length", "[gcode][import][machine]") {
+TEST_CASE("gcode machine words: G28 goes home through the given point, G43 applies the tool length", "[gcode][import][machine]") {
   const Job job = parse_gcode_job("G21 G90\nG0 X10 Y10 Z5\nG28 Z20\nG0 X10\nG91 G28 X0\n", "home.ngc");
   // G28 Z20: rapid to (10,10,20) then Z home (0): (10,10,0); G0 X10 no move; G91 G28 X0: X home (0,10,0).
   REQUIRE(job.segments.size() == 4);

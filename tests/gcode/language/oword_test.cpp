@@ -38,7 +38,7 @@ TEST_CASE("language: if / elseif / else take exactly one branch", "[gcode][langu
   CHECK(x_values(run_program("o1 if [0]\nG0 X1\no1 endif\nG0 X2")) == Values{2});
 }
 
-TEST_CASE("language: while runs its body once per pass; the condition is tested first", "[gcode][language][oword]") {
+TEST_CASE("language: while runs its body once per pass, the condition is tested first", "[gcode][language][oword]") {
   CHECK(x_values(run_program("#1 = 0\n"
                              "o100 while [#1 LT 4]\n"
                              "  G1 X#1\n"
@@ -60,7 +60,7 @@ TEST_CASE("language: do ... while runs at least once", "[gcode][language][oword]
                              "o<loop> while [#1 LT 3]\n")) == Values{0, 1, 2});
 }
 
-TEST_CASE("language: repeat runs its body n times (0 or less: never); nested loops", "[gcode][language][oword]") {
+TEST_CASE("language: repeat runs its body n times (0 or less: never), nested loops", "[gcode][language][oword]") {
   CHECK(run_program("o1 repeat [3]\nG1 X1\no1 endrepeat\n").size() == 3);
   CHECK(run_program("o1 repeat [0]\nG1 X1\no1 endrepeat\n").empty());
   CHECK(run_program("o1 repeat [-2]\nG1 X1\no1 endrepeat\n").empty());
@@ -155,7 +155,7 @@ TEST_CASE("language: return and endsub values reach #<_value> and #<_value_retur
   CHECK(word(blocks[2], 'Y') == 0.0);
 }
 
-TEST_CASE("language: named locals belong to one call; globals are shared", "[gcode][language][oword][sub]") {
+TEST_CASE("language: named locals belong to one call, globals are shared", "[gcode][language][oword][sub]") {
   const auto blocks = run_program(
       "#<n> = 5 #<_g> = 1\n"
       "o<f> sub\n"

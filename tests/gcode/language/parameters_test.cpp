@@ -14,7 +14,7 @@ using namespace curvestep::host;
 using namespace curvestep::host::gcode;
 using namespace curvestep::testing;
 
-TEST_CASE("language: words come out upper case with their source columns; N is dropped", "[gcode][language][lines]") {
+TEST_CASE("language: words come out upper case with their source columns, N is dropped", "[gcode][language][lines]") {
   const auto blocks = run_program("n10 g1 x1.5 y-2 f300\n  G5.1 X1 I2 J3 ; comment\nm2");
   REQUIRE(blocks.size() == 3);
   const auto& b = blocks[0];
@@ -64,7 +64,7 @@ TEST_CASE("language: comments, MSG, DEBUG and PRINT", "[gcode][language][lines]"
   CHECK(blocks[4].messages[0].text == "7.000000");  // the comment acts after the line's assignment
 }
 
-TEST_CASE("language: block delete is off, so '/' lines run and are marked; on skips them", "[gcode][language][lines]") {
+TEST_CASE("language: block delete is off, so '/' lines run and are marked, on skips them", "[gcode][language][lines]") {
   const std::string program = "G0 X1\n/G0 X2\n  / G0 X3\n";
   const auto off = run_program(program);
   REQUIRE(off.size() == 3);
@@ -93,7 +93,7 @@ TEST_CASE("language: M2 and M30 end the program after their block", "[gcode][lan
   CHECK_FALSE(reader.next());
 }
 
-TEST_CASE("language: numbered parameters read 0 until set; ## and #[...] are indirect", "[gcode][language][parameters]") {
+TEST_CASE("language: numbered parameters read 0 until set, ## and #[...] are indirect", "[gcode][language][parameters]") {
   const auto blocks = run_program(
       "G1 X#31\n"
       "#1 = 5\n"

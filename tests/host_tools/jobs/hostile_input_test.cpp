@@ -66,7 +66,7 @@ bool has_control_bytes(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("printable: control characters and invalid UTF-8 become \\xNN, valid UTF-8 stays", "[host_tools][jobs][messages]") {
+TEST_CASE("printable: control characters and invalid UTF-8 become hex escapes, valid UTF-8 stays", "[host_tools][jobs][messages]") {
   CHECK(printable("plain text 1.5") == "plain text 1.5");
   CHECK(printable(std::string("a\x1b[31mred", 9)) == "a\\x1b[31mred");
   CHECK(printable(std::string("nul\0end", 7)) == "nul\\x00end");

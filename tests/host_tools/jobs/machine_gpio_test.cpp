@@ -38,7 +38,7 @@ LoadError error_of(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("machine gpio: the section maps onto GpioWiring; the other keys are still read", "[host_tools][jobs][gpio]") {
+TEST_CASE("machine gpio: the section maps onto GpioWiring, the other keys are still read", "[host_tools][jobs][gpio]") {
   const MachineFile file = parse_machine_file(machine_with(R"("gpio": {"chip": "gpiochip0",
            "x": {"step": "GPIO17", "dir": "GPIO27"},
            "y": {"step": "GPIO22", "dir": "GPIO23", "invert_dir": true}})"),

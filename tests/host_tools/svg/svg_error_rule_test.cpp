@@ -71,7 +71,7 @@ TEST_CASE("svg: an incomplete command, a bad arc flag or a bad first command dra
                  {"test.svg", 1, "<svg>", Error::InvalidJob, "the drawing has no paths or shapes to draw"});
 }
 
-TEST_CASE("svg: an odd points count drops the last number; a points error keeps the pairs before it", "[host_tools][svg][error-rule]") {
+TEST_CASE("svg: an odd points count drops the last number, a points error keeps the pairs before it", "[host_tools][svg][error-rule]") {
   auto result = import_page("<polyline points=\"0,0 10,0 10\"/>");
   auto pieces = drawn(result.job);
   REQUIRE(pieces.size() == 1);

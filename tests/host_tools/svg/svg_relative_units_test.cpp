@@ -52,7 +52,7 @@ TEST_CASE("svg: percentages are of the viewBox width, height or normalised diago
   check_points(line[0], {on_wide(50, 25), on_wide(150, 100)});
 }
 
-TEST_CASE("svg: percentages inside a nested viewport are of its viewBox; width and height default to 100%",
+TEST_CASE("svg: percentages inside a nested viewport are of its viewBox, width and height default to 100%",
           "[host_tools][svg][units]") {
   // Inner viewBox 5 x 2 shown in 50 x 20 at (10, 10): scale 10. 100% = 5, 50% = 1: (0,1)-(5,1) -> (10,20)-(60,20).
   const auto inner = drawn(import_page("<svg x=\"10\" y=\"10\" width=\"50\" height=\"20\" viewBox=\"0 0 5 2\">"

@@ -132,7 +132,7 @@ TEST_CASE("svg text: a character the font lacks is a gap the width of a space, w
         "drawn as a gap the width of a space");
 }
 
-TEST_CASE("svg text: a text-only drawing imports; font-family gets one note; hidden text is not drawn", "[host_tools][svg][text]") {
+TEST_CASE("svg text: a text-only drawing imports, font-family gets one note, hidden text is not drawn", "[host_tools][svg][text]") {
   const SvgImport result = import_page(
       "<text x=\"10\" y=\"50\" font-family=\"Arial\">L</text>\n<text x=\"10\" y=\"80\" font-family=\"Times\">L</text>");
   CHECK(drawn(result.job).size() == 4);
