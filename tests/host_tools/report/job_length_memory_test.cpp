@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Memory independent of the job's length (issue 19, item 7): `curvestep sim` and `curvestep plot`
-// hand each setpoint on as it is made and keep none. The same ten lines are run at two lengths,
+// Memory independent of the job's length (issue 19, item 7): `curvestep sim`, `sim --report` and
+// `curvestep plot` hand each setpoint on as it is made and keep none. The same ten lines are run at two lengths,
 // 15 000 and 150 000 setpoints; the largest resident size of the child process (getrusage through
 // wait4) may grow by at most 4 MiB. A program that kept its setpoints (64-byte records, and 16 bytes
 // more per point for the plot's strokes) would grow by more than 8 MiB.
@@ -81,7 +81,7 @@ long peak_resident_kib(const std::vector<std::string>& arguments) {
 
 }  // namespace
 
-TEST_CASE("memory: sim and plot use the same memory for a job ten times longer", "[host_tools][report][memory]") {
+TEST_CASE("memory: sim, its report and plot use the same memory for a job ten times longer", "[host_tools][report][memory]") {
   const std::string machine = source("examples/jobs/machine.json");
   const std::string short_job = write_zigzag_job("short.json", 30);  // 15 000 setpoints
   const std::string long_job = write_zigzag_job("long.json", 300);   // 150 000 setpoints
@@ -98,6 +98,13 @@ TEST_CASE("memory: sim and plot use the same memory for a job ten times longer",
   INFO("plot: " << plot_short << " KiB for 15 000 setpoints, " << plot_long << " KiB for 150 000");
   CHECK(plot_long <= plot_short + margin_kib);
 
+  const std::string html = scratch("memory.html");
+  const long report_short = peak_resident_kib({"sim", short_job, "--machine", machine, "--report", html});
+  const long report_long = peak_resident_kib({"sim", long_job, "--machine", machine, "--report", html});
+  INFO("sim --report: " << report_short << " KiB for 15 000 setpoints, " << report_long << " KiB for 150 000");
+  CHECK(report_long <= report_short + margin_kib);
+
+  std::remove(html.c_str());
   std::remove(short_job.c_str());
   std::remove(long_job.c_str());
   std::remove(svg.c_str());

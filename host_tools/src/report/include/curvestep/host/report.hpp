@@ -88,6 +88,12 @@ struct ReportInput {
 /// Writes html_report to a file. std::runtime_error naming the file if it cannot be written.
 void write_html_report(const std::string& file, const ReportInput& input);
 
+/// The same report from a replay that hands over the setpoints (called four times: the charts'
+/// range and peaks, their pixel columns, then the path plot's two passes), written as it is made:
+/// memory independent of the job's length. input.result gives the summary; its setpoints are
+/// not read.
+void write_html_report_streamed(const std::string& file, const ReportInput& input, const SetpointReplay& replay);
+
 /// A progress callback that draws `[#####     ] 42%  ETA 3 s` on stderr when stderr is a
 /// terminal, and an empty function (quiet) when it is not. finish_terminal_progress clears the line.
 [[nodiscard]] std::function<void(double fraction)> make_terminal_progress();
