@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `curvestep plot JOB -o out.svg [--machine MACHINE.json]`: the path as an SVG drawing, feed moves
-// coloured by planned speed (with a machine, from a simulation) or by segment (without).
+// coloured by planned speed (with a machine, from a simulation) or by segment (without). The
+// simulation's setpoints are drawn as they come (memory independent of the job's length).
 #include <iostream>
 #include <memory>
 #include <string>
@@ -39,12 +40,20 @@ void run_plot(const PlotOptions& o) {
     const Job& job = prepared.job;
     const MachineLimits& machine = prepared.machine;
     plot.title = job.name;
+    // The setpoints are drawn as they are made, twice over (extent, then strokes): none is kept.
+    const auto progress = make_terminal_progress();
+    int pass = 0;
     SimulationOptions options;
     options.lookahead_distance_mm = lookahead_distance_for(machine);
-    options.progress = make_terminal_progress();
-    const SimulationResult result = simulate(job, machine, options);
+    options.progress = [&](double fraction) {
+      if (progress) progress((pass + fraction) / 2);
+    };
+    const SetpointReplay replay = [&](const SetpointSink& sink) {
+      (void)simulate_stream(job, machine, options, sink);
+      ++pass;
+    };
+    write_path_plot_streamed(o.output, job, replay, plot);
     finish_terminal_progress();
-    write_path_plot(o.output, job, &result.setpoints, plot);
   }
   std::cout << "  wrote " << o.output << "\n";
 }

@@ -103,15 +103,10 @@ int run_sim(const SimOptions& o) {
   }
   options.fixed_point = !o.double_precision;
   options.progress = make_terminal_progress();  // a bar with ETA on a terminal, quiet otherwise
-  // The setpoints go to the CSV as they are made; only the HTML report keeps them all (its plots).
+  // The setpoints go to the CSV as they are made and are kept nowhere; the HTML report runs the
+  // simulation again for its plots (write_html_report_streamed).
   SimulationResult result;
-  const auto run = [&](const SetpointSink& sink) {
-    const SetpointSink both = [&](const SetpointRecord& r) {
-      if (sink) sink(r);
-      if (!o.report.empty()) result.setpoints.push_back(r);
-    };
-    result.summary = simulate_stream(job, machine, options, both);
-  };
+  const auto run = [&](const SetpointSink& sink) { result.summary = simulate_stream(job, machine, options, sink); };
   if (o.output.empty()) {
     run({});
   } else {
@@ -135,7 +130,11 @@ int run_sim(const SimOptions& o) {
     report.fixed_point = !o.double_precision;
     report.title = o.job;
     report.extra_rows = smoothing::smoothing_rows(smoothing_report);
-    write_html_report(o.report, report);
+    SimulationOptions replay_options = options;
+    replay_options.progress = nullptr;
+    write_html_report_streamed(o.report, report, [&](const SetpointSink& sink) {
+      (void)simulate_stream(job, machine, replay_options, sink);
+    });
   }
   std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16");
   if (replay_window) std::cout << ", look-ahead " << options.lookahead;

@@ -5,6 +5,7 @@
 // controller without a planner (look-ahead 0) gets the job planned here with --lookahead N
 // (default 16) as pieces: its stream is then `curvestep sim --lookahead N`'s.
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -100,27 +101,47 @@ int run_stream(const StreamCommandOptions& o) {
                 << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s) << "   " << std::flush;
     };
   }
+  // The setpoints go to the capture file as they arrive and are kept nowhere; a failed upload
+  // leaves no capture behind (as before, when the file was written at the end).
+  std::ofstream capture;
+  if (!o.capture.empty()) {
+    capture.open(o.capture);
+    if (!capture) throw std::runtime_error("cannot write " + o.capture);
+    write_setpoints_csv_header(capture);
+  }
+  options.setpoint_sink = [&](const SetpointRecord& r) {
+    if (capture.is_open()) write_setpoint_csv_line(capture, r);
+  };
+  const auto drop_capture = [&] {
+    if (!capture.is_open()) return;
+    capture.close();
+    std::error_code ignored;
+    std::filesystem::remove(o.capture, ignored);
+  };
   link::StreamResult result;
   try {
     result = link::stream_job(*transport, job, machine, options);
   } catch (const link::StreamError& e) {
+    drop_capture();
     if (terminal) std::cerr << "\n";
     std::cerr << "curvestep stream: " << e.what() << "\n";
     return exit_device_error;
   } catch (const link::TransportError& e) {
+    drop_capture();
     if (terminal) std::cerr << "\n";
     std::cerr << "curvestep stream: " << e.what() << "\n";
     return exit_device_error;
+  } catch (...) {
+    drop_capture();
+    throw;
   }
   if (terminal) std::cerr << "\n";
-  if (!o.capture.empty()) {
-    std::ofstream out(o.capture);
-    if (!out) throw std::runtime_error("cannot write " + o.capture);
-    write_setpoints_csv(out, result.setpoints);
-    if (!out) throw std::runtime_error("error writing " + o.capture);
+  if (capture.is_open()) {
+    capture.close();
+    if (!capture) throw std::runtime_error("error writing " + o.capture);
   }
   std::cout << "curvestep stream " << o.job << " -> " << o.port << "\n"
-            << "  setpoints received:  " << result.setpoints.size() << "\n"
+            << "  setpoints received:  " << result.setpoints_received << "\n"
             << "  ticks standing:      " << result.standing_ticks << " (held or starved, not reported)\n"
             << "  setpoints duplicated: " << result.duplicate_setpoints << "\n"
             << "  batches resent:      " << result.batches_repeated << "\n"

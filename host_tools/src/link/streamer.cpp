@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include <curvestep/host/link/streamer.hpp>
 
+#include <curvestep/host/link/setpoint_capture.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -18,7 +20,8 @@ namespace {
 class Upload {
  public:
   Upload(Transport& transport, const Job& job, const MachineLimits& machine, const StreamOptions& options)
-      : transport_(transport), job_(job), machine_(machine), options_(options), link_(transport, options.link) {}
+      : transport_(transport), job_(job), machine_(machine), options_(options), link_(transport, options.link),
+        capture_(options.setpoint_sink) {}
 
   StreamResult run() {
     const auto handler = [this](const protocol::Message& m) { on_message(m); };
@@ -34,6 +37,7 @@ class Upload {
       }
       for (const auto& note : wire_machine.notes) warn("machine: " + note);
       rate_hz_ = wire_machine.configuration.control_rate_hz;
+      capture_.set_rate_hz(rate_hz_);
       if (link_.capabilities().lookahead == 0) {
         plan_here(axes);
       } else {
@@ -110,13 +114,8 @@ class Upload {
               (piece_mode_ ? piece_text(last) : std::to_string(acknowledged_units_) + " of " + std::to_string(units())) +
               " acknowledged)";
     }
-    if (setpoints_.empty()) return text + ", no setpoint received";
-    std::uint32_t last = setpoints_.begin()->first;
-    for (const auto& entry : setpoints_) {
-      if (entry.first > last + 1) break;
-      last = entry.first;
-    }
-    return text + ", setpoints received up to index " + std::to_string(last);
+    if (capture_.empty()) return text + ", no setpoint received";
+    return text + ", setpoints received up to index " + std::to_string(capture_.first_run_end());
   }
 
   /// Drops the oldest submissions the controller has acknowledged (they leave the window in order).
@@ -215,9 +214,7 @@ class Upload {
     switch (m.type()) {
       case protocol::MessageType::SetpointBatch: {
         const auto& batch = m.get<protocol::SetpointBatch>();
-        for (std::uint32_t k = 0; k < batch.count; ++k) {
-          if (!setpoints_.emplace(batch.first_index + k, batch.setpoints[k]).second) ++duplicates_;
-        }
+        for (std::uint32_t k = 0; k < batch.count; ++k) capture_.receive(batch.first_index + k, batch.setpoints[k]);
         break;
       }
       case protocol::MessageType::StatusReport: {
@@ -257,7 +254,7 @@ class Upload {
       idle_seen_ = true;
       idle_since_ms_ = now;
     }
-    if (!setpoints_.empty() && setpoints_.rbegin()->first >= last_status_.setpoint_index) {
+    if (!capture_.empty() && capture_.last_index() >= last_status_.setpoint_index) {
       return true;
     }
     const std::uint32_t patience = options_.link.link_timeout_ms != 0 ? options_.link.link_timeout_ms : 3000;
@@ -277,7 +274,7 @@ class Upload {
     p.sent = next_;
     p.total = units();
     p.unit = piece_mode_ ? "pieces" : "segments";
-    p.setpoints_received = setpoints_.size();
+    p.setpoints_received = capture_.received();
     p.elapsed_s = now / 1000.0;
     if (started_ && next_ > 0 && have_status_) {
       // Units done = sent - still queued; the rest take as long, per unit, as those did.
@@ -289,35 +286,12 @@ class Upload {
     options_.progress(p);
   }
 
-  StreamResult collect() const {
+  StreamResult collect() {
     StreamResult result;
-    const double dt = 1.0 / rate_hz_;
-    std::uint32_t expected = setpoints_.empty() ? 0 : setpoints_.begin()->first;
-    const protocol::WirePoint* previous = nullptr;
-    for (const auto& [index, point] : setpoints_) {
-      if (index != expected) {
-        result.standing_ticks += index - expected;
-        previous = nullptr;
-      }
-      SetpointRecord r;
-      r.time_s = static_cast<double>(index) * dt;
-      r.index = index;
-      double d2 = 0;
-      for (std::size_t a = 0; a < 3; ++a) {
-        r.raw_q16[a] = point[a];
-        r.position_mm[a] = static_cast<double>(point[a]) / 65536.0;
-        if (previous != nullptr) {
-          const double d = static_cast<double>(point[a] - (*previous)[a]) / 65536.0;
-          d2 += d * d;
-        }
-      }
-      r.speed_mm_per_s = std::sqrt(d2) / dt;
-      result.setpoints.push_back(r);
-      previous = &point;
-      expected = index + 1;
-    }
-    if (last_status_.setpoint_index > expected) result.standing_ticks += last_status_.setpoint_index - expected;
-    result.duplicate_setpoints = duplicates_;
+    result.setpoints = std::move(capture_.records());
+    result.setpoints_received = capture_.received();
+    result.standing_ticks = capture_.standing_ticks(last_status_.setpoint_index);
+    result.duplicate_setpoints = capture_.duplicates();
     result.max_queue_depth = last_status_.max_queue_depth;
     result.queue_capacity = link_.capabilities().queue_capacity;
     result.lookahead = link_.capabilities().lookahead;
@@ -343,14 +317,13 @@ class Upload {
   WireJob wire_job_;                         // segment mode: the job's queue segments
   std::vector<protocol::QueuePiece> pieces_;  // piece mode: the pieces planned here
   bool piece_mode_ = false;                   // the controller has no planner (Capabilities::lookahead 0)
-  std::map<std::uint32_t, protocol::WirePoint> setpoints_;
+  SetpointCapture capture_;  // the setpoint stream, to options_.setpoint_sink or kept
   std::map<std::uint8_t, std::size_t> sequence_to_unit_{{0, configuration_marker}};
   protocol::StatusReport last_status_{};
   double rate_hz_ = 1000;
   std::size_t next_ = 0;
   std::deque<std::size_t> submitted_;  // what each unacknowledged frame carries, oldest first
   std::size_t acknowledged_units_ = 0;
-  std::size_t duplicates_ = 0;
   std::uint8_t sequence_ = 1;  // the configuration is sequence 0
   std::uint32_t idle_since_ms_ = 0;
   bool idle_seen_ = false;

@@ -85,7 +85,7 @@ PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions&
   }
   prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &prepared.notes);
   prepared.job = smoothing::smooth_for_machine(
-      programmed, prepared.machine, smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm),
+      std::move(programmed), prepared.machine, smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm),
       &prepared.smoothing);
   return prepared;
 }

@@ -1,13 +1,17 @@
 // SPDX-License-Identifier: MIT
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <curvestep/host/report.hpp>
 
+#include "running_profile.hpp"
 #include "svg_text.hpp"
 
 namespace curvestep::host {
@@ -22,28 +26,83 @@ struct Chart {
   std::string css_class;   ///< e.g. "chart-speed"
   std::string title;       ///< "Speed"
   std::string unit;        ///< "mm/s"
-  const std::vector<double>* values = nullptr;
   double limit = 0;        ///< drawn as a red dashed line; 0: none
   std::string limit_note;  ///< shown after the title when there is no limit line
 };
 
+/// A chart's time series as drawn: the time range, the peak, and per pixel column its smallest and
+/// largest value in time order (so peaks survive), as (time, value).
+struct ChartSeries {
+  double t0 = 0, t1 = 0, peak = 0;
+  std::vector<std::pair<double, double>> points;
+};
+
+/// Reduces a series as it comes to ChartSeries::points: a sample belongs to the first column whose
+/// end it does not pass (the last column takes the rest); a column without samples shows the next
+/// sample. At most two points per column are kept.
+class ColumnReducer {
+ public:
+  ColumnReducer(double t0, double t1, std::size_t columns) : t0_(t0), t1_(t1), columns_(columns) {}
+  void push(double t, double v) {
+    while (column_ + 1 < columns_ && !(t <= column_end(column_))) {
+      if (count_ == 0) points_.emplace_back(t, v);
+      else emit();
+      ++column_;
+      count_ = 0;
+    }
+    if (count_ == 0) {
+      lo_ = hi_ = Sample{count_total_, t, v};
+    } else {
+      if (v < lo_.v) lo_ = Sample{count_total_, t, v};
+      if (v > hi_.v) hi_ = Sample{count_total_, t, v};
+    }
+    ++count_;
+    ++count_total_;
+  }
+  /// The points, after the last sample.
+  [[nodiscard]] std::vector<std::pair<double, double>> finish() {
+    if (count_ > 0) emit();
+    count_ = 0;
+    return std::move(points_);
+  }
+
+ private:
+  struct Sample {
+    std::size_t index = 0;
+    double t = 0, v = 0;
+  };
+  [[nodiscard]] double column_end(std::size_t column) const {
+    return t0_ + (t1_ - t0_) * static_cast<double>(column + 1) / static_cast<double>(columns_);
+  }
+  void emit() {
+    const Sample& first = lo_.index <= hi_.index ? lo_ : hi_;
+    const Sample& second = lo_.index <= hi_.index ? hi_ : lo_;
+    points_.emplace_back(first.t, first.v);
+    if (second.index != first.index) points_.emplace_back(second.t, second.v);
+  }
+  double t0_, t1_;
+  std::size_t columns_;
+  std::size_t column_ = 0, count_ = 0, count_total_ = 0;
+  Sample lo_{}, hi_{};
+  std::vector<std::pair<double, double>> points_;
+};
+
+constexpr double chart_width = 800, chart_height = 230, chart_left = 72, chart_right = 24, chart_top = 30, chart_bottom = 38;
+constexpr double chart_plot_width = chart_width - chart_left - chart_right;
+constexpr auto chart_columns = static_cast<std::size_t>(chart_plot_width);
+
 /// Exceeds as the simulator counts it: by more than 1%.
 bool exceeds(double measured, double limit) { return limit > 0 && measured > limit * 1.01; }
 
-std::string chart_svg(const Chart& chart, const std::vector<double>& time) {
-  constexpr double width = 800, height = 230, left = 72, right = 24, top = 30, bottom = 38;
-  constexpr double plot_width = width - left - right, plot_height = height - top - bottom;
-  const std::vector<double>& v = *chart.values;
-  const double t0 = time.front();
-  const double t1 = std::max(time.back(), t0 + 1e-9);
-  double peak = 0;
-  for (const double x : v) peak = std::max(peak, x);
+void write_chart(std::ostream& out, const Chart& chart, const ChartSeries& series) {
+  constexpr double width = chart_width, height = chart_height, left = chart_left, right = chart_right, top = chart_top, bottom = chart_bottom;
+  constexpr double plot_width = chart_plot_width, plot_height = height - top - bottom;
+  const double t0 = series.t0, t1 = series.t1, peak = series.peak;
   double y_max = std::max(peak * 1.05, chart.limit * 1.15);
   if (!(y_max > 0)) y_max = 1;
   auto sx = [&](double t) { return left + (t - t0) / (t1 - t0) * plot_width; };
   auto sy = [&](double y) { return top + (1 - y / y_max) * plot_height; };
 
-  std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart " << chart.css_class << "\" width=\"" << width << "\" height=\""
       << height << "\" viewBox=\"0 0 " << width << " " << height << "\" font-family=\"sans-serif\" font-size=\"12\">\n";
   out << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
@@ -69,19 +128,7 @@ std::string chart_svg(const Chart& chart, const std::vector<double>& time) {
       << "\" fill=\"none\" stroke=\"#999\"/>\n";
   // The series: per pixel column its smallest and largest value, in time order, so peaks survive.
   out << "<polyline class=\"series\" fill=\"none\" stroke=\"#1f77b4\" stroke-width=\"1.3\" points=\"";
-  const auto columns = static_cast<std::size_t>(plot_width);
-  std::size_t i = 0;
-  for (std::size_t column = 0; column < columns && i < v.size(); ++column) {
-    const double column_end = t0 + (t1 - t0) * static_cast<double>(column + 1) / static_cast<double>(columns);
-    std::size_t lo = i, hi = i;
-    for (; i < v.size() && (time[i] <= column_end || column + 1 == columns); ++i) {
-      if (v[i] < v[lo]) lo = i;
-      if (v[i] > v[hi]) hi = i;
-    }
-    const std::size_t first = std::min(lo, hi), second = std::max(lo, hi);
-    out << pixel(sx(time[first])) << "," << pixel(sy(v[first])) << " ";
-    if (second != first) out << pixel(sx(time[second])) << "," << pixel(sy(v[second])) << " ";
-  }
+  for (const auto& [t, v] : series.points) out << pixel(sx(t)) << "," << pixel(sy(v)) << " ";
   out << "\"/>\n";
   if (chart.limit > 0) {
     out << "<line class=\"limit\" x1=\"" << left << "\" x2=\"" << width - right << "\" y1=\"" << pixel(sy(chart.limit)) << "\" y2=\""
@@ -90,34 +137,74 @@ std::string chart_svg(const Chart& chart, const std::vector<double>& time) {
         << figure(chart.limit, 6) << "</text>\n";
   }
   out << "</svg>\n";
-  return out.str();
 }
 
-void summary_row(std::ostringstream& out, const std::string& name, const std::string& value, const std::string& limit,
+void summary_row(std::ostream& out, const std::string& name, const std::string& value, const std::string& limit,
                  const std::string& status) {
   out << "<tr><th>" << escape(name) << "</th><td>" << value << "</td><td>" << limit << "</td><td class=\""
       << (status == "exceeds" ? "bad" : "good") << "\">" << status << "</td></tr>\n";
 }
 
-void limited_row(std::ostringstream& out, const std::string& name, double measured, double limit, const std::string& unit) {
+void limited_row(std::ostream& out, const std::string& name, double measured, double limit, const std::string& unit) {
   summary_row(out, name, figure(measured, 6) + " " + unit, figure(limit, 6) + " " + unit, exceeds(measured, limit) ? "exceeds" : "ok");
 }
 
 }  // namespace
 
-std::string html_report(const ReportInput& input) {
+namespace {
+
+/// The three charts' series: a first replay finds the time range and the peaks, a second reduces
+/// the samples per pixel column.
+std::array<ChartSeries, 3> chart_series(const MachineLimits& machine, bool fixed_point, const SetpointReplay& replay,
+                                        std::size_t& stride) {
+  std::array<ChartSeries, 3> series;
+  std::size_t count = 0;
+  double first_time = 0, last_time = 0;
+  {
+    report_detail::RunningProfile profile(machine, fixed_point);
+    stride = profile.stride();
+    replay([&](const SetpointRecord& r) {
+      const report_detail::ProfileSample p = profile.push(r);
+      if (count++ == 0) first_time = p.time_s;
+      last_time = p.time_s;
+      series[0].peak = std::max(series[0].peak, p.speed_mm_per_s);
+      series[1].peak = std::max(series[1].peak, p.acceleration_mm_per_s2);
+      series[2].peak = std::max(series[2].peak, p.jerk_mm_per_s3);
+    });
+  }
+  if (count == 0) throw std::invalid_argument("html_report: the simulation has no setpoints");
+  for (auto& c : series) {
+    c.t0 = first_time;
+    c.t1 = std::max(last_time, first_time + 1e-9);
+  }
+  std::array<ColumnReducer, 3> reducers{ColumnReducer(series[0].t0, series[0].t1, chart_columns),
+                                        ColumnReducer(series[1].t0, series[1].t1, chart_columns),
+                                        ColumnReducer(series[2].t0, series[2].t1, chart_columns)};
+  report_detail::RunningProfile profile(machine, fixed_point);
+  replay([&](const SetpointRecord& r) {
+    const report_detail::ProfileSample p = profile.push(r);
+    reducers[0].push(p.time_s, p.speed_mm_per_s);
+    reducers[1].push(p.time_s, p.acceleration_mm_per_s2);
+    reducers[2].push(p.time_s, p.jerk_mm_per_s3);
+  });
+  for (std::size_t k = 0; k < 3; ++k) series[k].points = reducers[k].finish();
+  return series;
+}
+
+/// The report, the setpoints handed over by `replay` (four times: two for the charts, two for
+/// the path plot), none kept.
+void write_report(std::ostream& out, const ReportInput& input, const SetpointReplay& replay) {
   if (input.job == nullptr || input.machine == nullptr || input.result == nullptr) {
     throw std::invalid_argument("html_report: job, machine and result are required");
   }
   const Job& job = *input.job;
   const MachineLimits& machine = *input.machine;
   const SimulationResult& result = *input.result;
-  if (result.setpoints.empty()) throw std::invalid_argument("html_report: the simulation has no setpoints");
   const SimulationSummary& s = result.summary;
-  const MotionProfile profile = motion_profile(result.setpoints, machine, input.fixed_point);
+  std::size_t stride = 1;
+  const std::array<ChartSeries, 3> series = chart_series(machine, input.fixed_point, replay, stride);
   const std::string title = input.title.empty() ? job.name : input.title;
 
-  std::ostringstream out;
   out << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>curvestep report: " << escape(title)
       << "</title>\n<style>\n"
       << "body{font-family:sans-serif;margin:24px;color:#222;max-width:860px}\n"
@@ -169,20 +256,20 @@ std::string html_report(const ReportInput& input) {
   plot.standalone = false;
   plot.width_px = 800;
   plot.max_height_px = 560;
-  out << path_plot_svg(job, &result.setpoints, plot);
+  write_path_plot_streamed(out, job, replay, plot);
 
   out << "<h2>Motion over time</h2>\n";
   const Chart charts[] = {
-      {"chart-speed", "Speed", "mm/s", &profile.speed_mm_per_s, machine.v_max_mm_per_s, ""},
-      {"chart-acceleration", "Acceleration", "mm/s²", &profile.acceleration_mm_per_s2, machine.a_max_mm_per_s2, ""},
-      {"chart-jerk", "Jerk", "mm/s³", &profile.jerk_mm_per_s3, machine.jerk_limited ? machine.j_max_mm_per_s3 : 0.0,
+      {"chart-speed", "Speed", "mm/s", machine.v_max_mm_per_s, ""},
+      {"chart-acceleration", "Acceleration", "mm/s²", machine.a_max_mm_per_s2, ""},
+      {"chart-jerk", "Jerk", "mm/s³", machine.jerk_limited ? machine.j_max_mm_per_s3 : 0.0,
        machine.jerk_limited ? "" : ", not limited (trapezoidal)"},
   };
-  for (const auto& chart : charts) out << chart_svg(chart, profile.time_s);
+  for (std::size_t k = 0; k < 3; ++k) write_chart(out, charts[k], series[k]);
   out << "<p class=\"note\">Speed: the planned path speed of each setpoint. Acceleration and jerk: magnitudes of the second and "
          "third differences of the setpoint positions";
-  if (profile.stride > 1) {
-    out << " taken " << profile.stride << " setpoints apart (" << figure(static_cast<double>(profile.stride) / machine.rate_hz * 1000)
+  if (stride > 1) {
+    out << " taken " << stride << " setpoints apart (" << figure(static_cast<double>(stride) / machine.rate_hz * 1000)
         << " ms), so that Q16.16 rounding adds less than 1% of the limits; the summary's peaks come from the exact positions";
   }
   out << ". Drawn per pixel column as its smallest and largest value.</p>\n";
@@ -196,16 +283,36 @@ std::string html_report(const ReportInput& input) {
       << "  marker.setAttribute('data-drawings', String(drawings));\n"
       << "})();\n</script>\n";
   out << "</body>\n</html>\n";
+}
+
+SetpointReplay replay_of(const ReportInput& input) {
+  if (input.result == nullptr) return [](const SetpointSink&) {};
+  const std::vector<SetpointRecord>* setpoints = &input.result->setpoints;
+  return [setpoints](const SetpointSink& sink) {
+    for (const auto& r : *setpoints) sink(r);
+  };
+}
+
+void write_report_file(const std::string& file, const ReportInput& input, const SetpointReplay& replay) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file);
+  write_report(out, input, replay);
+  out.close();
+  if (!out) throw std::runtime_error("error writing " + file);
+}
+
+}  // namespace
+
+std::string html_report(const ReportInput& input) {
+  std::ostringstream out;
+  write_report(out, input, replay_of(input));
   return out.str();
 }
 
-void write_html_report(const std::string& file, const ReportInput& input) {
-  const std::string html = html_report(input);
-  std::ofstream out(file);
-  if (!out) throw std::runtime_error("cannot write " + file);
-  out << html;
-  out.close();
-  if (!out) throw std::runtime_error("error writing " + file);
+void write_html_report(const std::string& file, const ReportInput& input) { write_report_file(file, input, replay_of(input)); }
+
+void write_html_report_streamed(const std::string& file, const ReportInput& input, const SetpointReplay& replay) {
+  write_report_file(file, input, replay);
 }
 
 }  // namespace curvestep::host

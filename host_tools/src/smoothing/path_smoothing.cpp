@@ -88,7 +88,7 @@ SmoothingOptions options_for(const MachineLimits& machine, double tolerance_mm) 
   return options;
 }
 
-Job smooth_job(const Job& job, const SmoothingOptions& options, SmoothingReport* report) {
+Job smooth_job(Job job, const SmoothingOptions& options, SmoothingReport* report) {
   SmoothingReport figures;
   figures.tolerance_mm = options.tolerance_mm;
   figures.segments_before = job.segments.size();
@@ -106,6 +106,7 @@ Job smooth_job(const Job& job, const SmoothingOptions& options, SmoothingReport*
   // 1. Runs of short lines -> splines.
   std::vector<Item> items;
   std::vector<std::size_t> first_item(n + 1, 0);  // programmed segment k starts at items[first_item[k]]
+  items.reserve(n);  // room for one item per segment: the vector never moves them while it grows
   const double cos_max_run_deflection = std::cos(options.fit_max_deflection_deg * pi / 180);
   const auto make_item = [&](const PathSegment& s, std::size_t source, bool fitted) {
     Item item;
@@ -152,6 +153,7 @@ Job smooth_job(const Job& job, const SmoothingOptions& options, SmoothingReport*
     }
   }
   first_item[n] = items.size();
+  std::vector<PathSegment>().swap(job.segments);  // the items hold what is left of them
 
   // 2. Corners -> blends.
   std::vector<std::optional<CornerBlend>> blends(items.size());
@@ -196,7 +198,7 @@ Job smooth_job(const Job& job, const SmoothingOptions& options, SmoothingReport*
   Job out;
   out.version = job.version;
   out.name = job.name;
-  out.sources = job.sources;
+  out.sources = std::move(job.sources);
   std::vector<std::size_t> first_output(items.size() + 1, 0);
   for (std::size_t i = 0; i < items.size(); ++i) {
     const Item& item = items[i];
@@ -225,7 +227,7 @@ Job smooth_job(const Job& job, const SmoothingOptions& options, SmoothingReport*
     }
   }
   first_output[items.size()] = out.segments.size();
-  out.events = job.events;
+  out.events = std::move(job.events);
   for (auto& e : out.events) e.before_segment = first_output[first_item[std::min(e.before_segment, n)]];
   figures.segments_after = out.segments.size();
   if (report != nullptr) *report = figures;

@@ -13,17 +13,28 @@
 //     way to report a problem is a Result error, and then its state is Fault with that error);
 //   * every setpoint position is finite and within the range of the position scalar;
 //   * when the controller finishes, the last setpoint is the last segment's end point (quantised);
-//   * setpoint ticks count up by one.
+//   * setpoint ticks count up by one;
+//   * no jump: consecutive setpoints are at most v_max / rate apart, times step_margin, plus the
+//     rounding of two Q16.16 positions (issue 19, item 1: a rational curve the controller's
+//     arc-length table could not follow moved 0.5-0.9 mm in one tick at v_max 200 and 1000 Hz).
+//     Rational Béziers the job loaders refuse (host::table_speed_factor above
+//     host::max_table_speed_factor) are left out, as a loaded job never has them;
+//     CURVESTEP_FUZZ_ALL_RATIONALS=1 keeps them, which shows the check catching the jump.
+// CURVESTEP_FUZZ_PRINT_JOB=1 prints the job and limits an input makes.
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <cstdlib>
 #include <span>
 
 #include <curvestep/core/bspline/bezier_extraction.hpp>
 #include <curvestep/core/bspline/bspline.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
+
+#include <curvestep/host/parameter_speed.hpp>
 
 #include "fuzz_support.hpp"
 
@@ -34,6 +45,17 @@ using curvestep::fuzz::InputReader;
 
 constexpr std::size_t max_segments = 24;
 constexpr std::uint64_t max_ticks = 4000;
+
+/// How far a setpoint may be from the previous one, as a multiple of v_max / rate: the loaders let
+/// the arc-length table run up to max_table_speed_factor faster than planned on a rational curve;
+/// the rest is the table's cubic error on polynomial curves.
+constexpr double step_margin = curvestep::host::max_table_speed_factor + 0.01;
+
+/// Rational Béziers the loaders would refuse are kept only when CURVESTEP_FUZZ_ALL_RATIONALS is set.
+bool keep_all_rationals() {
+  static const bool keep = std::getenv("CURVESTEP_FUZZ_ALL_RATIONALS") != nullptr;
+  return keep;
+}
 
 /// How the runs ended (printed at exit when CURVESTEP_FUZZ_STATS is set): how deep the fuzzer gets.
 struct Outcomes {
@@ -53,6 +75,10 @@ struct Job {
   std::size_t count = 0;
   void add(const Result<PathSegment>& s, double feed) {
     if (!s || count == max_segments) return;
+    if (s.value().kind() == SegmentKind::RationalBezier && !keep_all_rationals() &&
+        !(curvestep::host::table_speed_factor(s.value()) <= curvestep::host::max_table_speed_factor)) {
+      return;  // the loaders refuse it: "the weights vary too strongly"
+    }
     segments[count] = s.value();
     segments[count].set_feed_mm_per_s(feed);
     ++count;
@@ -185,6 +211,37 @@ void check_position(const Setpoint<S>& sp) {
   }
 }
 
+/// The largest distance between consecutive setpoints the limits allow (see step_margin), plus the
+/// rounding of both positions to the scalar's grid (√3·2^-17 mm each for Q16.16).
+template <Scalar S>
+double max_step_mm(const MachineLimits& limits) {
+  const double rounding = FixedPoint<S> ? 2 * std::sqrt(3.0) * 0x1p-17 : 1e-9 * limits.v_max_mm_per_s / limits.rate_hz;
+  return step_margin * limits.v_max_mm_per_s / limits.rate_hz + rounding;
+}
+
+template <Scalar S>
+double distance_mm(const Setpoint<S>& a, const Setpoint<S>& b) {
+  double sum = 0;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double d = to_double(a.position[i]) - to_double(b.position[i]);
+    sum += d * d;
+  }
+  return std::sqrt(sum);
+}
+
+/// The no-jump property; a violation prints the figures before it is reported.
+template <Scalar S>
+void check_step(const Setpoint<S>& from, const Setpoint<S>& to, double max_step, const MachineLimits& limits) {
+  const double step_mm = distance_mm(from, to);
+  if (step_mm <= max_step) return;
+  std::fprintf(stderr,
+               "planner: setpoint %llu (segment %u, planned %.6g mm/s) moved %.6g mm in one tick from segment %u (%.6g mm/s), "
+               "at most %.6g allowed (v_max %.6g mm/s, rate %.6g Hz)\n",
+               static_cast<unsigned long long>(to.tick), static_cast<unsigned>(to.segment), to.speed_mm_per_s, step_mm,
+               static_cast<unsigned>(from.segment), from.speed_mm_per_s, max_step, limits.v_max_mm_per_s, limits.rate_hz);
+  CURVESTEP_FUZZ_ASSERT(step_mm <= max_step);
+}
+
 template <Scalar S>
 void run(InputReader& in, const MachineLimits& limits, const Job& job) {
   static MotionController<S, 16, 8> controller;  // large: keep it off the stack
@@ -214,6 +271,7 @@ void run(InputReader& in, const MachineLimits& limits, const Job& job) {
   CURVESTEP_FUZZ_ASSERT(controller.start().has_value());
   const std::uint64_t hold_at = in.u8() < 64 ? in.u16() : max_ticks;
   Setpoint<S> sp{};
+  const double max_step = max_step_mm<S>(limits);
   std::uint64_t expected_tick = 0;
   for (std::uint64_t tick = 0; tick < max_ticks; ++tick) {
     if (tick == hold_at) controller.hold();
@@ -225,6 +283,7 @@ void run(InputReader& in, const MachineLimits& limits, const Job& job) {
       ++outcomes.faulted;
       return;
     }
+    if (expected_tick > 0) check_step(sp, next.value(), max_step, limits);
     sp = next.value();
     CURVESTEP_FUZZ_ASSERT(sp.tick == expected_tick);
     ++expected_tick;
@@ -242,6 +301,22 @@ void run(InputReader& in, const MachineLimits& limits, const Job& job) {
   for (std::size_t a = 0; a < 3; ++a) CURVESTEP_FUZZ_ASSERT(sp.position[a] == end.value()[a]);
 }
 
+/// The job and limits an input makes (CURVESTEP_FUZZ_PRINT_JOB=1), for reading a finding.
+void print_job(const Job& job, const MachineLimits& limits) {
+  for (std::size_t i = 0; i < job.count; ++i) {
+    const PathSegment& s = job.segments[i];
+    std::fprintf(stderr, "segment %zu: kind %d, length %.6g mm, feed %.6g, rapid %d\n", i, static_cast<int>(s.kind()),
+                 std::hypot(s.end()[0] - s.start()[0], s.end()[1] - s.start()[1], s.end()[2] - s.start()[2]), s.feed_mm_per_s(), s.rapid() ? 1 : 0);
+    if (s.kind() == SegmentKind::RationalBezier) {
+      const auto points = s.rational().control_points();
+      for (std::size_t k = 0; k < points.size(); ++k) std::fprintf(stderr, "  (%.6g, %.6g, %.6g) w %.6g\n", points[k][0], points[k][1], points[k][2], s.rational().weight(k));
+      std::fprintf(stderr, "  table speed factor %.6g\n", curvestep::host::table_speed_factor(s));
+    }
+  }
+  std::fprintf(stderr, "limits: v_max %g a_max %g j_max %g feed %g tol %g rate %g jerk %d\n", limits.v_max_mm_per_s, limits.a_max_mm_per_s2,
+               limits.j_max_mm_per_s3, limits.feed_mm_per_s, limits.tolerance_mm, limits.rate_hz, limits.jerk_limited ? 1 : 0);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -252,6 +327,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const double scale = scales[mode % 4];
   const MachineLimits limits = read_limits(in, scale);
   const Job job = read_job(in, scale);
+  if (std::getenv("CURVESTEP_FUZZ_PRINT_JOB") != nullptr) print_job(job, limits);
   if ((mode & 4) != 0) run<double>(in, limits, job);
   else run<Q16_16>(in, limits, job);
   return 0;

@@ -66,6 +66,16 @@ TEST_CASE("parameter speed: a cubic with weights 1, 60, 60, 1 is refused", "[hos
   CHECK_THROWS_AS(check_parameter_speed(job), LoadError);
 }
 
+TEST_CASE("parameter speed: weights 2^-16, 1, 1 (a speed spike thinner than every sample) are refused", "[host_tools][jobs][speed]") {
+  // With w0 = 2^-16 the curve covers its first ~5 mm for u < 1e-4: the table's cubic on its first
+  // piece cannot follow, and sim moved 6.8 mm in one tick (v_max 200 mm/s at 1000 Hz allows 0.2),
+  // while the slopes compared at the table's own u agreed (a fuzz find of the planner harness's
+  // step check). Exact weights on the Q16.16 grid: the loaders accept them.
+  const Job job = job_of(R"({"type": "rational_bezier", "points": [[0, 0], [5, 5], [10, 0]], "weights": [0.0000152587890625, 1, 1]})");
+  CHECK(table_speed_factor(job.segments.front()) > 10);
+  CHECK_THROWS_AS(check_parameter_speed(job), LoadError);
+}
+
 TEST_CASE("parameter speed: a circle quarter and a mild rational curve are followed within 5 %", "[host_tools][jobs][speed]") {
   // The exact quarter circle (weights 1, cos 45°, 1) and a weight ratio of 3.
   const Job quarter = job_of(R"({"type": "rational_bezier", "points": [[10, 0], [10, 10], [0, 10]], "weights": [1, 0.7071067811865476, 1]})");

@@ -44,24 +44,41 @@ void require_same_setpoints(const std::vector<host::SetpointRecord>& got, const 
 
 }  // namespace
 
-TEST_CASE("stream in process: a planning App with look-ahead 9 streams curvestep sim --lookahead 9 bit for bit",
-          "[host_tools][stream]") {
+namespace {
+
+/// seed_cubic.json streamed to a planning App with look-ahead 9, and what curvestep sim
+/// --lookahead 9 makes of the job as the device sees it.
+struct WindowNineRun {
+  hl::StreamResult result;
+  std::vector<host::SetpointRecord> expected;
+};
+
+WindowNineRun stream_to_window_nine(const hl::StreamOptions& options) {
   using WindowApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 17, 9>;
   const auto machine = host::load_machine(examples / "machine.json");
   const auto job = host::load_job(examples / "seed_cubic.json");
   hl::testing::InProcessDevice<WindowApp> device;
-  std::vector<std::string> warnings;
-  hl::StreamOptions options;
-  options.warn = [&warnings](const std::string& text) { warnings.push_back(text); };
-  const hl::StreamResult result = hl::stream_job(device, job, machine, options);
-  CHECK(warnings.empty());
-  CHECK(result.lookahead == 9);
-  CHECK(result.pieces_sent == 0);
-  CHECK(result.standing_ticks == 0);
+  WindowNineRun run{hl::stream_job(device, job, machine, options), {}};
   host::SimulationOptions nine;
   nine.lookahead = 9;
   const auto [device_job, device_machine] = hl::as_device_sees(job, machine);
-  require_same_setpoints(result.setpoints, host::simulate(device_job, device_machine, nine).setpoints);
+  run.expected = host::simulate(device_job, device_machine, nine).setpoints;
+  return run;
+}
+
+}  // namespace
+
+TEST_CASE("stream in process: a planning App with look-ahead 9 streams curvestep sim --lookahead 9 bit for bit",
+          "[host_tools][stream]") {
+  std::vector<std::string> warnings;
+  hl::StreamOptions options;
+  options.warn = [&warnings](const std::string& text) { warnings.push_back(text); };
+  const WindowNineRun run = stream_to_window_nine(options);
+  CHECK(warnings.empty());
+  CHECK(run.result.lookahead == 9);
+  CHECK(run.result.pieces_sent == 0);
+  CHECK(run.result.standing_ticks == 0);
+  require_same_setpoints(run.result.setpoints, run.expected);
 }
 
 namespace {
@@ -170,4 +187,18 @@ TEST_CASE("stream in process: the machine file's travel reaches the controller, 
   hl::testing::InProcessDevice<WindowApp> roomy;
   const hl::StreamResult result = hl::stream_job(roomy, job, machine, options);
   CHECK_FALSE(result.setpoints.empty());
+}
+
+TEST_CASE("stream in process: with a setpoint sink the setpoints arrive there in order, bit for bit as curvestep sim, and none is kept",
+          "[host_tools][stream][capture]") {
+  // What `stream --capture` does to keep memory independent of the job's length (issue 19.7).
+  std::vector<host::SetpointRecord> sunk;
+  hl::StreamOptions options;
+  options.setpoint_sink = [&sunk](const host::SetpointRecord& r) { sunk.push_back(r); };
+  const WindowNineRun run = stream_to_window_nine(options);
+  CHECK(run.result.setpoints.empty());
+  CHECK(run.result.setpoints_received == sunk.size());
+  CHECK(run.result.duplicate_setpoints == 0);
+  CHECK(run.result.standing_ticks == 0);
+  require_same_setpoints(sunk, run.expected);
 }

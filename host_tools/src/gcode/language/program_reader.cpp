@@ -51,18 +51,27 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     std::size_t start = 0;
     bool opened = false;   // the first non-blank line was '%'
     bool content = false;  // a non-blank line was seen
+    // Room for every line at once: a vector that doubles as it grows holds up to three times its
+    // lines while it moves them (a large program's peak memory).
+    const std::size_t line_count = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+    sources_.reserve(line_count);
+    lines_.reserve(line_count);
     for (;;) {
       std::size_t stop = text.find('\n', start);
       if (stop == std::string_view::npos) stop = text.size();
       std::string_view line = text.substr(start, stop - start);
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       sources_.emplace_back(line);
+      const std::size_t index = sources_.size() - 1;
+      ParsedLine parsed;
       try {
-        lines_.push_back(detail::parse_program_line(line));
+        parsed = detail::parse_program_line(line);
       } catch (const LineError& error) {
-        throw_at(sources_.size() - 1, error);
+        throw_at(index, error);
       }
-      const ParsedLine& parsed = lines_.back();
+      const OWord* oword = nullptr;
+      if (parsed.oword) oword = &*owords_.emplace(index, parsed).first->second.oword;
+      lines_.push_back(detail::summarise(parsed, oword));
       if (parsed.percent && opened) break;  // LinuxCNC reads nothing after the closing '%'
       if (parsed.percent && !content) opened = true;
       if (!detail::is_blank(parsed)) content = true;
@@ -83,11 +92,12 @@ class ProgramReader::Impl final : public detail::ParameterSource {
           break;
         }
         count_line();
-        const ParsedLine& line = lines_[pc_];
-        if (line.percent || (line.block_delete && options_.block_delete)) {
+        const detail::LineSummary& summary = lines_[pc_];
+        if (summary.percent || (summary.block_delete && options_.block_delete)) {
           ++pc_;
           continue;
         }
+        const ParsedLine& line = parsed(pc_);
         if (line.error) throw *line.error;
         if (line.oword) {
           run_control();
@@ -144,9 +154,21 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     return detail::evaluate(line.nodes, root, sources_[pc_], *this);
   }
 
+  /// Line `index` parsed: an O-word line from the store, any other parsed again from its text (the
+  /// last one is kept, so a line is parsed once more per pass, not per look).
+  const ParsedLine& parsed(std::size_t index) {
+    const auto oword = owords_.find(index);
+    if (oword != owords_.end()) return oword->second;
+    if (current_index_ != index) {
+      current_ = detail::parse_program_line(sources_[index]);  // cannot throw: only O-word lines do
+      current_index_ = index;
+    }
+    return current_;
+  }
+
   /// A line of words, assignments and comments.
   std::optional<ProgramBlock> run_line() {
-    const ParsedLine& line = lines_[pc_];
+    const ParsedLine& line = parsed(pc_);
     ProgramBlock block;
     block.line = pc_ + 1;
     block.source = sources_[pc_];
@@ -195,7 +217,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     return block;
   }
 
-  bool test(const OWord& oword) const { return value(lines_[pc_], oword.arguments.front()) != 0.0; }
+  bool test(const OWord& oword) const { return value(owords_.at(pc_), oword.arguments.front()) != 0.0; }
 
   void run_control() {
     const std::size_t here = pc_;
@@ -226,7 +248,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         break;
       case Keyword::Endwhile: pc_ = link.opening; break;
       case Keyword::Repeat: {
-        const double count = value(lines_[here], oword.arguments.front());
+        const double count = value(owords_.at(here), oword.arguments.front());
         const long long passes = count >= 1.0 ? static_cast<long long>(std::min(std::trunc(count), max_repeat_count)) : 0;
         if (passes <= 0) {
           pc_ = link.closing + 1;
@@ -277,7 +299,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void call(const OWord& oword) {
     std::string label = oword.label;
     if (oword.label_value != detail::no_node) {
-      const double computed = value(lines_[pc_], oword.label_value);
+      const double computed = value(owords_.at(pc_), oword.label_value);
       if (!(computed >= 0.0 && computed < 1e9 && computed == std::floor(computed))) {
         fail_oword(oword, "a computed subroutine label must be a whole number 0..999999999", Error::GcodeBadNumber);
       }
@@ -290,7 +312,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
                  Error::CapacityExceeded);
     }
     std::vector<double> arguments;
-    for (const auto argument : oword.arguments) arguments.push_back(value(lines_[pc_], argument));
+    for (const auto argument : oword.arguments) arguments.push_back(value(owords_.at(pc_), argument));
     Frame frame;
     frame.return_line = pc_ + 1;
     for (int n = 1; n <= argument_parameters; ++n) frame.saved[static_cast<std::size_t>(n - 1)] = store_.get(n);
@@ -304,7 +326,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void return_from(const OWord& oword) {
     if (frames_.size() == 1) fail_oword(oword, "reached without a call", Error::GcodeSyntax);
     const bool has_value = !oword.arguments.empty();
-    const double result = has_value ? value(lines_[pc_], oword.arguments.front()) : 0.0;
+    const double result = has_value ? value(owords_.at(pc_), oword.arguments.front()) : 0.0;
     store_.set_named("_value", result);
     store_.set_named("_value_returned", has_value ? 1.0 : 0.0);
     const Frame& frame = frames_.back();
@@ -316,7 +338,12 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   std::string file_;
   ProgramOptions options_;
   std::vector<std::string> sources_;
-  std::vector<ParsedLine> lines_;
+  // A program's parse trees would take about 0.7 KB per line: only the O-word lines (control flow
+  // comes back to them) keep theirs; every line keeps what the structure scan needs.
+  std::vector<detail::LineSummary> lines_;
+  std::map<std::size_t, ParsedLine> owords_;
+  ParsedLine current_;
+  std::size_t current_index_ = no_line;
   detail::ProgramStructure structure_;
   ParameterStore store_;
   std::vector<Frame> frames_;

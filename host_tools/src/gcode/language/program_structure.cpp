@@ -49,14 +49,14 @@ bool is_loop(Construct kind) { return kind == Construct::While || kind == Constr
 
 class Scanner {
  public:
-  Scanner(const std::vector<ParsedLine>& lines, bool block_delete, const std::string& file)
+  Scanner(const std::vector<LineSummary>& lines, bool block_delete, const std::string& file)
       : lines_(lines), block_delete_(block_delete), file_(file) {}
 
   ProgramStructure scan() {
     structure_.links.resize(lines_.size());
     structure_.end = find_end();
     for (std::size_t i = 0; i < structure_.end; ++i) {
-      const ParsedLine& line = lines_[i];
+      const LineSummary& line = lines_[i];
       if (block_delete_ && line.block_delete) continue;
       const std::size_t enclosing = innermost_loop();
       structure_.links[i].loop = enclosing;
@@ -74,7 +74,7 @@ class Scanner {
   /// The closing '%' of a program whose first non-blank line is '%'.
   std::size_t find_end() const {
     std::size_t i = 0;
-    while (i < lines_.size() && is_blank(lines_[i])) ++i;
+    while (i < lines_.size() && lines_[i].blank) ++i;
     if (i == lines_.size() || !lines_[i].percent) return lines_.size();
     for (std::size_t j = i + 1; j < lines_.size(); ++j) {
       if (lines_[j].percent) return j;
@@ -183,7 +183,7 @@ class Scanner {
     }
   }
 
-  const std::vector<ParsedLine>& lines_;
+  const std::vector<LineSummary>& lines_;
   bool block_delete_;
   const std::string& file_;
   ProgramStructure structure_;
@@ -196,7 +196,11 @@ std::string oword_text(const OWord& oword) {
   return "o" + (oword.label.empty() ? std::string("[...]") : oword.label) + " " + std::string(keyword_name(oword.keyword));
 }
 
-ProgramStructure scan_structure(const std::vector<ParsedLine>& lines, bool block_delete, const std::string& file) {
+LineSummary summarise(const ParsedLine& line, const OWord* oword) noexcept {
+  return LineSummary{line.percent, line.block_delete, is_blank(line), oword};
+}
+
+ProgramStructure scan_structure(const std::vector<LineSummary>& lines, bool block_delete, const std::string& file) {
   return Scanner(lines, block_delete, file).scan();
 }
 

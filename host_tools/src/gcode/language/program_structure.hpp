@@ -24,6 +24,18 @@ struct ControlLink {
   bool closes_do = false;             ///< a `while` that ends a `do` loop
 };
 
+/// What the scan needs of one line (ParsedLine keeps more: the reader keeps a ParsedLine only for
+/// O-word lines, so `oword` points into the reader's own store).
+struct LineSummary {
+  bool percent = false;       ///< a '%' delimiter line
+  bool block_delete = false;  ///< starts with '/'
+  bool blank = false;         ///< is_blank(): nothing but blanks and plain comments
+  const OWord* oword = nullptr;
+};
+
+/// The summary of a parsed line; `oword` is the line's own O-word (nullptr if none).
+[[nodiscard]] LineSummary summarise(const ParsedLine& line, const OWord* oword) noexcept;
+
 /// The structure of a program.
 struct ProgramStructure {
   std::vector<ControlLink> links;             ///< one per line
@@ -34,10 +46,10 @@ struct ProgramStructure {
 /// "o100 endwhile", "o<name> sub": an O-word as messages name it.
 [[nodiscard]] std::string oword_text(const OWord& oword);
 
-/// Scans the parsed lines; throws LoadError (file:line:column, the O-word) for a construct closed by
+/// Scans the lines; throws LoadError (file:line:column, the O-word) for a construct closed by
 /// another label or keyword, one left open, break/continue outside its loop, return outside its
 /// subroutine, a subroutine defined twice or inside another construct. Lines starting with '/' are
 /// left out when `block_delete` is on.
-[[nodiscard]] ProgramStructure scan_structure(const std::vector<ParsedLine>& lines, bool block_delete, const std::string& file);
+[[nodiscard]] ProgramStructure scan_structure(const std::vector<LineSummary>& lines, bool block_delete, const std::string& file);
 
 }  // namespace curvestep::host::gcode::detail

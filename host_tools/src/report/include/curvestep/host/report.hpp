@@ -16,8 +16,9 @@
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <array>
+#include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -39,9 +40,21 @@ struct PathPlotOptions {
 /// their planned speed, else by segment. std::invalid_argument for a job without segments.
 [[nodiscard]] std::string path_plot_svg(const Job& job, const std::vector<SetpointRecord>* setpoints, const PathPlotOptions& options);
 
-/// Writes path_plot_svg to a file. std::runtime_error naming the file if it cannot be written.
+/// Writes path_plot_svg to a stream or a file. std::runtime_error naming the file if it cannot be written.
+void write_path_plot(std::ostream& out, const Job& job, const std::vector<SetpointRecord>* setpoints, const PathPlotOptions& options);
 void write_path_plot(const std::string& file, const Job& job, const std::vector<SetpointRecord>* setpoints,
                      const PathPlotOptions& options);
+
+/// Hands every setpoint of a simulation to the sink, in order, each time it is called (e.g. by
+/// running simulate_stream again).
+using SetpointReplay = std::function<void(const SetpointSink&)>;
+
+/// The plot of a simulation whose setpoints `replay` hands over, written as they come and kept
+/// nowhere: memory independent of the job's length. The replay runs twice (the extent and the peak
+/// speed first, then the strokes); the text is path_plot_svg's with the same setpoints in a vector
+/// (without setpoints, the plot by segment).
+void write_path_plot_streamed(std::ostream& out, const Job& job, const SetpointReplay& replay, const PathPlotOptions& options);
+void write_path_plot_streamed(const std::string& file, const Job& job, const SetpointReplay& replay, const PathPlotOptions& options);
 
 /// Speed, acceleration and jerk over time, from a simulation's setpoints.
 struct MotionProfile {
@@ -74,6 +87,12 @@ struct ReportInput {
 
 /// Writes html_report to a file. std::runtime_error naming the file if it cannot be written.
 void write_html_report(const std::string& file, const ReportInput& input);
+
+/// The same report from a replay that hands over the setpoints (called four times: the charts'
+/// range and peaks, their pixel columns, then the path plot's two passes), written as it is made:
+/// memory independent of the job's length. input.result gives the summary; its setpoints are
+/// not read.
+void write_html_report_streamed(const std::string& file, const ReportInput& input, const SetpointReplay& replay);
 
 /// A progress callback that draws `[#####     ] 42%  ETA 3 s` on stderr when stderr is a
 /// terminal, and an empty function (quiet) when it is not. finish_terminal_progress clears the line.

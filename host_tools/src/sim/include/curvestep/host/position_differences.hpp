@@ -50,20 +50,23 @@ template <class PositionAt>
   return d;
 }
 
-/// Differences of samples as they come (stride 1), keeping the last four: memory independent of
-/// the number of samples. push() returns the differences at the new sample (all 0 for the first).
+/// Differences of samples as they come, `stride` (>= 1) samples apart, keeping the last 3·stride + 1:
+/// memory independent of the number of samples. push() returns the differences at the new sample,
+/// those of position_differences (all 0 before the stride's first sample).
 class RunningDifferences {
  public:
+  explicit RunningDifferences(std::size_t stride = 1) : stride_(stride == 0 ? 1 : stride), last_(3 * stride_ + 1) {}
   SampleDifferences push(const std::array<double, 3>& point) {
     last_[count_ % last_.size()] = point;
     ++count_;
-    if (count_ < 2) return {};
-    return differences_at(count_ - 1, [this](std::size_t j) -> const std::array<double, 3>& { return last_[j % last_.size()]; }, 1);
+    if (count_ - 1 < stride_) return {};
+    return differences_at(count_ - 1, [this](std::size_t j) -> const std::array<double, 3>& { return last_[j % last_.size()]; }, stride_);
   }
   [[nodiscard]] std::size_t count() const noexcept { return count_; }
 
  private:
-  std::array<std::array<double, 3>, 4> last_{};
+  std::size_t stride_;
+  std::vector<std::array<double, 3>> last_;
   std::size_t count_ = 0;
 };
 

@@ -64,6 +64,10 @@ struct StreamOptions {
   /// Soft limits sent in MachineConfiguration, per axis [low, high] mm (the machine file's
   /// "travel"); an axis without them travels unlimited (the whole Q16.16 range).
   MachineTravel travel{};
+  /// Receives each of the controller's setpoints as it arrives, in index order; then none is kept
+  /// (StreamResult::setpoints stays empty): memory independent of the job's length. Empty: the
+  /// setpoints are collected in StreamResult::setpoints.
+  SetpointSink setpoint_sink;
 };
 
 /// The controller stopped the job or the link died: a one-line cause naming what failed.
@@ -80,9 +84,10 @@ class StreamError : public std::runtime_error {
 
 /// What a finished upload produced.
 struct StreamResult {
-  std::vector<SetpointRecord> setpoints;  ///< the controller's setpoints, index order (time = index / rate)
+  std::vector<SetpointRecord> setpoints;  ///< the controller's setpoints, index order (time = index / rate); empty with a setpoint_sink
+  std::size_t setpoints_received = 0;     ///< setpoints received (once each)
   std::size_t standing_ticks = 0;         ///< tick indices not reported: ticks the controller stood held or starved (the reliable stream loses none)
-  std::size_t duplicate_setpoints = 0;    ///< setpoints received twice (0 unless the link is broken)
+  std::size_t duplicate_setpoints = 0;    ///< setpoints received twice or out of order, dropped (0 unless the link is broken)
   std::size_t batches_repeated = 0;       ///< setpoint batches the controller resent and the host had already
   std::size_t max_queue_depth = 0;        ///< deepest the controller's segment queue was (its last StatusReport)
   std::size_t queue_capacity = 0;         ///< the controller's segment queue slots (Capabilities)

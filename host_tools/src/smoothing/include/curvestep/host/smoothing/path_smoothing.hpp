@@ -21,6 +21,7 @@
 #include <cstddef>
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <curvestep/core/motion/machine_limits.hpp>
@@ -59,14 +60,16 @@ struct SmoothingReport {
 
 /// The smoothed job (the same job when the tolerance is 0). Job::blend_tolerance_mm gives the
 /// tolerance per joint when set (> 0 that value, 0 the options' tolerance, < 0 exact stop); events
-/// keep their place. `report` (optional) receives the figures.
-[[nodiscard]] Job smooth_job(const Job& job, const SmoothingOptions& options, SmoothingReport* report = nullptr);
+/// keep their place. `report` (optional) receives the figures. The job is taken by value: a caller
+/// that moves it in lets the smoothed job take over its source records and frees its segments
+/// early (a large program's peak memory).
+[[nodiscard]] Job smooth_job(Job job, const SmoothingOptions& options, SmoothingReport* report = nullptr);
 
 /// smooth_job() with options_for(machine, tolerance_mm): what every command that moves a machine
 /// (sim, stream, gpio, demo) runs, so what was simulated is what runs.
-[[nodiscard]] inline Job smooth_for_machine(const Job& job, const MachineLimits& machine, double tolerance_mm,
+[[nodiscard]] inline Job smooth_for_machine(Job job, const MachineLimits& machine, double tolerance_mm,
                                             SmoothingReport* report = nullptr) {
-  return smooth_job(job, options_for(machine, tolerance_mm), report);
+  return smooth_job(std::move(job), options_for(machine, tolerance_mm), report);
 }
 
 /// The report as summary lines ("  smoothing: ..."), for sim and stream.

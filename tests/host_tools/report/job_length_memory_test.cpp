@@ -1,0 +1,111 @@
+// SPDX-License-Identifier: MIT
+// Memory independent of the job's length (issue 19, item 7): `curvestep sim`, `sim --report` and
+// `curvestep plot` hand each setpoint on as it is made and keep none. The same ten lines are run at two lengths,
+// 15 000 and 150 000 setpoints; the largest resident size of the child process (getrusage through
+// wait4) may grow by at most 4 MiB. A program that kept its setpoints (64-byte records, and 16 bytes
+// more per point for the plot's strokes) would grow by more than 8 MiB.
+#include <cerrno>
+#include <cstdlib>
+#include <fcntl.h>
+#include <fstream>
+#include <string>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "report_test_support.hpp"
+
+extern char** environ;
+
+namespace {
+
+using namespace report_test;
+
+/// Ten lines forth and back along x, `length_mm` each, at 20 mm/s (1000 setpoints a second at the
+/// example machine's 1000 Hz): 10 · length / 20 · 1000 setpoints.
+std::string write_zigzag_job(const std::string& name, double length_mm) {
+  const std::string path = scratch(name);
+  std::ofstream out(path);
+  out << R"({"version": 1, "units": "mm", "segments": [)";
+  for (int i = 0; i < 10; ++i) {
+    const double y0 = i, y1 = i + 1;
+    const double from = (i % 2 == 0) ? 0 : length_mm, to = (i % 2 == 0) ? length_mm : 0;
+    out << (i == 0 ? "" : ",") << R"({"type": "line", "feed": 20, "points": [[)" << from << "," << y0 << "],[" << to << "," << y1 << "]]}";
+  }
+  out << "]}\n";
+  return path;
+}
+
+/// Runs curvestep with `arguments` (output to /dev/null) and returns its largest resident size in KiB.
+long peak_resident_kib(const std::vector<std::string>& arguments) {
+  std::vector<std::string> words{CURVESTEP_BINARY};
+  words.insert(words.end(), arguments.begin(), arguments.end());
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  // Under AddressSanitizer freed memory waits in a quarantine (256 MB by default), which would
+  // count every short-lived string as resident: keep it small in the child.
+  std::vector<std::string> environment;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (std::string(*e).rfind("ASAN_OPTIONS=", 0) != 0) environment.emplace_back(*e);
+  }
+  const char* asan = std::getenv("ASAN_OPTIONS");
+  environment.push_back(std::string("ASAN_OPTIONS=") + (asan != nullptr ? std::string(asan) + ":" : "") + "quarantine_size_mb=1");
+  std::vector<char*> envp;
+  for (auto& e : environment) envp.push_back(e.data());
+  envp.push_back(nullptr);
+
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, STDOUT_FILENO);
+    ::dup2(null, STDERR_FILENO);
+    ::execve(argv[0], argv.data(), envp.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  rusage usage{};
+  pid_t waited = -1;
+  do {
+    waited = ::wait4(child, &status, 0, &usage);
+  } while (waited < 0 && errno == EINTR);
+  REQUIRE(waited == child);
+  REQUIRE(WIFEXITED(status));
+  REQUIRE(WEXITSTATUS(status) == 0);
+  return usage.ru_maxrss;  // KiB on Linux
+}
+
+}  // namespace
+
+TEST_CASE("memory: sim, its report and plot use the same memory for a job ten times longer", "[host_tools][report][memory]") {
+  const std::string machine = source("examples/jobs/machine.json");
+  const std::string short_job = write_zigzag_job("short.json", 30);  // 15 000 setpoints
+  const std::string long_job = write_zigzag_job("long.json", 300);   // 150 000 setpoints
+  const std::string svg = scratch("memory.svg");
+  constexpr long margin_kib = 4096;
+
+  const long sim_short = peak_resident_kib({"sim", short_job, "--machine", machine});
+  const long sim_long = peak_resident_kib({"sim", long_job, "--machine", machine});
+  INFO("sim: " << sim_short << " KiB for 15 000 setpoints, " << sim_long << " KiB for 150 000");
+  CHECK(sim_long <= sim_short + margin_kib);
+
+  const long plot_short = peak_resident_kib({"plot", short_job, "--machine", machine, "-o", svg});
+  const long plot_long = peak_resident_kib({"plot", long_job, "--machine", machine, "-o", svg});
+  INFO("plot: " << plot_short << " KiB for 15 000 setpoints, " << plot_long << " KiB for 150 000");
+  CHECK(plot_long <= plot_short + margin_kib);
+
+  const std::string html = scratch("memory.html");
+  const long report_short = peak_resident_kib({"sim", short_job, "--machine", machine, "--report", html});
+  const long report_long = peak_resident_kib({"sim", long_job, "--machine", machine, "--report", html});
+  INFO("sim --report: " << report_short << " KiB for 15 000 setpoints, " << report_long << " KiB for 150 000");
+  CHECK(report_long <= report_short + margin_kib);
+
+  std::remove(html.c_str());
+  std::remove(short_job.c_str());
+  std::remove(long_job.c_str());
+  std::remove(svg.c_str());
+}
