@@ -9,7 +9,7 @@ packages=(
   libserialport-dev libgpiod-dev
   libcli11-dev nlohmann-json3-dev
   libtinyxml2-dev
-  qemu-system-arm socat valgrind python3
+  qemu-system-arm socat valgrind python3 python3-scipy
   clang libclang-rt-14-dev
   chromium
 )
