@@ -10,7 +10,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev
   libtinyxml2-dev
   hershey-fonts-data  # the source of the SVG text font (scripts/generate_hershey_font.py) and its glyph test
-  qemu-system-arm socat valgrind python3
+  qemu-system-arm socat valgrind python3 python3-scipy
   clang libclang-rt-14-dev
   chromium
 )

@@ -11,7 +11,8 @@ Prints JSON. With --check, exits 1 unless these goals hold: circles of 360 and 3
 tolerance of the programmed path. The CAM raster against the grbl model (16-block buffer, same a_max)
 is reported in "open_goals" while it is slower: its row turnarounds are 90-degree corners, which a
 jerk-limited machine stops at (faster than any blend within 10 um) and grbl's jerk-free model passes
-at its junction speed.
+at its junction speed. turnaround_bound.py shows that no jerk-limited machine can lose as little time
+on such a turnaround as grbl's model (docs/motion.md, "Turnarounds").
 """
 import csv
 import json
@@ -130,6 +131,8 @@ def main():
             entry["length_over_feed_s"] = round(feed_bound, 4)
             entry["grbl_model_16_blocks_s"] = round(grbl_model.job_time(blocks, deviation_mm, 16), 4)
             entry["grbl_model_unbounded_s"] = round(grbl_model.job_time(blocks, deviation_mm, None), 4)
+            if tolerance > 0:  # the junction deviation equal to the blend tolerance: its circles lie as far inside
+                entry["grbl_model_16_blocks_at_tolerance_s"] = round(grbl_model.job_time(blocks, tolerance, 16), 4)
             entry["ratio_to_length_over_feed"] = round(smoothed["duration_s"] / feed_bound, 4)
             entry["ratio_to_grbl_16"] = round(smoothed["duration_s"] / entry["grbl_model_16_blocks_s"], 4)
             if job.name.startswith("circle") and arc_time:
