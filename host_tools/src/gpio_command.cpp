@@ -13,8 +13,10 @@
 // capacity (lib/core motion/step_generator.hpp: check_step_rate over peak axis speeds and over the
 // setpoints). --dry-run drives no lines: ticks run as fast as the link allows (as `device --fast`)
 // and the edges are only counted, so the summary's step counts can be checked without hardware.
+// While it runs, the operator's keys and signals (operator_session.hpp: ! hold, ~ resume, Ctrl-X /
+// Esc abort, ? status; Ctrl-C holds and asks, SIGTERM aborts) act on the firmware through the
+// protocol, as with `curvestep stream`.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>

@@ -168,6 +168,10 @@ int run_sim(const SimOptions& o) {
   if (replay_window) std::cout << ", look-ahead " << options.lookahead;
   std::cout << ")\n"
             << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report) << format_events(job);
+  for (const FeedHoldEvent& hold : options.holds) {
+    std::cout << "  feed hold:           before setpoint " << hold.tick << ", standing " << hold.standing_ticks
+              << " ticks once stopped, then resumed\n";
+  }
   for (const auto& note : prepared.notes) std::cout << "  note: " << note << "\n";
   if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
   if (!o.report.empty()) std::cout << "  wrote " << o.report << "\n";

@@ -87,9 +87,7 @@ class Upload {
       return;
     }
     if (!started_ || link_.in_flight() + 2 > HostLink::window) return;  // later
-    link_.submit(protocol::Message(protocol::FeedHold{}));
-    submitted_.push_back(operator_marker);
-    sequence_to_unit_[sequence_++] = operator_marker;
+    submit_operator_message(protocol::Message(protocol::FeedHold{}));
     submit_status_request();
     holding_ = true;
     hold_index_pending_ = true;
@@ -104,9 +102,7 @@ class Upload {
       return;
     }
     if (!link_.can_submit(protocol::MessageType::Resume)) return;  // later
-    link_.submit(protocol::Message(protocol::Resume{}));
-    submitted_.push_back(operator_marker);
-    sequence_to_unit_[sequence_++] = operator_marker;
+    submit_operator_message(protocol::Message(protocol::Resume{}));
     holding_ = false;
     resumed_.back() = true;
     pending_command_ = OperatorCommand::None;
@@ -119,9 +115,7 @@ class Upload {
       return;
     }
     if (link_.in_flight() + 2 > HostLink::window) return;  // later
-    link_.submit(protocol::Message(protocol::Abort{}));
-    submitted_.push_back(operator_marker);
-    sequence_to_unit_[sequence_++] = operator_marker;
+    submit_operator_message(protocol::Message(protocol::Abort{}));
     submit_status_request();
     aborting_ = true;
     abort_reported_ = false;
@@ -131,6 +125,13 @@ class Upload {
   /// The aborted job is over once Abort and the StatusRequest behind it were acknowledged and a
   /// report says the controller stands (every earlier report came before the Abort).
   [[nodiscard]] bool abort_settled() const { return link_.idle() && abort_reported_; }
+
+  /// FeedHold, Resume or Abort (no credit; errors about it name no segment).
+  void submit_operator_message(const protocol::Message& message) {
+    link_.submit(message);
+    submitted_.push_back(operator_marker);
+    sequence_to_unit_[sequence_++] = operator_marker;
+  }
 
   void submit_status_request() {
     link_.submit(protocol::Message(protocol::StatusRequest{}));
@@ -202,7 +203,7 @@ class Upload {
   /// Drops the oldest submissions the controller has acknowledged (they leave the window in order).
   void settle_acknowledged() {
     while (submitted_.size() > link_.in_flight()) {
-      if (submitted_.front() < status_marker) acknowledged_units_ = submitted_.front() + 1;
+      if (submitted_.front() < operator_marker) acknowledged_units_ = submitted_.front() + 1;  // a unit, not a marker
       if (submitted_.front() == start_marker) {
         start_acknowledged_ = true;
         mark_stream_progress();
@@ -249,6 +250,7 @@ class Upload {
     if (found == sequence_to_unit_.end()) return "";
     if (found->second == configuration_marker) return " in the machine configuration";
     if (found->second == start_marker) return " in the Start command";
+    if (found->second == operator_marker) return " in the operator's FeedHold, Resume or Abort";
     const std::size_t k = found->second;
     const std::string text = " in " + job_.name + " segment " + std::to_string(file_segment(k));
     return piece_mode_ ? text + " (" + piece_text(k) + ")" : text;
@@ -447,7 +449,7 @@ class Upload {
   static constexpr std::size_t configuration_marker = static_cast<std::size_t>(-1);
   static constexpr std::size_t start_marker = static_cast<std::size_t>(-2);
   static constexpr std::size_t status_marker = static_cast<std::size_t>(-3);
-  static constexpr std::size_t operator_marker = static_cast<std::size_t>(-4);  // FeedHold, Resume, Abort
+  static constexpr std::size_t operator_marker = static_cast<std::size_t>(-4);  // FeedHold, Resume, Abort; the smallest marker
 
   Transport& transport_;
   const Job& job_;

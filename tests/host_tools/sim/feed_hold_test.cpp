@@ -19,11 +19,13 @@
 #include <curvestep/host/simulator.hpp>
 
 #include "fake_board.hpp"  // tests/firmware/app
+#include "wire_job.hpp"
 
 using namespace curvestep;
 using namespace curvestep::firmware;
 using namespace curvestep::protocol;
 using namespace curvestep::firmware::testing;
+using curvestep::sim_testing::to_host_job;
 
 namespace {
 
@@ -40,18 +42,6 @@ std::vector<QueueSegment> zigzag() {
   job.back().end_of_job = true;
   return job;
 }
-
-host::Job to_host_job(const std::vector<QueueSegment>& wire) {
-  host::Job job;
-  job.name = "wire";
-  for (const auto& s : wire) {
-    const auto segment = to_path_segment(s);
-    REQUIRE(segment.has_value());
-    job.segments.push_back(segment.value());
-  }
-  return job;
-}
-
 /// index -> setpoint of simulate() with `holds`.
 std::map<std::uint32_t, WirePoint> simulated(const std::vector<QueueSegment>& wire, const std::vector<host::FeedHoldEvent>& holds) {
   host::SimulationOptions options;
