@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fcntl.h>
 #include <filesystem>
+#include <map>
 #include <regex>
 #include <string>
 #include <termios.h>
@@ -117,6 +118,54 @@ TEST_CASE("hil operator: ! holds and ~ resumes a streamed job, which then equals
   // ... and the device's stream is the held simulation's, every setpoint.
   ct::check_same_setpoints(held, capture);
   CHECK(held.back().raw == unheld.back().raw);
+}
+
+TEST_CASE("hil operator: a real-time device held for a while streams sim --hold-at T:R's setpoints, R its standing time",
+          "[integration][hil][operator]") {
+  const auto machine = ct::wire_exact_machine();
+  const auto job = ct::zigzag_job(30);  // about 9 s at 1 kHz in real time
+  ct::Process device({"device"}, "device_realtime_hold.stderr");
+  const std::string port = device.first_line();
+  KeyTerminal terminal;
+  const auto capture = ct::scratch_dir() / "held_realtime.csv";
+  ct::Process stream(stream_arguments(job, machine, port, capture), "stream_realtime_hold.stderr", terminal.slave());
+  REQUIRE(wait_for_log(device, "running at tick"));
+  std::this_thread::sleep_for(1000ms);
+  terminal.type("!");
+  REQUIRE(wait_for_log(device, "holding at tick"));
+  std::this_thread::sleep_for(800ms);  // held: a real-time device keeps ticking without streaming
+  terminal.type("~");
+  const int status = stream.wait(60s);
+  const std::string output = stream.rest_of_stdout();
+  INFO(stream.stderr_text());
+  INFO(output);
+  REQUIRE(status == 0);
+  std::smatch found;
+  REQUIRE(std::regex_search(output, found, std::regex("curvestep sim --hold-at ([0-9.e-]+):([0-9.e-]+) gives")));
+  const auto standing = static_cast<std::size_t>(std::llround(std::stod(found[2].str()) * 1000));
+  CHECK(standing > 300);  // most of the 800 ms (the braking takes some of it)
+  const auto held_csv = ct::scratch_dir() / "sim_held_realtime.csv";
+  std::string errors;
+  REQUIRE(ct::run_program({"sim", job.string(), "--machine", machine.string(), "--lookahead", "16", "--hold-at",
+                           found[1].str() + ":" + found[2].str(), "-o", held_csv.string()},
+                          errors, "sim_held_realtime") == 0);
+  const auto simulated = ct::read_raw_setpoints(held_csv);
+  const auto captured = ct::read_raw_setpoints(capture);
+  // Every captured setpoint is the simulation's at its index; the simulation's others are the
+  // standing ticks, consecutive and all at the point where the machine stopped.
+  std::map<std::uint64_t, ct::RawSetpoint> by_index;
+  for (const auto& r : simulated) by_index[r.index] = r;
+  std::size_t mismatches = 0;
+  for (const auto& r : captured) {
+    const auto it = by_index.find(r.index);
+    if (it == by_index.end() || it->second.raw != r.raw) ++mismatches;
+    if (it != by_index.end()) by_index.erase(it);
+  }
+  CHECK(mismatches == 0);
+  REQUIRE(by_index.size() == standing);
+  const std::uint64_t first = by_index.begin()->first;
+  for (const auto& [index, r] : by_index) CHECK(r.raw == simulated.at(first - 1).raw);  // sim's index = its position
+  CHECK(by_index.rbegin()->first == first + standing - 1);  // with the count: consecutive
 }
 
 TEST_CASE("hil operator: Ctrl-C holds and asks, r resumes, SIGTERM aborts through the protocol, and the terminal is restored",
