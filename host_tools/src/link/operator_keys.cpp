@@ -40,6 +40,11 @@ OperatorConsole::OperatorConsole(bool keys_from_stdin, int input_fd, int output_
   install(SIGTERM, saved_terminate);
   const bool terminal = ::isatty(input_fd) != 0;
   if (!terminal && !keys_from_stdin) return;
+  // A job in the background (`curvestep stream ... &`) leaves the terminal alone: changing its
+  // mode or reading it would stop the process (SIGTTOU, SIGTTIN).
+  // (A terminal that is not the controlling one has no foreground group: tcgetpgrp fails.)
+  const pid_t foreground = terminal ? ::tcgetpgrp(input_fd) : -1;
+  if (foreground > 0 && foreground != ::getpgrp()) return;
   input_fd_ = input_fd;
   if (terminal && ::tcgetattr(input_fd, &saved_mode_) == 0) {
     termios raw = saved_mode_;

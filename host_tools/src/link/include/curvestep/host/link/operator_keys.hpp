@@ -9,7 +9,8 @@
 //
 // Keys are read from standard input when it is a terminal (put in raw mode: no line buffering, no
 // echo; Ctrl-C still raises SIGINT), or from any standard input (a pipe) when `keys_from_stdin`
-// says so (`--keys`). The constructor installs the signal handlers and the raw mode; the
+// says so (`--keys`); a terminal is left alone when the process runs in the background (not its
+// foreground process group). The constructor installs the signal handlers and the raw mode; the
 // destructor restores both, so every way out of a command (return, exception) puts the terminal
 // back. One console at a time.
 #pragma once
