@@ -13,8 +13,10 @@
 // capacity (lib/core motion/step_generator.hpp: check_step_rate over peak axis speeds and over the
 // setpoints). --dry-run drives no lines: ticks run as fast as the link allows (as `device --fast`)
 // and the edges are only counted, so the summary's step counts can be checked without hardware.
+// While it runs, the operator's keys and signals (operator_session.hpp: ! hold, ~ resume, Ctrl-X /
+// Esc abort, ? status; Ctrl-C holds and asks, SIGTERM aborts) act on the firmware through the
+// protocol, as with `curvestep stream`.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -46,6 +48,7 @@
 #include "command_registry.hpp"
 #include "gpio_command_output.hpp"
 #include "job_pipeline_options.hpp"
+#include "operator_session.hpp"
 #include "rate_option.hpp"
 
 namespace curvestep::host {
@@ -59,6 +62,7 @@ struct GpioCommandOptions {
   bool dry_run = false;
   unsigned link_timeout_ms = 3000;
   JobPipelineOptions pipeline;
+  bool keys = false;  ///< --keys: operator keys from stdin even if it is no terminal
 };
 
 /// Exit status: the job asks an axis for more steps per second than the machine allows.
@@ -69,13 +73,6 @@ constexpr int exit_device_error = 4;
 constexpr int exit_gpio_unavailable = 5;
 
 constexpr const char* axis_names[] = {"x", "y", "z"};
-
-std::atomic<bool> interrupted{false};
-extern "C" void on_interrupt(int) { interrupted.store(true); }
-
-/// Thrown from the stream's progress callback after Ctrl-C / SIGTERM: it leaves stream_job, and the
-/// board thread (the firmware and its step lines) stops when it goes out of scope.
-struct Interrupted {};
 
 /// What the pre-check found.
 struct Plan {
@@ -168,9 +165,9 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
     constexpr std::size_t shown = 5;
     if (++*warnings <= shown) std::cerr << "curvestep gpio: warning: " << text << "\n";
   };
-  options.progress = [](const link::StreamProgress&) {
-    if (interrupted.load()) throw Interrupted{};
-  };
+  // Keys and signals act through the protocol (FeedHold, Resume, Abort), as with `curvestep stream`.
+  OperatorSession session("curvestep gpio", o.keys);
+  session.attach(options);
   link::StreamResult result;
   const auto started = std::chrono::steady_clock::now();
   std::string failure;
@@ -183,13 +180,11 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
       failure = e.what();
     } catch (const link::TransportError& e) {
       failure = e.what();
-    } catch (const Interrupted&) {
-      // reported below
     }
+    session.end_line();
   }  // the board thread stops here; the output's lines go low
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   if (*warnings > 5) std::cerr << "curvestep gpio: warning: " << *warnings - 5 << " more values rounded for the wire\n";
-  if (interrupted.load()) failure = "interrupted" + (failure.empty() ? std::string() : " (" + failure + ")");
 
   std::cout << "curvestep gpio " << o.job << " -> " << where << "\n"
             << "  setpoints:           " << result.setpoints.size() << " at " << machine.rate_hz << " Hz (planned "
@@ -207,9 +202,14 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
                 << "  edge clock restarts: " << inner->rebases() << " (1: at the start; more: a pause or the loop fell behind)\n";
     }
   }
+  std::cout << format_operator_summary(result, machine.rate_hz);
   if (!failure.empty()) {
     std::cerr << "curvestep gpio: " << failure << "\n";
     return exit_device_error;
+  }
+  if (result.aborted) {
+    std::cerr << "curvestep gpio: aborted by the operator\n";
+    return exit_aborted;
   }
   if (result.standing_ticks != 0) {
     std::cerr << "curvestep gpio: the machine stood still for " << result.standing_ticks << " ticks (feed hold or a starved queue)\n";
@@ -271,8 +271,6 @@ int run_gpio(const GpioCommandOptions& o) {
       std::cerr << "curvestep gpio: warning: axis " << axis_names[a] << " steps but has no lines in \"gpio\" (its steps go nowhere)\n";
     }
   }
-  std::signal(SIGINT, on_interrupt);
-  std::signal(SIGTERM, on_interrupt);
   std::signal(SIGPIPE, SIG_IGN);
   if (o.dry_run) return run_on_board<boards::host::GpiodStepOutput>(o, job, machine, plan, nullptr, "dry run (no lines driven)");
   return run_on_board(o, job, machine, plan, gpio.get(), "GPIO chip \"" + lines.chip + "\"");
@@ -291,10 +289,14 @@ void add_gpio_command(CLI::App& app) {
   gpio->add_flag("--dry-run", options->dry_run,
                  "Drive no lines: run the firmware as fast as possible and count the steps it would take");
   gpio->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
+  gpio->add_flag("--keys", options->keys,
+                 "Read the operator keys from standard input even when it is no terminal (a pipe)");
   add_job_pipeline_options(gpio, options->pipeline);
   gpio->footer(
+      "While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n"
+      "Ctrl-C holds and asks (a second Ctrl-C aborts), SIGTERM aborts.\n"
       "Exit status: 0 done; 3 an axis would exceed max_step_rate (nothing moved); 4 the controller or link failed;\n"
-      "5 the GPIO chip or a line cannot be opened; 1 bad input.");
+      "5 the GPIO chip or a line cannot be opened; 6 aborted by the operator; 1 bad input.");
   gpio->callback([options] {
     const int status = run_gpio(*options);
     if (status != 0) throw CLI::RuntimeError(status);

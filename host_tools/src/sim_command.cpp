@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // `curvestep sim JOB --machine MACHINE.json [--rate HZ] [--lookahead N] [-o setpoints.csv] [--report report.html]`:
 // replays a job through the firmware's motion code and prints what the machine would do.
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/csv.hpp>
@@ -35,8 +37,32 @@ struct SimOptions {
   std::string output;
   std::string report;
   bool double_precision = false;
+  std::vector<std::string> holds;  ///< --hold-at T[:R], seconds
   JobPipelineOptions pipeline;
 };
+
+/// `--hold-at T[:R]`: a feed hold before the setpoint at T seconds (index T × rate, rounded), standing
+/// R seconds (default 0) once stopped, then resume (FeedHoldEvent).
+FeedHoldEvent parse_hold(const std::string& text, double rate_hz) {
+  const auto colon = text.find(':');
+  const auto seconds = [&](const std::string& part, const char* what) {
+    std::size_t used = 0;
+    double value = -1;
+    try {
+      value = std::stod(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size() || !(value >= 0) || !std::isfinite(value)) {
+      throw std::runtime_error("--hold-at " + text + ": " + what + " must be a number of seconds >= 0");
+    }
+    return static_cast<std::uint64_t>(std::llround(value * rate_hz));
+  };
+  FeedHoldEvent hold;
+  hold.tick = seconds(text.substr(0, colon), "the hold time T");
+  if (colon != std::string::npos) hold.standing_ticks = seconds(text.substr(colon + 1), "the standing time R");
+  return hold;
+}
 
 /// The job's machine events as summary lines (count, pen moves counted, then up to 8 others with where they happen).
 std::string format_events(const Job& job) {
@@ -102,6 +128,7 @@ int run_sim(const SimOptions& o) {
     options.lookahead_distance_mm = lookahead_distance_for(machine);
   }
   options.fixed_point = !o.double_precision;
+  for (const auto& text : o.holds) options.holds.push_back(parse_hold(text, machine.rate_hz));
   options.progress = make_terminal_progress();  // a bar with ETA on a terminal, quiet otherwise
   // The setpoints go to the CSV as they are made and are kept nowhere; the HTML report runs the
   // simulation again for its plots (write_html_report_streamed).
@@ -140,6 +167,10 @@ int run_sim(const SimOptions& o) {
   if (replay_window) std::cout << ", look-ahead " << options.lookahead;
   std::cout << ")\n"
             << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report) << format_events(job);
+  for (const FeedHoldEvent& hold : options.holds) {
+    std::cout << "  feed hold:           before setpoint " << hold.tick << ", standing " << hold.standing_ticks
+              << " ticks once stopped, then resumed\n";
+  }
   for (const auto& note : prepared.notes) std::cout << "  note: " << note << "\n";
   if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
   if (!o.report.empty()) std::cout << "  wrote " << o.report << "\n";
@@ -164,6 +195,10 @@ void add_sim_command(CLI::App& app) {
   sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v,index; index = the setpoint's tick from the start)");
   sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary)");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
+  sim->add_option("--hold-at", options->holds,
+                  "Feed hold at T seconds (before setpoint T x rate), resume R seconds after the machine stands (default 0); "
+                  "repeatable. `curvestep stream` prints the --hold-at that replays its holds bit for bit")
+      ->type_name("T[:R]");
   add_job_pipeline_options(sim, options->pipeline);
   sim->callback([options, lookahead_option] {
     options->lookahead_given = lookahead_option->count() > 0;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// `curvestep stream JOB --machine MACHINE.json --port PORT [--baud N] [--capture setpoints.csv] [--lookahead N]`:
-// uploads a job to a controller with flow control, shows progress on a terminal, captures the
+// `curvestep stream JOB --machine MACHINE.json --port PORT [--baud N] [--capture setpoints.csv] [--lookahead N] [--keys]`:
+// uploads a job to a controller with flow control, shows progress on a terminal, takes the
+// operator's keys and signals (hold, resume, abort, status: operator_session.hpp), captures the
 // controller's setpoint stream (the CSV of `curvestep sim -o`) and reports its errors. A
 // controller without a planner (look-ahead 0) gets the job planned here with --lookahead N
 // (default 16) as pieces: its stream is then `curvestep sim --lookahead N`'s.
@@ -11,9 +12,6 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <unistd.h>
-
-#include <nlohmann/json.hpp>
 
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/job_file.hpp>
@@ -26,6 +24,8 @@
 
 #include "command_registry.hpp"
 #include "job_pipeline_options.hpp"
+#include "machine_for_link.hpp"
+#include "operator_session.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -40,30 +40,11 @@ struct StreamCommandOptions {
   std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
   JobPipelineOptions pipeline;
   bool lookahead_given = false;    ///< --lookahead given: plan with that count window alone
+  bool keys = false;               ///< --keys: read operator keys from stdin even if it is no terminal
 };
 
 /// Exit status when the controller or the link failed.
 constexpr int exit_device_error = 4;
-
-/// The machine file without its "gpio" section (the device's wiring, not planning data).
-MachineFile load_machine_for_stream(const std::string& path) {
-  const std::string text = read_text_file(path);
-  const auto root = nlohmann::json::parse(text, nullptr, false, true);
-  if (root.is_object() && root.contains("gpio")) {
-    auto planning = root;
-    planning.erase("gpio");
-    return parse_machine_file(planning.dump(2), path);
-  }
-  return load_machine_file(path);
-}
-
-std::string format_seconds(double s) {
-  if (s < 0) return "--:--";
-  const long total = static_cast<long>(s + 0.5);
-  char text[32];
-  std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
-  return text;
-}
 
 /// Which mode ran: the device planned with its own window, or it replayed pieces planned here.
 std::string look_ahead_text(const link::StreamResult& result, bool by_distance) {
@@ -82,7 +63,7 @@ std::string look_ahead_text(const link::StreamResult& result, bool by_distance) 
 }
 
 int run_stream(const StreamCommandOptions& o) {
-  const MachineFile machine_file = load_machine_for_stream(o.machine);
+  const MachineFile machine_file = load_machine_for_link(o.machine);
   const PreparedJob prepared = prepare_job(o.job, machine_file, machine_file.limits, o.pipeline);
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
@@ -94,13 +75,8 @@ int run_stream(const StreamCommandOptions& o) {
   options.lookahead = o.lookahead;
   if (!o.lookahead_given) options.lookahead_distance_mm = lookahead_distance_for(machine);
   options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
-  const bool terminal = isatty(STDERR_FILENO) != 0;
-  if (terminal) {
-    options.progress = [](const link::StreamProgress& p) {
-      std::cerr << "\r  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
-                << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s) << "   " << std::flush;
-    };
-  }
+  OperatorSession session("curvestep stream", o.keys);
+  session.attach(options);
   // The setpoints go to the capture file as they arrive and are kept nowhere; a failed upload
   // leaves no capture behind (as before, when the file was written at the end).
   std::ofstream capture;
@@ -123,19 +99,19 @@ int run_stream(const StreamCommandOptions& o) {
     result = link::stream_job(*transport, job, machine, options);
   } catch (const link::StreamError& e) {
     drop_capture();
-    if (terminal) std::cerr << "\n";
+    session.end_line();
     std::cerr << "curvestep stream: " << e.what() << "\n";
     return exit_device_error;
   } catch (const link::TransportError& e) {
     drop_capture();
-    if (terminal) std::cerr << "\n";
+    session.end_line();
     std::cerr << "curvestep stream: " << e.what() << "\n";
     return exit_device_error;
   } catch (...) {
     drop_capture();
     throw;
   }
-  if (terminal) std::cerr << "\n";
+  session.end_line();
   if (capture.is_open()) {
     capture.close();
     if (!capture) throw std::runtime_error("error writing " + o.capture);
@@ -151,7 +127,12 @@ int run_stream(const StreamCommandOptions& o) {
             << "  device look-ahead:   " << look_ahead_text(result, !o.lookahead_given) << "\n";
   if (result.lookahead == 0) std::cout << "  pieces sent:         " << result.pieces_sent << "\n";
   std::cout << "  bytes sent:          " << result.bytes_sent << "\n" << smoothing::format_smoothing(prepared.smoothing);
+  std::cout << format_operator_summary(result, machine.rate_hz);
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
+  if (result.aborted) {
+    std::cerr << "curvestep stream: aborted by the operator\n";
+    return exit_aborted;
+  }
   if (result.duplicate_setpoints != 0) {
     std::cerr << "curvestep stream: the setpoint stream is broken: " << result.duplicate_setpoints << " duplicated\n";
     return exit_device_error;
@@ -175,6 +156,13 @@ void add_stream_command(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
   add_job_pipeline_options(stream, options->pipeline);
   stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
+  stream->add_flag("--keys", options->keys,
+                   "Read the operator keys from standard input even when it is no terminal (a pipe): ! hold, ~ resume, "
+                   "Ctrl-X or Esc abort, ? status");
+  stream->footer(
+      "While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n"
+      "Ctrl-C holds and asks (a second Ctrl-C aborts), SIGTERM aborts.\n"
+      "Exit status: 0 done; 4 the controller or link failed; 6 aborted by the operator; 1 bad input.");
   stream->callback([options, lookahead_option] {
     options->lookahead_given = lookahead_option->count() > 0;
     const int status = run_stream(*options);

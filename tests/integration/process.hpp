@@ -39,7 +39,9 @@ inline const std::filesystem::path& scratch_dir() {
 /// One child process running `curvestep` with `arguments`.
 class Process {
  public:
-  explicit Process(const std::vector<std::string>& arguments, const std::string& stderr_name) {
+  /// `stdin_fd` >= 0 becomes the child's standard input (a pty's slave: a terminal to type keys
+  /// into); otherwise it reads /dev/null.
+  explicit Process(const std::vector<std::string>& arguments, const std::string& stderr_name, int stdin_fd = -1) {
     stderr_path_ = scratch_dir() / stderr_name;
     // Everything the child needs is made here: between fork and exec a child of a threaded process
     // (a test's relay thread) may only make async-signal-safe calls, no allocation (with the
@@ -59,6 +61,9 @@ class Process {
       ::dup2(out[1], STDOUT_FILENO);
       const int err = ::open(stderr_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
       if (err >= 0) ::dup2(err, STDERR_FILENO);
+      // Never the test runner's terminal: a child that reads operator keys would take it over.
+      const int in = stdin_fd >= 0 ? stdin_fd : ::open("/dev/null", O_RDONLY);
+      if (in >= 0) ::dup2(in, STDIN_FILENO);
       ::close(out[0]);
       ::execv(program.c_str(), argv.data());
       ::_exit(127);

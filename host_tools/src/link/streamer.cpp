@@ -6,10 +6,13 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <iterator>
+#include <optional>
 #include <map>
 #include <string>
 #include <vector>
 
+#include <curvestep/host/csv.hpp>
 #include <curvestep/host/link/host_link.hpp>
 #include <curvestep/host/link/wire.hpp>
 #include <curvestep/protocol/messages.hpp>
@@ -47,10 +50,13 @@ class Upload {
       }
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
-      while (!finished()) {
+      while (!(aborting_ ? abort_settled() : finished())) {
         settle_acknowledged();
-        submit_units();
-        submit_start();
+        take_operator_command();
+        if (!aborting_) {
+          submit_units();
+          submit_start();
+        }
         link_.pump(5, handler);
         watch_setpoint_stream();
         request_status();
@@ -64,6 +70,81 @@ class Upload {
   }
 
  private:
+  // --- the operator: hold, resume, abort (docs/host_board.md, "Operating a running job") -------
+
+  /// Acts on the operator's request, or keeps it until the link can take it.
+  void take_operator_command() {
+    if (pending_command_ == OperatorCommand::None && options_.operator_command) pending_command_ = options_.operator_command();
+    switch (pending_command_) {
+      case OperatorCommand::Hold: return hold();
+      case OperatorCommand::Resume: return resume();
+      case OperatorCommand::Abort: return abort();
+      default: pending_command_ = OperatorCommand::None; return;
+    }
+  }
+
+  /// FeedHold and, right behind it, a StatusRequest: the answer names the last setpoint before the hold.
+  void hold() {
+    if (piece_mode_ || aborting_ || holding_) {
+      if (piece_mode_) warn("this controller has no planner and cannot feed-hold: abort with Ctrl-X or Esc");
+      pending_command_ = OperatorCommand::None;
+      return;
+    }
+    if (!started_ || link_.in_flight() + 2 > HostLink::window) return;  // later
+    submit_operator_message(protocol::Message(protocol::FeedHold{}));
+    submit_status_request();
+    holding_ = true;
+    hold_index_pending_ = true;
+    holds_.push_back(StreamHold{});
+    resumed_.push_back(false);
+    pending_command_ = OperatorCommand::None;
+  }
+
+  void resume() {
+    if (!holding_ || aborting_) {
+      pending_command_ = OperatorCommand::None;
+      return;
+    }
+    if (!link_.can_submit(protocol::MessageType::Resume)) return;  // later
+    submit_operator_message(protocol::Message(protocol::Resume{}));
+    holding_ = false;
+    resumed_.back() = true;
+    pending_command_ = OperatorCommand::None;
+  }
+
+  /// Abort, then a StatusRequest for where the machine stopped; nothing more is queued.
+  void abort() {
+    if (aborting_) {
+      pending_command_ = OperatorCommand::None;
+      return;
+    }
+    if (link_.in_flight() + 2 > HostLink::window) return;  // later
+    submit_operator_message(protocol::Message(protocol::Abort{}));
+    submit_status_request();
+    aborting_ = true;
+    abort_reported_ = false;
+    pending_command_ = OperatorCommand::None;
+  }
+
+  /// The aborted job is over once Abort and the StatusRequest behind it were acknowledged and a
+  /// report says the controller stands (every earlier report came before the Abort).
+  [[nodiscard]] bool abort_settled() const { return link_.idle() && abort_reported_; }
+
+  /// FeedHold, Resume or Abort (no credit; errors about it name no segment).
+  void submit_operator_message(const protocol::Message& message) {
+    link_.submit(message);
+    submitted_.push_back(operator_marker);
+    sequence_to_unit_[sequence_++] = operator_marker;
+  }
+
+  void submit_status_request() {
+    link_.submit(protocol::Message(protocol::StatusRequest{}));
+    submitted_.push_back(status_marker);
+    sequence_to_unit_.erase(sequence_);
+    ++sequence_;
+    last_status_ms_ = link_.now_ms();
+  }
+
   void warn(const std::string& text) const {
     if (options_.warn) options_.warn(text);
   }
@@ -121,7 +202,7 @@ class Upload {
   /// Drops the oldest submissions the controller has acknowledged (they leave the window in order).
   void settle_acknowledged() {
     while (submitted_.size() > link_.in_flight()) {
-      if (submitted_.front() < status_marker) acknowledged_units_ = submitted_.front() + 1;
+      if (submitted_.front() < operator_marker) acknowledged_units_ = submitted_.front() + 1;  // a unit, not a marker
       if (submitted_.front() == start_marker) {
         start_acknowledged_ = true;
         mark_stream_progress();
@@ -168,6 +249,7 @@ class Upload {
     if (found == sequence_to_unit_.end()) return "";
     if (found->second == configuration_marker) return " in the machine configuration";
     if (found->second == start_marker) return " in the Start command";
+    if (found->second == operator_marker) return " in the operator's FeedHold, Resume or Abort";
     const std::size_t k = found->second;
     const std::string text = " in " + job_.name + " segment " + std::to_string(file_segment(k));
     return piece_mode_ ? text + " (" + piece_text(k) + ")" : text;
@@ -203,11 +285,7 @@ class Upload {
     const std::uint32_t now = link_.now_ms();
     const auto interval = static_cast<std::uint32_t>(options_.status_interval_s * 1000);
     if (now - last_status_ms_ < interval || !link_.can_submit(protocol::MessageType::StatusRequest)) return;
-    link_.submit(protocol::Message(protocol::StatusRequest{}));
-    submitted_.push_back(status_marker);
-    sequence_to_unit_.erase(sequence_);
-    ++sequence_;
-    last_status_ms_ = now;
+    submit_status_request();
   }
 
   void on_message(const protocol::Message& m) {
@@ -220,9 +298,19 @@ class Upload {
       case protocol::MessageType::StatusReport: {
         last_status_ = m.get<protocol::StatusReport>();
         have_status_ = true;
+        if (hold_index_pending_ && last_status_.state == protocol::MachineState::Holding) {
+          hold_index_pending_ = false;  // the answer to the StatusRequest sent with FeedHold
+          // Index 0: held before the job began moving (armed), or right after its first setpoint;
+          // the two look alike, so such a hold counts as one before the start (tick 0).
+          holds_.back().tick = last_status_.setpoint_index == 0 ? 0 : std::uint64_t{last_status_.setpoint_index} + 1;
+        }
+        if (aborting_ && link_.idle() && last_status_.state != protocol::MachineState::Running &&
+            last_status_.state != protocol::MachineState::Holding) {
+          abort_reported_ = true;
+        }
         if (last_status_.state != protocol::MachineState::Running) mark_stream_progress();  // nothing to stream
         if (last_status_.state == protocol::MachineState::Running || last_status_.setpoint_index > 0) seen_running_ = true;
-        if (last_status_.state == protocol::MachineState::Fault) {
+        if (last_status_.state == protocol::MachineState::Fault && !aborting_) {
           const auto code = static_cast<Error>(last_status_.error);
           throw StreamError(code, transport_.name() + ": the controller stopped with a fault: " + describe_error(code) +
                                       " at setpoint " + std::to_string(last_status_.setpoint_index));
@@ -283,6 +371,13 @@ class Upload {
       if (done > 0) p.eta_s = running_s / done * (static_cast<double>(p.total) - done);
     }
     if (final_call) p.eta_s = 0;
+    p.state = aborting_ ? "Aborting" : holding_ ? "Hold" : "Running";
+    p.have_status = have_status_;
+    if (have_status_) {
+      p.setpoint_index = last_status_.setpoint_index;
+      p.machine_state = protocol::machine_state_name(last_status_.state);
+      for (std::size_t a = 0; a < 3; ++a) p.position_mm[a] = static_cast<double>(last_status_.position[a]) / 65536.0;
+    }
     options_.progress(p);
   }
 
@@ -302,12 +397,33 @@ class Upload {
     result.batches_repeated = link_.statistics().batches_repeated;
     result.frames_rejected = link_.statistics().frames_rejected;
     result.bytes_sent = link_.statistics().bytes_sent;
+    result.holds = holds_;
+    for (std::size_t k = 0; k < result.holds.size(); ++k) {
+      const std::uint64_t until = k + 1 < holds_.size() ? holds_[k + 1].tick : std::uint64_t{0xffffffff};
+      if (resumed_[k]) result.holds[k].standing_ticks = standing_between(holds_[k].tick, until);
+    }
+    result.aborted = aborting_;
+    result.final_setpoint_index = last_status_.setpoint_index;
+    for (std::size_t a = 0; a < 3; ++a) result.final_position_q16[a] = last_status_.position[a];
     return result;
+  }
+
+  /// The ticks the controller stood in a resumed hold at `tick`: the first gap in the setpoint
+  /// indices from there to `until` (a held controller ticks in real time without streaming; a fast
+  /// one does not tick while held, so there is no gap: 0).
+  [[nodiscard]] std::uint64_t standing_between(std::uint64_t tick, std::uint64_t until) const {
+    auto it = setpoints_.lower_bound(static_cast<std::uint32_t>(tick > 0 ? tick - 1 : 0));
+    if (it == setpoints_.end()) return 0;
+    for (auto next = std::next(it); next != setpoints_.end() && next->first <= until; it = next++) {
+      if (next->first != it->first + 1) return std::uint64_t{next->first} - it->first - 1;
+    }
+    return 0;
   }
 
   static constexpr std::size_t configuration_marker = static_cast<std::size_t>(-1);
   static constexpr std::size_t start_marker = static_cast<std::size_t>(-2);
   static constexpr std::size_t status_marker = static_cast<std::size_t>(-3);
+  static constexpr std::size_t operator_marker = static_cast<std::size_t>(-4);  // FeedHold, Resume, Abort; the smallest marker
 
   Transport& transport_;
   const Job& job_;
@@ -337,9 +453,27 @@ class Upload {
   bool started_ = false;
   bool have_status_ = false;
   bool seen_running_ = false;
+  OperatorCommand pending_command_ = OperatorCommand::None;  // waiting for room in the window
+  bool holding_ = false;             // FeedHold sent, no Resume yet
+  bool hold_index_pending_ = false;  // waiting for the StatusReport that names the hold's setpoint
+  bool aborting_ = false;            // Abort sent
+  bool abort_reported_ = false;      // a report after the Abort says the controller stands
+  std::vector<StreamHold> holds_;
+  std::vector<bool> resumed_;  // per hold: Resume sent
 };
 
 }  // namespace
+
+std::string hold_at_option(const std::vector<StreamHold>& holds, double rate_hz) {
+  std::string text;
+  for (const StreamHold& hold : holds) {
+    if (!hold.standing_ticks || hold.tick == 0) continue;
+    if (!text.empty()) text += " ";
+    text += "--hold-at " + format_number(static_cast<double>(hold.tick) / rate_hz) + ":" +
+            format_number(static_cast<double>(*hold.standing_ticks) / rate_hz);
+  }
+  return text;
+}
 
 StreamResult stream_job(Transport& transport, const Job& job, const MachineLimits& machine, const StreamOptions& options) {
   Upload upload(transport, job, machine, options);

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
@@ -40,7 +42,8 @@ std::string failure_text(const Job& job, const Failure& f) {
 template <class... Controllers>
 class LockstepRun {
  public:
-  LockstepRun(const Job& job, const MachineLimits& machine, const SimulationOptions& options) : job_(job) {
+  LockstepRun(const Job& job, const MachineLimits& machine, const SimulationOptions& options, std::vector<FeedHoldEvent> holds = {})
+      : job_(job), holds_(std::move(holds)) {
     std::apply([&](auto&... c) { (check(c.configure(machine), "machine"), ...); }, controllers_);
     std::apply([&](auto&... c) { (check(c.set_lookahead(options.lookahead), "lookahead"), ...); }, controllers_);
     std::apply([&](auto&... c) { (check(c.set_lookahead_distance(options.lookahead_distance_mm), "lookahead distance"), ...); },
@@ -55,6 +58,7 @@ class LockstepRun {
     std::apply([&](auto&... c) { (check(c.start(), no_index), ...); }, controllers_);
     while (!lead().finished()) {
       fill();
+      apply_feed_hold();
       // A braced list evaluates left to right: the controllers tick in their order.
       on_tick(std::apply([&](auto&... c) { return std::tuple{next_of(c)...}; }, controllers_));
     }
@@ -63,7 +67,35 @@ class LockstepRun {
   /// The first controller (it decides when the queue is full and when the job is over).
   [[nodiscard]] const auto& lead() const { return std::get<0>(controllers_); }
 
+  /// Throws if a feed hold was asked for at a tick the job never reached (after its end).
+  void check_holds_done() const {
+    if (next_hold_ < holds_.size()) {
+      throw std::runtime_error(job_.name + ": --hold-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
+                               ", before the hold at setpoint " + std::to_string(holds_[next_hold_].tick));
+    }
+  }
+
  private:
+  /// Between two ticks, as the firmware takes FeedHold and Resume: hold() before the hold's tick,
+  /// resume() once the controller has stood its standing ticks.
+  void apply_feed_hold() {
+    const bool held = lead().state() == ControllerState::Held;
+    if (held && standing_ == holds_[next_hold_ - 1].standing_ticks) {
+      std::apply([&](auto&... c) { (check(c.resume(), no_index), ...); }, controllers_);
+      standing_ = 0;
+    } else if (held) {
+      ++standing_;
+    }
+    if (next_hold_ < holds_.size() && lead().tick() == holds_[next_hold_].tick) {
+      if (lead().state() != ControllerState::Running) {
+        throw std::runtime_error(job_.name + ": --hold-at: the controller is not moving at setpoint " +
+                                 std::to_string(holds_[next_hold_].tick) + " (still braking or standing from the hold before)");
+      }
+      std::apply([](auto&... c) { (c.hold(), ...); }, controllers_);
+      ++next_hold_;
+    }
+  }
+
   void fill() {
     auto& head = std::get<0>(controllers_);
     while (next_ < job_.segments.size() && !queue_full()) {
@@ -104,6 +136,9 @@ class LockstepRun {
   const Job& job_;
   std::size_t next_ = 0;
   std::tuple<Controllers...> controllers_;
+  std::vector<FeedHoldEvent> holds_;  // in tick order
+  std::size_t next_hold_ = 0;         // the next hold to apply
+  std::uint64_t standing_ = 0;        // ticks stood in the current hold
 };
 
 // The controllers' largest window is the distance window's; set_lookahead() keeps the count window
@@ -121,6 +156,12 @@ void check_request(const Job& job, const MachineLimits& machine, const Simulatio
   if (options.lookahead < 1 || options.lookahead > max_lookahead) {
     throw std::runtime_error("lookahead: must be between 1 and " + std::to_string(max_lookahead) + " segments, not " +
                              std::to_string(options.lookahead));
+  }
+  for (std::size_t k = 1; k < options.holds.size(); ++k) {
+    if (options.holds[k].tick <= options.holds[k - 1].tick) {
+      throw std::runtime_error("--hold-at: the holds must come in time order (setpoint " + std::to_string(options.holds[k].tick) +
+                               " after setpoint " + std::to_string(options.holds[k - 1].tick) + ")");
+    }
   }
 }
 
@@ -162,7 +203,7 @@ SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, 
                                   const SetpointSink& sink) {
   check_request(job, machine, options);
   SimulationSummary s;
-  LockstepRun<ExactController, FixedController> run(job, machine, options);
+  LockstepRun<ExactController, FixedController> run(job, machine, options, options.holds);
   const double dt = 1.0 / machine.rate_hz;
   // Peaks from the exact (double) positions, one setpoint apart, as they come (position_differences.hpp,
   // the implementation the report's motion profile uses too): memory independent of the job's length.
@@ -201,6 +242,7 @@ SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, 
       options.progress(total_length > 0 ? std::fmin(s.distance_mm / total_length, 0.999) : 0.0);
     }
   });
+  run.check_holds_done();
   if (options.progress) options.progress(1.0);
   s.setpoints = differences.count();
   for (std::size_t axis = 0; axis < 3; ++axis) s.peak_step_rate_hz[axis] = peak_axis_speed[axis] * machine.axes[axis].steps_per_mm;

@@ -29,7 +29,10 @@ std::string temporary(const std::string& name) { return "/tmp/curvestep_gpio_tes
 Run run(const std::string& arguments) {
   const std::string out = temporary("stdout.txt");
   const std::string err = temporary("stderr.txt");
-  const std::string command = std::string(CURVESTEP_BINARY) + " " + arguments + " >" + out + " 2>" + err;
+  // Standard input is /dev/null unless the arguments redirect it: never the runner's terminal,
+  // which the program would read operator keys from.
+  const std::string input = arguments.find('<') == std::string::npos ? " </dev/null" : "";
+  const std::string command = std::string(CURVESTEP_BINARY) + " " + arguments + input + " >" + out + " 2>" + err;
   const int raw = std::system(command.c_str());
   Run r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -165,4 +168,21 @@ TEST_CASE("gpio: a dry run takes the steps from the job's start to its end on ev
     REQUIRE(r.status == 0);
     CHECK(net_steps(r.out) == std::array<long, 3>{-264, 161, 400});
   }
+}
+
+TEST_CASE("gpio: with --keys, Esc from a non-terminal stdin aborts through the protocol before anything moves; without it stdin is not read",
+          "[host_tools][gpio][operator]") {
+  const std::string m = machine("machine_keys.json", gpio_section);
+  const std::string escape = write("escape.txt", "\x1b");
+  const std::string job = source("examples/jobs/every_type.json");
+  const Run aborted = run("gpio " + job + " --machine " + m + " --dry-run --keys <" + escape);
+  INFO(aborted.out << aborted.err);
+  CHECK(aborted.status == 6);
+  CHECK_THAT(aborted.out, Catch::Contains("aborted:             by the operator at setpoint 0"));
+  CHECK_THAT(aborted.err, Catch::Contains("aborted by the operator"));
+  CHECK(net_steps(aborted.out) == std::array<long, 3>{0, 0, 0});
+  const Run ignored = run("gpio " + job + " --machine " + m + " --dry-run <" + escape);
+  INFO(ignored.out << ignored.err);
+  CHECK(ignored.status == 0);
+  CHECK(net_steps(ignored.out) == std::array<long, 3>{20 * 80, 0, 0});
 }

@@ -25,11 +25,13 @@
 #include <curvestep/host/simulator.hpp>
 
 #include "fake_board.hpp"  // tests/firmware/app
+#include "wire_job.hpp"
 
 using namespace curvestep;
 using namespace curvestep::firmware;
 using namespace curvestep::protocol;
 using namespace curvestep::firmware::testing;  // fake_board.hpp: the board, the host, the wire helpers
+using curvestep::sim_testing::to_host_job;
 
 namespace {
 
@@ -64,18 +66,6 @@ std::vector<QueueSegment> mixed_short() {
   job.push_back(arc(p(x, 0), p(x, 4), p(x, 2), ArcDirection::CounterClockwise));
   job.push_back(line(p(x, 4), p(0, 4)));
   job.back().end_of_job = true;
-  return job;
-}
-
-/// The same job as the simulator loads it: the firmware's own conversion of each wire segment.
-host::Job to_host_job(const std::vector<QueueSegment>& wire) {
-  host::Job job;
-  job.name = "wire";
-  for (const auto& s : wire) {
-    const auto segment = to_path_segment(s);
-    REQUIRE(segment.has_value());
-    job.segments.push_back(segment.value());
-  }
   return job;
 }
 

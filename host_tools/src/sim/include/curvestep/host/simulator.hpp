@@ -41,6 +41,15 @@ struct SimulationSummary {
   std::vector<std::string> violations;    ///< limits exceeded (by more than 1%), one line each
 };
 
+/// A feed hold during a simulation (`curvestep sim --hold-at T[:R]`): the controller's hold()
+/// before the setpoint of index `tick` (T × rate) is made, as the firmware's FeedHold between two
+/// ticks; once it stands, `standing_ticks` (R × rate) setpoints stand still, then resume() before
+/// the next one. A device in fast mode never ticks while held: standing_ticks 0 gives its stream.
+struct FeedHoldEvent {
+  std::uint64_t tick = 0;
+  std::uint64_t standing_ticks = 0;
+};
+
 /// Options of one simulation.
 struct SimulationOptions {
   /// The largest look-ahead window the simulator's controllers have (their template Lookahead).
@@ -58,6 +67,9 @@ struct SimulationOptions {
   /// The most segments a distance window may take.
   static constexpr std::size_t max_distance_window = 256;
   std::function<void(double fraction)> progress;  ///< called now and then with 0..1 (may be empty)
+  /// Feed holds in tick order (simulate and simulate_stream; plan_pieces ignores them). A hold at a
+  /// tick where the job is not moving (it ended) is refused with std::runtime_error.
+  std::vector<FeedHoldEvent> holds;
 };
 
 /// The look-ahead distance that lets a planner reach any speed the machine allows and stop again:

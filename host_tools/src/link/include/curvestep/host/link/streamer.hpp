@@ -15,11 +15,21 @@
 // version 2, so none may be missing); a Fault state or an ErrorReport ends it with the
 // controller's cause (naming the job segment, and the piece number when pieces were sent). A controller that restarted mid-job (it answers NotConnected) ends it with
 // DeviceRestarted, naming the last acknowledged segment and the last setpoint received.
+//
+// The operator (StreamOptions::operator_command, polled every loop): Hold sends FeedHold and at
+// once a StatusRequest, whose answer (the controller takes both between the same two ticks) names
+// the last setpoint before the hold: the hold acts before setpoint index + 1 (StreamHold::tick).
+// Resume sends Resume; Abort sends Abort (nothing more is queued), then a StatusRequest, and the
+// upload ends with StreamResult::aborted once the controller reports it stopped. A controller
+// without a planner cannot hold (warn). `curvestep sim --hold-at T:R` with T = tick / rate and R =
+// the ticks it stood / rate gives the held job's setpoints bit for bit (hold_at_option()).
 #pragma once
 
 #include <cstddef>
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,6 +37,7 @@
 #include <curvestep/core/error.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/link/operator_command.hpp>
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/simulator.hpp>
@@ -42,6 +53,11 @@ struct StreamProgress {
   std::size_t setpoints_received = 0;  ///< setpoints captured so far
   double elapsed_s = 0;                ///< since connect
   double eta_s = -1;                   ///< estimated seconds left (-1: not known yet)
+  const char* state = "Running";       ///< the operator's view: "Running", "Hold" or "Aborting"
+  bool have_status = false;            ///< a StatusReport arrived: the fields below hold
+  std::uint32_t setpoint_index = 0;    ///< the controller's last StatusReport: its setpoint index
+  const char* machine_state = "";      ///< ... its state (Idle, Running, Holding, Fault)
+  std::array<double, 3> position_mm{}; ///< ... its commanded position
 };
 
 /// Options of one upload.
@@ -68,6 +84,16 @@ struct StreamOptions {
   /// (StreamResult::setpoints stays empty): memory independent of the job's length. Empty: the
   /// setpoints are collected in StreamResult::setpoints.
   SetpointSink setpoint_sink;
+  /// The operator's requests (keys, signals: OperatorConsole), polled about every 5 ms (may be empty).
+  std::function<OperatorCommand()> operator_command;
+};
+
+/// One feed hold of a streamed job.
+struct StreamHold {
+  /// The hold acted before this setpoint index (sim --hold-at T = tick / rate); 0: before the job
+  /// began moving (the controller reported index 0: armed, or at most one setpoint made).
+  std::uint64_t tick = 0;
+  std::optional<std::uint64_t> standing_ticks;  ///< ticks stood still before the resume (sim R × rate); none: not resumed
 };
 
 /// The controller stopped the job or the link died: a one-line cause naming what failed.
@@ -96,7 +122,15 @@ struct StreamResult {
   std::size_t planned_lookahead = 0;      ///< the window the pieces were planned with here (sim --lookahead); 0 when the controller planned
   std::size_t frames_rejected = 0;        ///< damaged frames from the controller
   std::size_t bytes_sent = 0;             ///< bytes written, retransmissions included
+  std::vector<StreamHold> holds;          ///< the operator's feed holds, in order
+  bool aborted = false;                   ///< the operator aborted the job (the controller stopped at once)
+  std::uint32_t final_setpoint_index = 0; ///< the controller's last StatusReport: setpoint index
+  std::array<std::int32_t, 3> final_position_q16{};  ///< ... and commanded position (Q16.16 raw)
 };
+
+/// The `curvestep sim` option that replays `holds` ("--hold-at 1.234:0 --hold-at ..."), "" for none.
+/// Holds never resumed (the job was aborted there) and holds before the start are left out.
+[[nodiscard]] std::string hold_at_option(const std::vector<StreamHold>& holds, double rate_hz);
 
 /// Runs `job` on the controller behind `transport`. Throws StreamError (controller error, link
 /// failure), TransportError (line closed) or std::runtime_error (job cannot be sent or planned,

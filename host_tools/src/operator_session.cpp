@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+#include "operator_session.hpp"
+
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <utility>
+#include <unistd.h>
+
+#include <curvestep/host/csv.hpp>
+
+namespace curvestep::host {
+
+OperatorSession::OperatorSession(std::string command, bool keys_from_stdin)
+    : command_(std::move(command)), console_(keys_from_stdin), terminal_(isatty(STDERR_FILENO) != 0) {
+  if (console_.reads_keys() && terminal_) std::cerr << command_ << ": " << link::OperatorConsole::key_help() << "\n";
+}
+
+void OperatorSession::attach(link::StreamOptions& options) {
+  options.operator_command = [this] { return next_command(); };
+  options.progress = [this](const link::StreamProgress& p) { draw(p); };
+}
+
+link::OperatorCommand OperatorSession::next_command() {
+  const link::OperatorCommand command = console_.poll();
+  if (command != link::OperatorCommand::Status) return command;
+  // grbl's status line: <State|MPos:x,y,z|Setpoint:n>
+  std::ostringstream line;
+  line << "<" << last_.state;
+  if (last_.have_status) {
+    line << "|MPos:" << format_number(last_.position_mm[0]) << "," << format_number(last_.position_mm[1]) << ","
+         << format_number(last_.position_mm[2]) << "|Setpoint:" << last_.setpoint_index << "|Controller:" << last_.machine_state;
+  }
+  line << "|" << last_.unit << ":" << last_.sent << "/" << last_.total << ">";
+  end_line();
+  std::cerr << line.str() << "\n" << std::flush;
+  return link::OperatorCommand::None;
+}
+
+void OperatorSession::draw(const link::StreamProgress& p) {
+  last_ = p;
+  if (!terminal_) return;
+  std::cerr << "\r  " << p.state << "  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
+            << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s) << "   " << std::flush;
+}
+
+void OperatorSession::end_line() const {
+  if (terminal_) std::cerr << "\n";
+}
+
+std::string format_seconds(double s) {
+  if (s < 0) return "--:--";
+  const long total = static_cast<long>(s + 0.5);
+  char text[32];
+  std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
+  return text;
+}
+
+std::string format_operator_summary(const link::StreamResult& result, double rate_hz) {
+  std::ostringstream out;
+  if (!result.holds.empty()) {
+    out << "  feed holds:          " << result.holds.size();
+    for (const link::StreamHold& hold : result.holds) {
+      out << "\n                       " << (hold.tick == 0 ? "before the job began moving" : "before setpoint " + std::to_string(hold.tick));
+      if (hold.standing_ticks) {
+        out << ", stood " << *hold.standing_ticks << " ticks, resumed";
+      } else {
+        out << ", not resumed";
+      }
+    }
+    const std::string replay = link::hold_at_option(result.holds, rate_hz);
+    if (!replay.empty() && !result.aborted) out << "\n                       (curvestep sim " << replay << " gives the same setpoints)";
+    out << "\n";
+  }
+  if (result.aborted) {
+    out << "  aborted:             by the operator at setpoint " << result.final_setpoint_index << ", position ";
+    for (std::size_t a = 0; a < 3; ++a) out << (a == 0 ? "" : " ") << "xyz"[a] << " " << format_number(result.final_position_q16[a] / 65536.0);
+    out << " mm\n";
+  }
+  return out.str();
+}
+
+}  // namespace curvestep::host

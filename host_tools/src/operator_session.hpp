@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// OperatorSession: the operator's side of a job streamed by `stream`, `gpio` and `jog`: keys and
+// signals (link::OperatorConsole) into stream_job, the state on the progress line, a status line
+// on `?`, and the summary lines of holds and an abort.
+#pragma once
+
+#include <string>
+
+#include <curvestep/host/link/operator_keys.hpp>
+#include <curvestep/host/link/streamer.hpp>
+
+namespace curvestep::host {
+
+/// Exit status of a job the operator aborted (Ctrl-X, Esc, a second Ctrl-C, SIGTERM).
+constexpr int exit_aborted = 6;
+
+/// Keys and signals for one streamed job; restores the terminal when it goes.
+class OperatorSession {
+ public:
+  /// `command` names the program in messages ("curvestep stream"); keys are read from a terminal on
+  /// stdin, or from any stdin with `keys_from_stdin` (--keys). The progress line is drawn on stderr
+  /// if it is a terminal.
+  OperatorSession(std::string command, bool keys_from_stdin);
+  /// Sets options.operator_command and options.progress (the line with the state, the status on `?`).
+  void attach(link::StreamOptions& options);
+  /// The keys and signals (ask() is the hook for a program pause that waits for the operator).
+  [[nodiscard]] link::OperatorConsole& console() noexcept { return console_; }
+  /// Ends the progress line (before other output).
+  void end_line() const;
+
+ private:
+  link::OperatorCommand next_command();
+  void draw(const link::StreamProgress& p);
+
+  std::string command_;
+  link::OperatorConsole console_;
+  bool terminal_ = false;
+  link::StreamProgress last_{};
+};
+
+/// "--:--" or "m:ss".
+[[nodiscard]] std::string format_seconds(double s);
+
+/// The summary lines of the operator's holds and abort ("" if none), e.g.
+/// "  feed holds:          1 (curvestep sim --hold-at 1.234:0 gives the same setpoints)\n".
+[[nodiscard]] std::string format_operator_summary(const link::StreamResult& result, double rate_hz);
+
+}  // namespace curvestep::host
