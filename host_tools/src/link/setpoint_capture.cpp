@@ -14,6 +14,7 @@ void SetpointCapture::receive(std::uint32_t index, const protocol::WirePoint& po
   const bool consecutive = received_ > 0 && index == last_index_ + 1;
   if (received_ > 0 && !consecutive) {
     skipped_ += index - last_index_ - 1;
+    gaps_.push_back(Gap{last_index_, index - last_index_ - 1});
     gap_seen_ = true;
   }
   SetpointRecord r;
@@ -43,6 +44,14 @@ void SetpointCapture::receive(std::uint32_t index, const protocol::WirePoint& po
 std::size_t SetpointCapture::standing_ticks(std::uint32_t end_index) const noexcept {
   const std::uint32_t expected = received_ == 0 ? 0 : last_index_ + 1;
   return skipped_ + (end_index > expected ? end_index - expected : 0);
+}
+
+std::uint64_t SetpointCapture::first_gap_between(std::uint64_t from, std::uint64_t until) const noexcept {
+  for (const Gap& gap : gaps_) {
+    if (gap.after < from) continue;
+    return std::uint64_t{gap.after} + gap.length + 1 <= until ? gap.length : 0;
+  }
+  return 0;
 }
 
 }  // namespace curvestep::host::link

@@ -83,7 +83,9 @@ class Upload {
     }
   }
 
-  /// FeedHold and, right behind it, a StatusRequest: the answer names the last setpoint before the hold.
+  /// FeedHold and, right behind it, a StatusRequest. The first Holding report after it names the last
+  /// setpoint before the hold: the controller reports at once when a hold stops a moving machine
+  /// (docs/protocol.md), and the StatusRequest's answer covers a hold before the job moved.
   void hold() {
     if (piece_mode_ || aborting_ || holding_) {
       if (piece_mode_) warn("this controller has no planner and cannot feed-hold: abort with Ctrl-X or Esc");
@@ -412,12 +414,7 @@ class Upload {
   /// indices from there to `until` (a held controller ticks in real time without streaming; a fast
   /// one does not tick while held, so there is no gap: 0).
   [[nodiscard]] std::uint64_t standing_between(std::uint64_t tick, std::uint64_t until) const {
-    auto it = setpoints_.lower_bound(static_cast<std::uint32_t>(tick > 0 ? tick - 1 : 0));
-    if (it == setpoints_.end()) return 0;
-    for (auto next = std::next(it); next != setpoints_.end() && next->first <= until; it = next++) {
-      if (next->first != it->first + 1) return std::uint64_t{next->first} - it->first - 1;
-    }
-    return 0;
+    return capture_.first_gap_between(tick > 0 ? tick - 1 : 0, until);
   }
 
   static constexpr std::size_t configuration_marker = static_cast<std::size_t>(-1);

@@ -170,7 +170,7 @@ TEST_CASE("gpio: a dry run takes the steps from the job's start to its end on ev
   }
 }
 
-TEST_CASE("gpio: with --keys, Esc from a non-terminal stdin aborts through the protocol before anything moves; without it stdin is not read",
+TEST_CASE("gpio: with --keys, Esc from a non-terminal stdin aborts through the protocol before anything moves, without it stdin is not read",
           "[host_tools][gpio][operator]") {
   const std::string m = machine("machine_keys.json", gpio_section);
   const std::string escape = write("escape.txt", "\x1b");

@@ -43,7 +43,8 @@
 // a new session drops the configuration; a failed setpoint stream (Phase::StreamFailed) refuses
 // new jobs until the next Hello.
 //   FeedHold / Resume    -> MotionController::hold / resume (braking along the path); a StatusReport
-//                           follows once the machine stands; Resume while still braking continues
+//                           at once (Holding, the setpoint index the hold acted after) and another
+//                           once the machine stands; Resume while still braking continues
 //                           from the stop.
 //   Abort                -> stop at once: controller aborted and flushed, board.fault_stop(); the
 //                           next job must start where the machine stopped (StatusReport position).
@@ -596,6 +597,7 @@ class App {
     if (controller_.state() != ControllerState::Running) return;
     controller_.hold();
     phase_ = Phase::Holding;
+    send_status();  // names the tick the hold acted at: the host replays it (sim --hold-at)
   }
 
   [[nodiscard]] Result<void> resume() noexcept {

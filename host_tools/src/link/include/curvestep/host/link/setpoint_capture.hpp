@@ -39,6 +39,9 @@ class SetpointCapture {
   /// Indices skipped between the first setpoint and `end_index` (the controller's setpoint index at
   /// the end): ticks it stood held or starved.
   [[nodiscard]] std::size_t standing_ticks(std::uint32_t end_index) const noexcept;
+  /// The first run of skipped indices that starts at or after index `from` and ends before `until`
+  /// (the ticks a resumed hold stood still); 0 if there is none.
+  [[nodiscard]] std::uint64_t first_gap_between(std::uint64_t from, std::uint64_t until) const noexcept;
   /// The records kept when there is no sink.
   [[nodiscard]] std::vector<SetpointRecord>& records() noexcept { return records_; }
 
@@ -53,6 +56,12 @@ class SetpointCapture {
   std::uint32_t last_index_ = 0;
   std::uint32_t first_run_end_ = 0;
   bool gap_seen_ = false;
+  /// Each run of skipped indices: the index received before it and its length (a few per hold or stall).
+  struct Gap {
+    std::uint32_t after = 0;
+    std::uint32_t length = 0;
+  };
+  std::vector<Gap> gaps_;
 };
 
 }  // namespace curvestep::host::link
