@@ -37,7 +37,7 @@ class Upload {
       if (link_.capabilities().lookahead == 0) {
         plan_here(axes);
       } else {
-        wire_job_ = to_wire(job_, axes);
+        wire_job_ = to_wire(job_, axes, machine_.rate_hz);
         for (const auto& note : wire_job_.notes) warn(note);
         if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
       }

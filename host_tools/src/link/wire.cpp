@@ -9,6 +9,7 @@
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/joint_stops.hpp>
 
 namespace curvestep::host::link {
 namespace {
@@ -92,9 +93,10 @@ WireMachine to_wire(const MachineLimits& m, std::size_t axis_count) {
   return out;
 }
 
-WireJob to_wire(const Job& job, std::size_t axis_count) {
+WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz) {
   WireJob out;
   out.segments.reserve(job.segments.size());
+  const std::vector<JointStop> entries = joint_stops(job, rate_hz);
   for (std::size_t i = 0; i < job.segments.size(); ++i) {
     const PathSegment& s = job.segments[i];
     const std::size_t file_index = job.source_index.empty() ? i : job.source_index[i];
@@ -102,6 +104,8 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
     protocol::QueueSegment q;
     q.axis_count = static_cast<std::uint8_t>(axis_count);
     q.rapid = s.rapid();
+    q.stop_before = entries[i].stop;
+    q.rest_ticks = entries[i].rest_ticks;
     bool exact = true;
     const auto coordinate = [&](double value) {
       try {
@@ -161,14 +165,16 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
 
 protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) {
   const std::string where = "segment " + std::to_string(piece.segment) + ": a planned piece";
-  if (!valid_piece_ticks(piece.ticks, piece.exact_run)) {
+  if (!valid_piece_ticks(piece.ticks, piece.exact_run, piece.rest)) {
     throw std::runtime_error(where + " covers " + std::to_string(piece.ticks) + " ticks, not " +
-                             (piece.exact_run ? "2 to " + std::to_string(max_exact_run) + " (an exact run)"
-                                              : "1 or a power of two up to " + std::to_string(HermiteChunk::max_ticks)));
+                             (piece.rest        ? "1 to " + std::to_string(max_rest_ticks) + " (a rest)"
+                              : piece.exact_run ? "2 to " + std::to_string(max_exact_run) + " (an exact run)"
+                                                : "1 or a power of two up to " + std::to_string(HermiteChunk::max_ticks)));
   }
   const std::size_t sent = piece.exact_run ? piece.ticks - 1 : is_chunk(piece) ? piece.controls.size() : 0;
   protocol::QueuePiece q;
   q.exact_run = piece.exact_run;
+  q.rest = piece.rest;
   q.axis_count = static_cast<std::uint8_t>(axis_count);
   q.ticks = static_cast<std::uint16_t>(piece.ticks);
   q.end_of_job = piece.end_of_job;
@@ -187,7 +193,7 @@ protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) 
 std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
   const auto limits = firmware::to_machine_limits(to_wire(machine, motion_axes).configuration);
   if (!limits) throw std::runtime_error("machine: " + std::string(describe(limits.error())));
-  const auto wire_job = to_wire(job, motion_axes);
+  const auto wire_job = to_wire(job, motion_axes, machine.rate_hz);
   Job seen = job;
   seen.segments.clear();
   for (std::size_t i = 0; i < wire_job.segments.size(); ++i) {

@@ -493,7 +493,7 @@ class App {
     if (!made) return made.failure();
     const PathSegment& segment = made.value();
     CURVESTEP_CHECK(check_travel(segment, travel_));
-    CURVESTEP_CHECK(controller_.try_push(segment, job_segments_));
+    CURVESTEP_CHECK(controller_.try_push(segment, job_segments_, JointStop{s.stop_before, s.rest_ticks}));
     last_end_ = segment_end(s);
     has_last_end_ = true;
     note_queued();

@@ -186,6 +186,8 @@ struct QueueSegment {
   bool end_of_job = false;  ///< the last segment of the job: the controller may start without a full look-ahead
   ArcDirection direction = ArcDirection::CounterClockwise;  ///< Arc only
   std::uint32_t turns = 0;  ///< Arc only: extra full turns beyond the sweep from start to end (a helix)
+  bool stop_before = false;     ///< an exact stop at the joint into this segment (a job event there)
+  std::uint32_t rest_ticks = 0; ///< control ticks of rest at that joint (a G4 dwell); > 0 implies the stop
   std::int32_t feed_mm_per_s = 0;                           ///< Q16.16 feed, if has_feed
   std::array<WirePoint, max_segment_degree + 1> points{};  ///< Q16.16 points, point_count() used
   std::array<std::int32_t, max_segment_degree + 1> weights{};  ///< Q16.16 weights > 0, RationalBezier only
@@ -209,6 +211,7 @@ struct QueuePiece {
   std::uint8_t axis_count = 3;  ///< 2 or 3 coordinates per point (with 2, every z is 0)
   std::uint16_t ticks = 1;      ///< control ticks covered: 1 (exact), a power of two 2..256 (chunk), 2..6 (exact run)
   bool exact_run = false;       ///< flag bit 1: `ticks` exact setpoints, controls[0..ticks-2] then `end`
+  bool rest = false;            ///< flag bit 2: `ticks` (1..65535) setpoints at `end`, a rest at a joint
   bool end_of_job = false;      ///< the job's last piece
   std::uint32_t segment = 0;    ///< the job segment index the piece belongs to (reports)
   std::array<double, max_axes> end{};  ///< unrounded position of the piece's last setpoint (mm, binary64)
@@ -458,6 +461,8 @@ inline constexpr std::uint8_t segment_flag_three_axes = 0x04; ///< points have X
 inline constexpr std::uint8_t segment_flag_clockwise = 0x08;  ///< Arc only: clockwise (G2)
 inline constexpr std::uint8_t segment_flag_end_of_job = 0x10; ///< the last segment of the job
 inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u32 count of extra full turns follows
+inline constexpr std::uint8_t segment_flag_stop_before = 0x40; ///< an exact stop at the joint into the segment
+inline constexpr std::uint8_t segment_flag_rest = 0x80;       ///< a u32 count of rest ticks at that joint follows
 
 /// Encodes a QueueSegment payload; InvalidArgument (index = field number) for an impossible segment.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueueSegment& m, std::span<std::byte> out) noexcept {
@@ -473,12 +478,15 @@ inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u
   if (m.end_of_job) flags |= segment_flag_end_of_job;
   if (m.turns != 0 && m.kind != SegmentKind::Arc) return fail(Error::InvalidArgument, 3);
   if (m.turns != 0) flags |= segment_flag_turns;
+  if (m.stop_before) flags |= segment_flag_stop_before;
+  if (m.rest_ticks != 0) flags |= segment_flag_rest;
   ByteWriter w(out);
   w.u8(static_cast<std::uint8_t>(m.kind));
   w.u8(flags);
   if (bezier) w.u8(m.degree);
   if (m.has_feed) w.i32(m.feed_mm_per_s);
   if (m.turns != 0) w.u32(m.turns);
+  if (m.rest_ticks != 0) w.u32(m.rest_ticks);
   if (m.kind == SegmentKind::Arc) {
     detail::write_point(w, m.points[0], m.axis_count);
     detail::write_point(w, m.points[1], m.axis_count);
@@ -497,8 +505,10 @@ inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u
 
 /// QueuePiece flag bit 0 (byte 0): the job's last piece.
 inline constexpr std::uint8_t piece_flag_end_of_job = 0x01;
-/// QueuePiece flag bit 1: an exact run (ticks 2..6 exact setpoints); bits 2-7 reserved, 0.
+/// QueuePiece flag bit 1: an exact run (ticks 2..6 exact setpoints).
 inline constexpr std::uint8_t piece_flag_exact_run = 0x02;
+/// QueuePiece flag bit 2: a rest (ticks 1..65535 setpoints at the end point); bits 3-7 reserved, 0.
+inline constexpr std::uint8_t piece_flag_rest = 0x04;
 /// Most exact setpoints one exact run carries (core's max_exact_run).
 inline constexpr std::uint32_t max_piece_exact_run = 6;
 /// Payload bytes of a QueuePiece before its points (flags, axis_count, ticks, segment).
@@ -512,22 +522,25 @@ inline constexpr std::uint32_t max_piece_ticks = 256;
 /// True if `ticks` is a valid QueuePiece length: 1 or a power of two up to max_piece_ticks (the
 /// rule of core's valid_piece_ticks, which this header does not include: core's motion headers
 /// bring names such as curvestep::SegmentKind that would clash with this namespace's).
-/// For an exact run: 2..max_piece_exact_run.
-[[nodiscard]] constexpr bool valid_queue_piece_ticks(std::uint32_t ticks, bool exact_run = false) noexcept {
+/// For an exact run: 2..max_piece_exact_run; for a rest 1..65535 (not with an exact run).
+[[nodiscard]] constexpr bool valid_queue_piece_ticks(std::uint32_t ticks, bool exact_run = false, bool rest = false) noexcept {
+  if (rest) return !exact_run && ticks >= 1 && ticks <= 0xFFFFu;
   if (exact_run) return ticks >= 2 && ticks <= max_piece_exact_run;
   return ticks >= 1 && ticks <= max_piece_ticks && (ticks & (ticks - 1)) == 0;
 }
 
-/// Points a QueuePiece carries after its header: 1 (exact), 6 (chunk: end, q1..q5), or ticks
+/// Points a QueuePiece carries after its header: 1 (exact, rest), 6 (chunk: end, q1..q5), or ticks
 /// (exact run: end, then the earlier setpoints in time order).
-[[nodiscard]] constexpr std::size_t queue_piece_points(std::uint32_t ticks, bool exact_run) noexcept {
+[[nodiscard]] constexpr std::size_t queue_piece_points(std::uint32_t ticks, bool exact_run, bool rest = false) noexcept {
+  if (rest) return 1;
   if (exact_run) return ticks;
   return ticks > 1 ? 1 + piece_control_count : 1;
 }
 
 /// Payload bytes of a QueuePiece: 8 + 8 x axes x its points.
-[[nodiscard]] constexpr std::size_t queue_piece_size(std::size_t axis_count, std::uint32_t ticks, bool exact_run = false) noexcept {
-  return piece_header_size + 8 * axis_count * queue_piece_points(ticks, exact_run);
+[[nodiscard]] constexpr std::size_t queue_piece_size(std::size_t axis_count, std::uint32_t ticks, bool exact_run = false,
+                                                    bool rest = false) noexcept {
+  return piece_header_size + 8 * axis_count * queue_piece_points(ticks, exact_run, rest);
 }
 static_assert(queue_piece_size(max_axes, 256) == 152 && queue_piece_size(max_axes, 256) <= max_message_size,
               "docs/protocol.md: a 3-axis chunk is 152 bytes");
@@ -568,15 +581,16 @@ namespace detail {
 /// the value) for a NaN or infinite coordinate.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueuePiece& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
-  if (!valid_queue_piece_ticks(m.ticks, m.exact_run)) return fail(Error::InvalidArgument, 2);
+  if (!valid_queue_piece_ticks(m.ticks, m.exact_run, m.rest)) return fail(Error::InvalidArgument, 2);
   const std::size_t axes = m.axis_count;
-  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run) - 1;  // of the control slots
+  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run, m.rest) - 1;  // of the control slots
   CURVESTEP_CHECK(detail::check_piece_point(m.end, axes, detail::piece_point_offset(axes, 0)));
   for (std::size_t k = 0; k < piece_control_count; ++k) {
     CURVESTEP_CHECK(detail::check_piece_point(m.controls[k], k < sent ? axes : 0, detail::piece_point_offset(axes, k + 1)));
   }
   ByteWriter w(out);
-  w.u8(static_cast<std::uint8_t>((m.end_of_job ? piece_flag_end_of_job : 0) | (m.exact_run ? piece_flag_exact_run : 0)));
+  w.u8(static_cast<std::uint8_t>((m.end_of_job ? piece_flag_end_of_job : 0) | (m.exact_run ? piece_flag_exact_run : 0) |
+                                 (m.rest ? piece_flag_rest : 0)));
   w.u8(m.axis_count);
   w.u16(m.ticks);
   w.u32(m.segment);
@@ -762,12 +776,13 @@ template <>
   m.kind = static_cast<SegmentKind>(kind);
   const std::uint8_t flags = r.u8();
   const std::uint8_t allowed = static_cast<std::uint8_t>(
-      segment_flag_rapid | segment_flag_feed | segment_flag_three_axes | segment_flag_end_of_job |
-      (m.kind == SegmentKind::Arc ? segment_flag_clockwise | segment_flag_turns : 0));
+      segment_flag_rapid | segment_flag_feed | segment_flag_three_axes | segment_flag_end_of_job | segment_flag_stop_before |
+      segment_flag_rest | (m.kind == SegmentKind::Arc ? segment_flag_clockwise | segment_flag_turns : 0));
   if ((flags & ~allowed) != 0) r.reject_at(Error::BadPayload, 1);
   m.rapid = (flags & segment_flag_rapid) != 0;
   m.has_feed = (flags & segment_flag_feed) != 0;
   m.end_of_job = (flags & segment_flag_end_of_job) != 0;
+  m.stop_before = (flags & segment_flag_stop_before) != 0;
   m.axis_count = (flags & segment_flag_three_axes) != 0 ? 3 : 2;
   m.direction = (flags & segment_flag_clockwise) != 0 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
   if (m.kind == SegmentKind::Line) m.degree = 1;
@@ -783,6 +798,11 @@ template <>
     const std::size_t at = r.offset();
     m.turns = r.u32();
     if (!r.failed() && m.turns == 0) r.reject_at(Error::BadPayload, at);  // the flag means "some"
+  }
+  if ((flags & segment_flag_rest) != 0) {
+    const std::size_t at = r.offset();
+    m.rest_ticks = r.u32();
+    if (!r.failed() && m.rest_ticks == 0) r.reject_at(Error::BadPayload, at);  // the flag means "some"
   }
   if (m.kind == SegmentKind::Arc) {
     detail::read_point(r, m.points[0], m.axis_count);
@@ -813,17 +833,18 @@ template <>
   ByteReader r(payload);
   QueuePiece m;
   const std::uint8_t flags = r.u8();
-  if ((flags & ~(piece_flag_end_of_job | piece_flag_exact_run)) != 0) r.reject_at(Error::BadPayload, 0);
+  if ((flags & ~(piece_flag_end_of_job | piece_flag_exact_run | piece_flag_rest)) != 0) r.reject_at(Error::BadPayload, 0);
   m.end_of_job = (flags & piece_flag_end_of_job) != 0;
   m.exact_run = (flags & piece_flag_exact_run) != 0;
+  m.rest = (flags & piece_flag_rest) != 0;
   m.axis_count = r.u8();
   if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 1);
   m.ticks = r.u16();
-  if (!r.failed() && !valid_queue_piece_ticks(m.ticks, m.exact_run)) r.reject_at(Error::BadPayload, 2);
+  if (!r.failed() && !valid_queue_piece_ticks(m.ticks, m.exact_run, m.rest)) r.reject_at(Error::BadPayload, 2);
   m.segment = r.u32();
   if (r.failed()) return r.finish().failure();
   const std::size_t axes = m.axis_count;
-  const std::size_t expected = queue_piece_size(axes, m.ticks, m.exact_run);
+  const std::size_t expected = queue_piece_size(axes, m.ticks, m.exact_run, m.rest);
   if (payload.size() != expected) return fail(Error::BadPayload, payload.size() < expected ? payload.size() : expected);
   const auto read_point = [&r, axes](std::array<double, max_axes>& point) {
     for (std::size_t a = 0; a < axes; ++a) {
@@ -833,7 +854,7 @@ template <>
     }
   };
   read_point(m.end);
-  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run) - 1;
+  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run, m.rest) - 1;
   for (std::size_t k = 0; k < sent; ++k) read_point(m.controls[k]);
   CURVESTEP_CHECK(r.finish());
   return m;

@@ -38,10 +38,11 @@ struct WireJob {
   std::vector<std::string> notes;                ///< one line per value changed
 };
 
-/// The job's PathSegments for a controller with `axis_count` axes. Throws std::runtime_error
+/// The job's PathSegments for a controller with `axis_count` axes running at `rate_hz`, each with
+/// the exact stop and rest its events ask for (joint_stops). Throws std::runtime_error
 /// naming the job file and segment for what the wire cannot express (a Z move on a 2-axis
-/// controller, a coordinate outside Q16.16).
-[[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count);
+/// controller, a coordinate outside Q16.16), or the line of a dwell joint_stops refuses.
+[[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz);
 
 /// A planned piece (plan_pieces) as a QueuePiece for a controller with `axis_count` axes (2 or
 /// 3), for a controller without a planner. Coordinates travel as binary64, exactly. Throws
