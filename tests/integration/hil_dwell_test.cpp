@@ -41,21 +41,8 @@ void check_streamed(const std::vector<std::string>& device_options, const std::s
   const auto expected = ct::simulate(job, machine);
   // The dwells are in the simulated stream: 500 + 250 + 100 + 2 ticks at rest, and more at stops.
   REQUIRE(still_setpoints(expected) >= 852);
-  ct::Process device(device_options, tag + ".stderr");
-  const std::string port = device.first_line();
-  REQUIRE(port.rfind("/dev/pts/", 0) == 0);
-  const auto capture = ct::scratch_dir() / (tag + ".csv");
-  std::string errors;
   std::string output;
-  const int status = ct::run_program({"stream", job.string(), "--machine", machine.string(), "--port", port, "--capture",
-                                      capture.string()},
-                                     errors, "stream", std::chrono::seconds(150), &output);
-  INFO(errors);
-  INFO(output);
-  REQUIRE(status == 0);
-  ct::check_same_setpoints(expected, capture);
-  INFO(device.stderr_text());
-  CHECK(device.stop() == 0);
+  (void)ct::stream_to_new_device(job, machine, device_options, tag, expected, output);
 }
 
 }  // namespace

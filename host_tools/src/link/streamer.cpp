@@ -41,6 +41,7 @@ class Upload {
         for (const auto& note : wire_job_.notes) warn(note);
         if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
       }
+      events_ = to_wire_events(job_, machine_.rate_hz, piece_mode_);
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
       while (!finished()) {
@@ -122,7 +123,7 @@ class Upload {
   /// Drops the oldest submissions the controller has acknowledged (they leave the window in order).
   void settle_acknowledged() {
     while (submitted_.size() > link_.in_flight()) {
-      if (submitted_.front() < status_marker) acknowledged_units_ = submitted_.front() + 1;
+      if (submitted_.front() < event_marker) acknowledged_units_ = submitted_.front() + 1;
       if (submitted_.front() == start_marker) {
         start_acknowledged_ = true;
         mark_stream_progress();
@@ -176,13 +177,28 @@ class Upload {
 
   void submit_units() {
     const auto type = piece_mode_ ? protocol::MessageType::QueuePiece : protocol::MessageType::QueueSegment;
-    while (next_ < units() && link_.can_submit(type)) {
+    while (next_ < units() && submit_events_before(next_) && link_.can_submit(type)) {
       link_.submit(unit(next_));
       submitted_.push_back(next_);
       sequence_to_unit_[sequence_] = next_;
       ++sequence_;
       ++next_;
     }
+  }
+
+  /// Submits the machine events due before unit k (those keyed to its segment number or an
+  /// earlier one; all that are left before the last unit); false while one waits for credit.
+  bool submit_events_before(std::size_t k) {
+    const std::size_t label = piece_mode_ ? pieces_[k].segment : k;
+    while (next_event_ < events_.size() && (events_[next_event_].segment <= label || k + 1 == units())) {
+      if (!link_.can_submit(protocol::MessageType::QueueEvent)) return false;
+      link_.submit(protocol::Message(events_[next_event_]));
+      submitted_.push_back(event_marker);
+      sequence_to_unit_.erase(sequence_);
+      ++sequence_;
+      ++next_event_;
+    }
+    return true;
   }
 
   /// Start right after the first unit (Start on an empty queue is NothingQueued): the controller
@@ -334,6 +350,7 @@ class Upload {
   static constexpr std::size_t configuration_marker = static_cast<std::size_t>(-1);
   static constexpr std::size_t start_marker = static_cast<std::size_t>(-2);
   static constexpr std::size_t status_marker = static_cast<std::size_t>(-3);
+  static constexpr std::size_t event_marker = static_cast<std::size_t>(-4);
 
   Transport& transport_;
   const Job& job_;
@@ -341,6 +358,8 @@ class Upload {
   const StreamOptions& options_;
   HostLink link_;
   WireJob wire_job_;                         // segment mode: the job's queue segments
+  std::vector<protocol::QueueEvent> events_;  // machine events, sent before the unit they precede
+  std::size_t next_event_ = 0;
   std::vector<protocol::QueuePiece> pieces_;  // piece mode: the pieces planned here
   bool piece_mode_ = false;                   // the controller has no planner (Capabilities::lookahead 0)
   std::map<std::uint32_t, protocol::WirePoint> setpoints_;

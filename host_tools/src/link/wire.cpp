@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <curvestep/core/error_text.hpp>
@@ -188,6 +189,75 @@ protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) 
   put(piece.end, q.end, "end point");
   for (std::size_t k = 0; k < sent; ++k) put(piece.controls[k], q.controls[k], piece.exact_run ? "run point" : "control point");
   return q;
+}
+
+namespace {
+
+/// The wire kind of a job event, or none for what the controller does not act on.
+std::optional<protocol::MachineEventKind> wire_kind(JobEventKind kind) {
+  using protocol::MachineEventKind;
+  switch (kind) {
+    case JobEventKind::SpindleOn: return MachineEventKind::SpindleOn;
+    case JobEventKind::SpindleOff: return MachineEventKind::SpindleOff;
+    case JobEventKind::SpindleSpeed: return MachineEventKind::SpindleSpeed;
+    case JobEventKind::CoolantMist: return MachineEventKind::CoolantMist;
+    case JobEventKind::CoolantFlood: return MachineEventKind::CoolantFlood;
+    case JobEventKind::CoolantOff: return MachineEventKind::CoolantOff;
+    case JobEventKind::DigitalOutput: return MachineEventKind::DigitalOutput;
+    case JobEventKind::PenUp: return MachineEventKind::PenUp;
+    case JobEventKind::PenDown: return MachineEventKind::PenDown;
+    case JobEventKind::ToolChange: return MachineEventKind::ToolChange;
+    case JobEventKind::ProgramPause: return MachineEventKind::ProgramPause;
+    case JobEventKind::LayerChange: return MachineEventKind::LayerChange;
+    case JobEventKind::ProgramEnd: return MachineEventKind::ProgramEnd;
+    case JobEventKind::Dwell:
+    case JobEventKind::Message: return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+/// An event's value as a u32: rev/min rounded, an output or tool number whole.
+std::uint32_t wire_value(const Job& job, const JobEvent& event) {
+  const double value = event.kind == JobEventKind::SpindleOn || event.kind == JobEventKind::SpindleSpeed ? std::nearbyint(event.value)
+                                                                                                       : event.value;
+  if (!(value >= 0 && value <= 4294967295.0) || value != std::floor(value)) {
+    throw std::runtime_error(job.name + (event.line > 0 ? ":" + std::to_string(event.line) : std::string{}) + ": " + event.text +
+                             ": value " + format_number(event.value) + " does not travel as a whole number 0 .. 2^32 - 1");
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+}  // namespace
+
+std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels) {
+  std::vector<protocol::QueueEvent> out;
+  std::size_t joint = ~std::size_t{0};
+  std::uint64_t rested = 0;  // the dwell ticks at this joint so far
+  for (const JobEvent& event : job.events) {
+    if (event.before_segment != joint) {
+      joint = event.before_segment;
+      rested = 0;
+    }
+    if (event.kind == JobEventKind::Dwell) {
+      if (joint < job.segments.size()) rested += dwell_ticks(event.value, rate_hz);
+      continue;
+    }
+    const auto kind = wire_kind(event.kind);
+    if (!kind) continue;
+    protocol::QueueEvent e;
+    e.kind = *kind;
+    e.flag = event.flag;
+    e.value = wire_value(job, event);
+    e.after_rest_ticks = static_cast<std::uint32_t>(rested);
+    if (joint >= job.segments.size()) {
+      e.segment = after_last_segment;
+    } else {
+      const std::size_t label = file_labels && !job.source_index.empty() ? job.source_index[joint] : joint;
+      e.segment = static_cast<std::uint32_t>(label);
+    }
+    out.push_back(e);
+  }
+  return out;
 }
 
 std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {

@@ -34,7 +34,12 @@
 //                           The credit granted to the host counts whole wire segments of the worst
 //                           case: a Bézier may be split at up to 6 cusps into 7 queue slots, so the
 //                           credit is free slots / 7 and an accepted segment always fits.
-//                           Flag "end of job" marks the last one.
+//                           Flag "end of job" marks the last one. Flags "stop before" / "rest"
+//                           pass on as the segment's JointStop (an exact stop, a dwell).
+//   QueueEvent           -> EventTimeline (a ring of Queue events, each credit a segment or an
+//                           event): when the setpoints reach the event's segment (and ticks into
+//                           its rest), the board's optional hooks (board_hooks.hpp) are called
+//                           with the setpoint index; the job's end calls the rest.
 //   Start                -> arms the job; motion begins when the queue holds Lookahead + 1
 //                           segments or the job's last segment (the start rule, below).
 //                           ConfigurationMissing / NothingQueued before a configuration / segment.
@@ -106,7 +111,9 @@
 #include <curvestep/core/scalar.hpp>
 #include <curvestep/firmware/app_settings.hpp>
 #include <curvestep/firmware/board.hpp>
+#include <curvestep/firmware/board_hooks.hpp>
 #include <curvestep/firmware/conversions.hpp>
+#include <curvestep/firmware/event_timeline.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
 #include <curvestep/firmware/transmit_buffer.hpp>
@@ -207,10 +214,13 @@ class App {
     }
     position_ = wire;
     setpoint_index_ = static_cast<std::uint32_t>(job_tick);
+    const auto act = [this](const protocol::QueueEvent& e) { apply_machine_event(board_, e, setpoint_index_, spindle_, coolant_); };
+    machine_events_.reached(setpoint.segment, act);
     const bool in_motion = before == ControllerState::Running || before == ControllerState::Holding;
     if (settings_.stream_setpoints && in_motion) stream_.push(setpoint_index_, wire);  // room checked above
     const ControllerState after = controller_.state();
     if (after == ControllerState::Finished) {
+      machine_events_.finish(act);  // the events after the job's last move
       moving_ = false;
       events_.finished = true;
     } else if (after == ControllerState::Starved && before == ControllerState::Running) {
@@ -250,10 +260,14 @@ class App {
   /// The setpoint stream's sender (window, go-backs), for diagnostics and tests.
   [[nodiscard]] const SetpointSender& setpoint_sender() const noexcept { return stream_.sender(); }
   /// Whole wire segments the queue can take now (the credit offered to the host).
+  /// Each credit may be a segment or a machine event (QueueEvent), so it is the smaller room.
   [[nodiscard]] std::uint16_t free_segments() const noexcept {
     if (!takes_segments(phase_)) return 0;
-    return static_cast<std::uint16_t>((Queue - controller_.queued()) / slots_per_command);
+    const std::size_t segments = (Queue - controller_.queued()) / slots_per_command;
+    return static_cast<std::uint16_t>(segments < machine_events_.free() ? segments : machine_events_.free());
   }
+  /// Machine events queued and not yet reached by the motion.
+  [[nodiscard]] std::size_t queued_events() const noexcept { return machine_events_.size(); }
 
  private:
   /// What on_tick() met, for poll() to act on and report (the tick itself never sends).
@@ -366,6 +380,7 @@ class App {
         } else {
           return on_queue_piece(frame.payload);
         }
+      case MessageType::QueueEvent: return on_queue_event(frame.payload);
       case MessageType::Start:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return report_if_failed(start());
@@ -393,8 +408,8 @@ class App {
   [[nodiscard]] static constexpr bool moves(protocol::MessageType type) noexcept {
     using protocol::MessageType;
     const MessageType queues = plans_on_board ? MessageType::QueueSegment : MessageType::QueuePiece;
-    return type == MessageType::MachineConfiguration || type == queues || type == MessageType::Start ||
-           type == MessageType::Resume;
+    return type == MessageType::MachineConfiguration || type == queues || type == MessageType::QueueEvent ||
+           type == MessageType::Start || type == MessageType::Resume;
   }
 
   [[gnu::noinline]] void on_machine_configuration(std::span<const std::byte> payload) noexcept {
@@ -411,6 +426,16 @@ class App {
   /// Not inlined: the decoder's working copy must not sit under configure() on the stack.
   [[nodiscard, gnu::noinline]] static Result<protocol::MachineConfiguration> decode_configuration(std::span<const std::byte> payload) noexcept {
     return protocol::decode<protocol::MachineConfiguration>(payload);
+  }
+
+  /// A machine event for the board at a joint of the job (event_timeline.hpp): taken while
+  /// segments are (before the job's last one), like a segment.
+  void on_queue_event(std::span<const std::byte> payload) noexcept {
+    const auto m = protocol::decode<protocol::QueueEvent>(payload);
+    if (!m) return report(m.failure());
+    if (!configured()) return report(fail(Error::ConfigurationMissing));
+    if (phase_ == Phase::Fault || job_end_known_) return report(fail(Error::InvalidState));
+    report_if_failed(machine_events_.push(m.value()));
   }
 
   [[gnu::noinline]] void on_queue_segment(std::span<const std::byte> payload) noexcept {
@@ -592,6 +617,7 @@ class App {
     if (outputs) board_.fault_stop();
     controller_.abort();
     controller_.reset();
+    machine_events_.clear();
     moving_ = false;
     job_end_known_ = false;
     events_ = TickEvents{};
@@ -773,6 +799,9 @@ class App {
   protocol::LinkReceiver receiver_;
   SetpointStream<B> stream_;
   Controller controller_{};
+  EventTimeline<Queue> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
+  SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
+  CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
   TransmitBuffer transmit_{};

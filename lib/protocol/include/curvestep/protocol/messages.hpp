@@ -33,6 +33,7 @@
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/byte_io.hpp>
 #include <curvestep/protocol/limits.hpp>
+#include <curvestep/protocol/wire_layout.hpp>
 
 namespace curvestep::protocol {
 
@@ -50,6 +51,7 @@ enum class MessageType : std::uint8_t {
   Abort = 0x15,                 ///< host -> controller: stop at once and flush the queue
   StatusRequest = 0x16,         ///< host -> controller: ask for a status report
   QueuePiece = 0x17,            ///< host -> controller: one host-planned piece (controller without a planner)
+  QueueEvent = 0x18,            ///< host -> controller: a machine event (spindle, coolant, output, pen, ...) at a joint
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
   SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints (sequenced, acknowledged)
   ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
@@ -57,7 +59,7 @@ enum class MessageType : std::uint8_t {
 
 /// True for the types this protocol version defines.
 [[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
-  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x17) || (type >= 0x20 && type <= 0x22);
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || (type >= 0x20 && type <= 0x22);
 }
 
 /// The two ends of the link.
@@ -66,10 +68,10 @@ enum class Endpoint : std::uint8_t {
   Controller,  ///< the firmware
 };
 
-/// True for host commands (0x10 .. 0x17): the host-to-controller reliable stream.
+/// True for host commands (0x10 .. 0x18): the host-to-controller reliable stream.
 [[nodiscard]] constexpr bool is_command(MessageType type) noexcept {
   const auto value = static_cast<std::uint8_t>(type);
-  return value >= 0x10 && value <= 0x17;
+  return value >= 0x10 && value <= 0x18;
 }
 
 /// True for messages that travel in a reliable, sequenced stream: host commands one way,
@@ -86,10 +88,10 @@ enum class Endpoint : std::uint8_t {
   return !is_known(type) || is_command(static_cast<MessageType>(type));
 }
 
-/// True for messages that take one slot of the controller's queue (and so one credit):
-/// QueueSegment and QueuePiece.
+/// True for messages that take one slot of the controller's queue or event ring (and so one
+/// credit): QueueSegment, QueuePiece and QueueEvent.
 [[nodiscard]] constexpr bool consumes_credit(MessageType type) noexcept {
-  return type == MessageType::QueueSegment || type == MessageType::QueuePiece;
+  return type == MessageType::QueueSegment || type == MessageType::QueuePiece || type == MessageType::QueueEvent;
 }
 
 /// One point on the wire: X, Y, Z as Q16.16 raw values (Z unused with two axes).
@@ -223,6 +225,60 @@ struct QueuePiece {
   friend constexpr bool operator==(const QueuePiece&, const QueuePiece&) = default;
 };
 
+/// What a QueueEvent does on the controller's board (the job's non-motion events that a board
+/// acts on; docs/protocol.md, "QueueEvent").
+enum class MachineEventKind : std::uint8_t {
+  SpindleOn = 1,      ///< M3 / M4: `value` rev/min, `flag` counter-clockwise (M4)
+  SpindleOff = 2,     ///< M5
+  SpindleSpeed = 3,   ///< S while the spindle turns: `value` rev/min
+  CoolantMist = 4,    ///< M7
+  CoolantFlood = 5,   ///< M8
+  CoolantOff = 6,     ///< M9
+  DigitalOutput = 7,  ///< M62-M65: `value` output number, `flag` on
+  PenUp = 8,          ///< plotter pen lifted (a servo pen)
+  PenDown = 9,        ///< plotter pen lowered (a servo pen)
+  ToolChange = 10,    ///< M6: `value` tool number
+  ProgramPause = 11,  ///< M0 / M1
+  LayerChange = 12,   ///< a plotter's pen change between layers
+  ProgramEnd = 13,    ///< M2 / M30
+};
+/// Name of a machine event kind, for logs ("spindle_on", ...; "unknown" for another value).
+[[nodiscard]] constexpr const char* machine_event_name(MachineEventKind kind) noexcept {
+  switch (kind) {
+    case MachineEventKind::SpindleOn: return "spindle_on";
+    case MachineEventKind::SpindleOff: return "spindle_off";
+    case MachineEventKind::SpindleSpeed: return "spindle_speed";
+    case MachineEventKind::CoolantMist: return "coolant_mist";
+    case MachineEventKind::CoolantFlood: return "coolant_flood";
+    case MachineEventKind::CoolantOff: return "coolant_off";
+    case MachineEventKind::DigitalOutput: return "digital_output";
+    case MachineEventKind::PenUp: return "pen_up";
+    case MachineEventKind::PenDown: return "pen_down";
+    case MachineEventKind::ToolChange: return "tool_change";
+    case MachineEventKind::ProgramPause: return "program_pause";
+    case MachineEventKind::LayerChange: return "layer_change";
+    case MachineEventKind::ProgramEnd: return "program_end";
+  }
+  return "unknown";
+}
+/// The kinds this protocol version defines (1 .. 13).
+[[nodiscard]] constexpr bool valid_wire_value(const MachineEventKind& kind) noexcept {
+  return static_cast<std::uint8_t>(kind) >= 1 && static_cast<std::uint8_t>(kind) <= 13;
+}
+
+/// A machine event at a joint of the job: the controller acts on it (a board hook) when its
+/// motion reaches the joint into job segment `segment` (its setpoints' segment number: the
+/// QueueSegment count before it, or the QueuePiece segment), `after_rest_ticks` ticks into the
+/// rest there (0: at the joint; the events after a G4 dwell come at its end).
+struct QueueEvent {
+  static constexpr MessageType type = MessageType::QueueEvent;  ///< message type
+  std::uint32_t segment = 0;                                    ///< the job segment it precedes
+  std::uint32_t after_rest_ticks = 0;                           ///< ticks into the rest at that joint
+  MachineEventKind kind = MachineEventKind::SpindleOff;         ///< what to do
+  bool flag = false;                                            ///< counter-clockwise (SpindleOn), on (DigitalOutput)
+  std::uint32_t value = 0;                                      ///< rev/min, output or tool number (see kind)
+};
+
 /// Start executing the queue.
 struct Start {
   static constexpr MessageType type = MessageType::Start;  ///< message type
@@ -292,6 +348,24 @@ struct ErrorReport {
   std::uint8_t sequence = 0;                                     ///< sequence number of the offending frame
 };
 
+// The fixed-field messages, each described once (wire_layout.hpp derives encode, decode, size).
+/// Hello: version, session (4 bytes).
+template <>
+struct WireFields<Hello> : WireLayout<&Hello::version, &Hello::session> {};
+/// Ack: next expected sequence, credit end (3 bytes).
+template <>
+struct WireFields<Ack> : WireLayout<&Ack::next_expected, &Ack::credit_end> {};
+/// Nak: expected sequence, reason (2 bytes; reason 0 is BadPayload at 1).
+template <>
+struct WireFields<Nak> : WireLayout<&Nak::expected, &Nak::reason> {};
+/// ErrorReport: code, index, sequence (4 bytes; code 0 is BadPayload at 0).
+template <>
+struct WireFields<ErrorReport> : WireLayout<&ErrorReport::code, &ErrorReport::index, &ErrorReport::sequence> {};
+/// QueueEvent: segment, after_rest_ticks, kind, flag, value (14 bytes).
+template <>
+struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
+                                           &QueueEvent::flag, &QueueEvent::value> {};
+
 namespace detail {
 
 /// The member of `T, Rest...` whose type byte is `type`: `on_type(std::type_identity<T>{})`, or
@@ -343,12 +417,12 @@ struct MessageSet {
 /// Every message of this protocol version (the default of the set-taking functions; host
 /// tools, tests and fuzzers).
 using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
-                               Resume, Abort, StatusRequest, QueuePiece, StatusReport, SetpointBatch, ErrorReport>;
+                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, StatusReport, SetpointBatch, ErrorReport>;
 
 /// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
 /// the controller's setpoint stream.
 using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold, Resume,
-                                    Abort, StatusRequest, QueuePiece>;
+                                    Abort, StatusRequest, QueuePiece, QueueEvent>;
 
 /// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
 /// commands, reports, and the setpoint stream.
@@ -367,25 +441,9 @@ constexpr void read_point(ByteReader& reader, WirePoint& point, std::size_t axes
   for (std::size_t a = 0; a < axes; ++a) point[a] = reader.i32();
 }
 
-/// Reads a byte that must be a known Error code.
-constexpr Error read_error(ByteReader& reader) noexcept {
-  const std::size_t at = reader.offset();
-  const std::uint8_t value = reader.u8();
-  if (value == 0) reader.reject_at(Error::BadPayload, at);
-  return static_cast<Error>(value);
-}
-
 }  // namespace detail
 
 // --- encoders: each writes the payload only and returns its length (BufferTooSmall if it does not fit) ---
-
-/// Encodes a Hello payload (4 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const Hello& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u16(m.version);
-  w.u16(m.session);
-  return w.finish();
-}
 
 /// Encodes a Capabilities payload (20 bytes).
 [[nodiscard]] constexpr Result<std::size_t> encode(const Capabilities& m, std::span<std::byte> out) noexcept {
@@ -401,22 +459,6 @@ constexpr Error read_error(ByteReader& reader) noexcept {
   w.u8(m.max_degree);
   w.u32(m.tick_rate_hz);
   w.u16(m.lookahead);
-  return w.finish();
-}
-
-/// Encodes an Ack payload (3 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const Ack& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u8(m.next_expected);
-  w.u16(m.credit_end);
-  return w.finish();
-}
-
-/// Encodes a Nak payload (2 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const Nak& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u8(m.expected);
-  w.u8(static_cast<std::uint8_t>(m.reason));
   return w.finish();
 }
 
@@ -606,6 +648,12 @@ template <class M>
 concept EmptyMessage = std::is_same_v<M, Start> || std::is_same_v<M, FeedHold> || std::is_same_v<M, Resume> ||
                        std::is_same_v<M, Abort> || std::is_same_v<M, StatusRequest>;
 
+/// Encodes a message described by WireFields (Hello, Ack, Nak, ErrorReport, QueueEvent).
+template <DescribedMessage M>
+[[nodiscard]] constexpr Result<std::size_t> encode(const M& m, std::span<std::byte> out) noexcept {
+  return WireFields<M>::encode(m, out);
+}
+
 /// Encodes an empty payload (Start, FeedHold, Resume, Abort, StatusRequest).
 template <EmptyMessage Empty>
 [[nodiscard]] constexpr Result<std::size_t> encode(const Empty&, std::span<std::byte>) noexcept {
@@ -656,35 +704,20 @@ template <EmptyMessage Empty>
   return size;
 }
 
-/// Encodes an ErrorReport payload (4 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const ErrorReport& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u8(static_cast<std::uint8_t>(m.code));
-  w.u16(m.index);
-  w.u8(m.sequence);
-  return w.finish();
-}
-
 // --- decoders: each reads a whole payload; BadPayload (index = byte offset) if malformed ---
 
-/// Decodes the payload of message type T. This primary template decodes the empty payloads
-/// (Start, FeedHold, Resume, Abort, StatusRequest); the other types have their specialisations below.
+/// Decodes the payload of message type T. This primary template decodes the messages described
+/// by WireFields (their one description) and the empty payloads (Start, FeedHold, Resume, Abort,
+/// StatusRequest); the other types have their specialisations below.
 template <class T>
 [[nodiscard]] constexpr Result<T> decode(std::span<const std::byte> payload) noexcept {
-  static_assert(EmptyMessage<T>, "decode<T>: T is not a message type");
-  if (!payload.empty()) return fail(Error::BadPayload, 0);
-  return T{};
-}
-
-/// Decodes a Hello payload.
-template <>
-[[nodiscard]] constexpr Result<Hello> decode<Hello>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  Hello m;
-  m.version = r.u16();
-  m.session = r.u16();
-  CURVESTEP_CHECK(r.finish());
-  return m;
+  if constexpr (DescribedMessage<T>) {
+    return WireFields<T>::template decode<T>(payload);
+  } else {
+    static_assert(EmptyMessage<T>, "decode<T>: T is not a message type");
+    if (!payload.empty()) return fail(Error::BadPayload, 0);
+    return T{};
+  }
 }
 
 /// Decodes a Capabilities payload.
@@ -708,28 +741,6 @@ template <>
   m.lookahead = r.u16();  // 0: no planner on board (version 4)
   // Degree 0 (no segments) only from a controller without a planner, which takes none.
   if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) r.reject_at(Error::BadPayload, degree_at);
-  CURVESTEP_CHECK(r.finish());
-  return m;
-}
-
-/// Decodes an Ack payload.
-template <>
-[[nodiscard]] constexpr Result<Ack> decode<Ack>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  Ack m;
-  m.next_expected = r.u8();
-  m.credit_end = r.u16();
-  CURVESTEP_CHECK(r.finish());
-  return m;
-}
-
-/// Decodes a Nak payload.
-template <>
-[[nodiscard]] constexpr Result<Nak> decode<Nak>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  Nak m;
-  m.expected = r.u8();
-  m.reason = detail::read_error(r);
   CURVESTEP_CHECK(r.finish());
   return m;
 }
@@ -904,18 +915,6 @@ template <>
   return m;
 }
 
-/// Decodes an ErrorReport payload.
-template <>
-[[nodiscard]] constexpr Result<ErrorReport> decode<ErrorReport>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  ErrorReport m;
-  m.code = detail::read_error(r);
-  m.index = r.u16();
-  m.sequence = r.u8();
-  CURVESTEP_CHECK(r.finish());
-  return m;
-}
-
 /// Any one message: a type tag and a union of the message structs (no RTTI, no heap).
 class Message {
  public:
@@ -952,6 +951,8 @@ class Message {
   constexpr Message(const SetpointBatch& m) noexcept : type_(MessageType::SetpointBatch), body_(m) {}  // NOLINT
   /// Holds an ErrorReport.
   constexpr Message(const ErrorReport& m) noexcept : type_(MessageType::ErrorReport), body_(m) {}  // NOLINT
+  /// Holds a QueueEvent.
+  constexpr Message(const QueueEvent& m) noexcept : type_(MessageType::QueueEvent), body_(m) {}  // NOLINT
 
   /// Which message this is.
   [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
@@ -974,6 +975,7 @@ class Message {
     else if constexpr (std::is_same_v<T, StatusReport>) return body_.status_report;
     else if constexpr (std::is_same_v<T, SetpointBatch>) return body_.setpoint_batch;
     else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
+    else if constexpr (std::is_same_v<T, QueueEvent>) return body_.queue_event;
     else return empty<T>();
   }
 
@@ -1000,6 +1002,7 @@ class Message {
     constexpr explicit Body(const StatusReport& m) noexcept : status_report(m) {}
     constexpr explicit Body(const SetpointBatch& m) noexcept : setpoint_batch(m) {}
     constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
+    constexpr explicit Body(const QueueEvent& m) noexcept : queue_event(m) {}
     Hello hello;
     Capabilities capabilities;
     Ack ack;
@@ -1010,6 +1013,7 @@ class Message {
     StatusReport status_report;
     SetpointBatch setpoint_batch;
     ErrorReport error_report;
+    QueueEvent queue_event;
   };
   MessageType type_ = MessageType::Hello;
   Body body_;
