@@ -47,7 +47,7 @@ std::string format_events(const Job& job) {
                                 "flood", "coolant off", "tool change", "output", "pen up", "pen down", "layer change", "message"};
   std::ostringstream out;
   out << "  job events:          " << job.events.size()
-      << " (in program order; G4, M0/M1, M6 and layer changes stop the motion, G4 rests its P seconds)\n";
+      << " (in program order; G4, M0/M1, M6 and pen changes between layers stop the motion, G4 rests its P seconds)\n";
   // Pen moves come in their hundreds on plotter art: counted, so that the layer changes show.
   std::size_t pen_up = 0;
   std::size_t pen_down = 0;
