@@ -10,6 +10,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <poll.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -29,6 +30,22 @@
 namespace curvestep::host {
 namespace {
 
+/// Program pauses (M0/M1, M6, a pen change): say what for on standard output and go on when the
+/// operator presses Enter (a line on standard input), or at once with --resume-pauses.
+void set_pause_handling(link::StreamOptions& options, bool at_once) {
+  options.paused = [at_once](const std::string& what) {
+    std::cout << "curvestep stream: " << what << (at_once ? " (--resume-pauses: going on)" : "; press Enter to go on") << std::endl;
+  };
+  if (at_once) return;  // resume_now empty: at once
+  options.resume_now = [] {
+    pollfd in{STDIN_FILENO, POLLIN, 0};
+    if (::poll(&in, 1, 0) <= 0) return false;
+    std::string line;
+    std::getline(std::cin, line);  // a whole line is there (Enter) or the input ended
+    return true;
+  };
+}
+
 struct StreamCommandOptions {
   std::string job;
   std::string machine;
@@ -37,6 +54,7 @@ struct StreamCommandOptions {
   std::string capture;
   unsigned link_timeout_ms = 3000;
   std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
+  bool resume_pauses = false;  ///< --resume-pauses: go on at once after M0/M1, M6 and pen changes
   JobPipelineOptions pipeline;
   bool lookahead_given = false;    ///< --lookahead given: plan with that count window alone
 };
@@ -93,6 +111,7 @@ int run_stream(const StreamCommandOptions& o) {
   options.lookahead = o.lookahead;
   if (!o.lookahead_given) options.lookahead_distance_mm = lookahead_distance_for(machine);
   options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
+  set_pause_handling(options, o.resume_pauses);
   const bool terminal = isatty(STDERR_FILENO) != 0;
   if (terminal) {
     options.progress = [](const link::StreamProgress& p) {
@@ -154,6 +173,8 @@ void add_stream_command(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
   add_job_pipeline_options(stream, options->pipeline);
   stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
+  stream->add_flag("--resume-pauses", options->resume_pauses,
+                   "Go on at once after program pauses (M0/M1), tool changes (M6) and pen changes (scripts, tests)");
   stream->callback([options, lookahead_option] {
     options->lookahead_given = lookahead_option->count() > 0;
     const int status = run_stream(*options);

@@ -48,6 +48,7 @@ class Upload {
         settle_acknowledged();
         submit_units();
         submit_start();
+        serve_pause();
         link_.pump(5, handler);
         watch_setpoint_stream();
         request_status();
@@ -201,6 +202,21 @@ class Upload {
     return true;
   }
 
+  /// A pause the controller reported: tell the operator once, Resume when resume_now() says so.
+  void serve_pause() {
+    if (!pause_pending_) return;
+    if (!pause_told_) {
+      if (options_.paused) options_.paused(pause_text_);
+      pause_told_ = true;
+    }
+    if ((options_.resume_now && !options_.resume_now()) || !link_.can_submit(protocol::MessageType::Resume)) return;
+    link_.submit(protocol::Message(protocol::Resume{}));
+    submitted_.push_back(event_marker);
+    sequence_to_unit_.erase(sequence_);
+    ++sequence_;
+    pause_pending_ = false;
+  }
+
   /// Start right after the first unit (Start on an empty queue is NothingQueued): the controller
   /// arms the job and begins by itself when its look-ahead window is full or the job's last
   /// segment (flag end_of_job) has arrived.
@@ -246,6 +262,16 @@ class Upload {
           throw StreamError(code, transport_.name() + ": the controller stopped with a fault: " + describe_error(code) +
                                       " at setpoint " + std::to_string(last_status_.setpoint_index));
         }
+        break;
+      }
+      case protocol::MessageType::PauseReport: {
+        const auto& pause = m.get<protocol::PauseReport>();
+        pause_text_ = "paused at setpoint " + std::to_string(pause.setpoint_index) + ": " +
+                      (pause.kind == protocol::MachineEventKind::ToolChange ? "tool change to tool " + std::to_string(pause.value)
+                       : pause.kind == protocol::MachineEventKind::LayerChange ? std::string("pen change (next layer)")
+                                                                                : std::string("program pause (M0/M1)"));
+        pause_pending_ = true;
+        pause_told_ = false;
         break;
       }
       case protocol::MessageType::ErrorReport: {
@@ -360,6 +386,9 @@ class Upload {
   WireJob wire_job_;                         // segment mode: the job's queue segments
   std::vector<protocol::QueueEvent> events_;  // machine events, sent before the unit they precede
   std::size_t next_event_ = 0;
+  bool pause_pending_ = false;  // the controller paused and waits for Resume
+  bool pause_told_ = false;     // options_.paused was called for it
+  std::string pause_text_;
   std::vector<protocol::QueuePiece> pieces_;  // piece mode: the pieces planned here
   bool piece_mode_ = false;                   // the controller has no planner (Capabilities::lookahead 0)
   std::map<std::uint32_t, protocol::WirePoint> setpoints_;

@@ -134,3 +134,56 @@ TEST_CASE("firmware: a QueueEvent takes a credit and waits in the App's ring", "
   CHECK(app.free_segments() == credit);  // the segment credit (32 slots / 7) is the smaller room
   CHECK(board.calls.empty());             // nothing moved: not reached yet
 }
+
+TEST_CASE("firmware: a tool change pauses the job at its joint until Resume, and the stream is the plain job's",
+          "[firmware][app][events][pause]") {
+  HookBoard board;
+  App<HookBoard> app{board};
+  Host<App<HookBoard>> host{board, app};
+  REQUIRE(host.connect());
+  REQUIRE(host.send(Message(machine(50))));
+  QueueSegment first = line(p(0, 0), p(10, 0));
+  QueueSegment second = line(p(10, 0), p(10, 10));
+  second.stop_before = true;
+  second.end_of_job = true;
+  REQUIRE(host.send(Message(first)));
+  REQUIRE(host.send(Message(event(1, 0, MachineEventKind::ToolChange, false, 2))));
+  REQUIRE(host.send(Message(second)));
+  REQUIRE(host.send(Message(Start{})));
+  int ticks = 0;
+  while (!app.paused() && ticks < 100000) {
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+    ++ticks;
+  }
+  REQUIRE(app.paused());
+  REQUIRE(board.calls == std::vector<std::string>{"tool(2)"});
+  const std::uint32_t paused_at = board.at[0];
+  // Paused: ticks produce nothing, the state is holding, the host heard why.
+  for (int t = 0; t < 300; ++t) {
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+  }
+  CHECK(app.paused());
+  CHECK(app.state() == MachineState::Holding);
+  REQUIRE(host.received.pauses.size() == 1);
+  CHECK(host.received.pauses[0].kind == MachineEventKind::ToolChange);
+  CHECK(host.received.pauses[0].value == 2);
+  CHECK(host.received.pauses[0].setpoint_index == paused_at);
+  REQUIRE_FALSE(host.setpoints().empty());
+  CHECK(host.setpoints().back().first == paused_at);
+  REQUIRE(host.send(Message(Resume{})));
+  for (int t = 0; t < 100000 && (app.moving() || app.state() != MachineState::Idle); ++t) {
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+  }
+  CHECK_FALSE(app.paused());
+  REQUIRE(host.received.errors.empty());
+  // The setpoints are those of the job without the pause (a controller run straight through).
+  std::vector<QueueSegment> job{first, second};
+  const auto expected = controller_reference<MotionController<Q16_16, 32, 16>>(machine(50), job);
+  check_same_stream(host.setpoints(), expected);
+}

@@ -66,6 +66,7 @@ std::vector<Vector> vectors() {
       // SetpointBatch: the hand-computed zig-zag batch of messages_test.cpp
       {0x21, Direction::ToHost, "e8 03 00 00 03 03 00 00 01 00 00 00 02 00 00 80 ff ff c8 01 01 00 80 80 01 81 80 01 7e"},
       {0x22, Direction::ToHost, "69 04 00 07"},  // ErrorReport: BadPayload, index 4, sequence 7
+      {0x23, Direction::ToHost, "05 04 00 00 0a 02 00 00 00"},  // PauseReport: setpoint 1029, tool change, tool 2
   };
 }
 

@@ -69,3 +69,16 @@ TEST_CASE("described messages: the wire bytes of Hello, Ack, Nak and ErrorReport
   CHECK(decode<ErrorReport>(hex("00 0400 07")).where() == 0);
   CHECK(decode<Ack>(hex("06 28")).where() == 2);
 }
+
+TEST_CASE("pause report: a tool change to tool 2 at setpoint 1029 is 9 bytes", "[protocol][messages]") {
+  static_assert(WireFields<PauseReport>::size == 9 && ControllerToHost::contains<PauseReport>);
+  const PauseReport r{1029, MachineEventKind::ToolChange, 2};
+  // u32 setpoint 1029 (0x405), u8 kind 10, u32 value 2
+  CHECK(to_hex(payload_of(r)) == to_hex(hex("05040000 0a 02000000")));
+  const auto back = decode<PauseReport>(hex("05040000 0a 02000000"));
+  REQUIRE(back.has_value());
+  CHECK(back.value().setpoint_index == 1029);
+  CHECK(back.value().kind == MachineEventKind::ToolChange);
+  CHECK(back.value().value == 2);
+  CHECK(decode<PauseReport>(hex("05040000 00 02000000")).where() == 4);
+}

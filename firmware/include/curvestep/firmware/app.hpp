@@ -126,7 +126,8 @@ namespace curvestep::firmware {
 
 /// The controller application for board B; S is the setpoint scalar (Q16.16 for bit-identity).
 /// Lookahead == 0: no planner on board; the App replays pieces the host planned (PieceExecutor).
-template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16>
+/// Events: machine events (QueueEvent) it can hold, 0 for none (QueueEvent is then NotSupported).
+template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16, std::size_t Events = Queue>
 class App {
   /// True if the board plans (QueueSegment); false: it replays host-planned pieces (QueuePiece).
   static constexpr bool plans_on_board = Lookahead > 0;
@@ -175,7 +176,7 @@ class App {
   /// One control period: the next setpoint, its step edges to the board, the setpoint to the stream.
   /// If the setpoint stream is backed up, nothing advances (a stalled tick, see the header).
   void on_tick() noexcept {
-    if (!moving_) return;
+    if (!moving_ || paused_) return;  // a program pause: nothing advances until Resume
     if (!ready_to_tick()) {
       if (!stalled_) stalled_since_ms_ = board_.now_ms();
       stalled_ = true;
@@ -214,13 +215,12 @@ class App {
     }
     position_ = wire;
     setpoint_index_ = static_cast<std::uint32_t>(job_tick);
-    const auto act = [this](const protocol::QueueEvent& e) { apply_machine_event(board_, e, setpoint_index_, spindle_, coolant_); };
-    machine_events_.reached(setpoint.segment, act);
+    if constexpr (Events > 0) machine_events_.reached(setpoint.segment, [this](const protocol::QueueEvent& e) { act_on(e); });
     const bool in_motion = before == ControllerState::Running || before == ControllerState::Holding;
     if (settings_.stream_setpoints && in_motion) stream_.push(setpoint_index_, wire);  // room checked above
     const ControllerState after = controller_.state();
     if (after == ControllerState::Finished) {
-      machine_events_.finish(act);  // the events after the job's last move
+      if constexpr (Events > 0) machine_events_.finish([this](const protocol::QueueEvent& e) { act_on(e); });  // after the last move
       moving_ = false;
       events_.finished = true;
     } else if (after == ControllerState::Starved && before == ControllerState::Running) {
@@ -266,6 +266,8 @@ class App {
     const std::size_t segments = (Queue - controller_.queued()) / slots_per_command;
     return static_cast<std::uint16_t>(segments < machine_events_.free() ? segments : machine_events_.free());
   }
+  /// True while a program pause (M0/M1, M6, a layer change) holds the job until Resume.
+  [[nodiscard]] bool paused() const noexcept { return paused_; }
   /// Machine events queued and not yet reached by the motion.
   [[nodiscard]] std::size_t queued_events() const noexcept { return machine_events_.size(); }
 
@@ -275,6 +277,7 @@ class App {
     bool finished = false;  ///< the job's last setpoint was produced
     bool underrun = false;  ///< the queue ran dry while moving (stopped on the path)
     bool held = false;      ///< a feed hold came to a stop
+    bool paused = false;    ///< a pause event stopped the job: report it (PauseReport)
     bool fault = false;     ///< raise_fault() stopped the machine: report fault_
   };
 
@@ -380,7 +383,12 @@ class App {
         } else {
           return on_queue_piece(frame.payload);
         }
-      case MessageType::QueueEvent: return on_queue_event(frame.payload);
+      case MessageType::QueueEvent:
+        if constexpr (Events > 0) {
+          return on_queue_event(frame.payload);
+        } else {
+          return report(fail(Error::NotSupported));  // no room for machine events on this controller
+        }
       case MessageType::Start:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return report_if_failed(start());
@@ -428,9 +436,29 @@ class App {
     return protocol::decode<protocol::MachineConfiguration>(payload);
   }
 
+  /// Events that hold the job for the operator (the joint is an exact stop: the machine stands).
+  [[nodiscard]] static constexpr bool pauses(protocol::MachineEventKind kind) noexcept {
+    using protocol::MachineEventKind;
+    return kind == MachineEventKind::ProgramPause || kind == MachineEventKind::ToolChange || kind == MachineEventKind::LayerChange;
+  }
+  /// A due machine event: the board's hooks, and a pause if it is one.
+  void act_on(const protocol::QueueEvent& e) noexcept {
+    apply_machine_event(board_, e, setpoint_index_, spindle_, coolant_);
+    if (pauses(e.kind) && !paused_) pause_for(e);
+  }
+
+  /// Stops producing setpoints after this one until Resume; poll() reports the pause.
+  void pause_for(const protocol::QueueEvent& e) noexcept {
+    paused_ = true;
+    pause_ = protocol::PauseReport{setpoint_index_, e.kind, e.value};
+    phase_ = Phase::Holding;
+    events_.paused = true;
+  }
+
   /// A machine event for the board at a joint of the job (event_timeline.hpp): taken while
   /// segments are (before the job's last one), like a segment.
-  void on_queue_event(std::span<const std::byte> payload) noexcept {
+  /// Not inlined: the decoded event must not sit in dispatch()'s frame (docs/boards.md, stack).
+  [[gnu::noinline]] void on_queue_event(std::span<const std::byte> payload) noexcept {
     const auto m = protocol::decode<protocol::QueueEvent>(payload);
     if (!m) return report(m.failure());
     if (!configured()) return report(fail(Error::ConfigurationMissing));
@@ -584,6 +612,11 @@ class App {
   }
 
   [[nodiscard]] Result<void> resume() noexcept {
+    if (paused_) {  // the operator is done: on from the pause
+      paused_ = false;
+      phase_ = Phase::Running;
+      return ok();
+    }
     if (phase_ == Phase::Holding && armed()) {
       phase_ = Phase::Running;  // armed again
       apply_start_rule();
@@ -618,6 +651,7 @@ class App {
     controller_.abort();
     controller_.reset();
     machine_events_.clear();
+    paused_ = false;
     moving_ = false;
     job_end_known_ = false;
     events_ = TickEvents{};
@@ -674,6 +708,13 @@ class App {
       job_segments_ = 0;
       phase_ = settled_phase();
       send_status();
+    }
+    if constexpr (Events > 0) {
+      if (events_.paused) {
+        events_.paused = false;
+        send_message(pause_);
+        send_status();
+      }
     }
     if (events_.held) {
       events_.held = false;
@@ -787,8 +828,8 @@ class App {
 
   /// Moves buffered setpoints into the setpoint stream's window as batches (never drops any).
   void send_setpoints() noexcept {
-    // Stopped, or stalled (a paused interpolator must not hold back what it already produced).
-    const bool stopped = !moving_ || stalled_ || controller_.state() == ControllerState::Held ||
+    // Stopped, stalled or paused (a paused interpolator must not hold back what it already produced).
+    const bool stopped = !moving_ || stalled_ || paused_ || controller_.state() == ControllerState::Held ||
                          controller_.state() == ControllerState::Starved;
     stream_.submit(stopped, axis_count_, statistics_.setpoint_go_backs);
   }
@@ -799,8 +840,10 @@ class App {
   protocol::LinkReceiver receiver_;
   SetpointStream<B> stream_;
   Controller controller_{};
-  EventTimeline<Queue> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
+  EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
   SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
+  protocol::PauseReport pause_{};          ///< the pause in force (paused_), reported once
+  bool paused_ = false;                    ///< a pause event holds the job until Resume
   CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};

@@ -7,7 +7,7 @@
 // segment's setpoint comes; finish() makes every remaining event due (the job's end, where the
 // events after its last move belong). Due events leave in the order they were queued. A fixed
 // ring of Capacity events: no heap; push() refuses a full ring (QueueFull), and the App offers
-// credit for no more than fit (docs/protocol.md, "Credit").
+// credit for no more than fit (docs/protocol.md, "Credit"). Capacity 0: no events at all.
 #pragma once
 
 #include <cstddef>
@@ -93,6 +93,22 @@ class EventTimeline {
  private:
   RingBuffer<protocol::QueueEvent, Capacity> events_{};
   EventClock clock_{};
+};
+
+/// No room for machine events (a controller short of RAM, such as the 8 KiB STM32F1 executor
+/// image): QueueEvent is refused (NotSupported) and takes no room from the credit.
+template <>
+class EventTimeline<0> {
+ public:
+  [[nodiscard]] Result<void> push(const protocol::QueueEvent&) noexcept { return fail(Error::NotSupported); }
+  template <class Act>
+  void reached(std::uint32_t, Act&&) {}
+  template <class Act>
+  void finish(Act&&) {}
+  void clear() noexcept {}
+  [[nodiscard]] std::size_t size() const noexcept { return 0; }
+  [[nodiscard]] std::size_t free() const noexcept { return ~std::size_t{0}; }
+  [[nodiscard]] static constexpr std::size_t capacity() noexcept { return 0; }
 };
 
 }  // namespace curvestep::firmware

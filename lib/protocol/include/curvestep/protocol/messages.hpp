@@ -55,11 +55,12 @@ enum class MessageType : std::uint8_t {
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
   SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints (sequenced, acknowledged)
   ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
+  PauseReport = 0x23,           ///< controller -> host: the job paused for the operator (M0/M1, M6, a pen change)
 };
 
 /// True for the types this protocol version defines.
 [[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
-  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || (type >= 0x20 && type <= 0x22);
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || (type >= 0x20 && type <= 0x23);
 }
 
 /// The two ends of the link.
@@ -348,6 +349,14 @@ struct ErrorReport {
   std::uint8_t sequence = 0;                                     ///< sequence number of the offending frame
 };
 
+/// The job stopped at a pause event (ProgramPause, ToolChange, LayerChange) and waits for Resume.
+struct PauseReport {
+  static constexpr MessageType type = MessageType::PauseReport;  ///< message type
+  std::uint32_t setpoint_index = 0;                              ///< the setpoint it stopped at
+  MachineEventKind kind = MachineEventKind::ProgramPause;        ///< what for
+  std::uint32_t value = 0;                                       ///< the tool number for a tool change
+};
+
 // The fixed-field messages, each described once (wire_layout.hpp derives encode, decode, size).
 /// Hello: version, session (4 bytes).
 template <>
@@ -361,6 +370,9 @@ struct WireFields<Nak> : WireLayout<&Nak::expected, &Nak::reason> {};
 /// ErrorReport: code, index, sequence (4 bytes; code 0 is BadPayload at 0).
 template <>
 struct WireFields<ErrorReport> : WireLayout<&ErrorReport::code, &ErrorReport::index, &ErrorReport::sequence> {};
+/// PauseReport: setpoint index, kind, value (9 bytes).
+template <>
+struct WireFields<PauseReport> : WireLayout<&PauseReport::setpoint_index, &PauseReport::kind, &PauseReport::value> {};
 /// QueueEvent: segment, after_rest_ticks, kind, flag, value (14 bytes).
 template <>
 struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
@@ -417,7 +429,8 @@ struct MessageSet {
 /// Every message of this protocol version (the default of the set-taking functions; host
 /// tools, tests and fuzzers).
 using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
-                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, StatusReport, SetpointBatch, ErrorReport>;
+                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, StatusReport, SetpointBatch, ErrorReport,
+                               PauseReport>;
 
 /// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
 /// the controller's setpoint stream.
@@ -426,7 +439,7 @@ using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, Queue
 
 /// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
 /// commands, reports, and the setpoint stream.
-using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport>;
+using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport, PauseReport>;
 
 namespace detail {
 
@@ -953,6 +966,8 @@ class Message {
   constexpr Message(const ErrorReport& m) noexcept : type_(MessageType::ErrorReport), body_(m) {}  // NOLINT
   /// Holds a QueueEvent.
   constexpr Message(const QueueEvent& m) noexcept : type_(MessageType::QueueEvent), body_(m) {}  // NOLINT
+  /// Holds a PauseReport.
+  constexpr Message(const PauseReport& m) noexcept : type_(MessageType::PauseReport), body_(m) {}  // NOLINT
 
   /// Which message this is.
   [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
@@ -976,6 +991,7 @@ class Message {
     else if constexpr (std::is_same_v<T, SetpointBatch>) return body_.setpoint_batch;
     else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
     else if constexpr (std::is_same_v<T, QueueEvent>) return body_.queue_event;
+    else if constexpr (std::is_same_v<T, PauseReport>) return body_.pause_report;
     else return empty<T>();
   }
 
@@ -1003,6 +1019,7 @@ class Message {
     constexpr explicit Body(const SetpointBatch& m) noexcept : setpoint_batch(m) {}
     constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
     constexpr explicit Body(const QueueEvent& m) noexcept : queue_event(m) {}
+    constexpr explicit Body(const PauseReport& m) noexcept : pause_report(m) {}
     Hello hello;
     Capabilities capabilities;
     Ack ack;
@@ -1014,6 +1031,7 @@ class Message {
     SetpointBatch setpoint_batch;
     ErrorReport error_report;
     QueueEvent queue_event;
+    PauseReport pause_report;
   };
   MessageType type_ = MessageType::Hello;
   Body body_;

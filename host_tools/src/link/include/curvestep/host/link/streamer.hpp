@@ -64,6 +64,11 @@ struct StreamOptions {
   /// Soft limits sent in MachineConfiguration, per axis [low, high] mm (the machine file's
   /// "travel"); an axis without them travels unlimited (the whole Q16.16 range).
   MachineTravel travel{};
+  /// The controller paused the job for the operator (M0/M1, a tool change, a pen change):
+  /// told once per pause what it is for (may be empty).
+  std::function<void(const std::string&)> paused;
+  /// Polled while paused: true once the job may go on (Resume is sent). Empty: at once.
+  std::function<bool()> resume_now;
 };
 
 /// The controller stopped the job or the link died: a one-line cause naming what failed.
