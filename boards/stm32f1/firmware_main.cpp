@@ -16,7 +16,11 @@
 
 namespace {
 using Board = curvestep::boards::Stm32F1Board;
-using App = curvestep::firmware::App<Board, curvestep::Q16_16, CURVESTEP_QUEUE_SEGMENTS, CURVESTEP_LOOKAHEAD_SEGMENTS>;
+#ifndef CURVESTEP_MACHINE_EVENTS
+#define CURVESTEP_MACHINE_EVENTS CURVESTEP_QUEUE_SEGMENTS
+#endif
+using App = curvestep::firmware::App<Board, curvestep::Q16_16, CURVESTEP_QUEUE_SEGMENTS, CURVESTEP_LOOKAHEAD_SEGMENTS,
+                                     CURVESTEP_MACHINE_EVENTS>;
 }  // namespace
 
 extern "C" [[noreturn]] void curvestep_main() {

@@ -13,6 +13,8 @@
 #include <vector>
 
 #include <curvestep/host/job_file.hpp>
+#include <curvestep/host/link/event_timeline.hpp>
+#include <curvestep/host/link/wire.hpp>
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/machine_file.hpp>
@@ -71,7 +73,7 @@ std::string format_events(const Job& job) {
                                 "flood", "coolant off", "tool change", "output", "pen up", "pen down", "layer change", "message"};
   std::ostringstream out;
   out << "  job events:          " << job.events.size()
-      << " (in program order; the motion does not stop or wait for them yet: dwells and pauses take no time here nor on a device)\n";
+      << " (in program order; G4, M0/M1, M6 and pen changes between layers stop the motion, G4 rests its P seconds)\n";
   // Pen moves come in their hundreds on plotter art: counted, so that the layer changes show.
   std::size_t pen_up = 0;
   std::size_t pen_down = 0;
@@ -99,6 +101,21 @@ std::string format_events(const Job& job) {
     out << " before segment " << e.before_segment;
     if (e.line != 0) out << ", line " << e.line;
     out << "\n";
+  }
+  return out.str();
+}
+
+/// The event timeline: where a device calls its board hooks (up to 40 lines, pen moves included).
+std::string format_timeline(const link::SimulatedEventTimeline& timeline) {
+  if (timeline.events().empty()) return {};
+  std::ostringstream out;
+  out << "  event timeline:      (a device logs the same lines)\n";
+  for (std::size_t k = 0; k < timeline.setpoints().size(); ++k) {
+    if (k == 40) {
+      out << "                       ... " << timeline.setpoints().size() - k << " more\n";
+      break;
+    }
+    out << "                       " << link::event_line(timeline.events()[k], timeline.setpoints()[k]) << "\n";
   }
   return out.str();
 }
@@ -133,7 +150,17 @@ int run_sim(const SimOptions& o) {
   // The setpoints go to the CSV as they are made and are kept nowhere; the HTML report runs the
   // simulation again for its plots (write_html_report_streamed).
   SimulationResult result;
-  const auto run = [&](const SetpointSink& sink) { result.summary = simulate_stream(job, machine, options, sink); };
+  link::SimulatedEventTimeline timeline(link::to_wire_events(job, machine.rate_hz, true));
+  std::uint64_t last_index = 0;
+  const auto run = [&](const SetpointSink& sink) {
+    const SetpointSink both = [&](const SetpointRecord& r) {
+      if (sink) sink(r);
+      timeline.on_setpoint(r);
+      last_index = r.index;
+    };
+    result.summary = simulate_stream(job, machine, options, both);
+    timeline.finish(last_index);
+  };
   if (o.output.empty()) {
     run({});
   } else {
@@ -166,7 +193,8 @@ int run_sim(const SimOptions& o) {
   std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16");
   if (replay_window) std::cout << ", look-ahead " << options.lookahead;
   std::cout << ")\n"
-            << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report) << format_events(job);
+            << format_summary(result.summary, machine) << smoothing::format_smoothing(smoothing_report) << format_events(job)
+            << format_timeline(timeline);
   for (const FeedHoldEvent& hold : options.holds) {
     std::cout << "  feed hold:           before setpoint " << hold.tick << ", standing " << hold.standing_ticks
               << " ticks once stopped, then resumed\n";

@@ -30,6 +30,22 @@
 namespace curvestep::host {
 namespace {
 
+/// Program pauses (M0/M1, M6, a pen change): with --resume-pauses say what for on standard output
+/// and go on at once; else ask the operator (OperatorConsole::ask: Enter, r or ~ goes on, a or
+/// Ctrl-X aborts) and wait for the answer, the link kept going.
+void set_pause_handling(link::StreamOptions& options, bool at_once, link::OperatorConsole& console) {
+  options.paused = [at_once, &console](const std::string& what) {
+    if (at_once) {
+      std::cout << "curvestep stream: " << what << " (--resume-pauses: going on)" << std::endl;
+      return;
+    }
+    console.ask("curvestep stream: " + what +
+                (console.reads_keys() ? "; go on: Enter, r or ~; abort: a, Ctrl-X or Esc"
+                                      : "; no operator keys (standard input is no terminal): run with --keys or --resume-pauses"));
+  };
+  if (!at_once) options.resume_now = [] { return false; };  // the operator's Resume goes on (Streamer)
+}
+
 struct StreamCommandOptions {
   std::string job;
   std::string machine;
@@ -38,6 +54,7 @@ struct StreamCommandOptions {
   std::string capture;
   unsigned link_timeout_ms = 3000;
   std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
+  bool resume_pauses = false;  ///< --resume-pauses: go on at once after M0/M1, M6 and pen changes
   JobPipelineOptions pipeline;
   bool lookahead_given = false;    ///< --lookahead given: plan with that count window alone
   bool keys = false;               ///< --keys: read operator keys from stdin even if it is no terminal
@@ -77,6 +94,7 @@ int run_stream(const StreamCommandOptions& o) {
   options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
   OperatorSession session("curvestep stream", o.keys);
   session.attach(options);
+  set_pause_handling(options, o.resume_pauses, session.console());
   // The setpoints go to the capture file as they arrive and are kept nowhere; a failed upload
   // leaves no capture behind (as before, when the file was written at the end).
   std::ofstream capture;
@@ -156,6 +174,8 @@ void add_stream_command(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
   add_job_pipeline_options(stream, options->pipeline);
   stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
+  stream->add_flag("--resume-pauses", options->resume_pauses,
+                   "Go on at once after program pauses (M0/M1), tool changes (M6) and pen changes (scripts, tests)");
   stream->add_flag("--keys", options->keys,
                    "Read the operator keys from standard input even when it is no terminal (a pipe): ! hold, ~ resume, "
                    "Ctrl-X or Esc abort, ? status");

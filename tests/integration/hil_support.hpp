@@ -133,4 +133,28 @@ inline std::vector<RawSetpoint> check_same_setpoints(const std::vector<RawSetpoi
   return actual;
 }
 
+/// Streams `job` with `curvestep stream [extra...]` to a `curvestep device` started with
+/// `device_options`, requires success and `expected`'s setpoints bit for bit in the capture;
+/// returns the device's standard error (stopped, exit 0 checked) and the stream's output.
+inline std::string stream_to_new_device(const std::filesystem::path& job, const std::filesystem::path& machine,
+                                        const std::vector<std::string>& device_options, const std::string& tag,
+                                        const std::vector<RawSetpoint>& expected, std::string& output,
+                                        const std::vector<std::string>& extra = {}) {
+  Process device(device_options, tag + ".stderr");
+  const std::string port = device.first_line();
+  REQUIRE(port.rfind("/dev/pts/", 0) == 0);
+  const auto capture = scratch_dir() / (tag + ".csv");
+  std::vector<std::string> arguments{"stream", job.string(), "--machine", machine.string(), "--port", port, "--capture",
+                                     capture.string()};
+  arguments.insert(arguments.end(), extra.begin(), extra.end());
+  std::string errors;
+  const int status = run_program(arguments, errors, "stream", std::chrono::seconds(150), &output);
+  INFO(errors);
+  INFO(output);
+  REQUIRE(status == 0);
+  check_same_setpoints(expected, capture);
+  CHECK(device.stop() == 0);
+  return device.stderr_text();
+}
+
 }  // namespace curvestep::test

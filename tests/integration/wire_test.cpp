@@ -21,7 +21,7 @@ TEST_CASE("host link: every segment of the example jobs survives the wire exactl
   for (const char* name : {"every_type.json", "inch_square.json", "seed_cubic.json", "helix.json"}) {
     INFO(name);
     const auto job = curvestep::host::load_job(ct::wire_exact_job(std::filesystem::path(CURVESTEP_EXAMPLE_JOBS) / name));
-    const auto wire = hl::to_wire(job, 3);
+    const auto wire = hl::to_wire(job, 3, 1000);
     CHECK(wire.notes.empty());
     REQUIRE(wire.segments.size() == job.segments.size());
     for (std::size_t i = 0; i < job.segments.size(); ++i) {

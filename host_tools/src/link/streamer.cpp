@@ -44,10 +44,11 @@ class Upload {
       if (link_.capabilities().lookahead == 0) {
         plan_here(axes);
       } else {
-        wire_job_ = to_wire(job_, axes);
+        wire_job_ = to_wire(job_, axes, machine_.rate_hz);
         for (const auto& note : wire_job_.notes) warn(note);
         if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
       }
+      events_ = to_wire_events(job_, machine_.rate_hz, piece_mode_);
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
       while (!(aborting_ ? abort_settled() : finished())) {
@@ -56,6 +57,7 @@ class Upload {
         if (!aborting_) {
           submit_units();
           submit_start();
+          serve_pause();
         }
         link_.pump(5, handler);
         watch_setpoint_stream();
@@ -103,6 +105,11 @@ class Upload {
   }
 
   void resume() {
+    if (pause_pending_ && !holding_ && !aborting_) {  // the operator's answer to a program pause
+      pause_resume_asked_ = true;
+      pending_command_ = OperatorCommand::None;
+      return;
+    }
     if (!holding_ || aborting_) {
       pending_command_ = OperatorCommand::None;
       return;
@@ -204,7 +211,7 @@ class Upload {
   /// Drops the oldest submissions the controller has acknowledged (they leave the window in order).
   void settle_acknowledged() {
     while (submitted_.size() > link_.in_flight()) {
-      if (submitted_.front() < operator_marker) acknowledged_units_ = submitted_.front() + 1;  // a unit, not a marker
+      if (submitted_.front() < event_marker) acknowledged_units_ = submitted_.front() + 1;  // a unit, not a marker
       if (submitted_.front() == start_marker) {
         start_acknowledged_ = true;
         mark_stream_progress();
@@ -259,13 +266,45 @@ class Upload {
 
   void submit_units() {
     const auto type = piece_mode_ ? protocol::MessageType::QueuePiece : protocol::MessageType::QueueSegment;
-    while (next_ < units() && link_.can_submit(type)) {
+    while (next_ < units() && submit_events_before(next_) && link_.can_submit(type)) {
       link_.submit(unit(next_));
       submitted_.push_back(next_);
       sequence_to_unit_[sequence_] = next_;
       ++sequence_;
       ++next_;
     }
+  }
+
+  /// Submits the machine events due before unit k (those keyed to its segment number or an
+  /// earlier one; all that are left before the last unit); false while one waits for credit.
+  bool submit_events_before(std::size_t k) {
+    const std::size_t label = piece_mode_ ? pieces_[k].segment : k;
+    while (next_event_ < events_.size() && (events_[next_event_].segment <= label || k + 1 == units())) {
+      if (!link_.can_submit(protocol::MessageType::QueueEvent)) return false;
+      link_.submit(protocol::Message(events_[next_event_]));
+      submitted_.push_back(event_marker);
+      sequence_to_unit_.erase(sequence_);
+      ++sequence_;
+      ++next_event_;
+    }
+    return true;
+  }
+
+  /// A pause the controller reported: tell the operator once, Resume when resume_now() says so.
+  void serve_pause() {
+    if (!pause_pending_) return;
+    if (!pause_told_) {
+      if (options_.paused) options_.paused(pause_text_);
+      pause_told_ = true;
+    }
+    const bool go = !options_.resume_now || pause_resume_asked_ || options_.resume_now();
+    if (!go || !link_.can_submit(protocol::MessageType::Resume)) return;
+    link_.submit(protocol::Message(protocol::Resume{}));
+    submitted_.push_back(event_marker);
+    sequence_to_unit_.erase(sequence_);
+    ++sequence_;
+    pause_pending_ = false;
+    pause_resume_asked_ = false;
   }
 
   /// Start right after the first unit (Start on an empty queue is NothingQueued): the controller
@@ -317,6 +356,16 @@ class Upload {
           throw StreamError(code, transport_.name() + ": the controller stopped with a fault: " + describe_error(code) +
                                       " at setpoint " + std::to_string(last_status_.setpoint_index));
         }
+        break;
+      }
+      case protocol::MessageType::PauseReport: {
+        const auto& pause = m.get<protocol::PauseReport>();
+        pause_text_ = "paused at setpoint " + std::to_string(pause.setpoint_index) + ": " +
+                      (pause.kind == protocol::MachineEventKind::ToolChange ? "tool change to tool " + std::to_string(pause.value)
+                       : pause.kind == protocol::MachineEventKind::LayerChange ? std::string("pen change (next layer)")
+                                                                                : std::string("program pause (M0/M1)"));
+        pause_pending_ = true;
+        pause_told_ = false;
         break;
       }
       case protocol::MessageType::ErrorReport: {
@@ -420,7 +469,8 @@ class Upload {
   static constexpr std::size_t configuration_marker = static_cast<std::size_t>(-1);
   static constexpr std::size_t start_marker = static_cast<std::size_t>(-2);
   static constexpr std::size_t status_marker = static_cast<std::size_t>(-3);
-  static constexpr std::size_t operator_marker = static_cast<std::size_t>(-4);  // FeedHold, Resume, Abort; the smallest marker
+  static constexpr std::size_t operator_marker = static_cast<std::size_t>(-4);  // FeedHold, Resume, Abort
+  static constexpr std::size_t event_marker = static_cast<std::size_t>(-5);     // QueueEvent, a pause's Resume; the smallest marker
 
   Transport& transport_;
   const Job& job_;
@@ -428,6 +478,12 @@ class Upload {
   const StreamOptions& options_;
   HostLink link_;
   WireJob wire_job_;                         // segment mode: the job's queue segments
+  std::vector<protocol::QueueEvent> events_;  // machine events, sent before the unit they precede
+  std::size_t next_event_ = 0;
+  bool pause_pending_ = false;  // the controller paused and waits for Resume
+  bool pause_told_ = false;     // options_.paused was called for it
+  bool pause_resume_asked_ = false;  // the operator's Resume came for it
+  std::string pause_text_;
   std::vector<protocol::QueuePiece> pieces_;  // piece mode: the pieces planned here
   bool piece_mode_ = false;                   // the controller has no planner (Capabilities::lookahead 0)
   SetpointCapture capture_;  // the setpoint stream, to options_.setpoint_sink or kept

@@ -3,12 +3,14 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/fixed/fixed.hpp>
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/joint_stops.hpp>
 
 namespace curvestep::host::link {
 namespace {
@@ -92,9 +94,10 @@ WireMachine to_wire(const MachineLimits& m, std::size_t axis_count) {
   return out;
 }
 
-WireJob to_wire(const Job& job, std::size_t axis_count) {
+WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz) {
   WireJob out;
   out.segments.reserve(job.segments.size());
+  const std::vector<JointStop> entries = joint_stops(job, rate_hz);
   for (std::size_t i = 0; i < job.segments.size(); ++i) {
     const PathSegment& s = job.segments[i];
     const std::size_t file_index = job.source_index.empty() ? i : job.source_index[i];
@@ -102,6 +105,8 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
     protocol::QueueSegment q;
     q.axis_count = static_cast<std::uint8_t>(axis_count);
     q.rapid = s.rapid();
+    q.stop_before = entries[i].stop;
+    q.rest_ticks = entries[i].rest_ticks;
     bool exact = true;
     const auto coordinate = [&](double value) {
       try {
@@ -161,14 +166,16 @@ WireJob to_wire(const Job& job, std::size_t axis_count) {
 
 protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) {
   const std::string where = "segment " + std::to_string(piece.segment) + ": a planned piece";
-  if (!valid_piece_ticks(piece.ticks, piece.exact_run)) {
+  if (!valid_piece_ticks(piece.ticks, piece.exact_run, piece.rest)) {
     throw std::runtime_error(where + " covers " + std::to_string(piece.ticks) + " ticks, not " +
-                             (piece.exact_run ? "2 to " + std::to_string(max_exact_run) + " (an exact run)"
-                                              : "1 or a power of two up to " + std::to_string(HermiteChunk::max_ticks)));
+                             (piece.rest        ? "1 to " + std::to_string(max_rest_ticks) + " (a rest)"
+                              : piece.exact_run ? "2 to " + std::to_string(max_exact_run) + " (an exact run)"
+                                                : "1 or a power of two up to " + std::to_string(HermiteChunk::max_ticks)));
   }
   const std::size_t sent = piece.exact_run ? piece.ticks - 1 : is_chunk(piece) ? piece.controls.size() : 0;
   protocol::QueuePiece q;
   q.exact_run = piece.exact_run;
+  q.rest = piece.rest;
   q.axis_count = static_cast<std::uint8_t>(axis_count);
   q.ticks = static_cast<std::uint16_t>(piece.ticks);
   q.end_of_job = piece.end_of_job;
@@ -184,10 +191,79 @@ protocol::QueuePiece to_wire(const PlannedPiece& piece, std::size_t axis_count) 
   return q;
 }
 
+namespace {
+
+/// The wire kind of a job event, or none for what the controller does not act on.
+std::optional<protocol::MachineEventKind> wire_kind(JobEventKind kind) {
+  using protocol::MachineEventKind;
+  switch (kind) {
+    case JobEventKind::SpindleOn: return MachineEventKind::SpindleOn;
+    case JobEventKind::SpindleOff: return MachineEventKind::SpindleOff;
+    case JobEventKind::SpindleSpeed: return MachineEventKind::SpindleSpeed;
+    case JobEventKind::CoolantMist: return MachineEventKind::CoolantMist;
+    case JobEventKind::CoolantFlood: return MachineEventKind::CoolantFlood;
+    case JobEventKind::CoolantOff: return MachineEventKind::CoolantOff;
+    case JobEventKind::DigitalOutput: return MachineEventKind::DigitalOutput;
+    case JobEventKind::PenUp: return MachineEventKind::PenUp;
+    case JobEventKind::PenDown: return MachineEventKind::PenDown;
+    case JobEventKind::ToolChange: return MachineEventKind::ToolChange;
+    case JobEventKind::ProgramPause: return MachineEventKind::ProgramPause;
+    case JobEventKind::LayerChange: return MachineEventKind::LayerChange;
+    case JobEventKind::ProgramEnd: return MachineEventKind::ProgramEnd;
+    case JobEventKind::Dwell:
+    case JobEventKind::Message: return std::nullopt;
+  }
+  return std::nullopt;
+}
+
+/// An event's value as a u32: rev/min rounded, an output or tool number whole.
+std::uint32_t wire_value(const Job& job, const JobEvent& event) {
+  const double value = event.kind == JobEventKind::SpindleOn || event.kind == JobEventKind::SpindleSpeed ? std::nearbyint(event.value)
+                                                                                                       : event.value;
+  if (!(value >= 0 && value <= 4294967295.0) || value != std::floor(value)) {
+    throw std::runtime_error(job.name + (event.line > 0 ? ":" + std::to_string(event.line) : std::string{}) + ": " + event.text +
+                             ": value " + format_number(event.value) + " does not travel as a whole number 0 .. 2^32 - 1");
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+}  // namespace
+
+std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels) {
+  std::vector<protocol::QueueEvent> out;
+  std::size_t joint = ~std::size_t{0};
+  std::uint64_t rested = 0;  // the dwell ticks at this joint so far
+  for (const JobEvent& event : job.events) {
+    if (event.before_segment != joint) {
+      joint = event.before_segment;
+      rested = 0;
+    }
+    if (event.kind == JobEventKind::Dwell) {
+      if (joint < job.segments.size()) rested += dwell_ticks(event.value, rate_hz);
+      continue;
+    }
+    const auto kind = wire_kind(event.kind);
+    if (!kind) continue;
+    protocol::QueueEvent e;
+    e.kind = *kind;
+    e.flag = event.flag;
+    e.value = wire_value(job, event);
+    e.after_rest_ticks = static_cast<std::uint32_t>(rested);
+    if (joint >= job.segments.size()) {
+      e.segment = after_last_segment;
+    } else {
+      const std::size_t label = file_labels && !job.source_index.empty() ? job.source_index[joint] : joint;
+      e.segment = static_cast<std::uint32_t>(label);
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
 std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
   const auto limits = firmware::to_machine_limits(to_wire(machine, motion_axes).configuration);
   if (!limits) throw std::runtime_error("machine: " + std::string(describe(limits.error())));
-  const auto wire_job = to_wire(job, motion_axes);
+  const auto wire_job = to_wire(job, motion_axes, machine.rate_hz);
   Job seen = job;
   seen.segments.clear();
   for (std::size_t i = 0; i < wire_job.segments.size(); ++i) {

@@ -79,8 +79,12 @@ PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions&
     programmed = add_pen_moves(programmed, *pen, &report);
     check_swept_extent(programmed);
     std::ostringstream line;
-    line << "pen: " << report.lifts << " lifts to z " << pen->up_mm << " mm (rapid), " << report.lowers << " moves down to z "
-         << pen->down_mm << " mm at " << pen->feed_mm_per_s << " mm/s";
+    if (pen->servo) {
+      line << "pen: a servo on " << pen->line << ", " << pen->settle_s << " s to settle after each move (a dwell)";
+    } else {
+      line << "pen: " << report.lifts << " lifts to z " << pen->up_mm << " mm (rapid), " << report.lowers << " moves down to z "
+           << pen->down_mm << " mm at " << pen->feed_mm_per_s << " mm/s";
+    }
     prepared.notes.push_back(line.str());
   }
   prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &prepared.notes);

@@ -44,8 +44,12 @@ class PenJob {
       } else {
         lower();
       }
-      const double z = segment.rapid() ? pen_.up_mm : pen_.down_mm;
       const double blend = in_.blend_tolerance_mm.size() == n ? in_.blend_tolerance_mm[k] : 0;
+      if (pen_.servo) {  // the servo moves the pen: the path keeps its z
+        push(segment, std::move(source), blend);
+        continue;
+      }
+      const double z = segment.rapid() ? pen_.up_mm : pen_.down_mm;
       for (auto& p : source.points) p[2] = z;
       push(at_height(segment, z), std::move(source), blend);
     }
@@ -65,6 +69,16 @@ class PenJob {
     JobEvent event;
     event.kind = kind;
     add_event(std::move(event));
+  }
+
+  /// A servo pen's move: its event, then a dwell of the settle time (an exact stop there).
+  void servo_move(JobEventKind kind) {
+    pen_event(kind);
+    JobEvent settle;
+    settle.kind = JobEventKind::Dwell;
+    settle.value = pen_.settle_s;
+    settle.text = "pen settle";
+    add_event(std::move(settle));
   }
 
   void push(const PathSegment& segment, SourceSegment source, double blend) {
@@ -93,6 +107,13 @@ class PenJob {
   }
 
   void lift() {
+    if (pen_.servo) {
+      if (known_up_) return;  // unknown at the start: lifted once to be sure
+      servo_move(JobEventKind::PenUp);
+      known_up_ = true;
+      lowered_ = false;
+      return;
+    }
     if (!lowered_ && at_[2] == pen_.up_mm) return;
     pen_event(JobEventKind::PenUp);
     if (at_[2] != pen_.up_mm) {
@@ -104,6 +125,12 @@ class PenJob {
 
   void lower() {
     if (lowered_) return;
+    if (pen_.servo) {
+      servo_move(JobEventKind::PenDown);
+      lowered_ = true;
+      known_up_ = false;
+      return;
+    }
     if (at_[2] != pen_.down_mm) {
       move_to_height(pen_.down_mm, false);
       ++report_.lowers;
@@ -118,6 +145,7 @@ class PenJob {
   std::vector<double> blend_;
   MachinePoint at_{};
   bool lowered_ = false;  ///< the pen is known to be on the paper
+  bool known_up_ = false; ///< a servo pen is known to be lifted
   PenMovesReport report_;
 };
 

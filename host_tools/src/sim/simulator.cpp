@@ -16,6 +16,7 @@
 #include <curvestep/core/motion/piece_recorder.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/joint_stops.hpp>
 #include <curvestep/host/position_differences.hpp>
 
 namespace curvestep::host {
@@ -43,7 +44,7 @@ template <class... Controllers>
 class LockstepRun {
  public:
   LockstepRun(const Job& job, const MachineLimits& machine, const SimulationOptions& options, std::vector<FeedHoldEvent> holds = {})
-      : job_(job), holds_(std::move(holds)) {
+      : job_(job), entries_(joint_stops(job, machine.rate_hz)), holds_(std::move(holds)) {
     std::apply([&](auto&... c) { (check(c.configure(machine), "machine"), ...); }, controllers_);
     std::apply([&](auto&... c) { (check(c.set_lookahead(options.lookahead), "lookahead"), ...); }, controllers_);
     std::apply([&](auto&... c) { (check(c.set_lookahead_distance(options.lookahead_distance_mm), "lookahead distance"), ...); },
@@ -100,10 +101,10 @@ class LockstepRun {
     auto& head = std::get<0>(controllers_);
     while (next_ < job_.segments.size() && !queue_full()) {
       const auto index = static_cast<std::uint32_t>(job_.source_index.empty() ? next_ : job_.source_index[next_]);
-      auto pushed = head.try_push(job_.segments[next_], index);
+      auto pushed = head.try_push(job_.segments[next_], index, entries_[next_]);
       if (!pushed && pushed.error() == Error::QueueFull) return;  // a cusp split needs more room: later
       check(pushed, index);
-      std::apply([&](auto&, auto&... others) { (check(others.try_push(job_.segments[next_], index), index), ...); }, controllers_);
+      std::apply([&](auto&, auto&... others) { (check(others.try_push(job_.segments[next_], index, entries_[next_]), index), ...); }, controllers_);
       ++next_;
     }
     if (next_ == job_.segments.size()) {
@@ -134,6 +135,7 @@ class LockstepRun {
   }
 
   const Job& job_;
+  std::vector<JointStop> entries_;  ///< per segment: an exact stop and rest before it (job events)
   std::size_t next_ = 0;
   std::tuple<Controllers...> controllers_;
   std::vector<FeedHoldEvent> holds_;  // in tick order

@@ -22,14 +22,16 @@ struct ChunkRun {
 /// on_setpoint(controller, setpoint) after each setpoint.
 template <class S, class OnSetpoint = void (*)(const MotionController<S>&, const Setpoint<S>&)>
 ChunkRun<S> run_chunked(const std::vector<PathSegment>& job, const MachineLimits& machine, std::uint32_t max_chunk,
-                        OnSetpoint on_setpoint = [](const MotionController<S>&, const Setpoint<S>&) {}) {
+                        OnSetpoint on_setpoint = [](const MotionController<S>&, const Setpoint<S>&) {},
+                        const std::vector<JointStop>& entries = {}) {
   MotionController<S> controller;
   REQUIRE(controller.configure(machine).has_value());
   REQUIRE(controller.set_max_chunk_ticks(max_chunk).has_value());
   std::size_t next = 0;
   auto fill = [&] {
     while (next < job.size() && !controller.queue_full()) {
-      REQUIRE(controller.try_push(job[next], static_cast<std::uint32_t>(next)).has_value());
+      const JointStop entry = next < entries.size() ? entries[next] : JointStop{};
+      REQUIRE(controller.try_push(job[next], static_cast<std::uint32_t>(next), entry).has_value());
       ++next;
     }
     if (next == job.size()) controller.end_of_job();

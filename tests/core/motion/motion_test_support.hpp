@@ -55,15 +55,17 @@ inline MachineLimits test_machine() {
   return m;
 }
 
-/// Runs every segment through a controller (pushing as the queue drains) and returns the setpoints.
+/// Runs every segment through a controller (pushing as the queue drains, segment k with
+/// entries[k] when given) and returns the setpoints.
 template <class S, std::size_t Queue = 32, std::size_t Lookahead = 16>
-std::vector<Setpoint<S>> run_job(const std::vector<PathSegment>& job, const MachineLimits& machine, std::size_t max_ticks = 2000000) {
+std::vector<Setpoint<S>> run_job(const std::vector<PathSegment>& job, const MachineLimits& machine, std::size_t max_ticks = 2000000,
+                                 const std::vector<JointStop>& entries = {}) {
   MotionController<S, Queue, Lookahead> controller;
   REQUIRE(controller.configure(machine).has_value());
   std::size_t next = 0;
   auto fill = [&] {
     while (next < job.size() && !controller.queue_full()) {
-      const auto pushed = controller.try_push(job[next], static_cast<std::uint32_t>(next));
+      const auto pushed = controller.try_push(job[next], static_cast<std::uint32_t>(next), next < entries.size() ? entries[next] : JointStop{});
       REQUIRE(pushed.has_value());
       ++next;
     }

@@ -33,13 +33,13 @@ struct RecordedRun {
 
 /// The controller's setpoints and the pieces recorded from them.
 template <class S>
-RecordedRun<S> record(const std::vector<PathSegment>& job, const MachineLimits& machine) {
+RecordedRun<S> record(const std::vector<PathSegment>& job, const MachineLimits& machine, const std::vector<JointStop>& entries = {}) {
   RecordedRun<S> run;
   PieceRecorder recorder;
   const auto sink = [&](const PlannedPiece& p) { run.pieces.push_back(p); };
   run.setpoints = run_chunked<S>(job, machine, HermiteChunk::max_ticks, [&](const MotionController<S>& c, const Setpoint<S>& sp) {
                     recorder.record(c, sp, sink);
-                  }).setpoints;
+                  }, entries).setpoints;
   recorder.finish(sink);
   return run;
 }
@@ -102,6 +102,28 @@ void check_job(const std::vector<PathSegment>& job, const MachineLimits& machine
   CHECK(std::count_if(run.pieces.begin(), run.pieces.end(), [](const PlannedPiece& p) { return p.end_of_job; }) == 1);
   require_same_stream(replay<S>(run.pieces, machine), run.setpoints);
 }
+
+}  // namespace
+
+TEMPLATE_TEST_CASE("piece executor: rests at joints become rest pieces and replay bit for bit", "[core][motion][pieces]", Q16_16,
+                   double) {
+  // A rest before the first segment, a short one at a corner, and one longer than a piece holds.
+  const std::vector<PathSegment> job{line(mp(0, 0), mp(10, 0)), line(mp(10, 0), mp(10, 10)), line(mp(10, 10), mp(0, 10))};
+  const std::vector<JointStop> entries{JointStop{true, 3}, JointStop{true, 500}, JointStop{true, max_rest_ticks + 10}};
+  const auto run = record<TestType>(job, test_machine(), entries);
+  std::vector<std::uint32_t> rests;
+  std::uint64_t ticks = 0;
+  for (const PlannedPiece& p : run.pieces) {
+    ticks += p.ticks;
+    CHECK(valid_piece_ticks(p.ticks, p.exact_run, p.rest));
+    if (p.rest) rests.push_back(p.ticks);
+  }
+  CHECK(ticks == run.setpoints.size());
+  CHECK(rests == std::vector<std::uint32_t>{3, 500, max_rest_ticks, 10});
+  require_same_stream(replay<TestType>(run.pieces, test_machine()), run.setpoints);
+}
+
+namespace {
 
 PlannedPiece exact_piece(double x, double y, std::uint32_t segment = 0) {
   PlannedPiece p;

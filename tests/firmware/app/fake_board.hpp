@@ -93,6 +93,7 @@ struct Received {
   std::vector<protocol::ErrorReport> errors;
   std::vector<protocol::Nak> naks;
   std::vector<protocol::Ack> acks;
+  std::vector<protocol::PauseReport> pauses;
   int capabilities = 0;
   protocol::Capabilities last_capabilities{};
 };
@@ -193,6 +194,7 @@ class Host {
         case protocol::MessageType::StatusReport: received.status.push_back(msg.get<protocol::StatusReport>()); break;
         case protocol::MessageType::SetpointBatch: received.batches.push_back(msg.get<protocol::SetpointBatch>()); break;
         case protocol::MessageType::ErrorReport: received.errors.push_back(msg.get<protocol::ErrorReport>()); break;
+        case protocol::MessageType::PauseReport: received.pauses.push_back(msg.get<protocol::PauseReport>()); break;
         default: break;
       }
     }
@@ -337,7 +339,8 @@ Setpoints controller_reference(const protocol::MachineConfiguration& config, con
     while (next < job.size() && !controller.queue_full()) {
       const auto segment = to_path_segment(job[next]);
       REQUIRE(segment.has_value());
-      const auto pushed = controller.try_push(segment.value(), static_cast<std::uint32_t>(next));
+      const auto pushed = controller.try_push(segment.value(), static_cast<std::uint32_t>(next),
+                                              JointStop{job[next].stop_before, job[next].rest_ticks});
       if (!pushed && pushed.error() == Error::QueueFull) return;
       REQUIRE(pushed.has_value());
       ++next;

@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -122,6 +124,64 @@ TEST_CASE("pen: a two-subpath drawing gets exactly the hand-expected z moves and
   CHECK(job.sources[3].points.back() == p(20, 90, -1));
   CHECK(job.sources[2].type == SegmentType::Line);
   CHECK(job.sources[4].type == SegmentType::Rapid);
+}
+
+TEST_CASE("pen: a servo pen keeps the path and moves by events, each followed by its settle dwell", "[host][pipeline][pen]") {
+  const Job drawing = parse_svg_job(two_strokes, "two.svg");
+  REQUIRE(drawing.segments.size() == 4);  // rapid, line, rapid, line
+  PenModel pen;
+  pen.servo = true;
+  pen.line = "GPIO18";
+  pen.up_pulse_us = 1000;
+  pen.down_pulse_us = 2000;
+  pen.settle_s = 0.25;
+  const Job job = add_pen_moves(drawing, pen);
+  // No z moves: the same four segments, bit for bit.
+  REQUIRE(job.segments.size() == 4);
+  for (std::size_t k = 0; k < 4; ++k) {
+    CHECK(job.segments[k].start() == drawing.segments[k].start());
+    CHECK(job.segments[k].end() == drawing.segments[k].end());
+  }
+  // Up (unknown at the start) before the first travel, down before each stroke, up after it.
+  const std::vector<std::pair<JobEventKind, std::size_t>> expected{
+      {JobEventKind::PenUp, 0},   {JobEventKind::Dwell, 0}, {JobEventKind::PenDown, 1}, {JobEventKind::Dwell, 1},
+      {JobEventKind::PenUp, 2},   {JobEventKind::Dwell, 2}, {JobEventKind::PenDown, 3}, {JobEventKind::Dwell, 3},
+      {JobEventKind::PenUp, 4},   {JobEventKind::Dwell, 4}};
+  REQUIRE(job.events.size() == expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    check_event(job, i, expected[i].first, expected[i].second);
+    if (expected[i].first == JobEventKind::Dwell) CHECK(job.events[i].value == 0.25);
+  }
+}
+
+TEST_CASE("pen: the machine file's servo pen section, and what it refuses", "[host][pipeline][pen]") {
+  const auto load = [](const std::string& pen) {
+    const auto path = std::filesystem::temp_directory_path() / ("servo_pen_" + std::to_string(getpid()) + ".json");
+    std::ofstream(path) << machine_with_pen(pen);
+    return load_machine_file(path);
+  };
+  const MachineFile file = load(R"({"axis": "servo", "line": "GPIO18", "up_pulse_us": 1000, "down_pulse_us": 2000, "settle": 0.15})");
+  REQUIRE(file.pen.has_value());
+  CHECK(file.pen->servo);
+  CHECK(file.pen->line == "GPIO18");
+  CHECK(file.pen->up_pulse_us == 1000);
+  CHECK(file.pen->down_pulse_us == 2000);
+  CHECK(file.pen->settle_s == 0.15);
+  const auto refused = [&](const std::string& pen, const std::string& what) {
+    INFO(pen);
+    try {
+      (void)load(pen);
+      FAIL("accepted");
+    } catch (const LoadError& e) {
+      CHECK_THAT(e.what(), Catch::Contains(what));
+    }
+  };
+  refused(R"({"axis": "servo", "line": "GPIO18", "up_pulse_us": 1000, "down_pulse_us": 1000, "settle": 0.1})", "equals");
+  refused(R"({"axis": "servo", "line": "GPIO18", "up_pulse_us": 100, "down_pulse_us": 2000, "settle": 0.1})", "outside 500 .. 2500");
+  refused(R"({"axis": "servo", "line": "GPIO18", "up_pulse_us": 1000, "down_pulse_us": 2000, "settle": 11})", "outside 0 .. 10");
+  refused(R"({"axis": "servo", "line": "", "up_pulse_us": 1000, "down_pulse_us": 2000, "settle": 0.1})", "empty");
+  refused(R"({"axis": "servo", "up_pulse_us": 1000, "down_pulse_us": 2000, "settle": 0.1})", "line");
+  refused(R"({"axis": "x", "up": 1, "down": 0, "feed": 5})", "unsupported pen axis");
 }
 
 TEST_CASE("pen: a layer change lifts the pen even without travel, and a first stroke at the start comes down", "[host][pipeline][pen]") {

@@ -138,7 +138,7 @@ TEST_CASE("svg: the demo drawing goes over the wire without a rounding note", "[
   SvgOptions options;
   options.feed_mm_per_s = 12.345;
   const Job job = load_svg(svg_example("curvestep_demo.svg"), options).job;
-  const auto wire = link::to_wire(job, motion_axes);
+  const auto wire = link::to_wire(job, motion_axes, 1000);
   for (const auto& note : wire.notes) UNSCOPED_INFO(note);
   CHECK(wire.notes.empty());
   REQUIRE(wire.segments.size() == job.segments.size());

@@ -38,8 +38,15 @@ TEST_CASE("messages: a segment without the end-of-job flag decodes with end_of_j
   const auto back = decode<QueueSegment>(hex("00 00 00000000 00000000 00000100 0000ffff"));
   REQUIRE(back.has_value());
   CHECK_FALSE(back.value().end_of_job);
-  // bits 6 and 7 stay reserved (bit 7 was the end-of-job flag of version 1), bit 5 is for arcs only
-  CHECK(decode<QueueSegment>(hex("00 40 00000000 00000000 00000100 0000ffff")).where() == 1);
-  CHECK(decode<QueueSegment>(hex("00 80 00000000 00000000 00000100 0000ffff")).where() == 1);
+  // bit 7 (the end-of-job flag of version 1) is now the rest flag: its count must follow and not
+  // be 0, so a version-1 end of job is refused at the count (offset 2), never read as one
+  const auto old_end = decode<QueueSegment>(hex("00 80 00000000 00000000 00000100 0000ffff"));
+  REQUIRE_FALSE(old_end.has_value());
+  CHECK(old_end.where() == 2);
+  // bit 6 is the exact stop before the segment; bit 5 is for arcs only
+  const auto stop = decode<QueueSegment>(hex("00 40 00000000 00000000 00000100 0000ffff"));
+  REQUIRE(stop.has_value());
+  CHECK(stop.value().stop_before);
+  CHECK_FALSE(stop.value().end_of_job);
   CHECK(decode<QueueSegment>(hex("00 20 00000000 00000000 00000100 0000ffff")).where() == 1);
 }

@@ -71,13 +71,16 @@ QueueSegment random_segment(std::mt19937& rng) {
   if (s.kind == SegmentKind::RationalBezier) {
     for (std::size_t i = 0; i < s.point_count(); ++i) s.weights[i] = 1 + static_cast<std::int32_t>(rng() % 0x7FFFFFFE);
   }
+  s.stop_before = rng() % 2 == 0;
+  s.rest_ticks = rng() % 3 == 0 ? static_cast<std::uint32_t>(rng()) | 1u : 0;
   return s;
 }
 
 bool same(const QueueSegment& a, const QueueSegment& b) {
   return a.kind == b.kind && a.axis_count == b.axis_count && a.degree == b.degree && a.rapid == b.rapid &&
          a.has_feed == b.has_feed && a.feed_mm_per_s == b.feed_mm_per_s && a.points == b.points &&
-         a.weights == b.weights && a.end_of_job == b.end_of_job && a.turns == b.turns &&
+         a.weights == b.weights && a.end_of_job == b.end_of_job && a.turns == b.turns && a.stop_before == b.stop_before &&
+         a.rest_ticks == b.rest_ticks &&
          (a.kind != SegmentKind::Arc || a.direction == b.direction);
 }
 
@@ -339,9 +342,10 @@ TEST_CASE("messages: unknown message types are UnknownMessage with the type as i
 TEST_CASE("messages: malformed segment fields are BadPayload at their byte offset", "[protocol][messages]") {
   // kind 4 does not exist
   CHECK(decode<QueueSegment>(hex("04 00")).where() == 0);
-  // reserved flag bits 0x40 and 0x80 (0x80 was end of job in version 1)
-  CHECK(decode<QueueSegment>(hex("00 40 00000000 00000000 00000000 00000000")).where() == 1);
-  CHECK(decode<QueueSegment>(hex("00 80 00000000 00000000 00000000 00000000")).where() == 1);
+  // the rest flag (0x80; end of job in version 1) with a rest of 0 ticks (offset 2)
+  CHECK(decode<QueueSegment>(hex("00 80 00000000 00000000 00000000 00000000 00000000")).where() == 2);
+  // the rest flag with its count cut short: the payload ends at offset 2
+  CHECK(decode<QueueSegment>(hex("00 80 0000")).error() == Error::BadPayload);
   // the turns flag on a line
   CHECK(decode<QueueSegment>(hex("00 20 00000000 00000000 00000000 00000000 00000000")).where() == 1);
   // an arc with the turns flag but zero turns (offset 2)
@@ -448,6 +452,30 @@ TEST_CASE("messages: a helical arc carries its extra turns and the end-of-job fl
   CHECK(back.value().turns == 2);
   CHECK(back.value().end_of_job);
   CHECK(back.value().points[1][2] == -65536);
+}
+
+TEST_CASE("messages: a segment after a dwell carries its stop and rest ticks", "[protocol][messages]") {
+  QueueSegment s;  // a 2-axis line
+  s.stop_before = true;
+  s.rest_ticks = 500;
+  s.points[0] = WirePoint{10 * 65536, 0, 0};
+  s.points[1] = WirePoint{20 * 65536, 0, 0};
+  // kind 0, flags 0xc0 (stop before 0x40, rest 0x80), rest 500 (0x1f4), start XY, end XY
+  const auto expected = hex("00 c0 f4010000 00000a00 00000000 00001400 00000000");
+  CHECK(to_hex(payload_of(s)) == to_hex(expected));
+  const auto back = decode<QueueSegment>(expected);
+  REQUIRE(back.has_value());
+  CHECK(back.value().stop_before);
+  CHECK(back.value().rest_ticks == 500);
+  // The rest flag with a count of 0 is malformed at the count's offset (2).
+  const auto zero = decode<QueueSegment>(hex("00 c0 00000000 00000a00 00000000 00001400 00000000"));
+  REQUIRE_FALSE(zero.has_value());
+  CHECK(zero.error() == Error::BadPayload);
+  CHECK(zero.where() == 2);
+  // A stop alone adds no byte.
+  QueueSegment stop = s;
+  stop.rest_ticks = 0;
+  CHECK(to_hex(payload_of(stop)) == to_hex(hex("00 40 00000a00 00000000 00001400 00000000")));
 }
 
 TEST_CASE("messages: a StatusReport carries the deepest queue of the session", "[protocol][messages]") {

@@ -119,7 +119,7 @@ void check_refused(const QueuePiece& p, Error code, std::size_t at) {
 
 }  // namespace
 
-static_assert(is_known(0x17) && !is_known(0x18));
+static_assert(is_known(0x17) && is_known(0x18) && !is_known(0x19));
 static_assert(is_command(MessageType::QueuePiece) && is_sequenced(MessageType::QueuePiece));
 static_assert(consumes_credit(MessageType::QueuePiece) && consumes_credit(MessageType::QueueSegment));
 static_assert(!consumes_credit(MessageType::Start) && !consumes_credit(MessageType::SetpointBatch));
@@ -194,6 +194,30 @@ TEST_CASE("queue piece: an exact run of 3 ticks is 56 bytes with its setpoints i
   QueuePiece too_long = p;
   too_long.ticks = 7;
   check_refused(too_long, Error::InvalidArgument, 2);
+}
+
+TEST_CASE("queue piece: a rest of 500 ticks is 32 bytes, its end point alone", "[protocol][messages]") {
+  // Flags 0x04 (rest), 3 axes, 500 ticks (0x01f4), segment 1, end (2, -0.5, 0.25).
+  const auto expected = hex("04 03 f4 01 01 00 00 00 " F_2 F_M0_5 F_0_25);
+  QueuePiece p;
+  p.axis_count = 3;
+  p.ticks = 500;
+  p.rest = true;
+  p.segment = 1;
+  p.end = {2.0, -0.5, 0.25};
+  REQUIRE(expected.size() == 32);
+  CHECK(queue_piece_size(3, 500, false, true) == 32);
+  CHECK(to_hex(encoded(p)) == to_hex(expected));
+  const auto back = decode<QueuePiece>(expected);
+  REQUIRE(back.has_value());
+  CHECK(back.value() == p);
+  QueuePiece none = p;
+  none.ticks = 0;
+  check_refused(none, Error::InvalidArgument, 2);
+  QueuePiece stray = p;
+  stray.controls[0] = {1.0, 0.0, 0.0};  // a rest sends no control point
+  check_refused(stray, Error::InvalidArgument, 8 + 24);
+  check_fails(hex("04 03 00 00 01 00 00 00 " F_2 F_M0_5 F_0_25), Error::BadPayload, 2);  // a rest of 0 ticks
 }
 
 TEST_CASE("queue piece: a 2-axis chunk sends no z and decodes z as 0", "[protocol][messages]") {
@@ -284,10 +308,11 @@ TEST_CASE("queue piece: a host's decoder refuses it as UnknownMessage", "[protoc
 
 TEST_CASE("queue piece: reserved flag bits axis counts and tick counts are BadPayload at their byte",
           "[protocol][messages]") {
-  for (const int flags : {0x04, 0x08, 0x10, 0x20, 0x40, 0x80, 0x06, 0x07}) {
+  for (const int flags : {0x08, 0x10, 0x20, 0x40, 0x80, 0x0C, 0x0F}) {
     INFO("flags " << flags);
     check_fails(with_byte(exact_2_axes, 0, flags), Error::BadPayload, 0);
   }
+  check_fails(with_byte(exact_2_axes, 0, 0x06), Error::BadPayload, 2);  // a rest cannot be an exact run
   check_fails(with_byte(exact_2_axes, 0, 0x02), Error::BadPayload, 2);  // an exact run of one tick
   check_fails(with_byte(exact_run_2_axes, 2, 7), Error::BadPayload, 2);  // a run of 7 ticks
   for (const int axes : {0, 1, 4, 255}) {

@@ -35,7 +35,12 @@
 //                           The credit granted to the host counts whole wire segments of the worst
 //                           case: a Bézier may be split at up to 6 cusps into 7 queue slots, so the
 //                           credit is free slots / 7 and an accepted segment always fits.
-//                           Flag "end of job" marks the last one.
+//                           Flag "end of job" marks the last one. Flags "stop before" / "rest"
+//                           pass on as the segment's JointStop (an exact stop, a dwell).
+//   QueueEvent           -> EventTimeline (a ring of Queue events, each credit a segment or an
+//                           event): when the setpoints reach the event's segment (and ticks into
+//                           its rest), the board's optional hooks (board_hooks.hpp) are called
+//                           with the setpoint index; the job's end calls the rest.
 //   Start                -> arms the job; motion begins when the queue holds Lookahead + 1
 //                           segments or the job's last segment (the start rule, below).
 //                           ConfigurationMissing / NothingQueued before a configuration / segment.
@@ -112,7 +117,9 @@
 #include <curvestep/core/scalar.hpp>
 #include <curvestep/firmware/app_settings.hpp>
 #include <curvestep/firmware/board.hpp>
+#include <curvestep/firmware/board_hooks.hpp>
 #include <curvestep/firmware/conversions.hpp>
+#include <curvestep/firmware/event_timeline.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
 #include <curvestep/firmware/tick_watch.hpp>
@@ -126,7 +133,8 @@ namespace curvestep::firmware {
 
 /// The controller application for board B; S is the setpoint scalar (Q16.16 for bit-identity).
 /// Lookahead == 0: no planner on board; the App replays pieces the host planned (PieceExecutor).
-template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16>
+/// Events: machine events (QueueEvent) it can hold, 0 for none (QueueEvent is then NotSupported).
+template <Board B, Scalar S = Q16_16, std::size_t Queue = 32, std::size_t Lookahead = 16, std::size_t Events = Queue>
 class App {
   /// True if the board plans (QueueSegment); false: it replays host-planned pieces (QueuePiece).
   static constexpr bool plans_on_board = Lookahead > 0;
@@ -175,7 +183,7 @@ class App {
   /// One control period: the next setpoint, its step edges to the board, the setpoint to the stream.
   /// If the setpoint stream is backed up, nothing advances (a stalled tick, see the header).
   void on_tick() noexcept {
-    if (!moving_) return;
+    if (!moving_ || paused_) return;  // a program pause: nothing advances until Resume
     if constexpr (has_cycle_clock) {
       if (!settings_.watch_ticks) return run_tick();
       const std::uint32_t late_periods = tick_watch_.on_start(board_.cycle_count());
@@ -242,10 +250,12 @@ class App {
     }
     position_ = wire;
     setpoint_index_ = static_cast<std::uint32_t>(job_tick);
+    if constexpr (Events > 0) machine_events_.reached(setpoint.segment, [this](const protocol::QueueEvent& e) { act_on(e); });
     const bool in_motion = before == ControllerState::Running || before == ControllerState::Holding;
     if (settings_.stream_setpoints && in_motion) stream_.push(setpoint_index_, wire);  // room checked above
     const ControllerState after = controller_.state();
     if (after == ControllerState::Finished) {
+      if constexpr (Events > 0) machine_events_.finish([this](const protocol::QueueEvent& e) { act_on(e); });  // after the last move
       moving_ = false;
       events_.finished = true;
     } else if (after == ControllerState::Starved && before == ControllerState::Running) {
@@ -283,10 +293,16 @@ class App {
   /// The setpoint stream's sender (window, go-backs), for diagnostics and tests.
   [[nodiscard]] const SetpointSender& setpoint_sender() const noexcept { return stream_.sender(); }
   /// Whole wire segments the queue can take now (the credit offered to the host).
+  /// Each credit may be a segment or a machine event (QueueEvent), so it is the smaller room.
   [[nodiscard]] std::uint16_t free_segments() const noexcept {
     if (!takes_segments(phase_)) return 0;
-    return static_cast<std::uint16_t>((Queue - controller_.queued()) / slots_per_command);
+    const std::size_t segments = (Queue - controller_.queued()) / slots_per_command;
+    return static_cast<std::uint16_t>(segments < machine_events_.free() ? segments : machine_events_.free());
   }
+  /// True while a program pause (M0/M1, M6, a layer change) holds the job until Resume.
+  [[nodiscard]] bool paused() const noexcept { return paused_; }
+  /// Machine events queued and not yet reached by the motion.
+  [[nodiscard]] std::size_t queued_events() const noexcept { return machine_events_.size(); }
 
  private:
   /// What on_tick() met, for poll() to act on and report (the tick itself never sends).
@@ -294,6 +310,7 @@ class App {
     bool finished = false;  ///< the job's last setpoint was produced
     bool underrun = false;  ///< the queue ran dry while moving (stopped on the path)
     bool held = false;      ///< a feed hold came to a stop
+    bool paused = false;    ///< a pause event stopped the job: report it (PauseReport)
     bool fault = false;     ///< raise_fault() stopped the machine: report fault_
   };
 
@@ -400,6 +417,12 @@ class App {
         } else {
           return on_queue_piece(frame.payload);
         }
+      case MessageType::QueueEvent:
+        if constexpr (Events > 0) {
+          return on_queue_event(frame.payload);
+        } else {
+          return report(fail(Error::NotSupported));  // no room for machine events on this controller
+        }
       case MessageType::Start:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return report_if_failed(start());
@@ -427,8 +450,8 @@ class App {
   [[nodiscard]] static constexpr bool moves(protocol::MessageType type) noexcept {
     using protocol::MessageType;
     const MessageType queues = plans_on_board ? MessageType::QueueSegment : MessageType::QueuePiece;
-    return type == MessageType::MachineConfiguration || type == queues || type == MessageType::Start ||
-           type == MessageType::Resume;
+    return type == MessageType::MachineConfiguration || type == queues || type == MessageType::QueueEvent ||
+           type == MessageType::Start || type == MessageType::Resume;
   }
 
   [[gnu::noinline]] void on_machine_configuration(std::span<const std::byte> payload) noexcept {
@@ -445,6 +468,36 @@ class App {
   /// Not inlined: the decoder's working copy must not sit under configure() on the stack.
   [[nodiscard, gnu::noinline]] static Result<protocol::MachineConfiguration> decode_configuration(std::span<const std::byte> payload) noexcept {
     return protocol::decode<protocol::MachineConfiguration>(payload);
+  }
+
+  /// Events that hold the job for the operator (the joint is an exact stop: the machine stands).
+  [[nodiscard]] static constexpr bool pauses(protocol::MachineEventKind kind) noexcept {
+    using protocol::MachineEventKind;
+    return kind == MachineEventKind::ProgramPause || kind == MachineEventKind::ToolChange || kind == MachineEventKind::LayerChange;
+  }
+  /// A due machine event: the board's hooks, and a pause if it is one.
+  void act_on(const protocol::QueueEvent& e) noexcept {
+    apply_machine_event(board_, e, setpoint_index_, spindle_, coolant_);
+    if (pauses(e.kind) && !paused_) pause_for(e);
+  }
+
+  /// Stops producing setpoints after this one until Resume; poll() reports the pause.
+  void pause_for(const protocol::QueueEvent& e) noexcept {
+    paused_ = true;
+    pause_ = protocol::PauseReport{setpoint_index_, e.kind, e.value};
+    phase_ = Phase::Holding;
+    events_.paused = true;
+  }
+
+  /// A machine event for the board at a joint of the job (event_timeline.hpp): taken while
+  /// segments are (before the job's last one), like a segment.
+  /// Not inlined: the decoded event must not sit in dispatch()'s frame (docs/boards.md, stack).
+  [[gnu::noinline]] void on_queue_event(std::span<const std::byte> payload) noexcept {
+    const auto m = protocol::decode<protocol::QueueEvent>(payload);
+    if (!m) return report(m.failure());
+    if (!configured()) return report(fail(Error::ConfigurationMissing));
+    if (phase_ == Phase::Fault || job_end_known_) return report(fail(Error::InvalidState));
+    report_if_failed(machine_events_.push(m.value()));
   }
 
   [[gnu::noinline]] void on_queue_segment(std::span<const std::byte> payload) noexcept {
@@ -534,7 +587,7 @@ class App {
     if (!made) return made.failure();
     const PathSegment& segment = made.value();
     CURVESTEP_CHECK(check_travel(segment, travel_));
-    CURVESTEP_CHECK(controller_.try_push(segment, job_segments_));
+    CURVESTEP_CHECK(controller_.try_push(segment, job_segments_, JointStop{s.stop_before, s.rest_ticks}));
     last_end_ = segment_end(s);
     has_last_end_ = true;
     note_queued();
@@ -601,6 +654,11 @@ class App {
   }
 
   [[nodiscard]] Result<void> resume() noexcept {
+    if (paused_) {  // the operator is done: on from the pause
+      paused_ = false;
+      phase_ = Phase::Running;
+      return ok();
+    }
     if (phase_ == Phase::Holding && armed()) {
       phase_ = Phase::Running;  // armed again
       apply_start_rule();
@@ -634,6 +692,8 @@ class App {
     if (outputs) board_.fault_stop();
     controller_.abort();
     controller_.reset();
+    machine_events_.clear();
+    paused_ = false;
     moving_ = false;
     job_end_known_ = false;
     events_ = TickEvents{};
@@ -690,6 +750,13 @@ class App {
       job_segments_ = 0;
       phase_ = settled_phase();
       send_status();
+    }
+    if constexpr (Events > 0) {
+      if (events_.paused) {
+        events_.paused = false;
+        send_message(pause_);
+        send_status();
+      }
     }
     if (events_.held) {
       events_.held = false;
@@ -804,8 +871,8 @@ class App {
 
   /// Moves buffered setpoints into the setpoint stream's window as batches (never drops any).
   void send_setpoints() noexcept {
-    // Stopped, or stalled (a paused interpolator must not hold back what it already produced).
-    const bool stopped = !moving_ || stalled_ || controller_.state() == ControllerState::Held ||
+    // Stopped, stalled or paused (a paused interpolator must not hold back what it already produced).
+    const bool stopped = !moving_ || stalled_ || paused_ || controller_.state() == ControllerState::Held ||
                          controller_.state() == ControllerState::Starved;
     stream_.submit(stopped, axis_count_, statistics_.setpoint_go_backs);
   }
@@ -816,6 +883,11 @@ class App {
   protocol::LinkReceiver receiver_;
   SetpointStream<B> stream_;
   Controller controller_{};
+  EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
+  SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
+  protocol::PauseReport pause_{};          ///< the pause in force (paused_), reported once
+  bool paused_ = false;                    ///< a pause event holds the job until Resume
+  CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
   TransmitBuffer transmit_{};

@@ -58,6 +58,7 @@ inline constexpr double arc_radius_tolerance_mm = 0.002;
   piece.segment = m.segment;
   piece.end_of_job = m.end_of_job;
   piece.exact_run = m.exact_run;
+  piece.rest = m.rest;
   for (std::size_t a = 0; a < motion_axes && a < protocol::max_axes; ++a) {
     piece.end[a] = m.end[a];
     for (std::size_t i = 0; i < m.controls.size(); ++i) piece.controls[i][a] = m.controls[i][a];

@@ -33,6 +33,7 @@
 #include <curvestep/core/result.hpp>
 #include <curvestep/protocol/byte_io.hpp>
 #include <curvestep/protocol/limits.hpp>
+#include <curvestep/protocol/wire_layout.hpp>
 
 namespace curvestep::protocol {
 
@@ -50,14 +51,16 @@ enum class MessageType : std::uint8_t {
   Abort = 0x15,                 ///< host -> controller: stop at once and flush the queue
   StatusRequest = 0x16,         ///< host -> controller: ask for a status report
   QueuePiece = 0x17,            ///< host -> controller: one host-planned piece (controller without a planner)
+  QueueEvent = 0x18,            ///< host -> controller: a machine event (spindle, coolant, output, pen, ...) at a joint
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
   SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints (sequenced, acknowledged)
   ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
+  PauseReport = 0x23,           ///< controller -> host: the job paused for the operator (M0/M1, M6, a pen change)
 };
 
 /// True for the types this protocol version defines.
 [[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
-  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x17) || (type >= 0x20 && type <= 0x22);
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || (type >= 0x20 && type <= 0x23);
 }
 
 /// The two ends of the link.
@@ -66,10 +69,10 @@ enum class Endpoint : std::uint8_t {
   Controller,  ///< the firmware
 };
 
-/// True for host commands (0x10 .. 0x17): the host-to-controller reliable stream.
+/// True for host commands (0x10 .. 0x18): the host-to-controller reliable stream.
 [[nodiscard]] constexpr bool is_command(MessageType type) noexcept {
   const auto value = static_cast<std::uint8_t>(type);
-  return value >= 0x10 && value <= 0x17;
+  return value >= 0x10 && value <= 0x18;
 }
 
 /// True for messages that travel in a reliable, sequenced stream: host commands one way,
@@ -86,10 +89,10 @@ enum class Endpoint : std::uint8_t {
   return !is_known(type) || is_command(static_cast<MessageType>(type));
 }
 
-/// True for messages that take one slot of the controller's queue (and so one credit):
-/// QueueSegment and QueuePiece.
+/// True for messages that take one slot of the controller's queue or event ring (and so one
+/// credit): QueueSegment, QueuePiece and QueueEvent.
 [[nodiscard]] constexpr bool consumes_credit(MessageType type) noexcept {
-  return type == MessageType::QueueSegment || type == MessageType::QueuePiece;
+  return type == MessageType::QueueSegment || type == MessageType::QueuePiece || type == MessageType::QueueEvent;
 }
 
 /// One point on the wire: X, Y, Z as Q16.16 raw values (Z unused with two axes).
@@ -186,6 +189,8 @@ struct QueueSegment {
   bool end_of_job = false;  ///< the last segment of the job: the controller may start without a full look-ahead
   ArcDirection direction = ArcDirection::CounterClockwise;  ///< Arc only
   std::uint32_t turns = 0;  ///< Arc only: extra full turns beyond the sweep from start to end (a helix)
+  bool stop_before = false;     ///< an exact stop at the joint into this segment (a job event there)
+  std::uint32_t rest_ticks = 0; ///< control ticks of rest at that joint (a G4 dwell); > 0 implies the stop
   std::int32_t feed_mm_per_s = 0;                           ///< Q16.16 feed, if has_feed
   std::array<WirePoint, max_segment_degree + 1> points{};  ///< Q16.16 points, point_count() used
   std::array<std::int32_t, max_segment_degree + 1> weights{};  ///< Q16.16 weights > 0, RationalBezier only
@@ -209,6 +214,7 @@ struct QueuePiece {
   std::uint8_t axis_count = 3;  ///< 2 or 3 coordinates per point (with 2, every z is 0)
   std::uint16_t ticks = 1;      ///< control ticks covered: 1 (exact), a power of two 2..256 (chunk), 2..6 (exact run)
   bool exact_run = false;       ///< flag bit 1: `ticks` exact setpoints, controls[0..ticks-2] then `end`
+  bool rest = false;            ///< flag bit 2: `ticks` (1..65535) setpoints at `end`, a rest at a joint
   bool end_of_job = false;      ///< the job's last piece
   std::uint32_t segment = 0;    ///< the job segment index the piece belongs to (reports)
   std::array<double, max_axes> end{};  ///< unrounded position of the piece's last setpoint (mm, binary64)
@@ -218,6 +224,60 @@ struct QueuePiece {
 
   /// Field-wise equality (binary64 ==: a NaN is unequal to itself, -0.0 equals 0.0).
   friend constexpr bool operator==(const QueuePiece&, const QueuePiece&) = default;
+};
+
+/// What a QueueEvent does on the controller's board (the job's non-motion events that a board
+/// acts on; docs/protocol.md, "QueueEvent").
+enum class MachineEventKind : std::uint8_t {
+  SpindleOn = 1,      ///< M3 / M4: `value` rev/min, `flag` counter-clockwise (M4)
+  SpindleOff = 2,     ///< M5
+  SpindleSpeed = 3,   ///< S while the spindle turns: `value` rev/min
+  CoolantMist = 4,    ///< M7
+  CoolantFlood = 5,   ///< M8
+  CoolantOff = 6,     ///< M9
+  DigitalOutput = 7,  ///< M62-M65: `value` output number, `flag` on
+  PenUp = 8,          ///< plotter pen lifted (a servo pen)
+  PenDown = 9,        ///< plotter pen lowered (a servo pen)
+  ToolChange = 10,    ///< M6: `value` tool number
+  ProgramPause = 11,  ///< M0 / M1
+  LayerChange = 12,   ///< a plotter's pen change between layers
+  ProgramEnd = 13,    ///< M2 / M30
+};
+/// Name of a machine event kind, for logs ("spindle_on", ...; "unknown" for another value).
+[[nodiscard]] constexpr const char* machine_event_name(MachineEventKind kind) noexcept {
+  switch (kind) {
+    case MachineEventKind::SpindleOn: return "spindle_on";
+    case MachineEventKind::SpindleOff: return "spindle_off";
+    case MachineEventKind::SpindleSpeed: return "spindle_speed";
+    case MachineEventKind::CoolantMist: return "coolant_mist";
+    case MachineEventKind::CoolantFlood: return "coolant_flood";
+    case MachineEventKind::CoolantOff: return "coolant_off";
+    case MachineEventKind::DigitalOutput: return "digital_output";
+    case MachineEventKind::PenUp: return "pen_up";
+    case MachineEventKind::PenDown: return "pen_down";
+    case MachineEventKind::ToolChange: return "tool_change";
+    case MachineEventKind::ProgramPause: return "program_pause";
+    case MachineEventKind::LayerChange: return "layer_change";
+    case MachineEventKind::ProgramEnd: return "program_end";
+  }
+  return "unknown";
+}
+/// The kinds this protocol version defines (1 .. 13).
+[[nodiscard]] constexpr bool valid_wire_value(const MachineEventKind& kind) noexcept {
+  return static_cast<std::uint8_t>(kind) >= 1 && static_cast<std::uint8_t>(kind) <= 13;
+}
+
+/// A machine event at a joint of the job: the controller acts on it (a board hook) when its
+/// motion reaches the joint into job segment `segment` (its setpoints' segment number: the
+/// QueueSegment count before it, or the QueuePiece segment), `after_rest_ticks` ticks into the
+/// rest there (0: at the joint; the events after a G4 dwell come at its end).
+struct QueueEvent {
+  static constexpr MessageType type = MessageType::QueueEvent;  ///< message type
+  std::uint32_t segment = 0;                                    ///< the job segment it precedes
+  std::uint32_t after_rest_ticks = 0;                           ///< ticks into the rest at that joint
+  MachineEventKind kind = MachineEventKind::SpindleOff;         ///< what to do
+  bool flag = false;                                            ///< counter-clockwise (SpindleOn), on (DigitalOutput)
+  std::uint32_t value = 0;                                      ///< rev/min, output or tool number (see kind)
 };
 
 /// Start executing the queue.
@@ -289,6 +349,35 @@ struct ErrorReport {
   std::uint8_t sequence = 0;                                     ///< sequence number of the offending frame
 };
 
+/// The job stopped at a pause event (ProgramPause, ToolChange, LayerChange) and waits for Resume.
+struct PauseReport {
+  static constexpr MessageType type = MessageType::PauseReport;  ///< message type
+  std::uint32_t setpoint_index = 0;                              ///< the setpoint it stopped at
+  MachineEventKind kind = MachineEventKind::ProgramPause;        ///< what for
+  std::uint32_t value = 0;                                       ///< the tool number for a tool change
+};
+
+// The fixed-field messages, each described once (wire_layout.hpp derives encode, decode, size).
+/// Hello: version, session (4 bytes).
+template <>
+struct WireFields<Hello> : WireLayout<&Hello::version, &Hello::session> {};
+/// Ack: next expected sequence, credit end (3 bytes).
+template <>
+struct WireFields<Ack> : WireLayout<&Ack::next_expected, &Ack::credit_end> {};
+/// Nak: expected sequence, reason (2 bytes; reason 0 is BadPayload at 1).
+template <>
+struct WireFields<Nak> : WireLayout<&Nak::expected, &Nak::reason> {};
+/// ErrorReport: code, index, sequence (4 bytes; code 0 is BadPayload at 0).
+template <>
+struct WireFields<ErrorReport> : WireLayout<&ErrorReport::code, &ErrorReport::index, &ErrorReport::sequence> {};
+/// PauseReport: setpoint index, kind, value (9 bytes).
+template <>
+struct WireFields<PauseReport> : WireLayout<&PauseReport::setpoint_index, &PauseReport::kind, &PauseReport::value> {};
+/// QueueEvent: segment, after_rest_ticks, kind, flag, value (14 bytes).
+template <>
+struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
+                                           &QueueEvent::flag, &QueueEvent::value> {};
+
 namespace detail {
 
 /// The member of `T, Rest...` whose type byte is `type`: `on_type(std::type_identity<T>{})`, or
@@ -340,16 +429,17 @@ struct MessageSet {
 /// Every message of this protocol version (the default of the set-taking functions; host
 /// tools, tests and fuzzers).
 using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
-                               Resume, Abort, StatusRequest, QueuePiece, StatusReport, SetpointBatch, ErrorReport>;
+                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, StatusReport, SetpointBatch, ErrorReport,
+                               PauseReport>;
 
 /// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
 /// the controller's setpoint stream.
 using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold, Resume,
-                                    Abort, StatusRequest, QueuePiece>;
+                                    Abort, StatusRequest, QueuePiece, QueueEvent>;
 
 /// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
 /// commands, reports, and the setpoint stream.
-using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport>;
+using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport, PauseReport>;
 
 namespace detail {
 
@@ -364,25 +454,9 @@ constexpr void read_point(ByteReader& reader, WirePoint& point, std::size_t axes
   for (std::size_t a = 0; a < axes; ++a) point[a] = reader.i32();
 }
 
-/// Reads a byte that must be a known Error code.
-constexpr Error read_error(ByteReader& reader) noexcept {
-  const std::size_t at = reader.offset();
-  const std::uint8_t value = reader.u8();
-  if (value == 0) reader.reject_at(Error::BadPayload, at);
-  return static_cast<Error>(value);
-}
-
 }  // namespace detail
 
 // --- encoders: each writes the payload only and returns its length (BufferTooSmall if it does not fit) ---
-
-/// Encodes a Hello payload (4 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const Hello& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u16(m.version);
-  w.u16(m.session);
-  return w.finish();
-}
 
 /// Encodes a Capabilities payload (20 bytes).
 [[nodiscard]] constexpr Result<std::size_t> encode(const Capabilities& m, std::span<std::byte> out) noexcept {
@@ -398,22 +472,6 @@ constexpr Error read_error(ByteReader& reader) noexcept {
   w.u8(m.max_degree);
   w.u32(m.tick_rate_hz);
   w.u16(m.lookahead);
-  return w.finish();
-}
-
-/// Encodes an Ack payload (3 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const Ack& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u8(m.next_expected);
-  w.u16(m.credit_end);
-  return w.finish();
-}
-
-/// Encodes a Nak payload (2 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const Nak& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u8(m.expected);
-  w.u8(static_cast<std::uint8_t>(m.reason));
   return w.finish();
 }
 
@@ -458,6 +516,8 @@ inline constexpr std::uint8_t segment_flag_three_axes = 0x04; ///< points have X
 inline constexpr std::uint8_t segment_flag_clockwise = 0x08;  ///< Arc only: clockwise (G2)
 inline constexpr std::uint8_t segment_flag_end_of_job = 0x10; ///< the last segment of the job
 inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u32 count of extra full turns follows
+inline constexpr std::uint8_t segment_flag_stop_before = 0x40; ///< an exact stop at the joint into the segment
+inline constexpr std::uint8_t segment_flag_rest = 0x80;       ///< a u32 count of rest ticks at that joint follows
 
 /// Encodes a QueueSegment payload; InvalidArgument (index = field number) for an impossible segment.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueueSegment& m, std::span<std::byte> out) noexcept {
@@ -473,12 +533,15 @@ inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u
   if (m.end_of_job) flags |= segment_flag_end_of_job;
   if (m.turns != 0 && m.kind != SegmentKind::Arc) return fail(Error::InvalidArgument, 3);
   if (m.turns != 0) flags |= segment_flag_turns;
+  if (m.stop_before) flags |= segment_flag_stop_before;
+  if (m.rest_ticks != 0) flags |= segment_flag_rest;
   ByteWriter w(out);
   w.u8(static_cast<std::uint8_t>(m.kind));
   w.u8(flags);
   if (bezier) w.u8(m.degree);
   if (m.has_feed) w.i32(m.feed_mm_per_s);
   if (m.turns != 0) w.u32(m.turns);
+  if (m.rest_ticks != 0) w.u32(m.rest_ticks);
   if (m.kind == SegmentKind::Arc) {
     detail::write_point(w, m.points[0], m.axis_count);
     detail::write_point(w, m.points[1], m.axis_count);
@@ -497,8 +560,10 @@ inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u
 
 /// QueuePiece flag bit 0 (byte 0): the job's last piece.
 inline constexpr std::uint8_t piece_flag_end_of_job = 0x01;
-/// QueuePiece flag bit 1: an exact run (ticks 2..6 exact setpoints); bits 2-7 reserved, 0.
+/// QueuePiece flag bit 1: an exact run (ticks 2..6 exact setpoints).
 inline constexpr std::uint8_t piece_flag_exact_run = 0x02;
+/// QueuePiece flag bit 2: a rest (ticks 1..65535 setpoints at the end point); bits 3-7 reserved, 0.
+inline constexpr std::uint8_t piece_flag_rest = 0x04;
 /// Most exact setpoints one exact run carries (core's max_exact_run).
 inline constexpr std::uint32_t max_piece_exact_run = 6;
 /// Payload bytes of a QueuePiece before its points (flags, axis_count, ticks, segment).
@@ -512,22 +577,25 @@ inline constexpr std::uint32_t max_piece_ticks = 256;
 /// True if `ticks` is a valid QueuePiece length: 1 or a power of two up to max_piece_ticks (the
 /// rule of core's valid_piece_ticks, which this header does not include: core's motion headers
 /// bring names such as curvestep::SegmentKind that would clash with this namespace's).
-/// For an exact run: 2..max_piece_exact_run.
-[[nodiscard]] constexpr bool valid_queue_piece_ticks(std::uint32_t ticks, bool exact_run = false) noexcept {
+/// For an exact run: 2..max_piece_exact_run; for a rest 1..65535 (not with an exact run).
+[[nodiscard]] constexpr bool valid_queue_piece_ticks(std::uint32_t ticks, bool exact_run = false, bool rest = false) noexcept {
+  if (rest) return !exact_run && ticks >= 1 && ticks <= 0xFFFFu;
   if (exact_run) return ticks >= 2 && ticks <= max_piece_exact_run;
   return ticks >= 1 && ticks <= max_piece_ticks && (ticks & (ticks - 1)) == 0;
 }
 
-/// Points a QueuePiece carries after its header: 1 (exact), 6 (chunk: end, q1..q5), or ticks
+/// Points a QueuePiece carries after its header: 1 (exact, rest), 6 (chunk: end, q1..q5), or ticks
 /// (exact run: end, then the earlier setpoints in time order).
-[[nodiscard]] constexpr std::size_t queue_piece_points(std::uint32_t ticks, bool exact_run) noexcept {
+[[nodiscard]] constexpr std::size_t queue_piece_points(std::uint32_t ticks, bool exact_run, bool rest = false) noexcept {
+  if (rest) return 1;
   if (exact_run) return ticks;
   return ticks > 1 ? 1 + piece_control_count : 1;
 }
 
 /// Payload bytes of a QueuePiece: 8 + 8 x axes x its points.
-[[nodiscard]] constexpr std::size_t queue_piece_size(std::size_t axis_count, std::uint32_t ticks, bool exact_run = false) noexcept {
-  return piece_header_size + 8 * axis_count * queue_piece_points(ticks, exact_run);
+[[nodiscard]] constexpr std::size_t queue_piece_size(std::size_t axis_count, std::uint32_t ticks, bool exact_run = false,
+                                                    bool rest = false) noexcept {
+  return piece_header_size + 8 * axis_count * queue_piece_points(ticks, exact_run, rest);
 }
 static_assert(queue_piece_size(max_axes, 256) == 152 && queue_piece_size(max_axes, 256) <= max_message_size,
               "docs/protocol.md: a 3-axis chunk is 152 bytes");
@@ -568,15 +636,16 @@ namespace detail {
 /// the value) for a NaN or infinite coordinate.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueuePiece& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 1);
-  if (!valid_queue_piece_ticks(m.ticks, m.exact_run)) return fail(Error::InvalidArgument, 2);
+  if (!valid_queue_piece_ticks(m.ticks, m.exact_run, m.rest)) return fail(Error::InvalidArgument, 2);
   const std::size_t axes = m.axis_count;
-  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run) - 1;  // of the control slots
+  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run, m.rest) - 1;  // of the control slots
   CURVESTEP_CHECK(detail::check_piece_point(m.end, axes, detail::piece_point_offset(axes, 0)));
   for (std::size_t k = 0; k < piece_control_count; ++k) {
     CURVESTEP_CHECK(detail::check_piece_point(m.controls[k], k < sent ? axes : 0, detail::piece_point_offset(axes, k + 1)));
   }
   ByteWriter w(out);
-  w.u8(static_cast<std::uint8_t>((m.end_of_job ? piece_flag_end_of_job : 0) | (m.exact_run ? piece_flag_exact_run : 0)));
+  w.u8(static_cast<std::uint8_t>((m.end_of_job ? piece_flag_end_of_job : 0) | (m.exact_run ? piece_flag_exact_run : 0) |
+                                 (m.rest ? piece_flag_rest : 0)));
   w.u8(m.axis_count);
   w.u16(m.ticks);
   w.u32(m.segment);
@@ -591,6 +660,12 @@ namespace detail {
 template <class M>
 concept EmptyMessage = std::is_same_v<M, Start> || std::is_same_v<M, FeedHold> || std::is_same_v<M, Resume> ||
                        std::is_same_v<M, Abort> || std::is_same_v<M, StatusRequest>;
+
+/// Encodes a message described by WireFields (Hello, Ack, Nak, ErrorReport, QueueEvent).
+template <DescribedMessage M>
+[[nodiscard]] constexpr Result<std::size_t> encode(const M& m, std::span<std::byte> out) noexcept {
+  return WireFields<M>::encode(m, out);
+}
 
 /// Encodes an empty payload (Start, FeedHold, Resume, Abort, StatusRequest).
 template <EmptyMessage Empty>
@@ -642,35 +717,20 @@ template <EmptyMessage Empty>
   return size;
 }
 
-/// Encodes an ErrorReport payload (4 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const ErrorReport& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u8(static_cast<std::uint8_t>(m.code));
-  w.u16(m.index);
-  w.u8(m.sequence);
-  return w.finish();
-}
-
 // --- decoders: each reads a whole payload; BadPayload (index = byte offset) if malformed ---
 
-/// Decodes the payload of message type T. This primary template decodes the empty payloads
-/// (Start, FeedHold, Resume, Abort, StatusRequest); the other types have their specialisations below.
+/// Decodes the payload of message type T. This primary template decodes the messages described
+/// by WireFields (their one description) and the empty payloads (Start, FeedHold, Resume, Abort,
+/// StatusRequest); the other types have their specialisations below.
 template <class T>
 [[nodiscard]] constexpr Result<T> decode(std::span<const std::byte> payload) noexcept {
-  static_assert(EmptyMessage<T>, "decode<T>: T is not a message type");
-  if (!payload.empty()) return fail(Error::BadPayload, 0);
-  return T{};
-}
-
-/// Decodes a Hello payload.
-template <>
-[[nodiscard]] constexpr Result<Hello> decode<Hello>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  Hello m;
-  m.version = r.u16();
-  m.session = r.u16();
-  CURVESTEP_CHECK(r.finish());
-  return m;
+  if constexpr (DescribedMessage<T>) {
+    return WireFields<T>::template decode<T>(payload);
+  } else {
+    static_assert(EmptyMessage<T>, "decode<T>: T is not a message type");
+    if (!payload.empty()) return fail(Error::BadPayload, 0);
+    return T{};
+  }
 }
 
 /// Decodes a Capabilities payload.
@@ -694,28 +754,6 @@ template <>
   m.lookahead = r.u16();  // 0: no planner on board (version 4)
   // Degree 0 (no segments) only from a controller without a planner, which takes none.
   if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) r.reject_at(Error::BadPayload, degree_at);
-  CURVESTEP_CHECK(r.finish());
-  return m;
-}
-
-/// Decodes an Ack payload.
-template <>
-[[nodiscard]] constexpr Result<Ack> decode<Ack>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  Ack m;
-  m.next_expected = r.u8();
-  m.credit_end = r.u16();
-  CURVESTEP_CHECK(r.finish());
-  return m;
-}
-
-/// Decodes a Nak payload.
-template <>
-[[nodiscard]] constexpr Result<Nak> decode<Nak>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  Nak m;
-  m.expected = r.u8();
-  m.reason = detail::read_error(r);
   CURVESTEP_CHECK(r.finish());
   return m;
 }
@@ -762,12 +800,13 @@ template <>
   m.kind = static_cast<SegmentKind>(kind);
   const std::uint8_t flags = r.u8();
   const std::uint8_t allowed = static_cast<std::uint8_t>(
-      segment_flag_rapid | segment_flag_feed | segment_flag_three_axes | segment_flag_end_of_job |
-      (m.kind == SegmentKind::Arc ? segment_flag_clockwise | segment_flag_turns : 0));
+      segment_flag_rapid | segment_flag_feed | segment_flag_three_axes | segment_flag_end_of_job | segment_flag_stop_before |
+      segment_flag_rest | (m.kind == SegmentKind::Arc ? segment_flag_clockwise | segment_flag_turns : 0));
   if ((flags & ~allowed) != 0) r.reject_at(Error::BadPayload, 1);
   m.rapid = (flags & segment_flag_rapid) != 0;
   m.has_feed = (flags & segment_flag_feed) != 0;
   m.end_of_job = (flags & segment_flag_end_of_job) != 0;
+  m.stop_before = (flags & segment_flag_stop_before) != 0;
   m.axis_count = (flags & segment_flag_three_axes) != 0 ? 3 : 2;
   m.direction = (flags & segment_flag_clockwise) != 0 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
   if (m.kind == SegmentKind::Line) m.degree = 1;
@@ -783,6 +822,11 @@ template <>
     const std::size_t at = r.offset();
     m.turns = r.u32();
     if (!r.failed() && m.turns == 0) r.reject_at(Error::BadPayload, at);  // the flag means "some"
+  }
+  if ((flags & segment_flag_rest) != 0) {
+    const std::size_t at = r.offset();
+    m.rest_ticks = r.u32();
+    if (!r.failed() && m.rest_ticks == 0) r.reject_at(Error::BadPayload, at);  // the flag means "some"
   }
   if (m.kind == SegmentKind::Arc) {
     detail::read_point(r, m.points[0], m.axis_count);
@@ -813,17 +857,18 @@ template <>
   ByteReader r(payload);
   QueuePiece m;
   const std::uint8_t flags = r.u8();
-  if ((flags & ~(piece_flag_end_of_job | piece_flag_exact_run)) != 0) r.reject_at(Error::BadPayload, 0);
+  if ((flags & ~(piece_flag_end_of_job | piece_flag_exact_run | piece_flag_rest)) != 0) r.reject_at(Error::BadPayload, 0);
   m.end_of_job = (flags & piece_flag_end_of_job) != 0;
   m.exact_run = (flags & piece_flag_exact_run) != 0;
+  m.rest = (flags & piece_flag_rest) != 0;
   m.axis_count = r.u8();
   if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 1);
   m.ticks = r.u16();
-  if (!r.failed() && !valid_queue_piece_ticks(m.ticks, m.exact_run)) r.reject_at(Error::BadPayload, 2);
+  if (!r.failed() && !valid_queue_piece_ticks(m.ticks, m.exact_run, m.rest)) r.reject_at(Error::BadPayload, 2);
   m.segment = r.u32();
   if (r.failed()) return r.finish().failure();
   const std::size_t axes = m.axis_count;
-  const std::size_t expected = queue_piece_size(axes, m.ticks, m.exact_run);
+  const std::size_t expected = queue_piece_size(axes, m.ticks, m.exact_run, m.rest);
   if (payload.size() != expected) return fail(Error::BadPayload, payload.size() < expected ? payload.size() : expected);
   const auto read_point = [&r, axes](std::array<double, max_axes>& point) {
     for (std::size_t a = 0; a < axes; ++a) {
@@ -833,7 +878,7 @@ template <>
     }
   };
   read_point(m.end);
-  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run) - 1;
+  const std::size_t sent = queue_piece_points(m.ticks, m.exact_run, m.rest) - 1;
   for (std::size_t k = 0; k < sent; ++k) read_point(m.controls[k]);
   CURVESTEP_CHECK(r.finish());
   return m;
@@ -883,18 +928,6 @@ template <>
   return m;
 }
 
-/// Decodes an ErrorReport payload.
-template <>
-[[nodiscard]] constexpr Result<ErrorReport> decode<ErrorReport>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  ErrorReport m;
-  m.code = detail::read_error(r);
-  m.index = r.u16();
-  m.sequence = r.u8();
-  CURVESTEP_CHECK(r.finish());
-  return m;
-}
-
 /// Any one message: a type tag and a union of the message structs (no RTTI, no heap).
 class Message {
  public:
@@ -931,6 +964,10 @@ class Message {
   constexpr Message(const SetpointBatch& m) noexcept : type_(MessageType::SetpointBatch), body_(m) {}  // NOLINT
   /// Holds an ErrorReport.
   constexpr Message(const ErrorReport& m) noexcept : type_(MessageType::ErrorReport), body_(m) {}  // NOLINT
+  /// Holds a QueueEvent.
+  constexpr Message(const QueueEvent& m) noexcept : type_(MessageType::QueueEvent), body_(m) {}  // NOLINT
+  /// Holds a PauseReport.
+  constexpr Message(const PauseReport& m) noexcept : type_(MessageType::PauseReport), body_(m) {}  // NOLINT
 
   /// Which message this is.
   [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
@@ -953,6 +990,8 @@ class Message {
     else if constexpr (std::is_same_v<T, StatusReport>) return body_.status_report;
     else if constexpr (std::is_same_v<T, SetpointBatch>) return body_.setpoint_batch;
     else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
+    else if constexpr (std::is_same_v<T, QueueEvent>) return body_.queue_event;
+    else if constexpr (std::is_same_v<T, PauseReport>) return body_.pause_report;
     else return empty<T>();
   }
 
@@ -979,6 +1018,8 @@ class Message {
     constexpr explicit Body(const StatusReport& m) noexcept : status_report(m) {}
     constexpr explicit Body(const SetpointBatch& m) noexcept : setpoint_batch(m) {}
     constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
+    constexpr explicit Body(const QueueEvent& m) noexcept : queue_event(m) {}
+    constexpr explicit Body(const PauseReport& m) noexcept : pause_report(m) {}
     Hello hello;
     Capabilities capabilities;
     Ack ack;
@@ -989,6 +1030,8 @@ class Message {
     StatusReport status_report;
     SetpointBatch setpoint_batch;
     ErrorReport error_report;
+    QueueEvent queue_event;
+    PauseReport pause_report;
   };
   MessageType type_ = MessageType::Hello;
   Body body_;

@@ -13,6 +13,7 @@
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <span>
 #include <unistd.h>
 
@@ -20,6 +21,7 @@
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/core/motion/step_output.hpp>
 #include <curvestep/firmware/board.hpp>
+#include <curvestep/protocol/messages.hpp>
 
 namespace curvestep::boards::host {
 
@@ -99,6 +101,13 @@ class HostBoard {
   /// Step lines low, scheduled edges forgotten.
   void fault_stop() noexcept {
     if constexpr (requires { output_.fault_stop(); }) output_.fault_stop();
+  }
+
+  /// Machine event hook (firmware/board_hooks.hpp): one line on standard error per event,
+  /// "curvestep device: event NAME value V flag F at setpoint N" (the HIL tests read it).
+  void machine_event(const protocol::QueueEvent& event, std::uint32_t setpoint) noexcept {
+    ::dprintf(STDERR_FILENO, "curvestep device: event %s value %u flag %d at setpoint %u\n", protocol::machine_event_name(event.kind),
+              static_cast<unsigned>(event.value), event.flag ? 1 : 0, static_cast<unsigned>(setpoint));
   }
 
   /// True if the last write could not take every byte (the host is not reading).

@@ -52,13 +52,21 @@ inline constexpr int max_tool_number = 99999;
 /// Tools a "tools" table may list (the interpreter's table size).
 inline constexpr std::size_t max_tool_table_size = 100;
 
-/// The "pen" section: a plotter pen on the z axis, {"axis": "z", "up": 5, "down": 0, "feed": 20}.
-/// SVG jobs then lift the pen for every rapid between subpaths (job_pipeline.hpp, pen_moves.hpp).
-/// Heights and the feed are on the Q16.16 grid the wire carries. A servo pen is not modelled.
+/// The "pen" section: a plotter pen on the z axis, {"axis": "z", "up": 5, "down": 0, "feed": 20},
+/// or on a servo, {"axis": "servo", "line": "GPIO18", "up_pulse_us": 1000, "down_pulse_us": 2000,
+/// "settle": 0.15}. SVG jobs then lift the pen for every rapid between subpaths (job_pipeline.hpp,
+/// pen_moves.hpp): on z by moves, on a servo by PenUp/PenDown events each followed by a dwell of
+/// the settle time (an exact stop; the controller's board drives the servo from its `pen` hook).
+/// Heights and the feed are on the Q16.16 grid the wire carries.
 struct PenModel {
-  double up_mm = 0;          ///< z of the lifted pen, mm
-  double down_mm = 0;        ///< z of the pen on the paper, mm (differs from up_mm)
-  double feed_mm_per_s = 0;  ///< feed of the move down onto the paper, mm/s (> 0); the lift is a rapid
+  bool servo = false;        ///< a servo pen ("axis": "servo"), else a pen on z
+  double up_mm = 0;          ///< z: z of the lifted pen, mm
+  double down_mm = 0;        ///< z: z of the pen on the paper, mm (differs from up_mm)
+  double feed_mm_per_s = 0;  ///< z: feed of the move down onto the paper, mm/s (> 0); the lift is a rapid
+  std::string line;          ///< servo: the PWM/GPIO line the board drives it on
+  double up_pulse_us = 0;    ///< servo: pulse width of the lifted pen, microseconds (500 .. 2500)
+  double down_pulse_us = 0;  ///< servo: pulse width of the pen on the paper (differs from up)
+  double settle_s = 0;       ///< servo: time it takes to move, s (0 .. 10): the dwell after each pen move
 };
 
 /// Largest "blend_tolerance" a machine file may give, mm.

@@ -21,6 +21,10 @@
 // so speed is continuous across segments. The last setpoint of a job is its end point exactly.
 // Feed hold brakes along the path (possibly into later segments) within the limits; resume plans
 // the rest of the segment from rest; abort stops at once and flushes the queue.
+// A segment pushed with a JointStop (joint_stop.hpp) is entered from rest: the junction speed into
+// it is 0, and with rest_ticks the setpoints stay at the joint for that many ticks, labelled with
+// the segment, while the clock that drives the profiles stands still (time_now() counts motion
+// ticks only), so the motion after a rest is bit for bit the motion without it, later by rest_ticks.
 //
 // Per-tick work (docs/motion.md, "Per-tick work"): inside one profile phase of one segment the
 // ticks are cut into chunks of N = 2^k <= max_chunk_ticks() ticks. At a chunk's end the path is
@@ -46,6 +50,7 @@
 #include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/controller_state.hpp>
 #include <curvestep/core/motion/cusps.hpp>
+#include <curvestep/core/motion/joint_stop.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
 #include <curvestep/core/motion/segment_plan.hpp>
@@ -98,11 +103,12 @@ class MotionController {
     return ok();
   }
 
-  /// Queues a segment, planning its length, caps and the junction speed from the previous one. A
+  /// Queues a segment, planning its length, caps and the junction speed from the previous one
+  /// (0 with an exact stop in `entry`, whose rest_ticks then come before the segment). A
   /// Bézier with cusps is queued as its pieces between the cusps (each needs a queue slot).
   /// QueueFull when there is no room (retry after setpoints drain it), ConfigurationMissing before
   /// configure, InvalidState after end_of_job or abort, DegenerateCurve/InvalidLimit from the analysis.
-  [[nodiscard]] Result<void> try_push(const PathSegment& segment, std::uint32_t job_index) noexcept {
+  [[nodiscard]] Result<void> try_push(const PathSegment& segment, std::uint32_t job_index, JointStop entry = {}) noexcept {
     if (!configured_) return fail(Error::ConfigurationMissing);
     if (end_of_job_ || state_ == ControllerState::Aborted || state_ == ControllerState::Fault) return fail(Error::InvalidState);
     const auto cusps = find_cusps(segment);
@@ -110,8 +116,8 @@ class MotionController {
     // Split in place, piece by piece (no array of pieces on the stack). With cusps, a first pass
     // plans every piece without queueing, so that an error leaves the queue as it was; the
     // second pass computes the same pieces and plans again (deterministic) and queues them.
-    if (cusps.count > 0) CURVESTEP_CHECK(push_pieces(segment, cusps, job_index, false));
-    CURVESTEP_CHECK(push_pieces(segment, cusps, job_index, true));
+    if (cusps.count > 0) CURVESTEP_CHECK(push_pieces(segment, cusps, job_index, entry, false));
+    CURVESTEP_CHECK(push_pieces(segment, cusps, job_index, entry, true));
     if (state_ == ControllerState::Finished) state_ = ControllerState::Idle;
     return ok();
   }
@@ -125,6 +131,8 @@ class MotionController {
     if (state_ != ControllerState::Idle) return fail(Error::InvalidState);
     if (queue_.empty()) return fail(Error::NothingQueued);
     CURVESTEP_CHECK(begin_segment(0, 0, 0));
+    rest_left_ = queue_.front().rest_ticks;
+    rest_position_ = front().segment.start();
     // A job's setpoints depend only on the job: the chunk adaptation starts afresh.
     preferred_chunk_ticks_ = max_chunk_ticks_;
     retry_tick_ = 0;
@@ -136,6 +144,11 @@ class MotionController {
   /// Feed hold: brake to a stop along the path within the limits. Ignored unless running.
   void hold() noexcept {
     if (state_ != ControllerState::Running) return;
+    if (rest_left_ > 0) {  // at rest on a joint: held there; resume serves the rest of the rest first
+      hold_base_mm_ = 0;
+      state_ = ControllerState::Held;
+      return;
+    }
     const auto now = profile_.at(time_now() - origin_s_);
     ProfileLimits limits = front().plan.limits;
     const std::size_t window = window_size();
@@ -159,6 +172,8 @@ class MotionController {
       if (queue_.size() < 2) return fail(Error::NothingQueued);
       queue_.pop_front();
       CURVESTEP_CHECK(begin_segment(0, 0, time_now()));
+      rest_left_ = queue_.front().rest_ticks;
+      rest_position_ = last_position_;
     } else {
       CURVESTEP_CHECK(begin_segment(hold_base_mm_, 0, time_now()));
     }
@@ -169,6 +184,7 @@ class MotionController {
   /// Stops at once (no braking) and flushes the queue.
   void abort() noexcept {
     queue_.clear();
+    rest_left_ = 0;
     state_ = ControllerState::Aborted;
   }
 
@@ -179,6 +195,8 @@ class MotionController {
     end_of_job_ = false;
     has_previous_ = false;
     tick_ = 0;
+    rested_ticks_ = 0;
+    rest_left_ = 0;
     chunk_end_tick_ = no_chunk;
     chunk_begin_tick_ = no_chunk;
     clear_state_cache();
@@ -208,6 +226,10 @@ class MotionController {
   [[nodiscard]] static constexpr std::size_t queue_capacity() noexcept { return QueueCapacity; }
   [[nodiscard]] bool queue_full() const noexcept { return queue_.full(); }
   [[nodiscard]] std::uint64_t tick() const noexcept { return tick_; }
+  /// True if the last setpoint was a tick of a rest at a joint (JointStop::rest_ticks).
+  [[nodiscard]] bool resting() const noexcept { return last_was_rest_; }
+  /// Ticks of rest so far in this job (the clock of the profiles is tick() minus these).
+  [[nodiscard]] std::uint64_t rested_ticks() const noexcept { return rested_ticks_; }
   [[nodiscard]] const MachineLimits& machine() const noexcept { return machine_; }
   /// The profile of the segment being followed (for reports and tests).
   [[nodiscard]] const VelocityProfile& current_profile() const noexcept { return profile_; }
@@ -264,6 +286,7 @@ class MotionController {
     double junction_in = 0;       ///< speed cap at the joint into this segment
     std::uint32_t job_index = 0;  ///< the segment's index in the job
     std::uint32_t serial = 0;     ///< push count, identifies the slot's content for front()
+    std::uint32_t rest_ticks = 0; ///< ticks of rest at the joint into this segment (JointStop)
   };
 
   /// The front entry, its segment expanded to a PathSegment (once per entry, cached in current_).
@@ -278,21 +301,21 @@ class MotionController {
   /// them. The pieces and plans are those of splitting at each cusp in turn.
   template <class Cusps>
   [[nodiscard]] Result<void> push_pieces(const PathSegment& segment, const Cusps& cusps, std::uint32_t job_index,
-                                         bool commit) noexcept {
+                                         JointStop entry, bool commit) noexcept {
     SegmentPlan previous = previous_plan_;
     bool has_previous = has_previous_;
     if (cusps.count == 0) {
-      CURVESTEP_CHECK(push_piece(segment, job_index, previous, has_previous, commit));
+      CURVESTEP_CHECK(push_piece(segment, job_index, entry, previous, has_previous, commit));
     } else {
       PathSegment rest = segment;
       PathSegment piece;
       double consumed = 0;  // the parameter of `rest`'s start on the original segment
       for (std::size_t i = 0; i < cusps.count; ++i) {
         CURVESTEP_CHECK(rest.split_off((cusps.parameters[i] - consumed) / (1 - consumed), piece));
-        CURVESTEP_CHECK(push_piece(piece, job_index, previous, has_previous, commit));
+        CURVESTEP_CHECK(push_piece(piece, job_index, i == 0 ? entry : JointStop{}, previous, has_previous, commit));
         consumed = cusps.parameters[i];
       }
-      CURVESTEP_CHECK(push_piece(rest, job_index, previous, has_previous, commit));
+      CURVESTEP_CHECK(push_piece(rest, job_index, JointStop{}, previous, has_previous, commit));
     }
     if (commit) {
       previous_plan_ = previous;
@@ -302,18 +325,20 @@ class MotionController {
   }
 
   /// Plans one piece after `previous` (updated) and, if `commit`, queues it (room checked by try_push).
-  [[nodiscard]] Result<void> push_piece(const PathSegment& piece, std::uint32_t job_index, SegmentPlan& previous,
+  [[nodiscard]] Result<void> push_piece(const PathSegment& piece, std::uint32_t job_index, JointStop entry, SegmentPlan& previous,
                                         bool& has_previous, bool commit) noexcept {
     CURVESTEP_TRY(const SegmentPlan plan, plan_piece(piece, job_index));
-    if (commit) enqueue(piece, plan, has_previous ? junction_speed(previous, plan, machine_) : 0, job_index);
+    const bool passed_moving = has_previous && !entry.at_rest();
+    if (commit) enqueue(piece, plan, passed_moving ? junction_speed(previous, plan, machine_) : 0, job_index, entry.rest_ticks);
     previous = plan;
     has_previous = true;
     return ok();
   }
 
   /// Queues a planned piece (its own frame: the entry is not on the stack while planning).
-  [[gnu::noinline]] void enqueue(const PathSegment& piece, const SegmentPlan& plan, double junction, std::uint32_t job_index) noexcept {
-    const Entry entry{piece.compact(), QueuedPlan{plan.length_mm, plan.limits}, junction, job_index, ++pushed_serial_};
+  [[gnu::noinline]] void enqueue(const PathSegment& piece, const SegmentPlan& plan, double junction, std::uint32_t job_index,
+                                 std::uint32_t rest_ticks) noexcept {
+    const Entry entry{piece.compact(), QueuedPlan{plan.length_mm, plan.limits}, junction, job_index, ++pushed_serial_, rest_ticks};
     [[maybe_unused]] const bool pushed = queue_.try_push(entry);
   }
 
@@ -339,7 +364,8 @@ class MotionController {
     }
     return Front{current_, e.plan, e.junction_in, e.job_index};
   }
-  [[nodiscard]] double time_now() const noexcept { return static_cast<double>(tick_) / machine_.rate_hz; }
+  /// The profiles' clock: motion ticks only (rests stop it), so a rest shifts what follows by whole ticks.
+  [[nodiscard]] double time_now() const noexcept { return static_cast<double>(tick_ - rested_ticks_) / machine_.rate_hz; }
 
   /// The highest exit speed of the front segment when entered at v0: a backward pass over the
   /// next lookahead_ segments, whose window always ends at rest.
@@ -401,14 +427,21 @@ class MotionController {
       plan_chunk(tau, end);
       return emit(end.position, end.speed_mm_per_s, front().job_index);
     }
+    if (rest_left_ > 0) return rest_tick();
     const double t = time_now();
     double tau = t - origin_s_;
     while (tau >= profile_.duration_s()) {
       if (queue_.size() > 1) {
         const double exit = profile_.exit_speed();
         origin_s_ += profile_.duration_s();
+        const MachinePoint joint = front().segment.end();
         queue_.pop_front();
         if (auto started = begin_segment(0, exit, origin_s_); !started) return fault(started.failure());
+        if (queue_.front().rest_ticks > 0) {  // the rest begins at the first tick past the joint
+          rest_left_ = queue_.front().rest_ticks;
+          rest_position_ = joint;
+          return rest_tick();
+        }
         tau = t - origin_s_;
         continue;
       }
@@ -469,7 +502,7 @@ class MotionController {
   [[nodiscard]] const PathSegment& current_segment() const noexcept { return front().segment; }
 
   [[nodiscard]] double tau_at(std::uint64_t tick) const noexcept {
-    return static_cast<double>(tick) / machine_.rate_hz - origin_s_;
+    return static_cast<double>(tick - rested_ticks_) / machine_.rate_hz - origin_s_;
   }
 
   /// At tick_ (segment time tau, exact state `start`, its velocity and acceleration added here if
@@ -612,7 +645,17 @@ class MotionController {
     return emit(front().segment.point(table_.parameter_at(s)), m.speed_mm_per_s, front().job_index);
   }
 
+  /// One tick of a rest at a joint: the joint, speed 0, the segment after it; the clock stands still.
+  [[nodiscard]] Result<Setpoint<S>> rest_tick() noexcept {
+    --rest_left_;
+    ++rested_ticks_;
+    auto sp = emit(rest_position_, 0, front().job_index);
+    last_was_rest_ = true;
+    return sp;
+  }
+
   [[nodiscard]] Result<Setpoint<S>> emit(const MachinePoint& p, double speed, std::uint32_t segment) noexcept {
+    last_was_rest_ = false;
     auto sp = make_setpoint<S>(p, tick_, speed, segment);
     if (!sp) return fault(sp.failure());
     last_position_ = p;
@@ -647,6 +690,10 @@ class MotionController {
   double origin_s_ = 0;
   double hold_base_mm_ = 0;
   std::uint64_t tick_ = 0;
+  std::uint64_t rested_ticks_ = 0;  ///< ticks spent resting at joints (time_now() leaves them out)
+  std::uint32_t rest_left_ = 0;     ///< ticks of the current rest still to come
+  MachinePoint rest_position_{};    ///< the joint of the current rest
+  bool last_was_rest_ = false;      ///< the last setpoint was a rest tick (resting())
   MachinePoint last_position_{};
   std::uint32_t last_segment_ = 0;
   // Chunked interpolation (plan_chunk): the chunk being stepped and the exact state at its end.

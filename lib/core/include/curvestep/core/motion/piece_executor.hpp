@@ -2,7 +2,7 @@
 // PieceExecutor: the setpoints of a job planned elsewhere, for a controller without a planner
 // (the STM32F1 executor image). It queues PlannedPieces (planned_piece.hpp) and replays them one
 // tick at a time: an exact piece is its end point, a chunk steps HermiteChunk from the previous
-// setpoint's unrounded position and ends on its end point. The pieces a PieceRecorder took from a
+// setpoint's unrounded position and ends on its end point, a rest piece repeats its end point. The pieces a PieceRecorder took from a
 // MotionController give that controller's setpoints bit for bit (the same HermiteChunk code on the
 // same doubles, the same rounding to S); no curve, profile or look-ahead code is linked.
 //
@@ -49,8 +49,8 @@ class PieceExecutor {
   /// Queues a piece. ConfigurationMissing before configure; InvalidState after the job's last
   /// piece, an abort or a fault; QueueFull; InvalidArgument with index 2 (the byte offset of
   /// QueuePiece's ticks, the field at fault) for ticks that are not 1 or a power of two up to
-  /// HermiteChunk::max_ticks (an exact run: not 2..max_exact_run) and for a chunk as the job's
-  /// first piece;
+  /// HermiteChunk::max_ticks (an exact run: not 2..max_exact_run; a rest: not 1..max_rest_ticks)
+  /// and for a chunk as the job's first piece;
   /// NotFinite for a NaN or infinite coordinate. A refused piece leaves the queue unchanged.
   [[nodiscard]] Result<void> push(const PlannedPiece& piece) noexcept {
     if (!configured_) return fail(Error::ConfigurationMissing, piece.segment);
@@ -59,7 +59,7 @@ class PieceExecutor {
     }
     if (queue_.full()) return fail(Error::QueueFull, piece.segment);
     constexpr std::uint16_t ticks_field = 2;  // QueuePiece's byte offset of ticks (docs/protocol.md)
-    if (!valid_piece_ticks(piece.ticks, piece.exact_run)) return fail(Error::InvalidArgument, ticks_field);
+    if (!valid_piece_ticks(piece.ticks, piece.exact_run, piece.rest)) return fail(Error::InvalidArgument, ticks_field);
     if (is_chunk(piece) && first_of_job()) return fail(Error::InvalidArgument, ticks_field);
     if (!finite(piece)) return fail(Error::NotFinite, piece.segment);
     [[maybe_unused]] const bool pushed = queue_.try_push(piece);  // room checked above
@@ -123,6 +123,7 @@ class PieceExecutor {
     if (stepped_left_ > 0) {
       --stepped_left_;
       if (piece.exact_run) return emit(piece.controls[piece.ticks - 2 - stepped_left_]);
+      if (piece.rest) return emit(piece.end);
       return emit(chunk_.next());
     }
     auto setpoint = emit(piece.end);

@@ -4,7 +4,8 @@
 // after its last: each exact tick becomes a piece of one tick, each chunk the controller begins a
 // piece of its length (its stepped setpoints and its exact end), so the pieces reproduce the
 // controller's setpoints bit for bit. Consecutive exact ticks of one segment are merged into
-// exact runs of up to max_exact_run ticks. The sink is called with each finished piece, in order;
+// exact runs of up to max_exact_run ticks, and the ticks of a rest at a joint (the controller's
+// resting()) into rest pieces of up to max_rest_ticks. The sink is called with each finished piece, in order;
 // the last one (finish) carries end_of_job.
 #pragma once
 
@@ -22,8 +23,21 @@ class PieceRecorder {
   template <class Controller, class S, class Sink>
   void record(const Controller& controller, const Setpoint<S>& setpoint, Sink&& sink) {
     const bool inside_chunk = covered_ && setpoint.tick <= covered_until_;
+    if (controller.resting()) {
+      if (pending_ && last_.rest && last_.ticks < max_rest_ticks && last_.segment == setpoint.segment) {
+        ++last_.ticks;
+      } else {
+        PlannedPiece rest;
+        rest.rest = true;
+        rest.end = controller.last_unrounded_position();
+        rest.segment = setpoint.segment;
+        hand_over(rest, sink);
+      }
+      return;
+    }
     if (!inside_chunk) {
-      const bool extends = pending_ && !is_chunk(last_) && last_.ticks < max_exact_run && last_.segment == setpoint.segment;
+      const bool extends =
+          pending_ && !is_chunk(last_) && !last_.rest && last_.ticks < max_exact_run && last_.segment == setpoint.segment;
       if (extends) {
         last_.controls[last_.ticks - 1] = last_.end;  // the run's earlier ticks, in order
         last_.end = controller.last_unrounded_position();

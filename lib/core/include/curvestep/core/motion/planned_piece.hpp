@@ -7,7 +7,9 @@
 //                quintic Hermite `controls` (relative to the previous setpoint's unrounded position,
 //                stepped by HermiteChunk), then `end`;
 //   exact_run    ticks == K (2..max_exact_run) exactly evaluated ticks in a row: controls[0..K-2],
-//                then `end` (a run of exact ticks costs one queue slot and one message per K).
+//                then `end` (a run of exact ticks costs one queue slot and one message per K);
+//   rest         ticks == R (1..max_rest_ticks) setpoints at `end`: a rest at a joint (a dwell,
+//                MotionController's JointStop), one piece for up to 65535 ticks.
 // The planner's own stream is exactly this (MotionController::running_tick): its exact ticks and
 // its chunks. Replaying the pieces gives its setpoints bit for bit (PieceRecorder records them,
 // PieceExecutor replays them; tests/core/motion/piece_executor_test.cpp).
@@ -30,6 +32,7 @@ struct PlannedPiece {
   std::array<MachinePoint, 5> controls{};
   std::uint32_t segment = 0;           ///< the job segment it belongs to (setpoint.segment, error reports)
   bool exact_run = false;              ///< ticks exact setpoints: controls[0..ticks-2], then end
+  bool rest = false;                   ///< ticks setpoints at end (a rest at a joint)
   bool end_of_job = false;             ///< the job's last piece
 
   friend constexpr bool operator==(const PlannedPiece&, const PlannedPiece&) = default;
@@ -45,14 +48,18 @@ struct PlannedPiece {
 /// Most exact ticks one piece carries (its end and the five control-point slots).
 inline constexpr std::uint32_t max_exact_run = 6;
 
+/// Most ticks one rest piece covers (QueuePiece's 16-bit ticks); a longer rest is several pieces.
+inline constexpr std::uint32_t max_rest_ticks = 65535;
+
 /// True if `ticks` is a valid piece length: 1 or a power of two up to HermiteChunk::max_ticks;
-/// for an exact run 2..max_exact_run.
-[[nodiscard]] constexpr bool valid_piece_ticks(std::uint32_t ticks, bool exact_run = false) noexcept {
+/// for an exact run 2..max_exact_run; for a rest 1..max_rest_ticks.
+[[nodiscard]] constexpr bool valid_piece_ticks(std::uint32_t ticks, bool exact_run = false, bool rest = false) noexcept {
+  if (rest) return !exact_run && ticks >= 1 && ticks <= max_rest_ticks;
   if (exact_run) return ticks >= 2 && ticks <= max_exact_run;
   return ticks >= 1 && ticks <= HermiteChunk::max_ticks && (ticks & (ticks - 1)) == 0;
 }
 
 /// True for a chunk (Hermite-stepped ticks), false for exact ticks.
-[[nodiscard]] constexpr bool is_chunk(const PlannedPiece& piece) noexcept { return piece.ticks > 1 && !piece.exact_run; }
+[[nodiscard]] constexpr bool is_chunk(const PlannedPiece& piece) noexcept { return piece.ticks > 1 && !piece.exact_run && !piece.rest; }
 
 }  // namespace curvestep

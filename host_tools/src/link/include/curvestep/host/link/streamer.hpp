@@ -86,6 +86,11 @@ struct StreamOptions {
   SetpointSink setpoint_sink;
   /// The operator's requests (keys, signals: OperatorConsole), polled about every 5 ms (may be empty).
   std::function<OperatorCommand()> operator_command;
+  /// The controller paused the job for the operator (M0/M1, a tool change, a pen change):
+  /// told once per pause what it is for (may be empty).
+  std::function<void(const std::string&)> paused;
+  /// Polled while paused: true once the job may go on (Resume is sent). Empty: at once.
+  std::function<bool()> resume_now;
 };
 
 /// One feed hold of a streamed job.

@@ -38,10 +38,24 @@ struct WireJob {
   std::vector<std::string> notes;                ///< one line per value changed
 };
 
-/// The job's PathSegments for a controller with `axis_count` axes. Throws std::runtime_error
+/// The job's PathSegments for a controller with `axis_count` axes running at `rate_hz`, each with
+/// the exact stop and rest its events ask for (joint_stops). Throws std::runtime_error
 /// naming the job file and segment for what the wire cannot express (a Z move on a 2-axis
-/// controller, a coordinate outside Q16.16).
-[[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count);
+/// controller, a coordinate outside Q16.16), or the line of a dwell joint_stops refuses.
+[[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz);
+
+/// The segment number of a QueueEvent for events after the job's last move (reached at its end).
+inline constexpr std::uint32_t after_last_segment = 0xFFFFFFFFu;
+
+/// The job's events that a controller acts on, as QueueEvents in program order (G4 dwells are
+/// motion, JointStop; operator messages stay on the host). Each is keyed by the setpoints'
+/// segment number where it happens: the PathSegment index it precedes (`file_labels` false: a
+/// planner on board numbers the segments as they arrive) or that segment's job-file index
+/// (`file_labels` true: host-planned pieces carry it), after_last_segment after the last move;
+/// `after_rest_ticks` adds the dwells at its joint before it (joint_stops' rounding). Spindle
+/// speeds round to whole rev/min; output and tool numbers must be whole and >= 0 (else
+/// std::runtime_error naming the job file and line).
+[[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels);
 
 /// A planned piece (plan_pieces) as a QueuePiece for a controller with `axis_count` axes (2 or
 /// 3), for a controller without a planner. Coordinates travel as binary64, exactly. Throws

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+// The motion side of job events: which joints of a job are passed at rest, and for how many
+// control ticks (core JointStop). The simulator pushes these with the segments; the wire format
+// carries them to the controller (QueueSegment's stop and rest fields), so both plan the same.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <curvestep/core/motion/joint_stop.hpp>
+#include <curvestep/host/job.hpp>
+
+namespace curvestep::host {
+
+/// True for the events that need the machine at rest where they happen: Dwell, ProgramPause,
+/// ToolChange, LayerChange (a plotter's pen change).
+[[nodiscard]] bool needs_rest(JobEventKind kind) noexcept;
+
+/// The control ticks of a dwell of `seconds` at `rate_hz`: the nearest whole tick, a half tick
+/// rounded up (G4 P0.5 at 1 kHz: 500; P0.0015 at 1 kHz: 2). Throws std::invalid_argument for a
+/// negative or non-finite time, or one longer than 2^32 - 1 ticks.
+[[nodiscard]] std::uint32_t dwell_ticks(double seconds, double rate_hz);
+
+/// One JointStop per segment of `job` (the entry into Job::segments[k]) from its events at the
+/// control rate `rate_hz`: a stop where needs_rest(), plus the dwells' ticks (each dwell rounded
+/// by dwell_ticks, then added). Events after the last segment shape no motion. Throws
+/// std::runtime_error naming the job file and line of a dwell dwell_ticks refuses.
+[[nodiscard]] std::vector<JointStop> joint_stops(const Job& job, double rate_hz);
+
+}  // namespace curvestep::host

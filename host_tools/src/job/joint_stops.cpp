@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: MIT
+#include <curvestep/host/joint_stops.hpp>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <curvestep/host/csv.hpp>
+
+namespace curvestep::host {
+
+bool needs_rest(JobEventKind kind) noexcept {
+  switch (kind) {
+    case JobEventKind::Dwell:
+    case JobEventKind::ProgramPause:
+    case JobEventKind::ToolChange:
+    case JobEventKind::LayerChange: return true;
+    default: return false;
+  }
+}
+
+std::uint32_t dwell_ticks(double seconds, double rate_hz) {
+  if (!(seconds >= 0) || !std::isfinite(seconds)) {
+    throw std::invalid_argument("dwell of " + format_number(seconds) + " s: must be a finite time >= 0");
+  }
+  const double ticks = std::floor(seconds * rate_hz + 0.5);
+  if (!(ticks <= static_cast<double>(std::numeric_limits<std::uint32_t>::max()))) {
+    throw std::invalid_argument("dwell of " + format_number(seconds) + " s is longer than 2^32 - 1 ticks at " +
+                                format_number(rate_hz) + " Hz");
+  }
+  return static_cast<std::uint32_t>(ticks);
+}
+
+std::vector<JointStop> joint_stops(const Job& job, double rate_hz) {
+  std::vector<JointStop> stops(job.segments.size());
+  for (const JobEvent& event : job.events) {
+    if (event.before_segment >= stops.size() || !needs_rest(event.kind)) continue;
+    JointStop& stop = stops[event.before_segment];
+    stop.stop = true;
+    if (event.kind != JobEventKind::Dwell) continue;
+    const std::string where = job.name + (event.line > 0 ? ":" + std::to_string(event.line) : std::string{}) + ": ";
+    try {
+      const std::uint64_t total = std::uint64_t{stop.rest_ticks} + dwell_ticks(event.value, rate_hz);
+      if (total > std::numeric_limits<std::uint32_t>::max()) throw std::invalid_argument("the dwells here add up to more than 2^32 - 1 ticks");
+      stop.rest_ticks = static_cast<std::uint32_t>(total);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(where + e.what());
+    }
+  }
+  return stops;
+}
+
+}  // namespace curvestep::host

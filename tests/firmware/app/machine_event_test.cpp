@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: MIT
+// QueueEvent on the App: machine events reach the board's optional hooks when the motion reaches
+// their joint (the first setpoint of the segment they precede, or ticks into the rest there), in
+// the order they were queued; the events after the last move come at the job's end. The expected
+// setpoint indices come from the setpoint stream itself (the rest is the run of setpoints at the
+// joint), not from the App's bookkeeping.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "fake_board.hpp"
+
+using namespace curvestep;
+using namespace curvestep::firmware;
+using namespace curvestep::protocol;
+using namespace curvestep::firmware::testing;
+
+namespace {
+
+/// A FakeBoard with every hook, recording "hook(arguments)@setpoint".
+struct HookBoard : FakeBoard {
+  std::vector<std::string> calls;
+  std::vector<std::uint32_t> at;
+  void record(std::string call, std::uint32_t setpoint) {
+    calls.push_back(std::move(call));
+    at.push_back(setpoint);
+  }
+  void spindle(bool on, bool counter_clockwise, std::uint32_t rpm, std::uint32_t setpoint) {
+    record("spindle(" + std::to_string(on) + "," + std::to_string(counter_clockwise) + "," + std::to_string(rpm) + ")", setpoint);
+  }
+  void coolant(bool mist, bool flood, std::uint32_t setpoint) {
+    record("coolant(" + std::to_string(mist) + "," + std::to_string(flood) + ")", setpoint);
+  }
+  void digital_output(std::uint32_t number, bool on, std::uint32_t setpoint) {
+    record("output(" + std::to_string(number) + "," + std::to_string(on) + ")", setpoint);
+  }
+  void tool_change(std::uint32_t tool, std::uint32_t setpoint) { record("tool(" + std::to_string(tool) + ")", setpoint); }
+};
+static_assert(Board<HookBoard>);
+
+QueueEvent event(std::uint32_t segment, std::uint32_t after_rest_ticks, MachineEventKind kind, bool flag = false,
+                 std::uint32_t value = 0) {
+  QueueEvent e;
+  e.segment = segment;
+  e.after_rest_ticks = after_rest_ticks;
+  e.kind = kind;
+  e.flag = flag;
+  e.value = value;
+  return e;
+}
+
+/// Streams `messages` (segments and events, in order) and runs the job to its end.
+template <class AppType>
+void run(Host<AppType>& host, AppType& app, HookBoard& board, const std::vector<Message>& messages) {
+  std::size_t next = 0;
+  bool started = false;
+  for (int t = 0; t < 100000; ++t) {
+    while (next < messages.size() && host.sender().can_submit(messages[next].type())) {
+      REQUIRE(host.sender().submit(messages[next]).has_value());
+      ++next;
+    }
+    if (!started && next > 0 && host.sender().can_submit(MessageType::Start)) {
+      REQUIRE(host.sender().submit(Message(Start{})).has_value());
+      started = true;
+    }
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+    if (started && next == messages.size() && !app.moving() && app.state() == MachineState::Idle && host.sender().idle()) return;
+  }
+  FAIL("the job did not finish");
+}
+
+}  // namespace
+
+TEST_CASE("firmware: M3 S1000, M8, G4 P0.5, M62 P1, M5, M9 reach the board's hooks at their setpoints in order",
+          "[firmware][app][events]") {
+  HookBoard board;
+  App<HookBoard> app{board};
+  Host<App<HookBoard>> host{board, app};
+  REQUIRE(host.connect());
+  REQUIRE(host.send(Message(machine(50))));
+  // G1 X10 / M3 S1000 / M8 / G4 P0.5 / M62 P1 / G1 X20 / M5 / M9 (end): the two lines, the second
+  // after a 500-tick rest at 1 kHz; M62 after the dwell.
+  QueueSegment first = line(p(0, 0), p(10, 0));
+  QueueSegment second = line(p(10, 0), p(20, 0));
+  second.stop_before = true;
+  second.rest_ticks = 500;
+  second.end_of_job = true;
+  const std::vector<Message> messages{Message(first),
+                                      Message(event(1, 0, MachineEventKind::SpindleOn, false, 1000)),
+                                      Message(event(1, 0, MachineEventKind::CoolantFlood)),
+                                      Message(event(1, 500, MachineEventKind::DigitalOutput, true, 1)),
+                                      Message(event(2, 0, MachineEventKind::SpindleOff)),
+                                      Message(event(2, 0, MachineEventKind::CoolantOff)),
+                                      Message(second)};
+  run(host, app, board, messages);
+  REQUIRE(host.received.errors.empty());
+  CHECK(board.calls == std::vector<std::string>{"spindle(1,0,1000)", "coolant(0,1)", "output(1,1)", "spindle(0,0,1000)",
+                                                "coolant(0,0)"});
+  // From the stream: the rest is inside the run of setpoints at (10, 0) (the ticks next to it
+  // may round to the joint too); the job's last setpoint is its end.
+  const auto setpoints = host.setpoints();
+  std::size_t run_begin = 0;  // the first setpoint at the joint
+  while (run_begin < setpoints.size() && setpoints[run_begin].second != p(10, 0)) ++run_begin;
+  std::size_t run_end = run_begin;
+  while (run_end < setpoints.size() && setpoints[run_end].second == p(10, 0)) ++run_end;
+  REQUIRE(run_end - run_begin >= 500);
+  REQUIRE(board.at.size() == 5);
+  CHECK(board.at[0] >= setpoints[run_begin].first);     // M3 at the rest's first setpoint
+  CHECK(board.at[0] + 500 <= setpoints[run_end].first);  // ... which has 500 at the joint from it
+  CHECK(board.at[1] == board.at[0]);                     // M8 with it
+  CHECK(board.at[2] == board.at[0] + 500);               // M62 after the dwell
+  CHECK(board.at[3] == setpoints.back().first);          // M5 and M9 at the job's end
+  CHECK(board.at[4] == setpoints.back().first);
+}
+
+TEST_CASE("firmware: a QueueEvent takes a credit and waits in the App's ring", "[firmware][app][events]") {
+  HookBoard board;
+  App<HookBoard> app{board};
+  Host<App<HookBoard>> host{board, app};
+  REQUIRE(host.connect());
+  CHECK(app.free_segments() == 0);  // no configuration, no credit: nothing can be queued
+  REQUIRE(host.send(Message(machine(50))));
+  host.pump(3);
+  const auto credit = app.free_segments();
+  REQUIRE(credit > 0);
+  REQUIRE(host.send(Message(event(0, 0, MachineEventKind::CoolantMist))));
+  host.pump(3);
+  CHECK(host.received.errors.empty());
+  CHECK(app.queued_events() == 1);
+  CHECK(app.free_segments() == credit);  // the segment credit (32 slots / 7) is the smaller room
+  CHECK(board.calls.empty());             // nothing moved: not reached yet
+}
+
+TEST_CASE("firmware: a tool change pauses the job at its joint until Resume, and the stream is the plain job's",
+          "[firmware][app][events][pause]") {
+  HookBoard board;
+  App<HookBoard> app{board};
+  Host<App<HookBoard>> host{board, app};
+  REQUIRE(host.connect());
+  REQUIRE(host.send(Message(machine(50))));
+  QueueSegment first = line(p(0, 0), p(10, 0));
+  QueueSegment second = line(p(10, 0), p(10, 10));
+  second.stop_before = true;
+  second.end_of_job = true;
+  REQUIRE(host.send(Message(first)));
+  REQUIRE(host.send(Message(event(1, 0, MachineEventKind::ToolChange, false, 2))));
+  REQUIRE(host.send(Message(second)));
+  REQUIRE(host.send(Message(Start{})));
+  int ticks = 0;
+  while (!app.paused() && ticks < 100000) {
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+    ++ticks;
+  }
+  REQUIRE(app.paused());
+  REQUIRE(board.calls == std::vector<std::string>{"tool(2)"});
+  const std::uint32_t paused_at = board.at[0];
+  // Paused: ticks produce nothing, the state is holding, the host heard why.
+  for (int t = 0; t < 300; ++t) {
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+  }
+  CHECK(app.paused());
+  CHECK(app.state() == MachineState::Holding);
+  REQUIRE(host.received.pauses.size() == 1);
+  CHECK(host.received.pauses[0].kind == MachineEventKind::ToolChange);
+  CHECK(host.received.pauses[0].value == 2);
+  CHECK(host.received.pauses[0].setpoint_index == paused_at);
+  REQUIRE_FALSE(host.setpoints().empty());
+  CHECK(host.setpoints().back().first == paused_at);
+  REQUIRE(host.send(Message(Resume{})));
+  for (int t = 0; t < 100000 && (app.moving() || app.state() != MachineState::Idle); ++t) {
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+  }
+  CHECK_FALSE(app.paused());
+  REQUIRE(host.received.errors.empty());
+  // The setpoints are those of the job without the pause (a controller run straight through).
+  std::vector<QueueSegment> job{first, second};
+  const auto expected = controller_reference<MotionController<Q16_16, 32, 16>>(machine(50), job);
+  check_same_stream(host.setpoints(), expected);
+}
