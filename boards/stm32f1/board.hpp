@@ -30,7 +30,7 @@ struct Stm32F1Chip {
   static constexpr std::size_t step_events_per_tick = 32;      ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = 64;                 ///< timed edges waiting for TIM2 (two ticks)
   static constexpr std::size_t setpoint_window = 2;            ///< setpoint frames in flight (8 KiB of RAM: not 4)
-  static constexpr std::size_t setpoint_buffer = 32;           ///< setpoints waiting for a batch (one batch and a third)
+  static constexpr std::size_t setpoint_buffer = 28;           ///< setpoints waiting for a batch (one batch and a sixth)
   static constexpr std::size_t console_tx_buffer = 128;        ///< USART1 transmit ring (the App buffers whole frames)
   static constexpr Clocks fallback_clocks{8'000'000, 8'000'000, 8'000'000, false};  ///< HSI 8 MHz
 

@@ -42,7 +42,8 @@ void check_streamed(const std::vector<std::string>& device_options, const std::s
   // The dwells are in the simulated stream: 500 + 250 + 100 + 2 ticks at rest, and more at stops.
   REQUIRE(still_setpoints(expected) >= 852);
   std::string output;
-  (void)ct::stream_to_new_device(job, machine, device_options, tag, expected, output);
+  // The M6 pauses the device until the operator goes on; --resume-pauses goes on at once.
+  (void)ct::stream_to_new_device(job, machine, device_options, tag, expected, output, {"--resume-pauses"});
 }
 
 }  // namespace

@@ -85,7 +85,7 @@ TEST_CASE("hil: the same events reach curvestep device --executor at sim's setpo
   check_events({"device", "--fast", "--executor"}, "executor_events");
 }
 
-TEST_CASE("hil: M0 and a tool change pause curvestep device at sim's setpoints; stream --resume-pauses goes on, bit for bit",
+TEST_CASE("hil: M0 and a tool change pause curvestep device at sim's setpoints, stream --resume-pauses goes on, bit for bit",
           "[integration][hil][events][pause]") {
   const auto machine = ct::wire_exact_machine();
   const auto job = ct::scratch_dir() / "pauses.ngc";

@@ -98,7 +98,7 @@ TEST_CASE("joint stop: a rest through a cusp split stays before the first piece"
   check_rest_inserted(stopped, rested, first_of(stopped, 1), 40, mp(0, 0), 1);
 }
 
-TEST_CASE("joint stop: a feed hold during a rest holds at the joint; resume finishes the rest, then moves",
+TEST_CASE("joint stop: a feed hold during a rest holds at the joint, resume finishes the rest, then moves",
           "[core][motion][joint_stop]") {
   const MachineLimits m = test_machine();
   MotionController<double> controller;

@@ -77,7 +77,7 @@ TEST_CASE("dwell: G4 P0.5 at 1 kHz is exactly 500 ticks at rest at the joint", "
   check_rest_inserted(run("G21 G90\nG1 X10 F600\nG1 X0\n"), run("G21 G90\nG1 X10 F600\nG4 P0.5\nG1 X0\n"), 500, 10.0);
 }
 
-TEST_CASE("dwell: two dwells at one joint add up; M0 and M6 stop without a rest", "[host_tools][sim][dwell]") {
+TEST_CASE("dwell: two dwells at one joint add up, M0 and M6 stop without a rest", "[host_tools][sim][dwell]") {
   const auto stop_only = run("G21 G90\nG1 X10 F600\nG4 P0\nG1 X20\n");
   check_rest_inserted(stop_only, run("G21 G90\nG1 X10 F600\nG4 P0.25\nG4 P0.125\nG1 X20\n"), 375, 10.0);
   CHECK(run("G21 G90\nG1 X10 F600\nM0\nG1 X20\n").size() == stop_only.size());

@@ -149,19 +149,8 @@ class MotionController {
       state_ = ControllerState::Held;
       return;
     }
-    const auto now = profile_.at(time_now() - origin_s_);
-    ProfileLimits limits = front().plan.limits;
-    const std::size_t window = window_size();
-    for (std::size_t i = 1; i <= window; ++i) {
-      limits.acceleration_mm_per_s2 = std::fmin(limits.acceleration_mm_per_s2, queue_[i].plan.limits.acceleration_mm_per_s2);
-      limits.jerk_mm_per_s3 = std::fmin(limits.jerk_mm_per_s3, queue_[i].plan.limits.jerk_mm_per_s3);
-    }
-    hold_profile_ = VelocityProfile::stop(now.speed_mm_per_s, now.acceleration_mm_per_s2, limits);
-    hold_base_mm_ = offset_mm_ + now.distance_mm;
-    origin_s_ = time_now();
-    chunk_end_tick_ = no_chunk;
-    clear_state_cache();
     state_ = ControllerState::Holding;
+    begin_stop();
   }
 
   /// Continues after a hold or a starved queue: the rest of the segment is planned from rest.
@@ -185,6 +174,7 @@ class MotionController {
   void abort() noexcept {
     queue_.clear();
     rest_left_ = 0;
+    hold_deferred_ = false;
     state_ = ControllerState::Aborted;
   }
 
@@ -192,6 +182,7 @@ class MotionController {
   void reset() noexcept {
     queue_.clear();
     state_ = ControllerState::Idle;
+    hold_deferred_ = false;
     end_of_job_ = false;
     has_previous_ = false;
     tick_ = 0;
@@ -626,7 +617,78 @@ class MotionController {
     return largest * 0x1p-48;
   }
 
+  /// Brakes from the present state of the plan, or, if that stop would pass a joint faster than its
+  /// junction speed (a stop begun while the plan slows for a corner needs more room than the plan
+  /// leaves), keeps following the plan (hold_deferred_) and tries again where the next segment begins.
+  void begin_stop() noexcept {
+    const auto now = profile_.at(time_now() - origin_s_);
+    ProfileLimits limits = front().plan.limits;
+    const std::size_t window = window_size();
+    for (std::size_t i = 1; i <= window; ++i) {
+      limits.acceleration_mm_per_s2 = std::fmin(limits.acceleration_mm_per_s2, queue_[i].plan.limits.acceleration_mm_per_s2);
+      limits.jerk_mm_per_s3 = std::fmin(limits.jerk_mm_per_s3, queue_[i].plan.limits.jerk_mm_per_s3);
+    }
+    const VelocityProfile stop = VelocityProfile::stop(now.speed_mm_per_s, now.acceleration_mm_per_s2, limits);
+    hold_deferred_ = !stop_respects_joints(stop, profile_.length_mm() - now.distance_mm);
+    if (hold_deferred_) return;
+    hold_profile_ = stop;
+    hold_base_mm_ = offset_mm_ + now.distance_mm;
+    origin_s_ = time_now();
+    chunk_end_tick_ = no_chunk;
+    clear_state_cache();
+  }
+
+  /// True if `stop`, begun `to_joint_mm` before the front segment's end, passes every queued joint
+  /// no faster than its junction speed and comes to rest on the queued path.
+  [[nodiscard]] bool stop_respects_joints(const VelocityProfile& stop, double to_joint_mm) const noexcept {
+    double joint = to_joint_mm;
+    for (std::size_t m = 1; m < queue_.size(); ++m) {
+      if (joint >= stop.length_mm()) return true;  // at rest before this joint
+      if (speed_at_distance(stop, joint) > queue_[m].junction_in * (1 + 1e-9) + 1e-9) return false;
+      joint += queue_[m].plan.length_mm;
+    }
+    return joint >= stop.length_mm();
+  }
+
+  /// The speed of `profile` where it has covered `distance_mm` (bisection on time: the distance grows
+  /// monotonically).
+  [[nodiscard]] static double speed_at_distance(const VelocityProfile& profile, double distance_mm) noexcept {
+    double low = 0;
+    double high = profile.duration_s();
+    for (int i = 0; i < 64; ++i) {
+      const double middle = (low + high) / 2;
+      if (profile.at(middle).distance_mm < distance_mm) {
+        low = middle;
+      } else {
+        high = middle;
+      }
+    }
+    return profile.at(high).speed_mm_per_s;
+  }
+
+  /// A hold that could not brake yet (begin_stop): the plan's own tick, and at the start of the next
+  /// segment a new try; a rest at a joint holds there.
+  [[nodiscard]] Result<Setpoint<S>> deferred_holding_tick() noexcept {
+    const std::uint32_t serial = queue_.front().serial;
+    state_ = ControllerState::Running;
+    auto setpoint = running_tick();
+    if (state_ != ControllerState::Running) {  // finished, starved or faulted on the way
+      hold_deferred_ = false;
+      return setpoint;
+    }
+    state_ = ControllerState::Holding;
+    if (rest_left_ > 0) {  // reached a joint with a rest: held there, as hold() at rest
+      hold_deferred_ = false;
+      hold_base_mm_ = 0;
+      state_ = ControllerState::Held;
+    } else if (queue_.front().serial != serial) {
+      begin_stop();
+    }
+    return setpoint;
+  }
+
   [[nodiscard]] Result<Setpoint<S>> holding_tick() noexcept {
+    if (hold_deferred_) return deferred_holding_tick();
     const double tau = time_now() - origin_s_;
     const MotionState m = hold_profile_.at(tau);
     double s = hold_base_mm_ + m.distance_mm;
@@ -689,6 +751,7 @@ class MotionController {
   double offset_mm_ = 0;
   double origin_s_ = 0;
   double hold_base_mm_ = 0;
+  bool hold_deferred_ = false;      ///< holding, but following the plan to the next joint (begin_stop)
   std::uint64_t tick_ = 0;
   std::uint64_t rested_ticks_ = 0;  ///< ticks spent resting at joints (time_now() leaves them out)
   std::uint32_t rest_left_ = 0;     ///< ticks of the current rest still to come
