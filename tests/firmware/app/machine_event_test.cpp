@@ -187,3 +187,33 @@ TEST_CASE("firmware: a tool change pauses the job at its joint until Resume, and
   const auto expected = controller_reference<MotionController<Q16_16, 32, 16>>(machine(50), job);
   check_same_stream(host.setpoints(), expected);
 }
+
+TEST_CASE("firmware: Abort switches a running spindle and the coolant off through their hooks", "[firmware][app][events][abort]") {
+  HookBoard board;
+  App<HookBoard> app{board};
+  Host<App<HookBoard>> host{board, app};
+  REQUIRE(host.connect());
+  REQUIRE(host.send(Message(machine(50))));
+  // M4 S800 and M7 before a 100 mm line (2 s at 50 mm/s); Abort 300 ticks into it.
+  QueueSegment cut = line(p(0, 0), p(100, 0));
+  cut.end_of_job = true;
+  REQUIRE(host.send(Message(event(0, 0, MachineEventKind::SpindleOn, true, 800))));
+  REQUIRE(host.send(Message(event(0, 0, MachineEventKind::CoolantMist))));
+  REQUIRE(host.send(Message(cut)));
+  REQUIRE(host.send(Message(Start{})));
+  for (int t = 0; t < 300; ++t) {
+    app.on_tick();
+    ++board.clock_ms;
+    host.pump();
+  }
+  REQUIRE(app.moving());
+  REQUIRE(board.calls == std::vector<std::string>{"spindle(1,1,800)", "coolant(1,0)"});
+  REQUIRE(host.send(Message(Abort{})));
+  host.pump(3);
+  CHECK_FALSE(app.moving());
+  CHECK(board.calls == std::vector<std::string>{"spindle(1,1,800)", "coolant(1,0)", "spindle(0,1,800)", "coolant(0,0)"});
+  // A second Abort with everything off calls no hook again.
+  REQUIRE(host.send(Message(Abort{})));
+  host.pump(3);
+  CHECK(board.calls.size() == 4);
+}

@@ -481,6 +481,20 @@ class App {
     if (pauses(e.kind) && !paused_) pause_for(e);
   }
 
+  /// Abort and faults: a running spindle and coolant are switched off through the same hooks (as
+  /// M5 and M9 would), so a stopped job never leaves a cutter turning.
+  void switch_off_spindle_and_coolant() noexcept {
+    protocol::QueueEvent off{};
+    if (spindle_.on) {
+      off.kind = protocol::MachineEventKind::SpindleOff;
+      apply_machine_event(board_, off, setpoint_index_, spindle_, coolant_);
+    }
+    if (coolant_.mist || coolant_.flood) {
+      off.kind = protocol::MachineEventKind::CoolantOff;
+      apply_machine_event(board_, off, setpoint_index_, spindle_, coolant_);
+    }
+  }
+
   /// Stops producing setpoints after this one until Resume; poll() reports the pause.
   void pause_for(const protocol::QueueEvent& e) noexcept {
     paused_ = true;
@@ -690,6 +704,7 @@ class App {
   /// Ends the job at once; `outputs` also stops the board's scheduled edges (Abort).
   void stop_job(bool outputs) noexcept {
     if (outputs) board_.fault_stop();
+    switch_off_spindle_and_coolant();
     controller_.abort();
     controller_.reset();
     machine_events_.clear();
@@ -730,6 +745,7 @@ class App {
   /// Stops the machine at once (phase Fault); poll() reports `failure`.
   void raise_fault(Failure failure) noexcept {
     board_.fault_stop();
+    switch_off_spindle_and_coolant();
     controller_.abort();
     moving_ = false;
     fault_ = failure;
