@@ -5,7 +5,6 @@
 // controller's setpoint stream (the CSV of `curvestep sim -o`) and reports its errors. A
 // controller without a planner (look-ahead 0) gets the job planned here with --lookahead N
 // (default 16) as pieces: its stream is then `curvestep sim --lookahead N`'s.
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>

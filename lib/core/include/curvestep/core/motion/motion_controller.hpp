@@ -144,11 +144,7 @@ class MotionController {
   /// Feed hold: brake to a stop along the path within the limits. Ignored unless running.
   void hold() noexcept {
     if (state_ != ControllerState::Running) return;
-    if (rest_left_ > 0) {  // at rest on a joint: held there; resume serves the rest of the rest first
-      hold_base_mm_ = 0;
-      state_ = ControllerState::Held;
-      return;
-    }
+    if (rest_left_ > 0) return hold_at_rest();
     state_ = ControllerState::Holding;
     begin_stop();
   }
@@ -617,6 +613,13 @@ class MotionController {
     return largest * 0x1p-48;
   }
 
+  /// Held during a rest at a joint: the machine stands already; resume serves the rest of the rest first.
+  void hold_at_rest() noexcept {
+    hold_deferred_ = false;
+    hold_base_mm_ = 0;
+    state_ = ControllerState::Held;
+  }
+
   /// Brakes from the present state of the plan, or, if that stop would pass a joint faster than its
   /// junction speed (a stop begun while the plan slows for a corner needs more room than the plan
   /// leaves), keeps following the plan (hold_deferred_) and tries again where the next segment begins.
@@ -678,9 +681,7 @@ class MotionController {
     }
     state_ = ControllerState::Holding;
     if (rest_left_ > 0) {  // reached a joint with a rest: held there, as hold() at rest
-      hold_deferred_ = false;
-      hold_base_mm_ = 0;
-      state_ = ControllerState::Held;
+      hold_at_rest();
     } else if (queue_.front().serial != serial) {
       begin_stop();
     }
