@@ -309,6 +309,11 @@ enum class MachineState : std::uint8_t {
   Fault = 3,    ///< stopped by an error (see StatusReport::error), needs Abort
 };
 
+/// The states a StatusReport may carry (0..3).
+[[nodiscard]] constexpr bool valid_wire_value(const MachineState& state) noexcept {
+  return static_cast<std::uint8_t>(state) <= 3;
+}
+
 /// Name of a state, for logs ("idle", "running", "holding", "fault"; "unknown" for another value).
 [[nodiscard]] constexpr const char* machine_state_name(MachineState state) noexcept {
   switch (state) {
@@ -377,6 +382,12 @@ struct WireFields<PauseReport> : WireLayout<&PauseReport::setpoint_index, &Pause
 template <>
 struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
                                            &QueueEvent::flag, &QueueEvent::value> {};
+/// StatusReport's fixed head (11 bytes); the position follows, 4 bytes per axis (axis_count).
+/// Not a WireFields: the position's length depends on axis_count, so encode/decode are written
+/// out below around this one description of the fixed fields.
+using StatusReportHead = WireLayout<&StatusReport::state, &StatusReport::error, &StatusReport::axis_count,
+                                    &StatusReport::queue_depth, &StatusReport::max_queue_depth,
+                                    &StatusReport::setpoint_index>;
 
 namespace detail {
 
@@ -673,16 +684,11 @@ template <EmptyMessage Empty>
   return std::size_t{0};
 }
 
-/// Encodes a StatusReport payload (11 + 4 per axis bytes).
+/// Encodes a StatusReport payload (its described head, then 4 bytes per axis of position).
 [[nodiscard]] constexpr Result<std::size_t> encode(const StatusReport& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 2);
   ByteWriter w(out);
-  w.u8(static_cast<std::uint8_t>(m.state));
-  w.u8(m.error);
-  w.u8(m.axis_count);
-  w.u16(m.queue_depth);
-  w.u16(m.max_queue_depth);
-  w.u32(m.setpoint_index);
+  StatusReportHead::write(w, m);
   detail::write_point(w, m.position, m.axis_count);
   return w.finish();
 }
@@ -889,15 +895,8 @@ template <>
 [[nodiscard]] constexpr Result<StatusReport> decode<StatusReport>(std::span<const std::byte> payload) noexcept {
   ByteReader r(payload);
   StatusReport m;
-  const std::uint8_t state = r.u8();
-  if (state > 3) r.reject_at(Error::BadPayload, 0);
-  m.state = static_cast<MachineState>(state);
-  m.error = r.u8();
-  m.axis_count = r.u8();
-  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 2);
-  m.queue_depth = r.u16();
-  m.max_queue_depth = r.u16();
-  m.setpoint_index = r.u32();
+  StatusReportHead::read(r, m);
+  if (!r.failed() && !detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 2);
   if (!r.failed()) detail::read_point(r, m.position, m.axis_count);
   CURVESTEP_CHECK(r.finish());
   return m;

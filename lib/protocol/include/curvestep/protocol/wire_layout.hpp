@@ -96,7 +96,7 @@ struct WireLayout {
   template <class M>
   [[nodiscard]] static constexpr Result<std::size_t> encode(const M& m, std::span<std::byte> out) noexcept {
     ByteWriter w(out);
-    (detail::write_member(w, m.*Members), ...);
+    write(w, m);
     return w.finish();
   }
 
@@ -105,9 +105,20 @@ struct WireLayout {
   [[nodiscard]] static constexpr Result<M> decode(std::span<const std::byte> payload) noexcept {
     ByteReader r(payload);
     M m;
-    (detail::read_member(r, m.*Members), ...);
+    read(r, m);
     CURVESTEP_CHECK(r.finish());
     return m;
+  }
+
+  /// Writes the fields as the head of a longer payload (a message with a variable-length tail).
+  template <class M>
+  static constexpr void write(ByteWriter& w, const M& m) noexcept {
+    (detail::write_member(w, m.*Members), ...);
+  }
+  /// Reads the fields as the head of a longer payload; the reader records the first bad byte.
+  template <class M>
+  static constexpr void read(ByteReader& r, M& m) noexcept {
+    (detail::read_member(r, m.*Members), ...);
   }
 };
 
