@@ -382,6 +382,21 @@ struct WireFields<PauseReport> : WireLayout<&PauseReport::setpoint_index, &Pause
 template <>
 struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
                                            &QueueEvent::flag, &QueueEvent::value> {};
+/// Capabilities: version, session, max payload, queue capacity, credit end, fixed-point bits
+/// (total, fraction), axis count, max degree, tick rate, look-ahead (20 bytes).
+template <>
+struct WireFields<Capabilities>
+    : WireLayout<&Capabilities::version, &Capabilities::session, &Capabilities::max_payload, &Capabilities::queue_capacity,
+                 &Capabilities::credit_end, &Capabilities::fixed_total_bits, &Capabilities::fixed_fraction_bits,
+                 &Capabilities::axis_count, &Capabilities::max_degree, &Capabilities::tick_rate_hz,
+                 &Capabilities::lookahead> {};
+/// Capabilities' rules across fields: 2 or 3 axes (byte 12); a degree up to max_segment_degree,
+/// and degree 0 (no segments) only from a controller without a planner (look-ahead 0; byte 13).
+[[nodiscard]] constexpr std::size_t first_invalid_field(const Capabilities& m) noexcept {
+  if (m.axis_count != 2 && m.axis_count != 3) return 12;
+  if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) return 13;
+  return all_fields_valid;
+}
 /// StatusReport's fixed head (11 bytes); the position follows, 4 bytes per axis (axis_count).
 /// Not a WireFields: the position's length depends on axis_count, so encode/decode are written
 /// out below around this one description of the fixed fields.
@@ -469,22 +484,6 @@ constexpr void read_point(ByteReader& reader, WirePoint& point, std::size_t axes
 
 // --- encoders: each writes the payload only and returns its length (BufferTooSmall if it does not fit) ---
 
-/// Encodes a Capabilities payload (20 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const Capabilities& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u16(m.version);
-  w.u16(m.session);
-  w.u16(m.max_payload);
-  w.u16(m.queue_capacity);
-  w.u16(m.credit_end);
-  w.u8(m.fixed_total_bits);
-  w.u8(m.fixed_fraction_bits);
-  w.u8(m.axis_count);
-  w.u8(m.max_degree);
-  w.u32(m.tick_rate_hz);
-  w.u16(m.lookahead);
-  return w.finish();
-}
 
 /// MachineConfiguration flag bit 0: trapezoidal profiles (else S-curve).
 inline constexpr std::uint8_t configuration_flag_trapezoid = 0x01;
@@ -737,31 +736,6 @@ template <class T>
     if (!payload.empty()) return fail(Error::BadPayload, 0);
     return T{};
   }
-}
-
-/// Decodes a Capabilities payload.
-template <>
-[[nodiscard]] constexpr Result<Capabilities> decode<Capabilities>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  Capabilities m;
-  m.version = r.u16();
-  m.session = r.u16();
-  m.max_payload = r.u16();
-  m.queue_capacity = r.u16();
-  m.credit_end = r.u16();
-  m.fixed_total_bits = r.u8();
-  m.fixed_fraction_bits = r.u8();
-  const std::size_t axes_at = r.offset();
-  m.axis_count = r.u8();
-  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, axes_at);
-  const std::size_t degree_at = r.offset();
-  m.max_degree = r.u8();
-  m.tick_rate_hz = r.u32();
-  m.lookahead = r.u16();  // 0: no planner on board (version 4)
-  // Degree 0 (no segments) only from a controller without a planner, which takes none.
-  if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) r.reject_at(Error::BadPayload, degree_at);
-  CURVESTEP_CHECK(r.finish());
-  return m;
 }
 
 /// Decodes a MachineConfiguration payload.
