@@ -152,6 +152,18 @@ enum class ProfileKind : std::uint8_t {
   Trapezoid = 1,  ///< acceleration-limited (trapezoidal) speed profiles
 };
 
+/// MachineConfiguration flag bit 0: trapezoidal profiles (else S-curve).
+inline constexpr std::uint8_t configuration_flag_trapezoid = 0x01;
+/// Payload bytes of a MachineConfiguration before the axes.
+inline constexpr std::size_t configuration_header_size = 62;
+/// Payload bytes of one axis in a MachineConfiguration.
+inline constexpr std::size_t configuration_axis_size = 32;
+
+/// The flags byte of a MachineConfiguration is the profile: only bit 0 (trapezoid) may be set.
+[[nodiscard]] constexpr bool valid_wire_value(const ProfileKind& profile) noexcept {
+  return static_cast<std::uint8_t>(profile) <= configuration_flag_trapezoid;
+}
+
 /// Machine configuration; the firmware validates the values (InvalidLimit, InvalidRate).
 /// Planning limits are binary64 (exact); feeds are Q16.16 like segment feeds.
 struct MachineConfiguration {
@@ -403,6 +415,20 @@ struct WireFields<Capabilities>
 using StatusReportHead = WireLayout<&StatusReport::state, &StatusReport::error, &StatusReport::axis_count,
                                     &StatusReport::queue_depth, &StatusReport::max_queue_depth,
                                     &StatusReport::setpoint_index>;
+/// MachineConfiguration's fixed head (62 bytes: axis count, profile as the flags byte, the
+/// limits, feeds and rate); axis_count AxisConfigurationLayouts follow.
+using MachineConfigurationHead =
+    WireLayout<&MachineConfiguration::axis_count, &MachineConfiguration::profile, &MachineConfiguration::max_velocity_mm_per_s,
+               &MachineConfiguration::max_acceleration_mm_per_s2, &MachineConfiguration::max_jerk_mm_per_s3,
+               &MachineConfiguration::tolerance_mm, &MachineConfiguration::junction_deviation_mm,
+               &MachineConfiguration::max_step_rate_hz, &MachineConfiguration::default_feed_mm_per_s,
+               &MachineConfiguration::rapid_mm_per_s, &MachineConfiguration::control_rate_hz>;
+/// One axis of a MachineConfiguration (32 bytes).
+using AxisConfigurationLayout =
+    WireLayout<&AxisConfiguration::steps_per_mm, &AxisConfiguration::max_velocity_mm_per_s,
+               &AxisConfiguration::max_acceleration_mm_per_s2, &AxisConfiguration::min_position_mm,
+               &AxisConfiguration::max_position_mm>;
+static_assert(MachineConfigurationHead::size == configuration_header_size && AxisConfigurationLayout::size == configuration_axis_size);
 
 namespace detail {
 
@@ -485,37 +511,13 @@ constexpr void read_point(ByteReader& reader, WirePoint& point, std::size_t axes
 // --- encoders: each writes the payload only and returns its length (BufferTooSmall if it does not fit) ---
 
 
-/// MachineConfiguration flag bit 0: trapezoidal profiles (else S-curve).
-inline constexpr std::uint8_t configuration_flag_trapezoid = 0x01;
-/// Payload bytes of a MachineConfiguration before the axes.
-inline constexpr std::size_t configuration_header_size = 62;
-/// Payload bytes of one axis in a MachineConfiguration.
-inline constexpr std::size_t configuration_axis_size = 32;
-
 /// Encodes a MachineConfiguration payload (62 + 32 per axis bytes); InvalidArgument for 0/1/4+ axes.
 [[nodiscard]] constexpr Result<std::size_t> encode(const MachineConfiguration& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 0);
   if (static_cast<std::uint8_t>(m.profile) > 1) return fail(Error::InvalidArgument, 1);
   ByteWriter w(out);
-  w.u8(m.axis_count);
-  w.u8(m.profile == ProfileKind::Trapezoid ? configuration_flag_trapezoid : std::uint8_t{0});
-  w.f64(m.max_velocity_mm_per_s);
-  w.f64(m.max_acceleration_mm_per_s2);
-  w.f64(m.max_jerk_mm_per_s3);
-  w.f64(m.tolerance_mm);
-  w.f64(m.junction_deviation_mm);
-  w.f64(m.max_step_rate_hz);
-  w.i32(m.default_feed_mm_per_s);
-  w.i32(m.rapid_mm_per_s);
-  w.u32(m.control_rate_hz);
-  for (std::size_t a = 0; a < m.axis_count; ++a) {
-    const AxisConfiguration& axis = m.axes[a];
-    w.f64(axis.steps_per_mm);
-    w.f64(axis.max_velocity_mm_per_s);
-    w.f64(axis.max_acceleration_mm_per_s2);
-    w.i32(axis.min_position_mm);
-    w.i32(axis.max_position_mm);
-  }
+  MachineConfigurationHead::write(w, m);
+  for (std::size_t a = 0; a < m.axis_count; ++a) AxisConfigurationLayout::write(w, m.axes[a]);
   return w.finish();
 }
 
@@ -744,28 +746,10 @@ template <>
     std::span<const std::byte> payload) noexcept {
   ByteReader r(payload);
   MachineConfiguration m;
-  m.axis_count = r.u8();
-  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 0);
-  const std::uint8_t flags = r.u8();
-  if ((flags & ~configuration_flag_trapezoid) != 0) r.reject_at(Error::BadPayload, 1);
-  m.profile = (flags & configuration_flag_trapezoid) != 0 ? ProfileKind::Trapezoid : ProfileKind::SCurve;
-  m.max_velocity_mm_per_s = r.f64();
-  m.max_acceleration_mm_per_s2 = r.f64();
-  m.max_jerk_mm_per_s3 = r.f64();
-  m.tolerance_mm = r.f64();
-  m.junction_deviation_mm = r.f64();
-  m.max_step_rate_hz = r.f64();
-  m.default_feed_mm_per_s = r.i32();
-  m.rapid_mm_per_s = r.i32();
-  m.control_rate_hz = r.u32();
-  for (std::size_t a = 0; a < m.axis_count && !r.failed(); ++a) {
-    AxisConfiguration& axis = m.axes[a];
-    axis.steps_per_mm = r.f64();
-    axis.max_velocity_mm_per_s = r.f64();
-    axis.max_acceleration_mm_per_s2 = r.f64();
-    axis.min_position_mm = r.i32();
-    axis.max_position_mm = r.i32();
-  }
+  // The axis count comes first and says how long the payload is: refused before anything else.
+  if (!payload.empty() && !detail::valid_axis_count(std::to_integer<std::uint8_t>(payload[0]))) r.reject_at(Error::BadPayload, 0);
+  MachineConfigurationHead::read(r, m);
+  for (std::size_t a = 0; a < m.axis_count && !r.failed(); ++a) AxisConfigurationLayout::read(r, m.axes[a]);
   CURVESTEP_CHECK(r.finish());
   return m;
 }
