@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -20,11 +19,10 @@
 #include <curvestep/boards/host/machine_outputs.hpp>
 #include <curvestep/boards/host/servo_pulse_train.hpp>
 #include <curvestep/host/job.hpp>
-#include <curvestep/host/link/streamer.hpp>
-#include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/machine_file.hpp>
 
 #include "hil_support.hpp"
+#include "host_board_stream.hpp"
 #include "process.hpp"
 
 namespace ct = curvestep::test;
@@ -174,24 +172,11 @@ TEST_CASE("host board: a streamed job's spindle, coolant and output events reach
   const auto machine = curvestep::host::load_machine(ct::wire_exact_machine());
   RecordingLines lines;
   hb::MachineOutputs<RecordingLines> outputs(lines, 1, false);
-  curvestep::host::link::PseudoTerminal pty;
-  std::atomic<bool> stop{false};
   hb::CountingStepOutput steps;
   hb::DeviceOptions options;
-  options.fast = true;
   options.machine_outputs = &outputs;
-  std::thread device([&] { hb::run_device(pty.master_fd(), steps, options, stop, nullptr); });
-  curvestep::host::link::StreamResult result;
-  try {
-    auto port = curvestep::host::link::open_terminal(pty.slave_path(), 115200);
-    result = curvestep::host::link::stream_job(*port, job, machine);
-  } catch (...) {
-    stop = true;
-    device.join();
-    throw;
-  }
-  stop = true;
-  device.join();
+  const auto result = ct::stream_to_host_board(job, machine, steps, options);
+  REQUIRE(result.standing_ticks == 0);
   using W = RecordingLines::Write;
   // Lines 0 enable, 1 direction, 2 mist, 3 flood, 5 output 0; each hook writes its whole state.
   const std::vector<W> expected{

@@ -28,7 +28,7 @@ import time
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from qemu_board import MACHINES, QemuBoard, QemuMonitor  # noqa: E402
+from qemu_board import MACHINES, QemuBoard, QemuMonitor, curvestep_can_stream  # noqa: E402
 
 TIM3, TIM4 = 0x40000400, 0x40000800  # RM0090 Table 1 (the same addresses on the F1: RM0008 Table 3)
 CR1, CCMR1, CCER, PSC, ARR, CCR1 = 0x00, 0x18, 0x20, 0x28, 0x2C, 0x34  # RM0090 §18.4
@@ -145,9 +145,7 @@ def main():
         parser.add_argument(name)
     parser.add_argument("--deadline", type=float, default=150.0, help="seconds for the whole run")
     args = parser.parse_args()
-    probe = subprocess.run([args.curvestep, "stream", "--help"], capture_output=True, text=True, timeout=30)
-    if probe.returncode != 0:
-        print("SKIP: this curvestep has no stream subcommand")
+    if not curvestep_can_stream(args.curvestep):
         return 77
     deadline = time.monotonic() + args.deadline
     failures = []

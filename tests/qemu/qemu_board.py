@@ -106,6 +106,15 @@ class QemuBoard:
         raise TimeoutError(f"no answer to {command!r}; received {self.received[-400:]!r}")
 
 
+def curvestep_can_stream(curvestep):
+    """True if `curvestep` has the `stream` subcommand; else prints the SKIP line (the tests then exit 77)."""
+    probe = subprocess.run([curvestep, "stream", "--help"], capture_output=True, text=True, timeout=30)
+    if probe.returncode != 0:
+        print("SKIP: this curvestep has no stream subcommand")
+        return False
+    return True
+
+
 class QemuMonitor:
     """The QEMU monitor on a unix socket (`-monitor unix:PATH,server,nowait`), one connection kept
     open: guest physical memory and memory-mapped registers read with `xp`."""

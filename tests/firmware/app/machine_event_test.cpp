@@ -121,22 +121,24 @@ TEST_CASE("firmware: M3 S1000, M8, G4 P0.5, M62 P1, M5, M9 reach the board's hoo
 }
 
 TEST_CASE("firmware: pen events reach the pen hook with the servo pulse width they carry", "[firmware][app][events]") {
-  HookBoard board;
-  App<HookBoard> app{board};
-  Host<App<HookBoard>> host{board, app};
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(machine(50))));
-  QueueSegment first = line(p(0, 0), p(10, 0));
-  QueueSegment second = line(p(10, 0), p(20, 0));
-  second.stop_before = true;
-  second.end_of_job = true;
+  struct Rig {
+    HookBoard board;
+    App<HookBoard> app{board};
+    Host<App<HookBoard>> host{board, app};
+  } rig;
+  REQUIRE(rig.host.connect());
+  REQUIRE(rig.host.send(Message(machine(50))));
+  QueueSegment travel = line(p(0, 0), p(10, 0));
+  QueueSegment stroke = line(p(10, 0), p(20, 0));
+  stroke.stop_before = true;
+  stroke.end_of_job = true;
   // A servo pen lifted (1000 us) before the travel, lowered (2000 us) at the joint, lifted at the end.
-  const std::vector<Message> messages{Message(event(0, 0, MachineEventKind::PenUp, false, 1000)), Message(first),
+  const std::vector<Message> messages{Message(event(0, 0, MachineEventKind::PenUp, false, 1000)), Message(travel),
                                       Message(event(1, 0, MachineEventKind::PenDown, false, 2000)),
-                                      Message(event(2, 0, MachineEventKind::PenUp, false, 1000)), Message(second)};
-  run(host, app, board, messages);
-  REQUIRE(host.received.errors.empty());
-  CHECK(board.calls == std::vector<std::string>{"pen(0,1000)", "pen(1,2000)", "pen(0,1000)"});
+                                      Message(event(2, 0, MachineEventKind::PenUp, false, 1000)), Message(stroke)};
+  run(rig.host, rig.app, rig.board, messages);
+  REQUIRE(rig.host.received.errors.empty());
+  CHECK(rig.board.calls == std::vector<std::string>{"pen(0,1000)", "pen(1,2000)", "pen(0,1000)"});
 }
 
 TEST_CASE("firmware: a QueueEvent takes a credit and waits in the App's ring", "[firmware][app][events]") {
