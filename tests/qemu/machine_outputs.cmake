@@ -12,4 +12,12 @@ if(TARGET curvestep)
                    ${qemu_dir}/wire_exact_machine.json)
   set_tests_properties("${name}" PROPERTIES LABELS "qemu;integration" TIMEOUT 240 SKIP_RETURN_CODE 77
                        FIXTURES_REQUIRED qemu_stm32f4_images)
+  # The same hooks in the F1 firmware's App (Cortex-M3, Q16.16) on netduino2: timers only (no GPIO log there).
+  set(name "qemu: Cortex-M3 Q16.16 firmware drives the servo pen and spindle PWM timers from streamed events")
+  add_test(NAME "${name}"
+           COMMAND ${Python3_EXECUTABLE} ${qemu_dir}/machine_outputs_test.py stm32f2-m3
+                   ${PROJECT_BINARY_DIR}/qemu-stm32f2-m3/bin/curvestep_stm32f4_firmware.elf $<TARGET_FILE:curvestep>
+                   ${qemu_dir}/wire_exact_machine.json --timers-only)
+  set_tests_properties("${name}" PROPERTIES LABELS "qemu;integration" TIMEOUT 240 SKIP_RETURN_CODE 77
+                       FIXTURES_REQUIRED qemu_stm32f2-m3_images)
 endif()
