@@ -13,8 +13,10 @@ constexpr std::uintptr_t rcc = 0x40021000;
 constexpr std::uintptr_t rcc_cr = rcc + 0x00, rcc_cfgr = rcc + 0x04, rcc_apb2enr = rcc + 0x18;
 constexpr std::uintptr_t flash_acr = 0x40022000;
 constexpr std::uintptr_t gpioa = 0x40010800;
+constexpr std::uintptr_t gpiob = 0x40010C00;
 static_assert(Stm32F1Chip::gpioa_bsrr == gpioa + 0x10);
-constexpr std::uintptr_t gpio_crl = 0x00, gpio_crh = 0x04;
+static_assert(Stm32F1Chip::gpiob_idr == gpiob + 0x08);
+constexpr std::uintptr_t gpio_crl = 0x00, gpio_crh = 0x04, gpio_bsrr = 0x10;
 
 constexpr std::uint32_t cr_hseon = 1u << 16, cr_hserdy = 1u << 17, cr_pllon = 1u << 24, cr_pllrdy = 1u << 25;
 constexpr std::uint32_t wait_attempts = 100'000;  // > 10 ms at 8 MHz; HSE needs ~2 ms
@@ -48,7 +50,7 @@ Clocks Stm32F1Chip::setup_clocks() noexcept {
 }
 
 void Stm32F1Chip::setup_gpio() noexcept {
-  reg(rcc_apb2enr) = reg(rcc_apb2enr) | (1u << 14) | (1u << 2) | (1u << 0);  // USART1EN, IOPAEN, AFIOEN
+  reg(rcc_apb2enr) = reg(rcc_apb2enr) | (1u << 14) | (1u << 3) | (1u << 2) | (1u << 0);  // USART1EN, IOPBEN, IOPAEN, AFIOEN
   // CRL: PA0..PA5 general-purpose push-pull output, 10 MHz (MODE = 01, CNF = 00).
   std::uint32_t crl = reg(gpioa + gpio_crl);
   for (std::uint32_t pin = 0; pin < 6; ++pin) crl = (crl & ~(0xFu << (4 * pin))) | (0x1u << (4 * pin));
@@ -57,6 +59,11 @@ void Stm32F1Chip::setup_gpio() noexcept {
   std::uint32_t crh = reg(gpioa + gpio_crh);
   crh = (crh & ~(0xFFu << 4)) | (0xBu << 4) | (0x4u << 8);
   reg(gpioa + gpio_crh) = crh;
+  // CRH: PB10..PB15 input with pull-up/down (CNF = 10, MODE = 00); ODR bits set: pull-up (limit switches).
+  std::uint32_t crh_b = reg(gpiob + gpio_crh);
+  for (std::uint32_t pin = 10; pin < 16; ++pin) crh_b = (crh_b & ~(0xFu << (4 * (pin - 8)))) | (0x8u << (4 * (pin - 8)));
+  reg(gpiob + gpio_crh) = crh_b;
+  reg(gpiob + gpio_bsrr) = 0xFC00u;
 }
 
 void Stm32F1Chip::enable_step_timer() noexcept { reg(rcc + 0x1C) = reg(rcc + 0x1C) | 1u; }  // TIM2EN

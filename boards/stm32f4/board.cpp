@@ -16,7 +16,9 @@ constexpr std::uintptr_t pwr_cr = 0x40007000;
 constexpr std::uintptr_t flash_acr = 0x40023C00;
 constexpr std::uintptr_t gpioa = 0x40020000;
 static_assert(Stm32F4Chip::gpioa_bsrr == gpioa + 0x18);
-constexpr std::uintptr_t gpio_moder = 0x00, gpio_ospeedr = 0x08, gpio_afrh = 0x24;
+constexpr std::uintptr_t gpiob = 0x40020400;
+static_assert(Stm32F4Chip::gpiob_idr == gpiob + 0x10);
+constexpr std::uintptr_t gpio_moder = 0x00, gpio_ospeedr = 0x08, gpio_pupdr = 0x0C, gpio_afrh = 0x24;
 
 constexpr std::uint32_t cr_hseon = 1u << 16, cr_hserdy = 1u << 17, cr_pllon = 1u << 24, cr_pllrdy = 1u << 25;
 constexpr std::uint32_t wait_attempts = 200'000;  // > 10 ms at 16 MHz; HSE needs ~2 ms
@@ -55,7 +57,7 @@ Clocks Stm32F4Chip::setup_clocks() noexcept {
 }
 
 void Stm32F4Chip::setup_gpio() noexcept {
-  reg(rcc_ahb1enr) = reg(rcc_ahb1enr) | (1u << 0);  // GPIOAEN
+  reg(rcc_ahb1enr) = reg(rcc_ahb1enr) | (1u << 1) | (1u << 0);  // GPIOBEN, GPIOAEN
   reg(rcc_apb2enr) = reg(rcc_apb2enr) | (1u << 4);  // USART1EN
   stm32::barrier();
   // PA0..PA5 general-purpose outputs (01), PA9/PA10 alternate function (10), AF7 = USART1.
@@ -65,6 +67,9 @@ void Stm32F4Chip::setup_gpio() noexcept {
   reg(gpioa + gpio_moder) = moder;
   reg(gpioa + gpio_ospeedr) = reg(gpioa + gpio_ospeedr) | 0xAAAu | (0b10u << 18);  // PA0-5, PA9 fast
   reg(gpioa + gpio_afrh) = (reg(gpioa + gpio_afrh) & ~0xFF0u) | (7u << 4) | (7u << 8);
+  // PB10..PB15 inputs (MODER 00) with pull-ups (PUPDR 01): the limit switches.
+  reg(gpiob + gpio_moder) = reg(gpiob + gpio_moder) & ~0xFFF00000u;
+  reg(gpiob + gpio_pupdr) = (reg(gpiob + gpio_pupdr) & ~0xFFF00000u) | 0x55500000u;
 }
 
 void Stm32F4Chip::enable_step_timer() noexcept { reg(rcc_apb1enr) = reg(rcc_apb1enr) | 1u; }  // TIM2EN

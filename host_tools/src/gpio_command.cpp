@@ -246,7 +246,10 @@ int run_gpio(const GpioCommandOptions& o) {
       lines.step[a] = file.gpio->axes[a]->step;
       lines.direction[a] = file.gpio->axes[a]->dir;
       lines.invert_direction[a] = file.gpio->axes[a]->invert_dir;
+      lines.min_switch[a] = file.gpio->axes[a]->min_switch;
+      lines.max_switch[a] = file.gpio->axes[a]->max_switch;
     }
+    lines.switches_active_low = file.gpio->switches_active_low;
   }
   // Open the lines first: a missing chip is reported before anything else happens.
   std::unique_ptr<boards::host::GpiodStepOutput> gpio;

@@ -22,7 +22,7 @@ GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz,
     throw GpioError("GPIO chip \"" + lines.chip + "\" not found: " + std::strerror(errno) +
                     " (list chips with gpiodetect; this machine may have none)");
   }
-  const auto request = [this, &lines](const std::string& name, const char* role, std::size_t axis) -> gpiod_line* {
+  const auto request = [this, &lines](const std::string& name, const char* role, std::size_t axis, bool input) -> gpiod_line* {
     if (name.empty()) return nullptr;
     gpiod_line* line = gpiod_chip_find_line(chip_, name.c_str());
     const char* axis_names[] = {"x", "y", "z"};
@@ -30,18 +30,22 @@ GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz,
       throw GpioError("GPIO line \"" + name + "\" (" + axis_names[axis] + " " + role + ") not found on chip \"" +
                       lines.chip + "\"");
     }
-    if (gpiod_line_request_output(line, consumer, 0) != 0) {
-      throw GpioError("GPIO line \"" + name + "\" on chip \"" + lines.chip + "\" cannot be requested as an output: " +
-                      std::strerror(errno));
+    const int requested = input ? gpiod_line_request_input(line, consumer) : gpiod_line_request_output(line, consumer, 0);
+    if (requested != 0) {
+      throw GpioError("GPIO line \"" + name + "\" on chip \"" + lines.chip + "\" cannot be requested as an " +
+                      (input ? "input: " : "output: ") + std::strerror(errno));
     }
     return line;
   };
   try {
     for (std::size_t axis = 0; axis < 3; ++axis) {
-      step_[axis] = request(lines.step[axis], "step", axis);
-      direction_[axis] = request(lines.direction[axis], "direction", axis);
+      step_[axis] = request(lines.step[axis], "step", axis, false);
+      direction_[axis] = request(lines.direction[axis], "direction", axis, false);
       invert_[axis] = lines.invert_direction[axis];
+      switch_[2 * axis] = request(lines.min_switch[axis], "min switch", axis, true);
+      switch_[2 * axis + 1] = request(lines.max_switch[axis], "max switch", axis, true);
     }
+    switches_active_low_ = lines.switches_active_low;
   } catch (...) {
     gpiod_chip_close(chip_);  // also releases the lines requested so far
     throw;
@@ -85,6 +89,17 @@ void GpiodStepOutput::set_step(std::uint64_t time_ticks, std::uint8_t axis, bool
 
 void GpiodStepOutput::fault_stop() noexcept {
   for (gpiod_line* line : step_) write(line, false);
+}
+
+std::uint8_t GpiodStepOutput::limit_switches() noexcept {
+  std::uint8_t closed = 0;
+  for (std::size_t bit = 0; bit < switch_.size(); ++bit) {
+    if (switch_[bit] == nullptr) continue;
+    const int level = gpiod_line_get_value(switch_[bit]);
+    const bool is_closed = level < 0 || (level == 1) != switches_active_low_;
+    if (is_closed) closed = static_cast<std::uint8_t>(closed | (1u << bit));
+  }
+  return closed;
 }
 
 }  // namespace curvestep::boards::host

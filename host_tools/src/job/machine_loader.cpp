@@ -39,9 +39,10 @@ bool may_be_zero(LimitField field) {
          field == LimitField::AxisVMax || field == LimitField::AxisAMax;
 }
 
-/// The "gpio" section: {"chip": NAME, "x": {"step": LINE, "dir": LINE, "invert_dir": BOOL}, "y": ..., "z": ...}.
+/// The "gpio" section: {"chip": NAME, "switches_active_low": BOOL, "x": {"step": LINE, "dir": LINE,
+/// "invert_dir": BOOL, "min": LINE, "max": LINE}, "y": ..., "z": ...}.
 GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
-  reader.check_keys(gpio, {"chip", "x", "y", "z"});
+  reader.check_keys(gpio, {"chip", "x", "y", "z", "switches_active_low"});
   GpioWiring wiring;
   const Node chip = reader.require(gpio, "chip");
   wiring.chip = reader.string(chip);
@@ -51,10 +52,9 @@ GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
   for (std::size_t axis = 0; axis < motion_axes; ++axis) {
     const auto entry = reader.optional(gpio, axis_names[axis]);
     if (!entry) continue;
-    reader.check_keys(*entry, {"step", "dir", "invert_dir"});
+    reader.check_keys(*entry, {"step", "dir", "invert_dir", "min", "max"});
     GpioAxisWiring lines;
-    const auto line = [&](const char* key) {
-      const Node node = reader.require(*entry, key);
+    const auto named_line = [&](const Node& node, const char* key) {
       std::string name = reader.string(node);
       if (name.empty()) reader.fail(node, "the line name must not be empty (gpioinfo lists the names)");
       const std::string here = std::string("\"gpio\".\"") + axis_names[axis] + "\".\"" + key + "\"";
@@ -64,13 +64,17 @@ GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
       used.emplace(name, here);
       return name;
     };
+    const auto line = [&](const char* key) { return named_line(reader.require(*entry, key), key); };
     lines.step = line("step");
     lines.dir = line("dir");
     if (const auto invert = reader.optional(*entry, "invert_dir")) lines.invert_dir = reader.boolean(*invert);
+    if (const auto min = reader.optional(*entry, "min")) lines.min_switch = named_line(*min, "min");
+    if (const auto max = reader.optional(*entry, "max")) lines.max_switch = named_line(*max, "max");
     wiring.axes[axis] = lines;
     any = true;
   }
   if (!any) reader.fail(gpio, "wires no axis (expected at least one of \"x\", \"y\", \"z\" with \"step\" and \"dir\")");
+  if (const auto low = reader.optional(gpio, "switches_active_low")) wiring.switches_active_low = reader.boolean(*low);
   return wiring;
 }
 

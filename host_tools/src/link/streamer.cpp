@@ -7,8 +7,8 @@
 #include <cmath>
 #include <deque>
 #include <iterator>
-#include <optional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -353,6 +353,10 @@ class Upload {
         if (last_status_.state == protocol::MachineState::Running || last_status_.setpoint_index > 0) seen_running_ = true;
         if (last_status_.state == protocol::MachineState::Fault && !aborting_) {
           const auto code = static_cast<Error>(last_status_.error);
+          if (hard_limit_switch_ && code == Error::HardLimit) {
+            throw StreamError(code, transport_.name() + ": hard limit: " + limit_switch_name(*hard_limit_switch_) + " at setpoint " +
+                                        std::to_string(last_status_.setpoint_index) + " (the controller stopped at once; Abort or a new session clears it)");
+          }
           throw StreamError(code, transport_.name() + ": the controller stopped with a fault: " + describe_error(code) +
                                       " at setpoint " + std::to_string(last_status_.setpoint_index));
         }
@@ -370,6 +374,10 @@ class Upload {
       }
       case protocol::MessageType::ErrorReport: {
         const auto& report = m.get<protocol::ErrorReport>();
+        if (report.code == Error::HardLimit) {
+          hard_limit_switch_ = report.index;  // told with its setpoint by the StatusReport that follows
+          break;
+        }
         std::string text = transport_.name() + ": the controller reported " + describe_error(report.code) + segment_text(report.sequence);
         if (report.index != no_index) text += " (index " + std::to_string(report.index) + ")";
         throw StreamError(report.code, text);
@@ -510,6 +518,7 @@ class Upload {
   bool holding_ = false;             // FeedHold sent, no Resume yet
   bool hold_index_pending_ = false;  // waiting for the StatusReport that names the hold's setpoint
   bool aborting_ = false;            // Abort sent
+  std::optional<std::uint16_t> hard_limit_switch_;  // the switch of a HardLimit fault, until its StatusReport
   bool abort_reported_ = false;      // a report after the Abort says the controller stands
   std::vector<StreamHold> holds_;
   std::vector<bool> resumed_;  // per hold: Resume sent

@@ -63,6 +63,21 @@ TEST_CASE("machine gpio: the section maps onto GpioWiring, the other keys are st
   CHECK_FALSE(parse_machine_file(machine_with(""), "m.json").gpio.has_value());
 }
 
+TEST_CASE("machine gpio: limit switch input lines per axis and their level", "[host_tools][jobs][gpio][limits]") {
+  const MachineFile file = parse_machine_file(machine_with(R"("gpio": {"chip": "gpiochip0", "switches_active_low": true,
+           "x": {"step": "GPIO17", "dir": "GPIO27", "min": "GPIO5", "max": "GPIO6"},
+           "y": {"step": "GPIO22", "dir": "GPIO23", "max": "GPIO13"}})"),
+                                              "m.json");
+  REQUIRE(file.gpio.has_value());
+  CHECK(file.gpio->switches_active_low);
+  CHECK(file.gpio->axes[0]->min_switch == "GPIO5");
+  CHECK(file.gpio->axes[0]->max_switch == "GPIO6");
+  CHECK(file.gpio->axes[1]->min_switch.empty());
+  CHECK(file.gpio->axes[1]->max_switch == "GPIO13");
+  CHECK_FALSE(parse_machine_file(machine_with(R"("gpio": {"chip": "c", "x": {"step": "A", "dir": "B"}})"), "m.json")
+                  .gpio->switches_active_low);
+}
+
 TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools][jobs][gpio]") {
   struct Case {
     std::string gpio;
@@ -82,9 +97,17 @@ TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools
       {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"invert_dir\": 1}}", 8,
        "\"gpio\".\"x\".\"invert_dir\"", "expected true or false"},
       {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"pulse_us\": 5}}", 8,
-       "\"gpio\".\"x\".\"pulse_us\"", "unknown key (expected one of: step, dir, invert_dir, comment)"},
+       "\"gpio\".\"x\".\"pulse_us\"", "unknown key (expected one of: step, dir, invert_dir, min, max, comment)"},
       {"\"gpio\": {\"chip\": \"c\",\n  \"w\": {\"step\": \"A\", \"dir\": \"B\"}}", 8, "\"gpio\".\"w\"",
-       "unknown key (expected one of: chip, x, y, z, comment)"},
+       "unknown key (expected one of: chip, x, y, z, switches_active_low, comment)"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"min\": 5}}", 8, "\"gpio\".\"x\".\"min\"",
+       "expected a string, got a number"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"max\": \"\"}}", 8, "\"gpio\".\"x\".\"max\"",
+       "must not be empty"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"max\": \"B\"}}", 8, "\"gpio\".\"x\".\"max\"",
+       "line \"B\" is already used by \"gpio\".\"x\".\"dir\""},
+      {"\"gpio\": {\"chip\": \"c\", \"switches_active_low\": \"yes\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\"}}", 7,
+       "\"gpio\".\"switches_active_low\"", "expected true or false"},
       {R"("gpio": "gpiochip0")", 7, "\"gpio\"", "expected an object"},
       {R"("gpoi": {"chip": "c"})", 7, "\"gpoi\"", "unknown key"},
   };

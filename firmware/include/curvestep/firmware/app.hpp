@@ -72,6 +72,8 @@
 //   * loss of the link: no valid frame for settings.link_timeout_ms -> feed hold (plus an
 //     ErrorReport(LinkTimeout) in case the host still listens); Resume continues;
 //   * abort: immediate stop and flush, no braking, board.fault_stop();
+//   * hard limits: after each tick's edges, a closed limit switch whose axis moved toward it is a
+//     fault (HardLimit, index = the switch; limit_switches.hpp);
 //   * a fault (a setpoint outside Q16.16, a step rate the drivers cannot follow, ...): the
 //     controller stops, board.fault_stop(), state Fault, ErrorReport(code, index); only Abort or
 //     a new session leaves Fault.
@@ -120,6 +122,7 @@
 #include <curvestep/firmware/board_hooks.hpp>
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/event_timeline.hpp>
+#include <curvestep/firmware/limit_switches.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
 #include <curvestep/firmware/tick_watch.hpp>
@@ -239,6 +242,7 @@ class App {
       // the machine is; every later one moves the steps from there.
       setpoint.tick = steps_.tick();
       if (auto reset = steps_.reset(setpoint); !reset) return raise_fault(reset.failure());
+      declare_position(board_, {steps_.count(0), steps_.count(1), steps_.count(2)});
       positioned_ = true;
     } else {
       if (auto advanced = steps_.advance(setpoint, batch_); !advanced) return raise_fault(advanced.failure());
@@ -246,6 +250,11 @@ class App {
       if (edges_lost()) {
         position_ = wire;  // the step generator and the board have moved to this setpoint
         return raise_fault(fail(Error::StepsLost, setpoint.segment));
+      }
+      if (const auto hit = hard_limit_hit(read_limit_switches(board_), position_, wire, axis_count_); hit != no_limit_switch) {
+        position_ = wire;  // the board has this setpoint's edges: the machine stops there
+        setpoint_index_ = static_cast<std::uint32_t>(job_tick);
+        return raise_fault(fail(Error::HardLimit, hit));
       }
     }
     position_ = wire;
@@ -881,6 +890,7 @@ class App {
     s.queue_depth = static_cast<std::uint16_t>(controller_.queued());
     s.max_queue_depth = statistics_.max_queue_depth;
     s.setpoint_index = setpoint_index_;
+    s.limit_switches = read_limit_switches(board_);
     s.position = position_;
     send_message(s);
   }

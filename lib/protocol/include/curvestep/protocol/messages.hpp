@@ -329,6 +329,7 @@ struct StatusReport {
   std::uint16_t queue_depth = 0;        ///< segments waiting in the queue
   std::uint16_t max_queue_depth = 0;    ///< deepest the queue has been this session (soak diagnostics)
   std::uint32_t setpoint_index = 0;     ///< index of the current setpoint since start
+  std::uint8_t limit_switches = 0;      ///< limit switches closed now: bit 2 x axis (min), 2 x axis + 1 (max)
   WirePoint position{};                 ///< Q16.16 commanded position
 };
 
@@ -673,7 +674,7 @@ template <EmptyMessage Empty>
   return std::size_t{0};
 }
 
-/// Encodes a StatusReport payload (11 + 4 per axis bytes).
+/// Encodes a StatusReport payload (12 + 4 per axis bytes).
 [[nodiscard]] constexpr Result<std::size_t> encode(const StatusReport& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 2);
   ByteWriter w(out);
@@ -683,6 +684,7 @@ template <EmptyMessage Empty>
   w.u16(m.queue_depth);
   w.u16(m.max_queue_depth);
   w.u32(m.setpoint_index);
+  w.u8(m.limit_switches);
   detail::write_point(w, m.position, m.axis_count);
   return w.finish();
 }
@@ -898,6 +900,7 @@ template <>
   m.queue_depth = r.u16();
   m.max_queue_depth = r.u16();
   m.setpoint_index = r.u32();
+  m.limit_switches = r.u8();
   if (!r.failed()) detail::read_point(r, m.position, m.axis_count);
   CURVESTEP_CHECK(r.finish());
   return m;

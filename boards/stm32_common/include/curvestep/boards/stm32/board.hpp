@@ -2,11 +2,12 @@
 // stm32::Board<Chip>: the part of the STM32 boards that does not depend on the chip — the console
 // on USART1 (interrupt driven, usart.hpp), SysTick, the step/dir pins on GPIOA (STEP X/Y/Z =
 // PA0/PA1/PA2, DIR X/Y/Z = PA3/PA4/PA5, one BSRR write each) and the TIM2 edge player
-// (step_edges.hpp), with the bring-up monitor's interface and the firmware::Board concept.
+// (step_edges.hpp), the limit switch inputs PB10..PB15 (pull-ups, low = closed), with the
+// bring-up monitor's interface and the firmware::Board concept.
 //
 // The chip supplies (boards/stm32f1/board.hpp, boards/stm32f4/board.hpp):
 //   using Scalar; name; hse_hz; target_hclk_hz        setpoint scalar and clock targets
-//   usart1, usart1_irq, gpioa_bsrr                     addresses (reference manual memory map)
+//   usart1, usart1_irq, gpioa_bsrr, gpiob_idr          addresses (reference manual memory map)
 //   step_events_per_tick, edge_ring                    StepBatch and edge ring capacities
 //   fallback_clocks                                    the clocks before init() (HSI)
 //   static Clocks setup_clocks() noexcept              clock tree, bounded waits, emulator detection
@@ -131,6 +132,15 @@ class Board {
   [[nodiscard]] std::uint32_t cycles_per_second() const noexcept { return clocks_.hclk_hz; }
   /// Edges lost to a full edge ring (App faults with StepsLost when this grows; 0 in an emulator).
   [[nodiscard]] std::uint32_t edges_dropped() const noexcept { return edges_.edges_dropped(); }
+  /// The limit switches closed now (firmware/limit_switches.hpp): PB10/PB11 x min/max, PB12/PB13
+  /// y, PB14/PB15 z, switches to ground read low through the pull-ups (a closed switch is a low
+  /// bit). Polled once per control tick by the App, not EXTI: the hard-limit rule needs the tick's
+  /// motion direction, and the tick's edges are queued a period ahead anyway, so an interrupt
+  /// would stop at most one period sooner. 0 in an emulator (QEMU models no GPIO inputs: all read 0).
+  [[nodiscard]] std::uint8_t limit_switches() const noexcept {
+    if (clocks_.emulated) return 0;
+    return static_cast<std::uint8_t>(~(reg(Chip::gpiob_idr) >> limit_switch_first_pin) & 0x3Fu);
+  }
 
   /// Clocks measured by init().
   [[nodiscard]] const Clocks& clocks() const noexcept { return clocks_; }
@@ -151,6 +161,7 @@ class Board {
   static constexpr std::uint8_t dir_pin_numbers[3] = {3, 4, 5};   // PA3, PA4, PA5
   static constexpr std::uint32_t step_pins[3] = {0, 1, 2};
   static constexpr std::uint32_t dir_pins[3] = {3, 4, 5};
+  static constexpr std::uint32_t limit_switch_first_pin = 10;  // PB10..PB15, in switch-bit order
 
   static std::uint32_t pin_bits(const std::uint32_t (&pins)[3], std::uint32_t mask) noexcept {
     std::uint32_t bits = 0;

@@ -18,17 +18,21 @@
 
 namespace curvestep::host {
 
-/// One axis's wiring in the "gpio" section: {"step": "GPIO17", "dir": "GPIO27", "invert_dir": false}.
+/// One axis's wiring in the "gpio" section: {"step": "GPIO17", "dir": "GPIO27", "invert_dir": false,
+/// "min": "GPIO5", "max": "GPIO6"} (min and max: limit switch inputs, optional).
 struct GpioAxisWiring {
   std::string step;         ///< name of the step line (as gpioinfo lists it)
   std::string dir;          ///< name of the direction line
   bool invert_dir = false;  ///< the positive direction is the low level of the direction line
+  std::string min_switch;   ///< "min": the limit switch input at the axis's low end (empty: none)
+  std::string max_switch;   ///< "max": the limit switch input at the axis's high end (empty: none)
 };
 
 /// The "gpio" section: a chip and, per axis, its step and direction lines (no entry: not wired).
 struct GpioWiring {
   std::string chip;                                              ///< "gpiochip0", "/dev/gpiochip0" or "0"
   std::array<std::optional<GpioAxisWiring>, motion_axes> axes{};  ///< x, y, z
+  bool switches_active_low = false;  ///< "switches_active_low": a closed limit switch reads low
 };
 
 /// A tool of the "tools" table: its length (G43 H) and cutter diameter (G41/G42 D), mm.
