@@ -23,26 +23,15 @@
 #include <curvestep/host/link/status_query.hpp>
 #include <curvestep/host/link/transport.hpp>
 
+#include "hil_support.hpp"
 #include "process.hpp"
 
 namespace ct = curvestep::test;
 
 namespace {
 
-/// 80 steps/mm on x and y, trapezoid profile, a = 1000 mm/s^2, feed 50 mm/s, 1000 Hz.
-std::filesystem::path switch_machine() {
-  const auto path = ct::scratch_dir() / "switch_machine.json";
-  std::ofstream(path) << R"({
-  "version": 1, "v_max": 200, "a_max": 1000, "j_max": 50000, "feed": 50, "rapid": 50,
-  "tolerance": 0.01, "rate_hz": 1000, "junction_deviation": 0.02, "max_step_rate": 100000, "profile": "trapezoid",
-  "axes": {
-    "x": {"steps_per_mm": 80, "v_max": 200, "a_max": 1000},
-    "y": {"steps_per_mm": 80, "v_max": 200, "a_max": 1000},
-    "z": {"steps_per_mm": 400, "v_max": 20, "a_max": 500}
-  }
-})";
-  return path;
-}
+/// The machine of the hand computation above.
+std::filesystem::path switch_machine() { return ct::trapezoid_machine("switch_machine"); }
 
 /// A one-line job from the origin to `end`.
 std::filesystem::path line_job(const std::string& name, const std::string& end) {

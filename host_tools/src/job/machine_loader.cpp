@@ -12,6 +12,7 @@
 #include <curvestep/host/job.hpp>
 
 #include "json_document.hpp"
+#include "machine_homing.hpp"
 #include "machine_pen.hpp"
 
 namespace curvestep::host {
@@ -149,7 +150,7 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
   const Reader reader(document, Error::InvalidMachine);
   const Node root = reader.root();
   reader.check_keys(root, {"version", "v_max", "a_max", "j_max", "feed", "rapid", "tolerance", "rate_hz",
-                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance", "tools", "g28", "g30",
+                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance", "tools", "g28", "g30", "homing",
                            "pen"});
   MachineFile file;
   file.name = document.name();
@@ -229,6 +230,7 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
   if (const auto node = reader.optional(root, "g28")) file.g28_position = parse_position(reader, *node);
   if (const auto node = reader.optional(root, "g30")) file.g30_position = parse_position(reader, *node);
   if (const auto pen = reader.optional(root, "pen")) file.pen = detail::parse_pen(reader, *pen);
+  if (const auto homing = reader.optional(root, "homing")) file.homing = detail::parse_homing(reader, *homing, file.travel);
   if (const auto node = reader.optional(root, "blend_tolerance")) {
     const double value = reader.number(*node);
     if (!(value >= 0 && value <= max_blend_tolerance_mm)) {

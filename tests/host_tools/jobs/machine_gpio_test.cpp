@@ -8,6 +8,8 @@
 #include <curvestep/core/error.hpp>
 #include <curvestep/host/machine_file.hpp>
 
+#include "machine_error.hpp"
+
 using namespace curvestep;
 using namespace curvestep::host;
 
@@ -26,15 +28,7 @@ std::string machine_with(const std::string& extra) {
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-LoadError error_of(const std::string& text) {
-  try {
-    (void)parse_machine_file(text, "gpio_machine.json");
-  } catch (const LoadError& e) {
-    return e;
-  }
-  FAIL("the machine file loaded:\n" << text);
-  return LoadError({}, "", Error::InvalidArgument);
-}
+LoadError error_of(const std::string& text) { return testing::machine_error_of(text, "gpio_machine.json"); }
 
 }  // namespace
 

@@ -16,6 +16,9 @@
 // only motion toward it, so the machine can move off a switch it stands on (after Abort), and
 // homing can pull off. An axis that does not move in a tick never faults there.
 //
+// Homing (SeekSwitch, docs/firmware.md "Homing"): while a seek is armed, its switch closing ends
+// the job where it stands instead (seek_closed; not a fault), whichever way the axis moved.
+//
 // Cost per tick: one board read and at most six comparisons; a board without switches compiles
 // the check away.
 #pragma once
@@ -56,6 +59,11 @@ template <class B>
 template <class B>
 void declare_position(B& board, const std::array<std::int32_t, 3>& steps) noexcept {
   if constexpr (requires { board.position_declared(steps); }) board.position_declared(steps);
+}
+
+/// True if the seek switch `seek` (SeekSwitch; no_limit_switch: none armed) is in `closed`.
+[[nodiscard]] constexpr bool seek_closed(std::uint8_t closed, std::uint8_t seek) noexcept {
+  return seek < 8 && (closed & (1u << seek)) != 0;
 }
 
 /// The first switch in `closed` whose axis moved toward it from `from` to `to` (axes below

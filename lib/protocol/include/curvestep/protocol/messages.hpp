@@ -52,15 +52,19 @@ enum class MessageType : std::uint8_t {
   StatusRequest = 0x16,         ///< host -> controller: ask for a status report
   QueuePiece = 0x17,            ///< host -> controller: one host-planned piece (controller without a planner)
   QueueEvent = 0x18,            ///< host -> controller: a machine event (spindle, coolant, output, pen, ...) at a joint
+  SeekSwitch = 0x1A,            ///< host -> controller: the next job stops at once when this limit switch closes (homing)
+  SetPosition = 0x1B,           ///< host -> controller: the machine stands at these coordinates (homing), at rest
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
   SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints (sequenced, acknowledged)
   ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
   PauseReport = 0x23,           ///< controller -> host: the job paused for the operator (M0/M1, M6, a pen change)
+  SwitchReport = 0x24,          ///< controller -> host: a SeekSwitch job stopped: where the switch closed
 };
 
 /// True for the types this protocol version defines.
 [[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
-  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || (type >= 0x20 && type <= 0x23);
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || type == 0x1A || type == 0x1B ||
+         (type >= 0x20 && type <= 0x24);
 }
 
 /// The two ends of the link.
@@ -69,10 +73,10 @@ enum class Endpoint : std::uint8_t {
   Controller,  ///< the firmware
 };
 
-/// True for host commands (0x10 .. 0x18): the host-to-controller reliable stream.
+/// True for host commands (0x10 .. 0x18, 0x1A, 0x1B): the host-to-controller reliable stream.
 [[nodiscard]] constexpr bool is_command(MessageType type) noexcept {
   const auto value = static_cast<std::uint8_t>(type);
-  return value >= 0x10 && value <= 0x18;
+  return (value >= 0x10 && value <= 0x18) || value == 0x1A || value == 0x1B;
 }
 
 /// True for messages that travel in a reliable, sequenced stream: host commands one way,
@@ -358,6 +362,34 @@ struct PauseReport {
   std::uint32_t value = 0;                                       ///< the tool number for a tool change
 };
 
+/// Homing: the job started next stops at once, without braking and keeping its edges, when the
+/// limit switch `limit_switch` closes (any motion), and the controller answers SwitchReport.
+struct SeekSwitch {
+  static constexpr MessageType type = MessageType::SeekSwitch;  ///< message type
+  std::uint8_t limit_switch = 0;                                ///< switch bit: 2 x axis, + 1 for the max switch
+};
+
+/// Homing: the machine stands at these coordinates (the axes in `axes`; the others keep theirs).
+/// Only at rest with an empty queue; the next job starts there without moving.
+struct SetPosition {
+  static constexpr MessageType type = MessageType::SetPosition;  ///< message type
+  std::uint8_t axes = 0;                                         ///< bit a: set axis a
+  std::int32_t x = 0;                                            ///< Q16.16 raw, mm
+  std::int32_t y = 0;                                            ///< Q16.16 raw, mm
+  std::int32_t z = 0;                                            ///< Q16.16 raw, mm
+};
+
+/// A SeekSwitch job stopped: the switch closed with the edges of this setpoint, at this position
+/// (where the machine stands). The job is ended (Idle) as by Abort, not a fault.
+struct SwitchReport {
+  static constexpr MessageType type = MessageType::SwitchReport;  ///< message type
+  std::uint8_t limit_switch = 0;                                  ///< the switch bit armed by SeekSwitch
+  std::uint32_t setpoint_index = 0;                               ///< the setpoint whose steps closed it
+  std::int32_t x = 0;                                             ///< Q16.16 raw, mm
+  std::int32_t y = 0;                                             ///< Q16.16 raw, mm
+  std::int32_t z = 0;                                             ///< Q16.16 raw, mm
+};
+
 // The fixed-field messages, each described once (wire_layout.hpp derives encode, decode, size).
 /// Hello: version, session (4 bytes).
 template <>
@@ -378,6 +410,16 @@ struct WireFields<PauseReport> : WireLayout<&PauseReport::setpoint_index, &Pause
 template <>
 struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
                                            &QueueEvent::flag, &QueueEvent::value> {};
+/// SeekSwitch: switch bit (1 byte).
+template <>
+struct WireFields<SeekSwitch> : WireLayout<&SeekSwitch::limit_switch> {};
+/// SetPosition: axes mask, x, y, z (13 bytes).
+template <>
+struct WireFields<SetPosition> : WireLayout<&SetPosition::axes, &SetPosition::x, &SetPosition::y, &SetPosition::z> {};
+/// SwitchReport: switch bit, setpoint index, x, y, z (17 bytes).
+template <>
+struct WireFields<SwitchReport> : WireLayout<&SwitchReport::limit_switch, &SwitchReport::setpoint_index, &SwitchReport::x,
+                                             &SwitchReport::y, &SwitchReport::z> {};
 
 namespace detail {
 
@@ -430,17 +472,17 @@ struct MessageSet {
 /// Every message of this protocol version (the default of the set-taking functions; host
 /// tools, tests and fuzzers).
 using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
-                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, StatusReport, SetpointBatch, ErrorReport,
-                               PauseReport>;
+                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, SeekSwitch, SetPosition, StatusReport,
+                               SetpointBatch, ErrorReport, PauseReport, SwitchReport>;
 
 /// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
 /// the controller's setpoint stream.
 using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold, Resume,
-                                    Abort, StatusRequest, QueuePiece, QueueEvent>;
+                                    Abort, StatusRequest, QueuePiece, QueueEvent, SeekSwitch, SetPosition>;
 
 /// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
 /// commands, reports, and the setpoint stream.
-using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport, PauseReport>;
+using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport, PauseReport, SwitchReport>;
 
 namespace detail {
 
@@ -971,6 +1013,12 @@ class Message {
   constexpr Message(const QueueEvent& m) noexcept : type_(MessageType::QueueEvent), body_(m) {}  // NOLINT
   /// Holds a PauseReport.
   constexpr Message(const PauseReport& m) noexcept : type_(MessageType::PauseReport), body_(m) {}  // NOLINT
+  /// Holds a SeekSwitch.
+  constexpr Message(const SeekSwitch& m) noexcept : type_(MessageType::SeekSwitch), body_(m) {}  // NOLINT
+  /// Holds a SetPosition.
+  constexpr Message(const SetPosition& m) noexcept : type_(MessageType::SetPosition), body_(m) {}  // NOLINT
+  /// Holds a SwitchReport.
+  constexpr Message(const SwitchReport& m) noexcept : type_(MessageType::SwitchReport), body_(m) {}  // NOLINT
 
   /// Which message this is.
   [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
@@ -995,6 +1043,9 @@ class Message {
     else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
     else if constexpr (std::is_same_v<T, QueueEvent>) return body_.queue_event;
     else if constexpr (std::is_same_v<T, PauseReport>) return body_.pause_report;
+    else if constexpr (std::is_same_v<T, SeekSwitch>) return body_.seek_switch;
+    else if constexpr (std::is_same_v<T, SetPosition>) return body_.set_position;
+    else if constexpr (std::is_same_v<T, SwitchReport>) return body_.switch_report;
     else return empty<T>();
   }
 
@@ -1023,6 +1074,9 @@ class Message {
     constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
     constexpr explicit Body(const QueueEvent& m) noexcept : queue_event(m) {}
     constexpr explicit Body(const PauseReport& m) noexcept : pause_report(m) {}
+    constexpr explicit Body(const SeekSwitch& m) noexcept : seek_switch(m) {}
+    constexpr explicit Body(const SetPosition& m) noexcept : set_position(m) {}
+    constexpr explicit Body(const SwitchReport& m) noexcept : switch_report(m) {}
     Hello hello;
     Capabilities capabilities;
     Ack ack;
@@ -1035,6 +1089,9 @@ class Message {
     ErrorReport error_report;
     QueueEvent queue_event;
     PauseReport pause_report;
+    SeekSwitch seek_switch;
+    SetPosition set_position;
+    SwitchReport switch_report;
   };
   MessageType type_ = MessageType::Hello;
   Body body_;

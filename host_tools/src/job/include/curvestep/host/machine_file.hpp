@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
@@ -73,6 +74,24 @@ struct PenModel {
   double settle_s = 0;       ///< servo: time it takes to move, s (0 .. 10): the dwell after each pen move
 };
 
+/// How one axis homes ("homing"."x"): toward its min or max switch at the seek speed until it
+/// closes, back off by the pull-off, toward it again at the locate speed, back off again, and the
+/// axis is then at `position_mm`.
+struct HomingAxis {
+  bool max_side = false;         ///< "switch": "min" or "max"
+  double seek_mm_per_s = 0;      ///< "seek": speed of the first approach, mm/s (> 0)
+  double locate_mm_per_s = 0;    ///< "locate": speed of the second, precise approach, mm/s (> 0, <= seek)
+  double pull_off_mm = 0;        ///< "pull_off": back-off from the closed switch, mm (> 0)
+  double position_mm = 0;        ///< "position": the axis's coordinate when homing is done, mm
+  double distance_mm = 0;        ///< "distance": the longest seek, mm (default: 1.5 x the axis's travel)
+};
+
+/// The "homing" section: the axes that home and in which order ("order", default z, x, y).
+struct HomingCycle {
+  std::array<std::optional<HomingAxis>, motion_axes> axes{};  ///< x, y, z (none: the axis does not home)
+  std::vector<std::size_t> order;                              ///< axis indices, each homing axis once
+};
+
 /// Largest "blend_tolerance" a machine file may give, mm.
 inline constexpr double max_blend_tolerance_mm = 10;
 
@@ -82,6 +101,7 @@ struct MachineFile {
   MachineLimits limits;            ///< planning and stepping limits, validated
   std::optional<GpioWiring> gpio;  ///< the "gpio" section, if present (validated)
   std::optional<PenModel> pen;     ///< the "pen" section, if present (validated)
+  std::optional<HomingCycle> homing;  ///< the "homing" section, if present (validated)
   /// "blend_tolerance": path smoothing's largest deviation from the programmed path, mm (0 = off,
   /// the default; G64 P overrides it per move). Host-side: the controller gets smoothed segments.
   double blend_tolerance_mm = 0;
