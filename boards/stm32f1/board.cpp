@@ -14,9 +14,11 @@ constexpr std::uintptr_t rcc_cr = rcc + 0x00, rcc_cfgr = rcc + 0x04, rcc_apb2enr
 constexpr std::uintptr_t flash_acr = 0x40022000;
 constexpr std::uintptr_t rcc_apb1enr = rcc + 0x1C;
 constexpr std::uintptr_t gpioa = 0x40010800, gpiob = 0x40010C00;
+constexpr std::uintptr_t afio_mapr = 0x40010004;
 static_assert(Stm32F1Chip::gpioa_bsrr == gpioa + 0x10);
 static_assert(Stm32F1Chip::gpiob_bsrr == gpiob + 0x10);
-constexpr std::uintptr_t gpio_crl = 0x00, gpio_crh = 0x04;
+static_assert(Stm32F1Chip::gpiob_idr == gpiob + 0x08);
+constexpr std::uintptr_t gpio_crl = 0x00, gpio_crh = 0x04, gpio_bsrr = 0x10;
 
 constexpr std::uint32_t cr_hseon = 1u << 16, cr_hserdy = 1u << 17, cr_pllon = 1u << 24, cr_pllrdy = 1u << 25;
 constexpr std::uint32_t wait_attempts = 100'000;  // > 10 ms at 8 MHz; HSE needs ~2 ms
@@ -58,9 +60,16 @@ void Stm32F1Chip::setup_gpio() noexcept {
   for (std::uint32_t pin = 0; pin < 6; ++pin) crl = (crl & ~(0xFu << (4 * pin))) | (0x1u << (4 * pin));
   crl = (crl & ~(0xFu << 24)) | (0xAu << 24);
   reg(gpioa + gpio_crl) = crl;
-  // GPIOB: PB6 = TIM4_CH1 alternate-function push-pull (0xA); PB8..PB15 push-pull outputs, 2 MHz (0x2).
-  reg(gpiob + gpio_crl) = (reg(gpiob + gpio_crl) & ~(0xFu << 24)) | (0xAu << 24);
+  // JTAG off, SW-DP on (AFIO_MAPR SWJ_CFG = 010): frees PB3 and PB4 for limit switches; no remaps.
+  reg(afio_mapr) = 0b010u << 24;
+  // GPIOB: PB6 = TIM4_CH1 alternate-function push-pull (0xA); PB8..PB15 push-pull outputs, 2 MHz (0x2);
+  // PB0, PB1, PB3, PB4, PB5, PB7 input with pull-up/down (CNF = 10, MODE = 00: 0x8), ODR set: pull-up
+  // (the limit switches).
+  std::uint32_t crl_b = (reg(gpiob + gpio_crl) & ~(0xFu << 24)) | (0xAu << 24);
+  for (const std::uint32_t pin : Stm32F1Board::limit_switch_pins) crl_b = (crl_b & ~(0xFu << (4 * pin))) | (0x8u << (4 * pin));
+  reg(gpiob + gpio_crl) = crl_b;
   reg(gpiob + gpio_crh) = 0x22222222u;
+  reg(gpiob + gpio_bsrr) = Stm32F1Board::limit_switch_pin_mask;
   // CRH: PA9 alternate-function push-pull 50 MHz (0xB), PA10 floating input (0x4).
   std::uint32_t crh = reg(gpioa + gpio_crh);
   crh = (crh & ~(0xFFu << 4)) | (0xBu << 4) | (0x4u << 8);

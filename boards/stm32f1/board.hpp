@@ -29,6 +29,7 @@ struct Stm32F1Chip {
   static constexpr unsigned usart1_irq = 37;                   ///< its interrupt number
   static constexpr std::uintptr_t gpioa_bsrr = 0x40010800 + 0x10;  ///< GPIOA bit set/reset register
   static constexpr std::uintptr_t gpiob_bsrr = 0x40010C00 + 0x10;  ///< GPIOB bit set/reset register (machine outputs)
+  static constexpr std::uintptr_t gpiob_idr = 0x40010C00 + 0x08;   ///< GPIOB input data register (limit switches)
   static constexpr std::size_t step_events_per_tick = 32;      ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = 64;                 ///< timed edges waiting for TIM2 (two ticks)
   static constexpr std::size_t setpoint_window = 2;            ///< setpoint frames in flight (8 KiB of RAM: not 4)
@@ -39,7 +40,8 @@ struct Stm32F1Chip {
   /// HSE 8 MHz -> PLL 72 MHz, or HSI 8 MHz if a ready flag does not come; QEMU: 24 MHz.
   static Clocks setup_clocks() noexcept;
   /// GPIOA, GPIOB, AFIO, USART1, TIM3 and TIM4 clocks; PA0..PA5 outputs, PA9 TX, PA10 RX; the
-  /// machine outputs: PB8..PB15 outputs, PA6 (TIM3_CH1) and PB6 (TIM4_CH1) alternate function.
+  /// machine outputs: PB8..PB15 outputs, PA6 (TIM3_CH1) and PB6 (TIM4_CH1) alternate function;
+  /// the limit switches: PB0, PB1, PB3, PB4, PB5, PB7 inputs with pull-ups (JTAG off, SWD kept).
   static void setup_gpio() noexcept;
   /// TIM2 clock on (APB1).
   static void enable_step_timer() noexcept;

@@ -17,7 +17,8 @@ constexpr std::uintptr_t flash_acr = 0x40023C00;
 constexpr std::uintptr_t gpioa = 0x40020000, gpiob = 0x40020400;
 static_assert(Stm32F4Chip::gpioa_bsrr == gpioa + 0x18);
 static_assert(Stm32F4Chip::gpiob_bsrr == gpiob + 0x18);
-constexpr std::uintptr_t gpio_moder = 0x00, gpio_ospeedr = 0x08, gpio_afrl = 0x20, gpio_afrh = 0x24;
+static_assert(Stm32F4Chip::gpiob_idr == gpiob + 0x10);
+constexpr std::uintptr_t gpio_moder = 0x00, gpio_ospeedr = 0x08, gpio_pupdr = 0x0C, gpio_afrl = 0x20, gpio_afrh = 0x24;
 
 constexpr std::uint32_t cr_hseon = 1u << 16, cr_hserdy = 1u << 17, cr_pllon = 1u << 24, cr_pllrdy = 1u << 25;
 constexpr std::uint32_t wait_attempts = 200'000;  // > 10 ms at 16 MHz; HSE needs ~2 ms
@@ -69,8 +70,17 @@ void Stm32F4Chip::setup_gpio() noexcept {
   reg(gpioa + gpio_ospeedr) = reg(gpioa + gpio_ospeedr) | 0xAAAu | (0b10u << 18);  // PA0-5, PA9 fast
   reg(gpioa + gpio_afrl) = (reg(gpioa + gpio_afrl) & ~(0xFu << 24)) | (2u << 24);
   reg(gpioa + gpio_afrh) = (reg(gpioa + gpio_afrh) & ~0xFF0u) | (7u << 4) | (7u << 8);
-  // GPIOB: PB6 alternate function AF2 = TIM4_CH1, PB8..PB15 general-purpose outputs (01).
-  reg(gpiob + gpio_moder) = (reg(gpiob + gpio_moder) & ~((0b11u << 12) | 0xFFFF0000u)) | (0b10u << 12) | 0x55550000u;
+  // GPIOB: PB6 alternate function AF2 = TIM4_CH1, PB8..PB15 general-purpose outputs (01); PB0, PB1,
+  // PB3, PB4, PB5, PB7 inputs (00) with pull-ups (PUPDR 01): the limit switches (PB3/PB4 leave JTAG;
+  // SWD on PA13/PA14 stays).
+  std::uint32_t moder_b = (reg(gpiob + gpio_moder) & ~((0b11u << 12) | 0xFFFF0000u)) | (0b10u << 12) | 0x55550000u;
+  std::uint32_t pupdr_b = reg(gpiob + gpio_pupdr);
+  for (const std::uint32_t pin : Stm32F4Board::limit_switch_pins) {
+    moder_b &= ~(0b11u << (2 * pin));
+    pupdr_b = (pupdr_b & ~(0b11u << (2 * pin))) | (0b01u << (2 * pin));
+  }
+  reg(gpiob + gpio_moder) = moder_b;
+  reg(gpiob + gpio_pupdr) = pupdr_b;
   reg(gpiob + gpio_afrl) = (reg(gpiob + gpio_afrl) & ~(0xFu << 24)) | (2u << 24);
 }
 

@@ -28,6 +28,7 @@ struct Stm32F4Chip {
   static constexpr unsigned usart1_irq = 37;                    ///< its interrupt number
   static constexpr std::uintptr_t gpioa_bsrr = 0x40020000 + 0x18;  ///< GPIOA bit set/reset register
   static constexpr std::uintptr_t gpiob_bsrr = 0x40020400 + 0x18;  ///< GPIOB bit set/reset register (machine outputs)
+  static constexpr std::uintptr_t gpiob_idr = 0x40020400 + 0x10;   ///< GPIOB input data register (limit switches)
   static constexpr std::size_t step_events_per_tick = 128;      ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = 256;                 ///< timed edges waiting for TIM2 (two ticks)
   static constexpr std::size_t setpoint_window = 4;             ///< setpoint frames in flight (firmware::App)

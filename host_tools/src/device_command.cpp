@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// `curvestep device [--port PATH] [--machine MACHINE.json --gpio] [--fast] [--executor]`: runs the
+// `curvestep device [--port PATH] [--machine MACHINE.json [--gpio] [--switch x-:POS ...]] [--fast] [--executor]`: runs the
 // firmware as a Linux process (boards/host); --executor without a planner (it replays pieces the
 // host planned, as the STM32F1 executor image does). Without --port it creates a pseudo-terminal and prints its path as
 // the first line on standard output, then serves until stopped (SIGINT, SIGTERM).
@@ -9,12 +9,17 @@
 #include <fcntl.h>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <regex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <curvestep/boards/host/device.hpp>
 #include <curvestep/boards/host/gpio_output.hpp>
 #include <curvestep/boards/host/gpiod_machine_outputs.hpp>
+#include <curvestep/boards/host/simulated_switches.hpp>
+#include <curvestep/host/job.hpp>
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/machine_file.hpp>
 
@@ -35,9 +40,35 @@ struct DeviceCommandOptions {
   bool gpio = false;
   bool fast = false;
   bool executor = false;
+  std::vector<std::string> switches;  ///< --switch x-:POS ...: simulated limit switches
   unsigned link_timeout_ms = 1000;
   unsigned retransmit_timeout_ms = 100;
 };
+
+/// A --switch value: "x-:POS" (the min switch of x at POS mm) or "y+:POS" (a max switch).
+boards::host::SimulatedSwitch parse_switch(const std::string& text) {
+  static const std::regex form("([xyzXYZ])([+-]):([+-]?[0-9]*\\.?[0-9]+([eE][+-]?[0-9]+)?)");
+  std::smatch m;
+  if (!std::regex_match(text, m, form)) {
+    throw std::runtime_error("--switch \"" + text + "\": write an axis, - (min) or + (max), a colon and mm, e.g. x-:-2.5 or y+:180");
+  }
+  boards::host::SimulatedSwitch s;
+  s.axis = static_cast<std::uint8_t>(std::string("xyz").find(static_cast<char>(std::tolower(m[1].str()[0]))));
+  s.max_side = m[2].str() == "+";
+  s.position_mm = std::stod(m[3].str());
+  return s;
+}
+
+/// The simulated switches of --switch, in steps of the --machine file's axes.
+boards::host::SwitchThresholds simulated_switches(const DeviceCommandOptions& o) {
+  if (o.machine.empty()) throw std::runtime_error("--switch needs --machine (the axes' steps_per_mm place the switches)");
+  const MachineFile machine = load_machine_file(o.machine);
+  std::vector<boards::host::SimulatedSwitch> switches;
+  for (const auto& text : o.switches) switches.push_back(parse_switch(text));
+  std::array<double, 3> steps_per_mm{};
+  for (std::size_t a = 0; a < 3; ++a) steps_per_mm[a] = machine.limits.axes[a].steps_per_mm;
+  return boards::host::switch_thresholds(switches.data(), switches.size(), steps_per_mm);
+}
 
 template <class Output>
 int serve(int fd, Output& output, const DeviceCommandOptions& o, boards::host::MachineOutputHooks* machine_outputs) {
@@ -54,6 +85,8 @@ int run_device_command(const DeviceCommandOptions& o) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   std::signal(SIGPIPE, SIG_IGN);
+  const std::optional<boards::host::SwitchThresholds> switches =
+      o.switches.empty() ? std::nullopt : std::optional(simulated_switches(o));  // refused before the port opens
   std::unique_ptr<boards::host::GpiodStepOutput> gpio;
   std::unique_ptr<boards::host::GpiodMachineOutputs> outputs;  // spindle, coolant, digital outputs, servo pen
   if (o.gpio) {
@@ -77,8 +110,16 @@ int run_device_command(const DeviceCommandOptions& o) {
     fd = line->fd();
     std::cout << o.port << std::endl;
   }
-  if (gpio) return serve(fd, *gpio, o, hooks);
   boards::host::CountingStepOutput counting;
+  if (switches) {
+    if (gpio) {
+      boards::host::SimulatedSwitches<boards::host::GpiodStepOutput> switched(*gpio, *switches);
+      return serve(fd, switched, o, hooks);
+    }
+    boards::host::SimulatedSwitches<boards::host::CountingStepOutput> switched(counting, *switches);
+    return serve(fd, switched, o, hooks);
+  }
+  if (gpio) return serve(fd, *gpio, o, hooks);
   return serve(fd, counting, o, hooks);
 }
 
@@ -91,6 +132,9 @@ void add_device_command(CLI::App& app) {
   device->add_flag("--gpio", options->gpio,
                    "Drive step/dir lines, and the spindle, coolant, digital-output and servo-pen lines it names, through "
                    "libgpiod (chip and line names from --machine)");
+  device->add_option("--switch", options->switches,
+                     "Simulate a limit switch: x-:POS closes at or below POS mm on x, y+:POS at or above POS on y "
+                     "(needs --machine for steps_per_mm; repeatable)");
   device->add_flag("--fast", options->fast,
                    "Tests: run ticks as fast as the link allows (flow-controlled), not in real time");
   device->add_flag("--executor", options->executor,

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // CountingOutput: the StepOutput `curvestep gpio` hands to the host board. It counts steps per axis
 // (signed by the direction level) and passes every edge on to an inner output (GpiodStepOutput,
-// or none in a dry run). Keeping the edges on time is the inner output's job (its EdgeClock).
+// or none in a dry run), and the inner output's limit switches back. Keeping the edges on time is the inner output's job (its EdgeClock).
 #pragma once
 
 #include <array>
@@ -34,6 +34,12 @@ class CountingOutput {
     if constexpr (requires(Inner& i) { i.fault_stop(); }) {
       if (inner_ != nullptr) inner_->fault_stop();
     }
+  }
+  /// The inner output's limit switches (none in a dry run).
+  [[nodiscard]] std::uint8_t limit_switches() noexcept
+    requires requires(Inner& i) { i.limit_switches(); }
+  {
+    return inner_ != nullptr ? inner_->limit_switches() : std::uint8_t{0};
   }
   /// Called by run_device at start: step-timer time 0 is `epoch`; fast: no waiting (tests).
   void set_epoch(const timespec& epoch, bool fast) noexcept {

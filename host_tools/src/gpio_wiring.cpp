@@ -15,7 +15,10 @@ boards::host::GpioLines step_lines(const GpioWiring& gpio, const std::string& ch
     lines.step[a] = gpio.axes[a]->step;
     lines.direction[a] = gpio.axes[a]->dir;
     lines.invert_direction[a] = gpio.axes[a]->invert_dir;
+    lines.min_switch[a] = gpio.axes[a]->min_switch;
+    lines.max_switch[a] = gpio.axes[a]->max_switch;
   }
+  lines.switches_active_low = gpio.switches_active_low;
   return lines;
 }
 

@@ -8,7 +8,6 @@
 #include <iostream>
 #include <memory>
 #include <regex>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,6 +22,7 @@
 #include <curvestep/host/swept_extent.hpp>
 
 #include "command_registry.hpp"
+#include "jog_move.hpp"
 #include "machine_for_link.hpp"
 #include "operator_session.hpp"
 
@@ -61,19 +61,6 @@ std::array<double, 3> parse_moves(const std::vector<std::string>& moves) {
   }
   if (distance == std::array<double, 3>{}) throw std::runtime_error("jog: nothing to move (every distance is 0)");
   return distance;
-}
-
-/// A one-line job from `start` by `distance` (at `feed_mm_per_s`, or the machine's feed if 0).
-Job jog_job(const std::array<double, 3>& start, const std::array<double, 3>& distance, double feed_mm_per_s) {
-  std::ostringstream text;
-  text << "{\"version\": 1, \"units\": \"mm\", \"segments\": [{\"type\": \"line\", \"points\": [[";
-  for (std::size_t a = 0; a < 3; ++a) text << (a == 0 ? "" : ", ") << format_number(start[a]);
-  text << "], [";
-  for (std::size_t a = 0; a < 3; ++a) text << (a == 0 ? "" : ", ") << format_number(start[a] + distance[a]);
-  text << "]]";
-  if (feed_mm_per_s > 0) text << ", \"feed\": " << format_number(feed_mm_per_s);
-  text << "}]}";
-  return parse_job(text.str(), "jog");
 }
 
 int run_jog(const JogCommandOptions& o) {

@@ -197,10 +197,10 @@ def document_examples():
     check(len(example) == 126 and mine == example, 'MachineConfiguration example (126 bytes)')
     arc = bytes.fromhex('0134' '02000000' '00000a00' '00000000' '00000000' '00000a00' '00000000' '0000ffff' '00000000' '00000000')
     check(len(arc) == 38 and arc[1] == 0x04 | 0x10 | 0x20, 'QueueSegment arc example: flags three axes, end of job, turns')
-    status = bytes.fromhex('01 00 03 11 00 20 00 40 e2 01 00 00 00 01 00 00 00 02 00 00 80 ff ff'.replace(' ', ''))
-    state, error, axes, depth, deepest, index = struct.unpack('<BBBHHI', status[:11])
-    position = struct.unpack('<iii', status[11:])
-    check((state, error, axes, depth, deepest, index) == (1, 0, 3, 17, 32, 123456) and position == (q16(1), q16(2), q16(-0.5)),
+    status = bytes.fromhex('01 00 03 11 00 20 00 40 e2 01 00 06 00 00 01 00 00 00 02 00 00 80 ff ff'.replace(' ', ''))
+    state, error, axes, depth, deepest, index, switches = struct.unpack('<BBBHHIB', status[:12])
+    position = struct.unpack('<iii', status[12:])
+    check((state, error, axes, depth, deepest, index, switches) == (1, 0, 3, 17, 32, 123456, 6) and position == (q16(1), q16(2), q16(-0.5)),
           'StatusReport example decodes')
     batch = bytes.fromhex('e8030000 03 03 00000100 00000200 0080ffff c801 01 00 808001 818001 7e'.replace(' ', ''))
     first, points = decode_setpoints(batch)

@@ -39,6 +39,21 @@ inline std::filesystem::path wire_exact_machine() {
   return path;
 }
 
+/// 80 steps/mm on x and y, a trapezoid profile at a = 1000 mm/s^2 (feed 50 mm/s, 1000 Hz), so a
+/// test can compute setpoints by hand; `extra` root members are added (e.g. a "homing" section).
+inline std::filesystem::path trapezoid_machine(const std::string& name, const std::string& extra = "") {
+  const auto path = scratch_dir() / (name + ".json");
+  std::ofstream(path) << R"({
+  "version": 1, "v_max": 200, "a_max": 1000, "j_max": 50000, "feed": 50, "rapid": 50,
+  "tolerance": 0.01, "rate_hz": 1000, "junction_deviation": 0.02, "max_step_rate": 100000, "profile": "trapezoid",
+  "axes": {
+    "x": {"steps_per_mm": 80, "v_max": 200, "a_max": 1000},
+    "y": {"steps_per_mm": 80, "v_max": 200, "a_max": 1000},
+    "z": {"steps_per_mm": 400, "v_max": 20, "a_max": 500}
+  })" << (extra.empty() ? "" : ",\n  " + extra) << "\n}\n";
+  return path;
+}
+
 /// A copy of `job` with every weight rounded to Q16.16 (the wire's format), so the file means
 /// the same to the simulator and to the device.
 inline std::filesystem::path wire_exact_job(const std::filesystem::path& job) {

@@ -13,16 +13,21 @@ GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz,
     : clock_(timer_hz, late_limit_ns) {
   chip_ = detail::open_chip(lines.chip);
   const char* axis_names[] = {"x", "y", "z"};
-  const auto request = [this, &lines, &axis_names](const std::string& name, const char* role, std::size_t axis) -> gpiod_line* {
+  const auto request = [this, &lines, &axis_names](const std::string& name, const char* role, std::size_t axis,
+                                                   bool input) -> gpiod_line* {
     if (name.empty()) return nullptr;
-    return detail::request_output_line(chip_, lines.chip, name, std::string(axis_names[axis]) + " " + role);
+    return detail::request_line(chip_, lines.chip, name, std::string(axis_names[axis]) + " " + role,
+                                input ? detail::LineDirection::Input : detail::LineDirection::Output);
   };
   try {
     for (std::size_t axis = 0; axis < 3; ++axis) {
-      step_[axis] = request(lines.step[axis], "step", axis);
-      direction_[axis] = request(lines.direction[axis], "direction", axis);
+      step_[axis] = request(lines.step[axis], "step", axis, false);
+      direction_[axis] = request(lines.direction[axis], "direction", axis, false);
       invert_[axis] = lines.invert_direction[axis];
+      switch_[2 * axis] = request(lines.min_switch[axis], "min switch", axis, true);
+      switch_[2 * axis + 1] = request(lines.max_switch[axis], "max switch", axis, true);
     }
+    switches_active_low_ = lines.switches_active_low;
   } catch (...) {
     gpiod_chip_close(chip_);  // also releases the lines requested so far
     throw;
@@ -66,6 +71,17 @@ void GpiodStepOutput::set_step(std::uint64_t time_ticks, std::uint8_t axis, bool
 
 void GpiodStepOutput::fault_stop() noexcept {
   for (gpiod_line* line : step_) write(line, false);
+}
+
+std::uint8_t GpiodStepOutput::limit_switches() noexcept {
+  std::uint8_t closed = 0;
+  for (std::size_t bit = 0; bit < switch_.size(); ++bit) {
+    if (switch_[bit] == nullptr) continue;
+    const int level = gpiod_line_get_value(switch_[bit]);
+    const bool is_closed = level < 0 || (level == 1) != switches_active_low_;
+    if (is_closed) closed = static_cast<std::uint8_t>(closed | (1u << bit));
+  }
+  return closed;
 }
 
 }  // namespace curvestep::boards::host

@@ -11,7 +11,7 @@ GpiodLineSet::GpiodLineSet(const std::string& chip, const std::vector<std::pair<
   chip_ = detail::open_chip(chip);
   try {
     for (const auto& [name, role] : lines) {
-      lines_.push_back(name.empty() ? nullptr : detail::request_output_line(chip_, chip, name, role));
+      lines_.push_back(name.empty() ? nullptr : detail::request_line(chip_, chip, name, role));
     }
   } catch (...) {
     gpiod_chip_close(chip_);  // also releases the lines requested so far

@@ -23,12 +23,14 @@ gpiod_chip* open_chip(const std::string& chip) {
   return opened;
 }
 
-gpiod_line* request_output_line(gpiod_chip* chip, const std::string& chip_name, const std::string& name, const std::string& role) {
+gpiod_line* request_line(gpiod_chip* chip, const std::string& chip_name, const std::string& name, const std::string& role,
+                         LineDirection direction) {
   gpiod_line* line = gpiod_chip_find_line(chip, name.c_str());
   if (line == nullptr) throw GpioError("GPIO line \"" + name + "\" (" + role + ") not found on chip \"" + chip_name + "\"");
-  if (gpiod_line_request_output(line, consumer, 0) != 0) {
-    throw GpioError("GPIO line \"" + name + "\" (" + role + ") on chip \"" + chip_name +
-                    "\" cannot be requested as an output: " + std::strerror(errno));
+  const bool input = direction == LineDirection::Input;
+  if ((input ? gpiod_line_request_input(line, consumer) : gpiod_line_request_output(line, consumer, 0)) != 0) {
+    throw GpioError("GPIO line \"" + name + "\" (" + role + ") on chip \"" + chip_name + "\" cannot be requested as an " +
+                    (input ? "input: " : "output: ") + std::strerror(errno));
   }
   return line;
 }

@@ -12,6 +12,7 @@
 #include <curvestep/host/job.hpp>
 
 #include "json_document.hpp"
+#include "machine_homing.hpp"
 #include "machine_pen.hpp"
 
 namespace curvestep::host {
@@ -84,10 +85,11 @@ void parse_output_lines(const Reader& reader, const Node& gpio, LineNames& names
   }
 }
 
-/// The "gpio" section: {"chip": NAME, "x": {"step": LINE, "dir": LINE, "invert_dir": BOOL}, "y": ..., "z": ...,
-/// "spindle": {...}, "coolant": {...}, "outputs": [...]}.
+/// The "gpio" section: {"chip": NAME, "switches_active_low": BOOL, "x": {"step": LINE, "dir": LINE,
+/// "invert_dir": BOOL, "min": LINE, "max": LINE}, "y": ..., "z": ..., "spindle": {...}, "coolant": {...},
+/// "outputs": [...]}.
 GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
-  reader.check_keys(gpio, {"chip", "x", "y", "z", "spindle", "coolant", "outputs"});
+  reader.check_keys(gpio, {"chip", "x", "y", "z", "switches_active_low", "spindle", "coolant", "outputs"});
   GpioWiring wiring;
   const Node chip = reader.require(gpio, "chip");
   wiring.chip = reader.string(chip);
@@ -97,18 +99,22 @@ GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
   for (std::size_t axis = 0; axis < motion_axes; ++axis) {
     const auto entry = reader.optional(gpio, axis_names[axis]);
     if (!entry) continue;
-    reader.check_keys(*entry, {"step", "dir", "invert_dir"});
+    reader.check_keys(*entry, {"step", "dir", "invert_dir", "min", "max"});
     GpioAxisWiring lines;
-    const auto line = [&](const char* key) {
-      return names.take(reader.require(*entry, key), std::string("\"gpio\".\"") + axis_names[axis] + "\".\"" + key + "\"");
+    const auto named_line = [&](const Node& node, const char* key) {
+      return names.take(node, std::string("\"gpio\".\"") + axis_names[axis] + "\".\"" + key + "\"");
     };
+    const auto line = [&](const char* key) { return named_line(reader.require(*entry, key), key); };
     lines.step = line("step");
     lines.dir = line("dir");
     if (const auto invert = reader.optional(*entry, "invert_dir")) lines.invert_dir = reader.boolean(*invert);
+    if (const auto min = reader.optional(*entry, "min")) lines.min_switch = named_line(*min, "min");
+    if (const auto max = reader.optional(*entry, "max")) lines.max_switch = named_line(*max, "max");
     wiring.axes[axis] = lines;
     any = true;
   }
   if (!any) reader.fail(gpio, "wires no axis (expected at least one of \"x\", \"y\", \"z\" with \"step\" and \"dir\")");
+  if (const auto low = reader.optional(gpio, "switches_active_low")) wiring.switches_active_low = reader.boolean(*low);
   parse_output_lines(reader, gpio, names, wiring);
   return wiring;
 }
@@ -184,7 +190,7 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
   const Reader reader(document, Error::InvalidMachine);
   const Node root = reader.root();
   reader.check_keys(root, {"version", "v_max", "a_max", "j_max", "feed", "rapid", "tolerance", "rate_hz",
-                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance", "tools", "g28", "g30",
+                           "junction_deviation", "max_step_rate", "profile", "axes", "gpio", "blend_tolerance", "tools", "g28", "g30", "homing",
                            "pen"});
   MachineFile file;
   file.name = document.name();
@@ -264,6 +270,7 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
   if (const auto node = reader.optional(root, "g28")) file.g28_position = parse_position(reader, *node);
   if (const auto node = reader.optional(root, "g30")) file.g30_position = parse_position(reader, *node);
   if (const auto pen = reader.optional(root, "pen")) file.pen = detail::parse_pen(reader, *pen);
+  if (const auto homing = reader.optional(root, "homing")) file.homing = detail::parse_homing(reader, *homing, file.travel);
   if (const auto node = reader.optional(root, "blend_tolerance")) {
     const double value = reader.number(*node);
     if (!(value >= 0 && value <= max_blend_tolerance_mm)) {

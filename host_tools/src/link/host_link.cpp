@@ -13,6 +13,11 @@ std::string describe_error(Error code) {
   return std::string(describe(code)) + " (" + std::string(error_name(code)) + ")";
 }
 
+std::string limit_switch_name(std::uint16_t bit) {
+  if (bit >= 6) return "switch " + std::to_string(bit);
+  return std::string(1, "XYZ"[bit / 2]) + (bit % 2 == 0 ? " min" : " max");
+}
+
 HostLink::HostLink(Transport& transport, protocol::SenderSettings settings)
     : transport_(transport),
       sender_(settings),

@@ -7,8 +7,8 @@
 #include <cmath>
 #include <deque>
 #include <iterator>
-#include <optional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +51,7 @@ class Upload {
       events_ = to_wire_events(job_, machine_.rate_hz, piece_mode_);
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
+      if (options_.seek_switch) submit_marked(protocol::Message(protocol::SeekSwitch{*options_.seek_switch}));
       while (!(aborting_ ? abort_settled() : finished())) {
         settle_acknowledged();
         take_operator_command();
@@ -290,6 +291,14 @@ class Upload {
     return true;
   }
 
+  /// Submits a command that is no unit of the job (a pause's Resume, SeekSwitch).
+  void submit_marked(const protocol::Message& m) {
+    link_.submit(m);
+    submitted_.push_back(event_marker);
+    sequence_to_unit_.erase(sequence_);
+    ++sequence_;
+  }
+
   /// A pause the controller reported: tell the operator once, Resume when resume_now() says so.
   void serve_pause() {
     if (!pause_pending_) return;
@@ -299,10 +308,7 @@ class Upload {
     }
     const bool go = !options_.resume_now || pause_resume_asked_ || options_.resume_now();
     if (!go || !link_.can_submit(protocol::MessageType::Resume)) return;
-    link_.submit(protocol::Message(protocol::Resume{}));
-    submitted_.push_back(event_marker);
-    sequence_to_unit_.erase(sequence_);
-    ++sequence_;
+    submit_marked(protocol::Message(protocol::Resume{}));
     pause_pending_ = false;
     pause_resume_asked_ = false;
   }
@@ -353,6 +359,10 @@ class Upload {
         if (last_status_.state == protocol::MachineState::Running || last_status_.setpoint_index > 0) seen_running_ = true;
         if (last_status_.state == protocol::MachineState::Fault && !aborting_) {
           const auto code = static_cast<Error>(last_status_.error);
+          if (hard_limit_switch_ && code == Error::HardLimit) {
+            throw StreamError(code, transport_.name() + ": hard limit: " + limit_switch_name(*hard_limit_switch_) + " at setpoint " +
+                                        std::to_string(last_status_.setpoint_index) + " (the controller stopped at once; Abort or a new session clears it)");
+          }
           throw StreamError(code, transport_.name() + ": the controller stopped with a fault: " + describe_error(code) +
                                       " at setpoint " + std::to_string(last_status_.setpoint_index));
         }
@@ -368,8 +378,13 @@ class Upload {
         pause_told_ = false;
         break;
       }
+      case protocol::MessageType::SwitchReport: switch_closed_ = m.get<protocol::SwitchReport>(); break;
       case protocol::MessageType::ErrorReport: {
         const auto& report = m.get<protocol::ErrorReport>();
+        if (report.code == Error::HardLimit) {
+          hard_limit_switch_ = report.index;  // told with its setpoint by the StatusReport that follows
+          break;
+        }
         std::string text = transport_.name() + ": the controller reported " + describe_error(report.code) + segment_text(report.sequence);
         if (report.index != no_index) text += " (index " + std::to_string(report.index) + ")";
         throw StreamError(report.code, text);
@@ -384,6 +399,7 @@ class Upload {
       idle_seen_ = false;
       return false;
     }
+    if (switch_closed_) return true;  // a seek ends at its switch: the setpoint that closed it is not streamed
     // Idle: done once every setpoint up to the last one arrived (the reliable stream delivers
     // them in order, maybe after the report). Indices may skip: a held or starved controller
     // ticks without reporting (docs/firmware.md). A stream that does not reach the last index
@@ -454,6 +470,7 @@ class Upload {
       if (resumed_[k]) result.holds[k].standing_ticks = standing_between(holds_[k].tick, until);
     }
     result.aborted = aborting_;
+    result.switch_closed = switch_closed_;
     result.final_setpoint_index = last_status_.setpoint_index;
     for (std::size_t a = 0; a < 3; ++a) result.final_position_q16[a] = last_status_.position[a];
     return result;
@@ -510,6 +527,8 @@ class Upload {
   bool holding_ = false;             // FeedHold sent, no Resume yet
   bool hold_index_pending_ = false;  // waiting for the StatusReport that names the hold's setpoint
   bool aborting_ = false;            // Abort sent
+  std::optional<std::uint16_t> hard_limit_switch_;  // the switch of a HardLimit fault, until its StatusReport
+  std::optional<protocol::SwitchReport> switch_closed_;  // where a seek job met its switch
   bool abort_reported_ = false;      // a report after the Abort says the controller stands
   std::vector<StreamHold> holds_;
   std::vector<bool> resumed_;  // per hold: Resume sent

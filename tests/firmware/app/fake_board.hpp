@@ -94,6 +94,7 @@ struct Received {
   std::vector<protocol::Nak> naks;
   std::vector<protocol::Ack> acks;
   std::vector<protocol::PauseReport> pauses;
+  std::vector<protocol::SwitchReport> switches;
   int capabilities = 0;
   protocol::Capabilities last_capabilities{};
 };
@@ -195,6 +196,7 @@ class Host {
         case protocol::MessageType::SetpointBatch: received.batches.push_back(msg.get<protocol::SetpointBatch>()); break;
         case protocol::MessageType::ErrorReport: received.errors.push_back(msg.get<protocol::ErrorReport>()); break;
         case protocol::MessageType::PauseReport: received.pauses.push_back(msg.get<protocol::PauseReport>()); break;
+        case protocol::MessageType::SwitchReport: received.switches.push_back(msg.get<protocol::SwitchReport>()); break;
         default: break;
       }
     }

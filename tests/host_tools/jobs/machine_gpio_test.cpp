@@ -12,6 +12,8 @@
 #include <curvestep/core/error.hpp>
 #include <curvestep/host/machine_file.hpp>
 
+#include "machine_error.hpp"
+
 using namespace curvestep;
 using namespace curvestep::host;
 
@@ -30,15 +32,7 @@ std::string machine_with(const std::string& extra) {
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-LoadError error_of(const std::string& text) {
-  try {
-    (void)parse_machine_file(text, "gpio_machine.json");
-  } catch (const LoadError& e) {
-    return e;
-  }
-  FAIL("the machine file loaded:\n" << text);
-  return LoadError({}, "", Error::InvalidArgument);
-}
+LoadError error_of(const std::string& text) { return testing::machine_error_of(text, "gpio_machine.json"); }
 
 }  // namespace
 
@@ -67,6 +61,21 @@ TEST_CASE("machine gpio: the section maps onto GpioWiring, the other keys are st
   CHECK_FALSE(parse_machine_file(machine_with(""), "m.json").gpio.has_value());
 }
 
+TEST_CASE("machine gpio: limit switch input lines per axis and their level", "[host_tools][jobs][gpio][limits]") {
+  const MachineFile file = parse_machine_file(machine_with(R"("gpio": {"chip": "gpiochip0", "switches_active_low": true,
+           "x": {"step": "GPIO17", "dir": "GPIO27", "min": "GPIO5", "max": "GPIO6"},
+           "y": {"step": "GPIO22", "dir": "GPIO23", "max": "GPIO13"}})"),
+                                              "m.json");
+  REQUIRE(file.gpio.has_value());
+  CHECK(file.gpio->switches_active_low);
+  CHECK(file.gpio->axes[0]->min_switch == "GPIO5");
+  CHECK(file.gpio->axes[0]->max_switch == "GPIO6");
+  CHECK(file.gpio->axes[1]->min_switch.empty());
+  CHECK(file.gpio->axes[1]->max_switch == "GPIO13");
+  CHECK_FALSE(parse_machine_file(machine_with(R"("gpio": {"chip": "c", "x": {"step": "A", "dir": "B"}})"), "m.json")
+                  .gpio->switches_active_low);
+}
+
 TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools][jobs][gpio]") {
   struct Case {
     std::string gpio;
@@ -86,9 +95,9 @@ TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools
       {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"invert_dir\": 1}}", 8,
        "\"gpio\".\"x\".\"invert_dir\"", "expected true or false"},
       {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"pulse_us\": 5}}", 8,
-       "\"gpio\".\"x\".\"pulse_us\"", "unknown key (expected one of: step, dir, invert_dir, comment)"},
+       "\"gpio\".\"x\".\"pulse_us\"", "unknown key (expected one of: step, dir, invert_dir, min, max, comment)"},
       {"\"gpio\": {\"chip\": \"c\",\n  \"w\": {\"step\": \"A\", \"dir\": \"B\"}}", 8, "\"gpio\".\"w\"",
-       "unknown key (expected one of: chip, x, y, z, spindle, coolant, outputs, comment)"},
+       "unknown key (expected one of: chip, x, y, z, switches_active_low, spindle, coolant, outputs, comment)"},
       {"\"gpio\": {\"chip\": \"c\", \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"outputs\": [\"C\", \"A\"]}", 8,
        "\"gpio\".\"outputs\"[1]", "line \"A\" is already used by \"gpio\".\"x\".\"step\""},
       {"\"gpio\": {\"chip\": \"c\", \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"outputs\": \"C\"}", 8,
@@ -99,6 +108,14 @@ TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools
        "\"gpio\".\"spindle\".\"pwm\"", "unknown key (expected one of: enable, direction, comment)"},
       {"\"gpio\": {\"chip\": \"c\", \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"coolant\": {\"mist\": \"M\", \"flood\": \"M\"}}", 8,
        "\"gpio\".\"coolant\".\"flood\"", "line \"M\" is already used by \"gpio\".\"coolant\".\"mist\""},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"min\": 5}}", 8, "\"gpio\".\"x\".\"min\"",
+       "expected a string, got a number"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"max\": \"\"}}", 8, "\"gpio\".\"x\".\"max\"",
+       "must not be empty"},
+      {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"max\": \"B\"}}", 8, "\"gpio\".\"x\".\"max\"",
+       "line \"B\" is already used by \"gpio\".\"x\".\"dir\""},
+      {"\"gpio\": {\"chip\": \"c\", \"switches_active_low\": \"yes\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\"}}", 7,
+       "\"gpio\".\"switches_active_low\"", "expected true or false"},
       {R"("gpio": "gpiochip0")", 7, "\"gpio\"", "expected an object"},
       {R"("gpoi": {"chip": "c"})", 7, "\"gpoi\"", "unknown key"},
   };

@@ -54,6 +54,8 @@
 //   Abort                -> stop at once: controller aborted and flushed, board.fault_stop(); the
 //                           next job must start where the machine stopped (StatusReport position).
 //   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, position).
+//   SeekSwitch           -> homing: the next job ends at once where that limit switch closes
+//                           (SwitchReport; limit_switches.hpp); SetPosition -> new coordinates at rest.
 // Every failed command is answered with ErrorReport(code, index, the frame's sequence number); a
 // fault met while running carries the sequence number of the last frame received. The segments of
 // the next job are accepted once the previous job has finished (state Idle again).
@@ -72,6 +74,8 @@
 //   * loss of the link: no valid frame for settings.link_timeout_ms -> feed hold (plus an
 //     ErrorReport(LinkTimeout) in case the host still listens); Resume continues;
 //   * abort: immediate stop and flush, no braking, board.fault_stop();
+//   * hard limits: after each tick's edges, a closed limit switch whose axis moved toward it is a
+//     fault (HardLimit, index = the switch; limit_switches.hpp);
 //   * a fault (a setpoint outside Q16.16, a step rate the drivers cannot follow, ...): the
 //     controller stops, board.fault_stop(), state Fault, ErrorReport(code, index); only Abort or
 //     a new session leaves Fault.
@@ -120,6 +124,7 @@
 #include <curvestep/firmware/board_hooks.hpp>
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/event_timeline.hpp>
+#include <curvestep/firmware/limit_switches.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
 #include <curvestep/firmware/tick_watch.hpp>
@@ -239,6 +244,7 @@ class App {
       // the machine is; every later one moves the steps from there.
       setpoint.tick = steps_.tick();
       if (auto reset = steps_.reset(setpoint); !reset) return raise_fault(reset.failure());
+      declare_position(board_, {steps_.count(0), steps_.count(1), steps_.count(2)});
       positioned_ = true;
     } else {
       if (auto advanced = steps_.advance(setpoint, batch_); !advanced) return raise_fault(advanced.failure());
@@ -246,6 +252,14 @@ class App {
       if (edges_lost()) {
         position_ = wire;  // the step generator and the board have moved to this setpoint
         return raise_fault(fail(Error::StepsLost, setpoint.segment));
+      }
+      const std::uint8_t closed = read_limit_switches(board_);
+      const std::uint8_t hit = hard_limit_hit(closed, position_, wire, axis_count_);
+      if (seek_closed(closed, seek_switch_) || hit != no_limit_switch) {
+        position_ = wire;  // the board has this setpoint's edges: the machine stops there
+        setpoint_index_ = static_cast<std::uint32_t>(job_tick);
+        if (seek_closed(closed, seek_switch_)) return stop_at_switch();
+        return raise_fault(fail(Error::HardLimit, hit));
       }
     }
     position_ = wire;
@@ -312,6 +326,7 @@ class App {
     bool held = false;      ///< a feed hold came to a stop
     bool paused = false;    ///< a pause event stopped the job: report it (PauseReport)
     bool fault = false;     ///< raise_fault() stopped the machine: report fault_
+    bool switch_closed = false;  ///< a SeekSwitch job met its switch: report switch_report_
   };
 
   [[nodiscard]] static constexpr protocol::Capabilities make_capabilities() noexcept {
@@ -442,6 +457,8 @@ class App {
       case MessageType::StatusRequest:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return send_status();
+      case MessageType::SeekSwitch: return on_seek_switch(frame.payload);
+      case MessageType::SetPosition: return on_set_position(frame.payload);
       default: return report(fail(Error::UnknownMessage, frame.type));
     }
   }
@@ -451,7 +468,8 @@ class App {
     using protocol::MessageType;
     const MessageType queues = plans_on_board ? MessageType::QueueSegment : MessageType::QueuePiece;
     return type == MessageType::MachineConfiguration || type == queues || type == MessageType::QueueEvent ||
-           type == MessageType::Start || type == MessageType::Resume;
+           type == MessageType::Start || type == MessageType::Resume || type == MessageType::SeekSwitch ||
+           type == MessageType::SetPosition;
   }
 
   [[gnu::noinline]] void on_machine_configuration(std::span<const std::byte> payload) noexcept {
@@ -512,6 +530,43 @@ class App {
     if (!configured()) return report(fail(Error::ConfigurationMissing));
     if (phase_ == Phase::Fault || job_end_known_) return report(fail(Error::InvalidState));
     report_if_failed(machine_events_.push(m.value()));
+  }
+
+  // --- homing (limit_switches.hpp, docs/firmware.md "Homing") ---------------------------------
+
+  /// SeekSwitch: the next job ends where `limit_switch` closes. Before Start only.
+  [[gnu::noinline]] void on_seek_switch(std::span<const std::byte> payload) noexcept {
+    const auto m = protocol::decode<protocol::SeekSwitch>(payload);
+    if (!m) return report(m.failure());
+    if (!configured()) return report(fail(Error::ConfigurationMissing));
+    if (phase_ == Phase::Fault || job_started(phase_)) return report(fail(Error::InvalidState));
+    if (m.value().limit_switch >= 2 * axis_count_) return report(fail(Error::InvalidArgument, 0));
+    seek_switch_ = m.value().limit_switch;
+  }
+
+  /// SetPosition: new coordinates for the standing machine; the next job starts there (its first
+  /// setpoint declares the position again, no step is taken).
+  [[gnu::noinline]] void on_set_position(std::span<const std::byte> payload) noexcept {
+    const auto m = protocol::decode<protocol::SetPosition>(payload);
+    if (!m) return report(m.failure());
+    if (phase_ == Phase::Fault) return report(fail(Error::InvalidState));
+    if (moving_ || job_started(phase_) || controller_.queued() > 0) return report(fail(Error::PlannerBusy));
+    if (m.value().axes >= (1u << axis_count_)) return report(fail(Error::InvalidArgument, 0));
+    const protocol::WirePoint at{m.value().x, m.value().y, m.value().z};
+    for (std::size_t axis = 0; axis < axis_count_; ++axis) {
+      if ((m.value().axes & (1u << axis)) != 0) position_[axis] = at[axis];
+    }
+    last_end_ = position_;
+    has_last_end_ = true;
+    positioned_ = false;
+  }
+
+  /// A SeekSwitch job met its switch: it ends where it stands, without braking (the edges already
+  /// handed to the board play out, so the position stays exact); poll() sends the SwitchReport.
+  void stop_at_switch() noexcept {
+    switch_report_ = protocol::SwitchReport{seek_switch_, setpoint_index_, position_[0], position_[1], position_[2]};
+    stop_job(false);
+    events_.switch_closed = true;
   }
 
   [[gnu::noinline]] void on_queue_segment(std::span<const std::byte> payload) noexcept {
@@ -708,6 +763,7 @@ class App {
     controller_.abort();
     controller_.reset();
     machine_events_.clear();
+    seek_switch_ = no_limit_switch;
     paused_ = false;
     moving_ = false;
     job_end_known_ = false;
@@ -759,8 +815,14 @@ class App {
       report(fault_);
       send_status();
     }
+    if (events_.switch_closed) {
+      events_.switch_closed = false;
+      send_message(switch_report_);
+      send_status();
+    }
     if (events_.finished) {
       events_.finished = false;
+      seek_switch_ = no_limit_switch;  // the job ended without meeting its switch
       controller_.reset();
       job_end_known_ = false;
       job_segments_ = 0;
@@ -881,6 +943,7 @@ class App {
     s.queue_depth = static_cast<std::uint16_t>(controller_.queued());
     s.max_queue_depth = statistics_.max_queue_depth;
     s.setpoint_index = setpoint_index_;
+    s.limit_switches = read_limit_switches(board_);
     s.position = position_;
     send_message(s);
   }
@@ -902,6 +965,8 @@ class App {
   EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
   SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
   protocol::PauseReport pause_{};          ///< the pause in force (paused_), reported once
+  protocol::SwitchReport switch_report_{};  ///< where a SeekSwitch job stopped, reported once
+  std::uint8_t seek_switch_ = no_limit_switch;  ///< the switch that ends the next job (SeekSwitch), or none
   bool paused_ = false;                    ///< a pause event holds the job until Resume
   CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
   StepGenerator steps_{StepConfig{}};

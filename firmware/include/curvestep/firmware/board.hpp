@@ -20,6 +20,9 @@
 //     std::uint32_t edges_dropped();  // optional: edges that found the board's edge buffer full
 //     std::uint32_t cycle_count();       // optional, with cycles_per_second(): a free-running
 //     std::uint32_t cycles_per_second(); //   32-bit cycle counter that times the ticks (TickWatch)
+//     std::uint8_t limit_switches();  // optional: closed limit switches, read every tick while
+//                                     //   moving (limit_switches.hpp: bit 2 axis min, 2 axis + 1 max)
+//     void position_declared(const std::array<std::int32_t, 3>& steps);  // optional (simulators)
 //   };
 //
 // Timing contract:

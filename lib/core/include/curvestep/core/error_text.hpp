@@ -80,6 +80,7 @@ namespace curvestep {
     case Error::OutsideTravel: return "OutsideTravel";
     case Error::NotSupported: return "NotSupported";
     case Error::TickDeadlineMissed: return "TickDeadlineMissed";
+    case Error::HardLimit: return "HardLimit";
   }
   return "Unknown";
 }
@@ -155,6 +156,7 @@ namespace curvestep {
     case Error::OutsideTravel: return "a segment leaves the configured travel range of an axis (index = axis)";
     case Error::NotSupported: return "this controller cannot do that (a feed hold without an on-board planner)";
     case Error::TickDeadlineMissed: return "a control tick started more than the tolerated periods late: its step edges came too late (index = periods late)";
+    case Error::HardLimit: return "a limit switch closed while its axis moved toward it: stopped at once (index = switch: 2 x axis, + 1 for max)";
   }
   return "unknown error";
 }
@@ -229,6 +231,7 @@ inline constexpr Error all_errors[] = {
     Error::OutsideTravel,
     Error::NotSupported,
     Error::TickDeadlineMissed,
+    Error::HardLimit,
 };
 
 }  // namespace curvestep

@@ -52,15 +52,19 @@ enum class MessageType : std::uint8_t {
   StatusRequest = 0x16,         ///< host -> controller: ask for a status report
   QueuePiece = 0x17,            ///< host -> controller: one host-planned piece (controller without a planner)
   QueueEvent = 0x18,            ///< host -> controller: a machine event (spindle, coolant, output, pen, ...) at a joint
+  SeekSwitch = 0x1A,            ///< host -> controller: the next job stops at once when this limit switch closes (homing)
+  SetPosition = 0x1B,           ///< host -> controller: the machine stands at these coordinates (homing), at rest
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
   SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints (sequenced, acknowledged)
   ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
   PauseReport = 0x23,           ///< controller -> host: the job paused for the operator (M0/M1, M6, a pen change)
+  SwitchReport = 0x24,          ///< controller -> host: a SeekSwitch job stopped: where the switch closed
 };
 
 /// True for the types this protocol version defines.
 [[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
-  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || (type >= 0x20 && type <= 0x23);
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || type == 0x1A || type == 0x1B ||
+         (type >= 0x20 && type <= 0x24);
 }
 
 /// The two ends of the link.
@@ -69,10 +73,10 @@ enum class Endpoint : std::uint8_t {
   Controller,  ///< the firmware
 };
 
-/// True for host commands (0x10 .. 0x18): the host-to-controller reliable stream.
+/// True for host commands (0x10 .. 0x18, 0x1A, 0x1B): the host-to-controller reliable stream.
 [[nodiscard]] constexpr bool is_command(MessageType type) noexcept {
   const auto value = static_cast<std::uint8_t>(type);
-  return value >= 0x10 && value <= 0x18;
+  return (value >= 0x10 && value <= 0x18) || value == 0x1A || value == 0x1B;
 }
 
 /// True for messages that travel in a reliable, sequenced stream: host commands one way,
@@ -346,6 +350,7 @@ struct StatusReport {
   std::uint16_t queue_depth = 0;        ///< segments waiting in the queue
   std::uint16_t max_queue_depth = 0;    ///< deepest the queue has been this session (soak diagnostics)
   std::uint32_t setpoint_index = 0;     ///< index of the current setpoint since start
+  std::uint8_t limit_switches = 0;      ///< limit switches closed now: bit 2 x axis (min), 2 x axis + 1 (max)
   WirePoint position{};                 ///< Q16.16 commanded position
 };
 
@@ -372,6 +377,34 @@ struct PauseReport {
   std::uint32_t setpoint_index = 0;                              ///< the setpoint it stopped at
   MachineEventKind kind = MachineEventKind::ProgramPause;        ///< what for
   std::uint32_t value = 0;                                       ///< the tool number for a tool change
+};
+
+/// Homing: the job started next stops at once, without braking and keeping its edges, when the
+/// limit switch `limit_switch` closes (any motion), and the controller answers SwitchReport.
+struct SeekSwitch {
+  static constexpr MessageType type = MessageType::SeekSwitch;  ///< message type
+  std::uint8_t limit_switch = 0;                                ///< switch bit: 2 x axis, + 1 for the max switch
+};
+
+/// Homing: the machine stands at these coordinates (the axes in `axes`; the others keep theirs).
+/// Only at rest with an empty queue; the next job starts there without moving.
+struct SetPosition {
+  static constexpr MessageType type = MessageType::SetPosition;  ///< message type
+  std::uint8_t axes = 0;                                         ///< bit a: set axis a
+  std::int32_t x = 0;                                            ///< Q16.16 raw, mm
+  std::int32_t y = 0;                                            ///< Q16.16 raw, mm
+  std::int32_t z = 0;                                            ///< Q16.16 raw, mm
+};
+
+/// A SeekSwitch job stopped: the switch closed with the edges of this setpoint, at this position
+/// (where the machine stands). The job is ended (Idle) as by Abort, not a fault.
+struct SwitchReport {
+  static constexpr MessageType type = MessageType::SwitchReport;  ///< message type
+  std::uint8_t limit_switch = 0;                                  ///< the switch bit armed by SeekSwitch
+  std::uint32_t setpoint_index = 0;                               ///< the setpoint whose steps closed it
+  std::int32_t x = 0;                                             ///< Q16.16 raw, mm
+  std::int32_t y = 0;                                             ///< Q16.16 raw, mm
+  std::int32_t z = 0;                                             ///< Q16.16 raw, mm
 };
 
 // The fixed-field messages, each described once (wire_layout.hpp derives encode, decode, size).
@@ -409,12 +442,12 @@ struct WireFields<Capabilities>
   if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) return 13;
   return all_fields_valid;
 }
-/// StatusReport's fixed head (11 bytes); the position follows, 4 bytes per axis (axis_count).
+/// StatusReport's fixed head (12 bytes); the position follows, 4 bytes per axis (axis_count).
 /// Not a WireFields: the position's length depends on axis_count, so encode/decode are written
 /// out below around this one description of the fixed fields.
 using StatusReportHead = WireLayout<&StatusReport::state, &StatusReport::error, &StatusReport::axis_count,
                                     &StatusReport::queue_depth, &StatusReport::max_queue_depth,
-                                    &StatusReport::setpoint_index>;
+                                    &StatusReport::setpoint_index, &StatusReport::limit_switches>;
 /// MachineConfiguration's fixed head (62 bytes: axis count, profile as the flags byte, the
 /// limits, feeds and rate); axis_count AxisConfigurationLayouts follow.
 using MachineConfigurationHead =
@@ -429,6 +462,16 @@ using AxisConfigurationLayout =
                &AxisConfiguration::max_acceleration_mm_per_s2, &AxisConfiguration::min_position_mm,
                &AxisConfiguration::max_position_mm>;
 static_assert(MachineConfigurationHead::size == configuration_header_size && AxisConfigurationLayout::size == configuration_axis_size);
+/// SeekSwitch: switch bit (1 byte).
+template <>
+struct WireFields<SeekSwitch> : WireLayout<&SeekSwitch::limit_switch> {};
+/// SetPosition: axes mask, x, y, z (13 bytes).
+template <>
+struct WireFields<SetPosition> : WireLayout<&SetPosition::axes, &SetPosition::x, &SetPosition::y, &SetPosition::z> {};
+/// SwitchReport: switch bit, setpoint index, x, y, z (17 bytes).
+template <>
+struct WireFields<SwitchReport> : WireLayout<&SwitchReport::limit_switch, &SwitchReport::setpoint_index, &SwitchReport::x,
+                                             &SwitchReport::y, &SwitchReport::z> {};
 
 namespace detail {
 
@@ -481,17 +524,17 @@ struct MessageSet {
 /// Every message of this protocol version (the default of the set-taking functions; host
 /// tools, tests and fuzzers).
 using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
-                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, StatusReport, SetpointBatch, ErrorReport,
-                               PauseReport>;
+                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, SeekSwitch, SetPosition, StatusReport,
+                               SetpointBatch, ErrorReport, PauseReport, SwitchReport>;
 
 /// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
 /// the controller's setpoint stream.
 using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold, Resume,
-                                    Abort, StatusRequest, QueuePiece, QueueEvent>;
+                                    Abort, StatusRequest, QueuePiece, QueueEvent, SeekSwitch, SetPosition>;
 
 /// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
 /// commands, reports, and the setpoint stream.
-using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport, PauseReport>;
+using ControllerToHost = MessageSet<Capabilities, Ack, Nak, StatusReport, SetpointBatch, ErrorReport, PauseReport, SwitchReport>;
 
 namespace detail {
 
@@ -925,6 +968,12 @@ class Message {
   constexpr Message(const QueueEvent& m) noexcept : type_(MessageType::QueueEvent), body_(m) {}  // NOLINT
   /// Holds a PauseReport.
   constexpr Message(const PauseReport& m) noexcept : type_(MessageType::PauseReport), body_(m) {}  // NOLINT
+  /// Holds a SeekSwitch.
+  constexpr Message(const SeekSwitch& m) noexcept : type_(MessageType::SeekSwitch), body_(m) {}  // NOLINT
+  /// Holds a SetPosition.
+  constexpr Message(const SetPosition& m) noexcept : type_(MessageType::SetPosition), body_(m) {}  // NOLINT
+  /// Holds a SwitchReport.
+  constexpr Message(const SwitchReport& m) noexcept : type_(MessageType::SwitchReport), body_(m) {}  // NOLINT
 
   /// Which message this is.
   [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
@@ -949,6 +998,9 @@ class Message {
     else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
     else if constexpr (std::is_same_v<T, QueueEvent>) return body_.queue_event;
     else if constexpr (std::is_same_v<T, PauseReport>) return body_.pause_report;
+    else if constexpr (std::is_same_v<T, SeekSwitch>) return body_.seek_switch;
+    else if constexpr (std::is_same_v<T, SetPosition>) return body_.set_position;
+    else if constexpr (std::is_same_v<T, SwitchReport>) return body_.switch_report;
     else return empty<T>();
   }
 
@@ -977,6 +1029,9 @@ class Message {
     constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
     constexpr explicit Body(const QueueEvent& m) noexcept : queue_event(m) {}
     constexpr explicit Body(const PauseReport& m) noexcept : pause_report(m) {}
+    constexpr explicit Body(const SeekSwitch& m) noexcept : seek_switch(m) {}
+    constexpr explicit Body(const SetPosition& m) noexcept : set_position(m) {}
+    constexpr explicit Body(const SwitchReport& m) noexcept : switch_report(m) {}
     Hello hello;
     Capabilities capabilities;
     Ack ack;
@@ -989,6 +1044,9 @@ class Message {
     ErrorReport error_report;
     QueueEvent queue_event;
     PauseReport pause_report;
+    SeekSwitch seek_switch;
+    SetPosition set_position;
+    SwitchReport switch_report;
   };
   MessageType type_ = MessageType::Hello;
   Body body_;

@@ -11,6 +11,7 @@
 // digital outputs and a servo pen on GPIO lines) also driven; an event is rare, one virtual call.
 #pragma once
 
+#include <array>
 #include <cerrno>
 #include <concepts>
 #include <cstddef>
@@ -105,6 +106,19 @@ class HostBoard {
   /// Step lines low, scheduled edges forgotten.
   void fault_stop() noexcept {
     if constexpr (requires { output_.fault_stop(); }) output_.fault_stop();
+  }
+  /// The limit switches closed now (firmware/limit_switches.hpp), if the output has switch inputs
+  /// (GPIO input lines, or switches simulated at given positions: simulated_switches.hpp).
+  [[nodiscard]] std::uint8_t limit_switches() noexcept
+    requires requires(Output& o) { o.limit_switches(); }
+  {
+    return output_.limit_switches();
+  }
+  /// Passes the position the App declared (in steps) to an output that simulates the machine.
+  void position_declared(const std::array<std::int32_t, 3>& steps) noexcept
+    requires requires(Output& o) { o.position_declared(steps); }
+  {
+    output_.position_declared(steps);
   }
 
   /// Machine event hook (firmware/board_hooks.hpp): one line on standard error per event,

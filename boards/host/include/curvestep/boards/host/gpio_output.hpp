@@ -38,6 +38,9 @@ struct GpioLines {
   std::array<std::string, 3> step{};      ///< step line names of x, y, z
   std::array<std::string, 3> direction{};  ///< direction line names of x, y, z
   bool invert_direction[3] = {false, false, false};  ///< positive = low on this axis
+  std::array<std::string, 3> min_switch{};  ///< limit switch input line names at x, y, z min (empty: none)
+  std::array<std::string, 3> max_switch{};  ///< limit switch input line names at x, y, z max (empty: none)
+  bool switches_active_low = false;         ///< a closed switch reads low (a switch to ground with a pull-up)
 };
 
 /// Step/dir output on GPIO lines.
@@ -57,6 +60,9 @@ class GpiodStepOutput {
   void set_step(std::uint64_t time_ticks, std::uint8_t axis, bool high) noexcept;
   /// Step lines low at once (abort, fault).
   void fault_stop() noexcept;
+  /// The limit switches closed now (bit 2 x axis min, 2 x axis + 1 max; firmware/limit_switches.hpp).
+  /// A failed read counts as closed: a switch that cannot be read cannot be trusted to be open.
+  [[nodiscard]] std::uint8_t limit_switches() noexcept;
   /// Step-timer time 0 is `epoch` (CLOCK_MONOTONIC); fast: write edges without waiting.
   void set_epoch(const timespec& epoch, bool fast) noexcept;
   /// Line writes that failed.
@@ -72,6 +78,8 @@ class GpiodStepOutput {
   std::array<gpiod_line*, 3> step_{};
   std::array<gpiod_line*, 3> direction_{};
   std::array<bool, 3> invert_{};
+  std::array<gpiod_line*, 6> switch_{};  ///< input lines by switch bit (null: no switch)
+  bool switches_active_low_ = false;
   EdgeClock clock_;
   bool fast_ = false;
   std::size_t write_errors_ = 0;

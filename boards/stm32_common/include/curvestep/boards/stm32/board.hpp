@@ -3,12 +3,14 @@
 // on USART1 (interrupt driven, usart.hpp), SysTick, the step/dir pins on GPIOA (STEP X/Y/Z =
 // PA0/PA1/PA2, DIR X/Y/Z = PA3/PA4/PA5, one BSRR write each) and the TIM2 edge player
 // (step_edges.hpp), the machine outputs (spindle, coolant, digital outputs, servo pen on GPIOB,
-// TIM3 and TIM4: machine_outputs.hpp) with the bring-up monitor's interface and the
-// firmware::Board concept with its machine event hooks (firmware/board_hooks.hpp).
+// TIM3 and TIM4: machine_outputs.hpp), the limit switch inputs PB0, PB1, PB3, PB4, PB5, PB7
+// (pull-ups, low = closed) with the bring-up monitor's interface and the firmware::Board concept
+// with its machine event hooks (firmware/board_hooks.hpp).
 //
 // The chip supplies (boards/stm32f1/board.hpp, boards/stm32f4/board.hpp):
 //   using Scalar; name; hse_hz; target_hclk_hz        setpoint scalar and clock targets
-//   usart1, usart1_irq, gpioa_bsrr, gpiob_bsrr         addresses (reference manual memory map)
+//   usart1, usart1_irq, gpioa_bsrr, gpiob_bsrr,        addresses (reference manual memory map)
+//   gpiob_idr
 //   step_events_per_tick, edge_ring                    StepBatch and edge ring capacities
 //   fallback_clocks                                    the clocks before init() (HSI)
 //   static Clocks setup_clocks() noexcept              clock tree, bounded waits, emulator detection
@@ -135,6 +137,22 @@ class Board {
   [[nodiscard]] std::uint32_t cycles_per_second() const noexcept { return clocks_.hclk_hz; }
   /// Edges lost to a full edge ring (App faults with StepsLost when this grows; 0 in an emulator).
   [[nodiscard]] std::uint32_t edges_dropped() const noexcept { return edges_.edges_dropped(); }
+  /// The limit switches closed now (firmware/limit_switches.hpp): PB0/PB1 x min/max, PB3/PB4 y,
+  /// PB5/PB7 z (limit_switch_pins), switches to ground read low through the pull-ups (a closed
+  /// switch is a low bit). Polled once per control tick by the App, not EXTI: the hard-limit rule needs the tick's
+  /// motion direction, and the tick's edges are queued a period ahead anyway, so an interrupt
+  /// would stop at most one period sooner. 0 in an emulator (QEMU models no GPIO inputs: all read 0).
+  [[nodiscard]] std::uint8_t limit_switches() const noexcept {
+    if (clocks_.emulated) return 0;
+    const std::uint32_t closed = ~reg(Chip::gpiob_idr);
+    // Pins 0, 1 -> bits 0, 1; pins 3, 4, 5 -> bits 2, 3, 4; pin 7 -> bit 5 (limit_switch_pins).
+    return static_cast<std::uint8_t>((closed & 0x03u) | ((closed >> 1) & 0x1Cu) | ((closed >> 2) & 0x20u));
+  }
+  /// GPIOB pins of the limit switches in switch-bit order: x min, x max, y min, y max, z min, z max
+  /// (PB2 is BOOT1, PB6 the servo's TIM4_CH1, PB8..PB15 the machine outputs).
+  static constexpr std::uint32_t limit_switch_pins[6] = {0, 1, 3, 4, 5, 7};
+  /// Their bits in a GPIOB register.
+  static constexpr std::uint32_t limit_switch_pin_mask = 0xBBu;
 
   // --- machine event hooks (firmware/board_hooks.hpp; pins and timers: machine_outputs.hpp) ---
   /// Spindle enable/direction pins and PWM duty (rpm / CURVESTEP_SPINDLE_MAX_RPM).

@@ -19,11 +19,14 @@
 
 namespace curvestep::host {
 
-/// One axis's wiring in the "gpio" section: {"step": "GPIO17", "dir": "GPIO27", "invert_dir": false}.
+/// One axis's wiring in the "gpio" section: {"step": "GPIO17", "dir": "GPIO27", "invert_dir": false,
+/// "min": "GPIO5", "max": "GPIO6"} (min and max: limit switch inputs, optional).
 struct GpioAxisWiring {
   std::string step;         ///< name of the step line (as gpioinfo lists it)
   std::string dir;          ///< name of the direction line
   bool invert_dir = false;  ///< the positive direction is the low level of the direction line
+  std::string min_switch;   ///< "min": the limit switch input at the axis's low end (empty: none)
+  std::string max_switch;   ///< "max": the limit switch input at the axis's high end (empty: none)
 };
 
 /// Digital outputs a "gpio" section may wire (M62-M65 P0 .. P63).
@@ -41,6 +44,7 @@ struct GpioWiring {
   std::string coolant_mist;           ///< M7
   std::string coolant_flood;          ///< M8
   std::vector<std::string> outputs;   ///< digital outputs 0, 1, ...
+  bool switches_active_low = false;  ///< "switches_active_low": a closed limit switch reads low
 };
 
 /// A tool of the "tools" table: its length (G43 H) and cutter diameter (G41/G42 D), mm.
@@ -81,6 +85,24 @@ struct PenModel {
   double settle_s = 0;       ///< servo: time it takes to move, s (0 .. 10): the dwell after each pen move
 };
 
+/// How one axis homes ("homing"."x"): toward its min or max switch at the seek speed until it
+/// closes, back off by the pull-off, toward it again at the locate speed, back off again, and the
+/// axis is then at `position_mm`.
+struct HomingAxis {
+  bool max_side = false;         ///< "switch": "min" or "max"
+  double seek_mm_per_s = 0;      ///< "seek": speed of the first approach, mm/s (> 0)
+  double locate_mm_per_s = 0;    ///< "locate": speed of the second, precise approach, mm/s (> 0, <= seek)
+  double pull_off_mm = 0;        ///< "pull_off": back-off from the closed switch, mm (> 0)
+  double position_mm = 0;        ///< "position": the axis's coordinate when homing is done, mm
+  double distance_mm = 0;        ///< "distance": the longest seek, mm (default: 1.5 x the axis's travel)
+};
+
+/// The "homing" section: the axes that home and in which order ("order", default z, x, y).
+struct HomingCycle {
+  std::array<std::optional<HomingAxis>, motion_axes> axes{};  ///< x, y, z (none: the axis does not home)
+  std::vector<std::size_t> order;                              ///< axis indices, each homing axis once
+};
+
 /// Largest "blend_tolerance" a machine file may give, mm.
 inline constexpr double max_blend_tolerance_mm = 10;
 
@@ -90,6 +112,7 @@ struct MachineFile {
   MachineLimits limits;            ///< planning and stepping limits, validated
   std::optional<GpioWiring> gpio;  ///< the "gpio" section, if present (validated)
   std::optional<PenModel> pen;     ///< the "pen" section, if present (validated)
+  std::optional<HomingCycle> homing;  ///< the "homing" section, if present (validated)
   /// "blend_tolerance": path smoothing's largest deviation from the programmed path, mm (0 = off,
   /// the default; G64 P overrides it per move). Host-side: the controller gets smoothed segments.
   double blend_tolerance_mm = 0;

@@ -100,5 +100,7 @@ class HostLink {
 
 /// One line naming the error code and its meaning ("link timeout (LinkTimeout)").
 [[nodiscard]] std::string describe_error(Error code);
+/// A limit switch by its bit number (HardLimit's index, StatusReport::limit_switches): "X min", "Z max".
+[[nodiscard]] std::string limit_switch_name(std::uint16_t bit);
 
 }  // namespace curvestep::host::link

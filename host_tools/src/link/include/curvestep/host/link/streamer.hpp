@@ -91,6 +91,9 @@ struct StreamOptions {
   std::function<void(const std::string&)> paused;
   /// Polled while paused: true once the job may go on (Resume is sent). Empty: at once.
   std::function<bool()> resume_now;
+  /// Homing: the job ends at once where this limit switch closes (SeekSwitch; bit 2 x axis, + 1
+  /// for max); StreamResult::switch_closed says where. None: an ordinary job.
+  std::optional<std::uint8_t> seek_switch;
 };
 
 /// One feed hold of a streamed job.
@@ -131,6 +134,7 @@ struct StreamResult {
   bool aborted = false;                   ///< the operator aborted the job (the controller stopped at once)
   std::uint32_t final_setpoint_index = 0; ///< the controller's last StatusReport: setpoint index
   std::array<std::int32_t, 3> final_position_q16{};  ///< ... and commanded position (Q16.16 raw)
+  std::optional<protocol::SwitchReport> switch_closed;  ///< a seek job (StreamOptions::seek_switch) met its switch here
 };
 
 /// The `curvestep sim` option that replays `holds` ("--hold-at 1.234:0 --hold-at ..."), "" for none.
