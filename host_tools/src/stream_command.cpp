@@ -145,6 +145,7 @@ int run_stream(const StreamCommandOptions& o) {
   if (result.lookahead == 0) std::cout << "  pieces sent:         " << result.pieces_sent << "\n";
   std::cout << "  bytes sent:          " << result.bytes_sent << "\n" << smoothing::format_smoothing(prepared.smoothing);
   std::cout << format_operator_summary(result, machine.rate_hz);
+  session.warn_tick_overruns(result, machine.rate_hz);
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
   if (result.aborted) {
     std::cerr << "curvestep stream: aborted by the operator\n";

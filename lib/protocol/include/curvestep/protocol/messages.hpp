@@ -329,6 +329,8 @@ struct StatusReport {
   std::uint16_t queue_depth = 0;        ///< segments waiting in the queue
   std::uint16_t max_queue_depth = 0;    ///< deepest the queue has been this session (soak diagnostics)
   std::uint32_t setpoint_index = 0;     ///< index of the current setpoint since start
+  std::uint32_t tick_overruns = 0;      ///< ticks this session that started a period late or ran longer than one (TickWatch)
+  std::uint32_t worst_tick_us = 0;      ///< the longest tick this session, microseconds (0: ticks not timed)
   WirePoint position{};                 ///< Q16.16 commanded position
 };
 
@@ -673,7 +675,7 @@ template <EmptyMessage Empty>
   return std::size_t{0};
 }
 
-/// Encodes a StatusReport payload (11 + 4 per axis bytes).
+/// Encodes a StatusReport payload (19 + 4 per axis bytes).
 [[nodiscard]] constexpr Result<std::size_t> encode(const StatusReport& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 2);
   ByteWriter w(out);
@@ -683,6 +685,8 @@ template <EmptyMessage Empty>
   w.u16(m.queue_depth);
   w.u16(m.max_queue_depth);
   w.u32(m.setpoint_index);
+  w.u32(m.tick_overruns);
+  w.u32(m.worst_tick_us);
   detail::write_point(w, m.position, m.axis_count);
   return w.finish();
 }
@@ -898,6 +902,8 @@ template <>
   m.queue_depth = r.u16();
   m.max_queue_depth = r.u16();
   m.setpoint_index = r.u32();
+  m.tick_overruns = r.u32();
+  m.worst_tick_us = r.u32();
   if (!r.failed()) detail::read_point(r, m.position, m.axis_count);
   CURVESTEP_CHECK(r.finish());
   return m;
