@@ -23,9 +23,22 @@ Budget per board image and job:
     one + to begin one: the ticks that began a segment and the polls that accepted one).
 
 Usage: tick_budget.py --curvestep BIN --machine machine.json [--json OUT] [--quick]
-                      --image BOARD:KIND:QEMU_MACHINE:ELF ... --job JOB ...
-  BOARD stm32f1 | stm32f4 (the silicon whose clock the budget uses), KIND planner | executor.
---quick: checks that each run produced a profile (for CTest); the figures are still printed."""
+                      --image BOARD:KIND:QEMU_MACHINE:ELF ... (--job JOB | --job-list FILE) ...
+  BOARD stm32f1 | stm32f4 (the silicon whose clock the budget uses), KIND planner | executor; the
+  figures stand for the board's image curvestep_BOARD_executor / curvestep_BOARD_firmware (the JSON's
+  image_target; the ELF may be a stand-in, e.g. the F1's App built as the F4 code for QEMU's netduino2).
+  --job-list: one job a line (# comments), paths from the source tree, optionally followed by the
+  machine file it runs with instead of --machine (a plotter's pen for SVG art); "path_speed/NAME" is
+  a job of benchmarks/path_speed/make_jobs.py --small, generated for the run (tick_budget_jobs.txt:
+  the recorded run's list). Each result's "job" is that name (or the path given to --job).
+--quick: checks that each run produced a profile (for CTest); the figures are still printed.
+--attempts N (default 3): a run that the link ended (RetransmitLimit, LinkTimeout: QEMU starved of the
+  host's CPU lags behind the host's retransmission timer) is run again, up to N runs in all; the
+  result records the earlier attempts' errors ("link_failures"). Link failures are not budget matters.
+--include EARLIER.json: the results of an earlier report are kept unless this run measures the same
+  image and job again (re-running the jobs a run lost, or adding images), with its jobs; with no
+  --image, the reports given are only merged.
+Prints per image a verdict (within budget on every job or not; also "images" in the JSON)."""
 import argparse
 import json
 import math
@@ -34,7 +47,8 @@ import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "qemu"))
+SOURCE_DIR = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+sys.path.insert(0, os.path.join(SOURCE_DIR, "tests", "qemu"))
 from qemu_board import QemuBoard, read_words  # noqa: E402
 
 # SysTick's processor clock in QEMU 7.2 (SYSCLK_FRQ of hw/arm/stm32f100_soc.c, stm32f205_soc.c, stm32f405_soc.c).
@@ -99,22 +113,121 @@ def percentile_cycles(histogram, fraction, maximum):
     return maximum
 
 
-def run_job(image, job, args, work):
+GENERATED_PREFIX = "path_speed/"  # --job-list entries made by benchmarks/path_speed/make_jobs.py --small
+
+
+def read_job_list(path, with_machines=False):
+    """The job names of a --job-list file (one a line, # comments; a second word: the job's machine
+    file), or with_machines: (name, machine or None) pairs."""
+    entries = []
+    with open(path, encoding="utf-8") as handle:
+        for line in handle:
+            words = line.split("#", 1)[0].split()
+            if words:
+                entries.append((words[0], words[1] if len(words) > 1 else None))
+    return entries if with_machines else [name for name, _ in entries]
+
+
+def resolve_jobs(args, work):
+    """(name, path, machine) of every job to run: --job paths as given, --job-list names from the
+    source tree or generated (path_speed/NAME), with --machine unless the list names another."""
+    def name_of(path):
+        relative = os.path.relpath(os.path.abspath(path), SOURCE_DIR)
+        return path if relative.startswith("..") else relative
+    jobs = [(name_of(job), job, args.machine) for job in args.job]
+    entries = [entry for path in args.job_list for entry in read_job_list(path, with_machines=True)]
+    if any(name.startswith(GENERATED_PREFIX) for name, _ in entries):
+        generated = os.path.join(work, "path_speed")
+        subprocess.run([sys.executable, os.path.join(SOURCE_DIR, "benchmarks", "path_speed", "make_jobs.py"), generated,
+                        "--small"], check=True, capture_output=True)
+    for name, machine in entries:
+        if name.startswith(GENERATED_PREFIX):
+            path = os.path.join(work, "path_speed", name[len(GENERATED_PREFIX):])
+        else:
+            path = os.path.join(SOURCE_DIR, name)
+        if not os.path.isfile(path):
+            raise SystemExit(f"job {name}: no file {path}")
+        jobs.append((name, path, os.path.join(SOURCE_DIR, machine) if machine else args.machine))
+    return jobs
+
+
+def image_target(board, kind):
+    """The board's image the figures stand for (boards/shipped_images.cmake names the shipped ones)."""
+    return f"curvestep_{board}_{'executor' if kind == 'executor' else 'firmware'}"
+
+
+def image_verdicts(results):
+    """Per image: jobs run, jobs within budget, the worst figures, and the verdict."""
+    verdicts = []
+    for key in dict.fromkeys((r["board"], r["image"], r["image_target"], r["elf"]) for r in results):
+        rows = [r for r in results if (r["board"], r["image"], r["image_target"], r["elf"]) == key]
+        measured = [r for r in rows if "error" not in r]
+        within = [r for r in measured if r["within_budget"]]
+        verdicts.append({
+            "board": key[0], "image": key[1], "image_target": key[2], "elf": key[3],
+            "jobs": len(rows), "jobs_within_budget": len(within),
+            "jobs_failed_to_run": [r["job"] for r in rows if "error" in r],
+            "jobs_over_budget": [r["job"] for r in measured if not r["within_budget"]],
+            "worst_tick_instructions": max((r["instructions_per_tick"]["worst"] for r in measured), default=None),
+            "worst_tick_share_of_period_at_cpi_1_3": max((r["budget"]["worst_tick_share_of_period"][1] for r in measured),
+                                                         default=None),
+            "meets_budget": len(within) == len(rows) and len(rows) > 0,
+        })
+    return verdicts
+
+
+LINK_FAILURES = ("RetransmitLimit", "LinkTimeout")
+
+
+def run_with_attempts(image, job, machine_file, args, work):
+    """run_job, again after a link failure (up to --attempts runs)."""
+    failures = []
+    while True:
+        try:
+            result = run_job(image, job, machine_file, args, work)
+        except (RuntimeError, TimeoutError, subprocess.TimeoutExpired) as error:
+            result = {"error": str(error)}
+        link_failed = any(code in result.get("error", "") for code in LINK_FAILURES)
+        if not link_failed or len(failures) + 1 >= args.attempts:
+            if failures:
+                result["link_failures"] = failures
+            return result
+        failures.append(result["error"][-300:])
+
+
+def merged(report, earlier_path):
+    """`report` with the results of an earlier report that it does not measure again."""
+    with open(earlier_path, encoding="utf-8") as handle:
+        earlier = json.load(handle)
+    key = lambda r: (r["board"], r["image"], r["elf"], r["job"])  # noqa: E731
+    measured = {key(r) for r in report["results"]}
+    kept = [r for r in earlier["results"] if key(r) not in measured]
+    jobs = list(dict.fromkeys(earlier.get("jobs", []) + report["jobs"]))
+    results = kept + report["results"]
+    image_order = list(dict.fromkeys((r["board"], r["image"], r["elf"]) for r in results))
+    results.sort(key=lambda r: (image_order.index((r["board"], r["image"], r["elf"])),
+                                jobs.index(r["job"]) if r["job"] in jobs else len(jobs)))
+    return dict(report, jobs=jobs, results=results)
+
+
+def run_job(image, job, machine_file, args, work):
     board, kind, machine, elf = image
     address = symbol_address(elf, "curvestep_tick_profile")
     monitor = os.path.join(work, f"monitor-{os.getpid()}.sock")
     capture = os.path.join(work, "capture.csv")
     extra = ["-icount", "shift=0", "-monitor", f"unix:{monitor},server,nowait"]
     with QemuBoard(machine, elf, extra=extra, open_pty=False, wall_limit=args.wall_limit) as qemu:
-        command = [args.curvestep, "stream", job, "--machine", args.machine, "--port", qemu.pty, "--capture", capture,
-                   "--link-timeout-ms", "30000"]  # QEMU's -icount pace is not the link's concern here
+        command = [args.curvestep, "stream", job, "--machine", machine_file, "--port", qemu.pty, "--capture", capture,
+                   # QEMU starved of the host's CPU lags: a patient link (its pace is not the budget's concern)
+                   "--link-timeout-ms", "30000", "--retransmit-timeout-ms", "500",
+                   "--resume-pauses"]  # M0/M1/M6 of CAM programs: go on at once
         stream = subprocess.run(command, capture_output=True, text=True, timeout=args.wall_limit)
         if stream.returncode != 0:
             return {"error": f"curvestep stream exited with {stream.returncode}: {(stream.stdout + stream.stderr)[-400:]}"}
         profile = decode_profile(read_words(monitor, address, PROFILE_WORDS))
     with open(capture, encoding="utf-8") as handle:
         setpoints = max(0, sum(1 for _ in handle) - 1)
-    with open(args.machine, encoding="utf-8") as handle:
+    with open(machine_file, encoding="utf-8") as handle:
         rate_hz = json.load(handle)["rate_hz"]
     return figures(board, machine, profile, setpoints, rate_hz)
 
@@ -160,11 +273,14 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--curvestep", required=True)
     parser.add_argument("--machine", required=True)
-    parser.add_argument("--image", action="append", required=True, help="BOARD:KIND:QEMU_MACHINE:ELF")
-    parser.add_argument("--job", action="append", required=True)
+    parser.add_argument("--image", action="append", default=[], help="BOARD:KIND:QEMU_MACHINE:ELF")
+    parser.add_argument("--job", action="append", default=[])
+    parser.add_argument("--job-list", action="append", default=[])
     parser.add_argument("--json")
     parser.add_argument("--quick", action="store_true")
     parser.add_argument("--wall-limit", type=float, default=600.0)
+    parser.add_argument("--attempts", type=int, default=3)
+    parser.add_argument("--include", action="append", default=[])
     args = parser.parse_args()
     images = []
     for spec in args.image:
@@ -174,23 +290,34 @@ def main():
         images.append((board, kind, machine, elf))
     results = []
     with tempfile.TemporaryDirectory(prefix=f"curvestep-tick-{os.getpid()}-") as work:
+        jobs = resolve_jobs(args, work) if images else []
+        if images and not jobs:
+            raise SystemExit("no job: give --job or --job-list")
+        if not images and not args.include:
+            raise SystemExit("no image: give --image (or only --include to merge earlier reports)")
         for image in images:
-            for job in args.job:
-                entry = {"board": image[0], "image": image[1], "qemu_machine": image[2], "elf": os.path.basename(image[3]),
-                         "job": os.path.basename(job)}
-                try:
-                    entry.update(run_job(image, job, args, work))
-                except (RuntimeError, TimeoutError, subprocess.TimeoutExpired) as error:
-                    entry["error"] = str(error)
+            for name, job, machine_file in jobs:
+                entry = {"board": image[0], "image": image[1], "image_target": image_target(image[0], image[1]),
+                         "qemu_machine": image[2], "elf": os.path.basename(image[3]), "job": name,
+                         "machine": os.path.relpath(os.path.abspath(machine_file), SOURCE_DIR)}
+                entry.update(run_with_attempts(image, job, machine_file, args, work))
                 results.append(entry)
                 print(json.dumps(entry), file=sys.stderr, flush=True)
     report = {"method": "QEMU 7.2 -icount shift=0 (1 ns per instruction); SysTick-timed ticks and polls in the "
                         "firmware (CURVESTEP_TICK_PROFILE); instructions, not cycles",
               "cpi_assumption": {"range": list(CPI_RANGE), "verdict_at": CPI_RANGE[1],
                                  "why": "Cortex-M3/M4 from flash with wait states (F1: 2, prefetch; F4: 5, ART accelerator)"},
-              "tick_budget_share": TICK_BUDGET_SHARE, "machine": os.path.basename(args.machine), "results": results}
+              "tick_budget_share": TICK_BUDGET_SHARE, "machine": os.path.relpath(os.path.abspath(args.machine), SOURCE_DIR),
+              "jobs": [name for name, _, _ in jobs], "results": results}
+    for earlier in args.include:
+        report = merged(report, earlier)
+    report["images"] = image_verdicts(report["results"])
     text = json.dumps(report, indent=2)
     print(text)
+    for verdict in report["images"]:
+        print(f"{verdict['board']} {verdict['image']} ({verdict['image_target']}, run as {verdict['elf']}): within the "
+              f"real-time budget on {verdict['jobs_within_budget']}/{verdict['jobs']} jobs: meets budget "
+              f"{'yes' if verdict['meets_budget'] else 'no'}", file=sys.stderr)
     if args.json:
         with open(args.json, "w", encoding="utf-8") as handle:
             handle.write(text + "\n")

@@ -205,6 +205,7 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
     }
   }
   std::cout << format_operator_summary(result, machine.rate_hz);
+  session.warn_tick_overruns(result, machine.rate_hz);
   if (!failure.empty()) {
     std::cerr << "curvestep gpio: " << failure << "\n";
     return exit_device_error;

@@ -108,6 +108,7 @@ int run_jog(const JogCommandOptions& o) {
     std::cout << (a == 0 ? "" : " ") << "xyz"[a] << " " << format_number(result.final_position_q16[a] / 65536.0);
   }
   std::cout << " mm (the controller's position)\n" << format_operator_summary(result, machine.rate_hz);
+  session.warn_tick_overruns(result, machine.rate_hz);
   if (result.aborted) {
     std::cerr << "curvestep jog: aborted by the operator\n";
     return exit_aborted;

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <curvestep/host/csv.hpp>
+#include <curvestep/host/link/tick_timing_text.hpp>
 
 namespace curvestep::host {
 
@@ -30,6 +31,7 @@ link::OperatorCommand OperatorSession::next_command() {
   if (last_.have_status) {
     line << "|MPos:" << format_number(last_.position_mm[0]) << "," << format_number(last_.position_mm[1]) << ","
          << format_number(last_.position_mm[2]) << "|Setpoint:" << last_.setpoint_index << "|Controller:" << last_.machine_state;
+    if (last_.tick_overruns != 0) line << "|Overruns:" << last_.tick_overruns;
   }
   line << "|" << last_.unit << ":" << last_.sent << "/" << last_.total << ">";
   end_line();
@@ -41,7 +43,13 @@ void OperatorSession::draw(const link::StreamProgress& p) {
   last_ = p;
   if (!terminal_) return;
   std::cerr << "\r  " << p.state << "  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
-            << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s) << "   " << std::flush;
+            << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s);
+  if (p.tick_overruns != 0) std::cerr << "  tick overruns " << p.tick_overruns;
+  std::cerr << "   " << std::flush;
+}
+
+void OperatorSession::warn_tick_overruns(const link::StreamResult& result, double rate_hz) const {
+  std::cerr << link::tick_overrun_warning(command_, result.tick_overruns, result.worst_tick_us, rate_hz);
 }
 
 void OperatorSession::end_line() const {
@@ -58,6 +66,7 @@ std::string format_seconds(double s) {
 
 std::string format_operator_summary(const link::StreamResult& result, double rate_hz) {
   std::ostringstream out;
+  out << link::format_tick_timing(result.tick_overruns, result.worst_tick_us, rate_hz);
   if (!result.holds.empty()) {
     out << "  feed holds:          " << result.holds.size();
     for (const link::StreamHold& hold : result.holds) {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // OperatorSession: the operator's side of a job streamed by `stream`, `gpio` and `jog`: keys and
 // signals (link::OperatorConsole) into stream_job, the state on the progress line, a status line
-// on `?`, and the summary lines of holds and an abort.
+// on `?`, and the summary lines of the controller's tick timing, holds and an abort.
 #pragma once
 
 #include <string>
@@ -27,6 +27,8 @@ class OperatorSession {
   [[nodiscard]] link::OperatorConsole& console() noexcept { return console_; }
   /// Ends the progress line (before other output).
   void end_line() const;
+  /// Warns on stderr if the controller's ticks overran (StreamResult::tick_overruns), else nothing.
+  void warn_tick_overruns(const link::StreamResult& result, double rate_hz) const;
 
  private:
   link::OperatorCommand next_command();
@@ -41,7 +43,8 @@ class OperatorSession {
 /// "--:--" or "m:ss".
 [[nodiscard]] std::string format_seconds(double s);
 
-/// The summary lines of the operator's holds and abort ("" if none), e.g.
+/// The summary lines of the controller's tick timing (always: "  tick overruns:       0 (worst
+/// tick 42 us of the 1000 us period)\n") and of the operator's holds and abort (if any), e.g.
 /// "  feed holds:          1 (curvestep sim --hold-at 1.234:0 gives the same setpoints)\n".
 [[nodiscard]] std::string format_operator_summary(const link::StreamResult& result, double rate_hz);
 

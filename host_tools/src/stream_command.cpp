@@ -52,6 +52,7 @@ struct StreamCommandOptions {
   int baud = 115200;
   std::string capture;
   unsigned link_timeout_ms = 3000;
+  unsigned retransmit_timeout_ms = 100;
   std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
   bool resume_pauses = false;  ///< --resume-pauses: go on at once after M0/M1, M6 and pen changes
   JobPipelineOptions pipeline;
@@ -88,6 +89,7 @@ int run_stream(const StreamCommandOptions& o) {
   link::StreamOptions options;
   options.travel = machine_file.travel;
   options.link.link_timeout_ms = o.link_timeout_ms;
+  options.link.retransmit_timeout_ms = o.retransmit_timeout_ms;
   options.lookahead = o.lookahead;
   if (!o.lookahead_given) options.lookahead_distance_mm = lookahead_distance_for(machine);
   options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
@@ -145,6 +147,7 @@ int run_stream(const StreamCommandOptions& o) {
   if (result.lookahead == 0) std::cout << "  pieces sent:         " << result.pieces_sent << "\n";
   std::cout << "  bytes sent:          " << result.bytes_sent << "\n" << smoothing::format_smoothing(prepared.smoothing);
   std::cout << format_operator_summary(result, machine.rate_hz);
+  session.warn_tick_overruns(result, machine.rate_hz);
   if (!o.capture.empty()) std::cout << "  wrote " << o.capture << "\n";
   if (result.aborted) {
     std::cerr << "curvestep stream: aborted by the operator\n";
@@ -173,6 +176,11 @@ void add_stream_command(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
   add_job_pipeline_options(stream, options->pipeline);
   stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
+  stream
+      ->add_option("--retransmit-timeout-ms", options->retransmit_timeout_ms,
+                   "Resend unacknowledged frames after this silence; 10 timeouts in a row without progress end the "
+                   "upload (RetransmitLimit). Longer for a slow controller (an emulator starved of CPU)")
+      ->check(CLI::Range(1u, 60000u));
   stream->add_flag("--resume-pauses", options->resume_pauses,
                    "Go on at once after program pauses (M0/M1), tool changes (M6) and pen changes (scripts, tests)");
   stream->add_flag("--keys", options->keys,

@@ -230,10 +230,14 @@ TEST_CASE("hil: curvestep stream refuses a controller of another protocol versio
                          Catch::Contains("the controller speaks protocol version 1, this host speaks version 4"));
 }
 
-TEST_CASE("hil: a device frozen for 2 s (SIGSTOP) with --link-timeout-ms 30000 on both ends finishes the job",
-          "[integration][hil][freeze]") {
+TEST_CASE("hil: a device frozen for 2 s (SIGSTOP) with --link-timeout-ms 30000 on both ends finishes the job and "
+          "curvestep stream reports its late ticks",
+          "[integration][hil][freeze][tick]") {
   // Issue 19.6: the host's sender counted its retransmission timeouts during the silence and gave up
   // after ten (about 1.1 s) although the link timeout was 30 s.
+  // Issue 26: the first tick after the freeze starts 2 s (2000 periods at 1 kHz) late. The device
+  // counts it (TickWatch, real time: counted, never a fault on the host board), the StatusReport
+  // carries the count, and the host's summary and warning show it.
   const auto machine = ct::wire_exact_machine();
   const auto job = ct::zigzag_job(16);  // about 5 s in real time
   ct::Process device({"device", "--link-timeout-ms", "30000"}, "device_freeze.stderr");
@@ -252,9 +256,13 @@ TEST_CASE("hil: a device frozen for 2 s (SIGSTOP) with --link-timeout-ms 30000 o
   ::kill(device.pid(), SIGCONT);
   const int status = host.wait(60s);
   const std::string errors = host.stderr_text();
+  const std::string summary = host.rest_of_stdout();
   INFO(errors);
+  INFO(summary);
   INFO(device.stderr_text());
   CHECK(status == 0);
+  CHECK(number_after(summary, "tick overruns:") >= 1);
+  CHECK_THAT(errors, Catch::Contains("curvestep stream: warning: ") && Catch::Contains("late or longer than the 1000 us period"));
   CHECK(device.stop() == 0);
 }
 

@@ -14,6 +14,7 @@
 
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/link/host_link.hpp>
+#include <curvestep/host/link/tick_timing_text.hpp>
 #include <curvestep/host/link/wire.hpp>
 #include <curvestep/protocol/messages.hpp>
 
@@ -251,7 +252,7 @@ class Upload {
   std::string last_state_text() const {
     if (!have_status_) return "";
     return "; last controller state: " + std::string(protocol::machine_state_name(last_status_.state)) + " at setpoint " +
-           std::to_string(last_status_.setpoint_index);
+           std::to_string(last_status_.setpoint_index) + tick_overrun_text(last_status_.tick_overruns, last_status_.worst_tick_us);
   }
 
   std::string segment_text(std::uint8_t sequence) const {
@@ -443,6 +444,7 @@ class Upload {
     if (have_status_) {
       p.setpoint_index = last_status_.setpoint_index;
       p.machine_state = protocol::machine_state_name(last_status_.state);
+      p.tick_overruns = last_status_.tick_overruns;
       for (std::size_t a = 0; a < 3; ++a) p.position_mm[a] = static_cast<double>(last_status_.position[a]) / 65536.0;
     }
     options_.progress(p);
@@ -473,6 +475,8 @@ class Upload {
     result.switch_closed = switch_closed_;
     result.final_setpoint_index = last_status_.setpoint_index;
     for (std::size_t a = 0; a < 3; ++a) result.final_position_q16[a] = last_status_.position[a];
+    result.tick_overruns = last_status_.tick_overruns;
+    result.worst_tick_us = last_status_.worst_tick_us;
     return result;
   }
 

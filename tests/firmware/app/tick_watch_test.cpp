@@ -156,3 +156,48 @@ TEST_CASE("firmware: TickWatch anchors on the first tick and re-anchors on an ea
   CHECK(watch.on_start(0xFFFFFF00u + 6001) == 1);  // 1101 cycles: more than the one tolerated period
   CHECK(watch.overruns() == 1);
 }
+
+TEST_CASE("firmware: the StatusReport on the wire carries the tick overruns and the worst tick in microseconds",
+          "[firmware][app][tick]") {
+  AppSettings settings;
+  settings.tick_deadline_periods = 0;  // count only: a late tick is an overrun, not a fault
+  TimedRig rig(settings);
+  const auto status = [&rig] {
+    rig.host.received.status.clear();
+    REQUIRE(rig.host.send(Message(StatusRequest{})));
+    rig.host.pump(5);
+    REQUIRE_FALSE(rig.host.received.status.empty());
+    return rig.host.received.status.back();  // encoded by the App, decoded by the host's receiver
+  };
+  for (std::uint32_t k = 0; k < 20; ++k) rig.tick_at(k * period, 250);
+  StatusReport s = status();
+  CHECK(s.tick_overruns == 0);
+  CHECK(s.worst_tick_us == 250);  // 250 cycles of the 1 MHz clock
+  // Tick 20 runs 1700 cycles (longer than its 1000-cycle period): one overrun, the worst tick.
+  rig.tick_at(20 * period, 1700);
+  s = status();
+  CHECK(s.tick_overruns == 1);
+  CHECK(s.worst_tick_us == 1700);
+  // Tick 21, due at 21 000, starts at 24 000 (three periods late, behind a long poll): a second.
+  rig.tick_at(21 * period + 3000, 250);
+  s = status();
+  CHECK(s.tick_overruns == 2);
+  CHECK(s.worst_tick_us == 1700);
+  CHECK(s.state == MachineState::Running);
+  // A new session starts counting afresh.
+  REQUIRE(rig.host.connect(0x4321));
+  s = status();
+  CHECK(s.tick_overruns == 0);
+  CHECK(s.worst_tick_us == 0);
+}
+
+TEST_CASE("firmware: TickWatch gives the worst tick in microseconds of the board's clock", "[firmware][tick]") {
+  TickWatch watch;
+  watch.configure(72'000, 1);  // 72 MHz, 1 kHz
+  CHECK(watch.on_start(0) == 0);
+  watch.on_end(36'000);  // 36 000 cycles / 72 per microsecond
+  CHECK(watch.worst_microseconds(72'000'000) == 500);
+  CHECK(watch.worst_microseconds(168'000'000) == 214);  // 36 000 / 168 = 214.3
+  CHECK(watch.worst_microseconds(1'000'000) == 36'000);  // the host board counts microseconds
+  CHECK(watch.worst_microseconds(999'999) == 0);         // below 1 MHz: not given
+}

@@ -182,11 +182,14 @@ TEST_CASE("messages: every message type round-trips through encode and decode", 
     status.max_queue_depth = static_cast<std::uint16_t>(rng());
     status.setpoint_index = static_cast<std::uint32_t>(rng());
     status.limit_switches = static_cast<std::uint8_t>(rng());
+    status.tick_overruns = static_cast<std::uint32_t>(rng());
+    status.worst_tick_us = static_cast<std::uint32_t>(rng());
     status.position = random_point(rng, status.axis_count);
     const auto s = round_trip(status).get<StatusReport>();
     CHECK((s.state == status.state && s.error == status.error && s.axis_count == status.axis_count &&
            s.queue_depth == status.queue_depth && s.max_queue_depth == status.max_queue_depth &&
            s.setpoint_index == status.setpoint_index && s.limit_switches == status.limit_switches &&
+           s.tick_overruns == status.tick_overruns && s.worst_tick_us == status.worst_tick_us &&
            s.position == status.position));
 
     SetpointBatch setpoints;
@@ -367,8 +370,8 @@ TEST_CASE("messages: malformed segment fields are BadPayload at their byte offse
 
 TEST_CASE("messages: other malformed fields are BadPayload", "[protocol][messages]") {
   CHECK(decode<Nak>(hex("05 00")).error() == Error::BadPayload);            // reason 0 is not an error
-  CHECK(decode<StatusReport>(hex("04 00 02 0000 0000 00000000 00 00000000 00000000")).where() == 0);  // state 4
-  CHECK(decode<StatusReport>(hex("00 00 04 0000 0000 00000000 00 00000000 00000000")).where() == 2);  // 4 axes
+  CHECK(decode<StatusReport>(hex("04 00 02 0000 0000 00000000 00 00000000 00000000 00000000 00000000")).where() == 0);  // state 4
+  CHECK(decode<StatusReport>(hex("00 00 04 0000 0000 00000000 00 00000000 00000000 00000000 00000000")).where() == 2);  // 4 axes
   CHECK(decode<SetpointBatch>(hex("00000000 03 00")).where() == 5);         // zero setpoints
   CHECK(decode<SetpointBatch>(hex("00000000 03 19")).where() == 5);         // 25 setpoints
   CHECK(decode<MachineConfiguration>(hex("01")).where() == 0);              // one axis
@@ -479,7 +482,7 @@ TEST_CASE("messages: a segment after a dwell carries its stop and rest ticks", "
   CHECK(to_hex(payload_of(stop)) == to_hex(hex("00 40 00000a00 00000000 00001400 00000000")));
 }
 
-TEST_CASE("messages: a StatusReport carries the deepest queue of the session", "[protocol][messages]") {
+TEST_CASE("messages: a StatusReport carries the deepest queue and the tick overruns of the session", "[protocol][messages]") {
   StatusReport r;
   r.state = MachineState::Running;
   r.axis_count = 3;
@@ -487,9 +490,20 @@ TEST_CASE("messages: a StatusReport carries the deepest queue of the session", "
   r.max_queue_depth = 32;
   r.setpoint_index = 123456;
   r.limit_switches = 0x06;  // x max (bit 1) and y min (bit 2) closed
+  r.tick_overruns = 3;
+  r.worst_tick_us = 612;
   r.position = WirePoint{65536, 2 * 65536, -32768};
-  // Python: struct.pack('<BBBHHIB', 1, 0, 3, 17, 32, 123456, 6) + '<iii' (65536, 131072, -32768): 24 bytes
-  CHECK(to_hex(payload_of(r)) == to_hex(hex("01 00 03 1100 2000 40e20100 06 00000100 00000200 0080ffff")));
+  // Python: struct.pack('<BBBHHIBII', 1, 0, 3, 17, 32, 123456, 6, 3, 612) + '<iii' (65536, 131072, -32768): 32 bytes
+  const auto bytes = hex("01 00 03 1100 2000 40e20100 06 03000000 64020000 00000100 00000200 0080ffff");
+  CHECK(to_hex(payload_of(r)) == to_hex(bytes));
+  const auto back = decode<StatusReport>(bytes);
+  REQUIRE(back.has_value());
+  CHECK(back.value().limit_switches == 0x06);
+  CHECK(back.value().tick_overruns == 3);
+  CHECK(back.value().worst_tick_us == 612);
+  CHECK(back.value().position == r.position);
+  // One byte short of the third axis: BadPayload.
+  CHECK(decode<StatusReport>(std::span<const std::byte>(bytes).first(bytes.size() - 1)).error() == Error::BadPayload);
 }
 
 TEST_CASE("messages: setpoint batches travel in the sequenced stream toward the host only", "[protocol][messages]") {

@@ -205,7 +205,7 @@ class App {
   /// The session and job phase (the row of the state table in docs/protocol.md).
   [[nodiscard]] Phase phase() const noexcept { return phase_; }
   /// Tick overruns and the worst tick in board cycles (TickWatch; nothing on a board without
-  /// cycle_count()); the host board's log prints them (docs/firmware.md, "Tick timing").
+  /// cycle_count()); StatusReport carries them (docs/firmware.md, "Tick timing").
   [[nodiscard]] const TickWatch& tick_watch() const noexcept { return tick_watch_; }
 
  private:
@@ -944,6 +944,8 @@ class App {
     s.max_queue_depth = statistics_.max_queue_depth;
     s.setpoint_index = setpoint_index_;
     s.limit_switches = read_limit_switches(board_);
+    s.tick_overruns = tick_watch_.overruns();
+    if constexpr (has_cycle_clock) s.worst_tick_us = tick_watch_.worst_microseconds(board_.cycles_per_second());
     s.position = position_;
     send_message(s);
   }

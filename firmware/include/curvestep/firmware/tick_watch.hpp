@@ -61,6 +61,12 @@ class TickWatch {
   [[nodiscard]] std::uint32_t overruns() const noexcept { return overruns_; }
   /// The longest tick so far, in cycles.
   [[nodiscard]] std::uint32_t worst_cycles() const noexcept { return worst_cycles_; }
+  /// The longest tick so far in microseconds on a clock of `cycles_per_second` (whole MHz on every
+  /// board: 72, 168, 1; a fraction of a MHz is dropped, which rounds the figure up). 0 below 1 MHz.
+  [[nodiscard]] std::uint32_t worst_microseconds(std::uint32_t cycles_per_second) const noexcept {
+    const std::uint32_t cycles_per_us = cycles_per_second / 1'000'000u;
+    return cycles_per_us == 0 ? 0 : worst_cycles_ / cycles_per_us;
+  }
   /// The period in cycles (0: not configured).
   [[nodiscard]] std::uint32_t period_cycles() const noexcept { return period_; }
   /// Forgets the counts (a new session).

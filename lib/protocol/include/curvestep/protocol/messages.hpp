@@ -351,6 +351,8 @@ struct StatusReport {
   std::uint16_t max_queue_depth = 0;    ///< deepest the queue has been this session (soak diagnostics)
   std::uint32_t setpoint_index = 0;     ///< index of the current setpoint since start
   std::uint8_t limit_switches = 0;      ///< limit switches closed now: bit 2 x axis (min), 2 x axis + 1 (max)
+  std::uint32_t tick_overruns = 0;      ///< ticks this session that started a period late or ran longer than one (TickWatch)
+  std::uint32_t worst_tick_us = 0;      ///< the longest tick this session, microseconds (0: ticks not timed)
   WirePoint position{};                 ///< Q16.16 commanded position
 };
 
@@ -442,12 +444,13 @@ struct WireFields<Capabilities>
   if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) return 13;
   return all_fields_valid;
 }
-/// StatusReport's fixed head (12 bytes); the position follows, 4 bytes per axis (axis_count).
+/// StatusReport's fixed head (20 bytes); the position follows, 4 bytes per axis (axis_count).
 /// Not a WireFields: the position's length depends on axis_count, so encode/decode are written
 /// out below around this one description of the fixed fields.
 using StatusReportHead = WireLayout<&StatusReport::state, &StatusReport::error, &StatusReport::axis_count,
                                     &StatusReport::queue_depth, &StatusReport::max_queue_depth,
-                                    &StatusReport::setpoint_index, &StatusReport::limit_switches>;
+                                    &StatusReport::setpoint_index, &StatusReport::limit_switches,
+                                    &StatusReport::tick_overruns, &StatusReport::worst_tick_us>;
 /// MachineConfiguration's fixed head (62 bytes: axis count, profile as the flags byte, the
 /// limits, feeds and rate); axis_count AxisConfigurationLayouts follow.
 using MachineConfigurationHead =

@@ -58,6 +58,7 @@ struct StreamProgress {
   std::uint32_t setpoint_index = 0;    ///< the controller's last StatusReport: its setpoint index
   const char* machine_state = "";      ///< ... its state (Idle, Running, Holding, Fault)
   std::array<double, 3> position_mm{}; ///< ... its commanded position
+  std::uint32_t tick_overruns = 0;     ///< ... its late or long control ticks this session (StatusReport::tick_overruns)
 };
 
 /// Options of one upload.
@@ -135,6 +136,8 @@ struct StreamResult {
   std::uint32_t final_setpoint_index = 0; ///< the controller's last StatusReport: setpoint index
   std::array<std::int32_t, 3> final_position_q16{};  ///< ... and commanded position (Q16.16 raw)
   std::optional<protocol::SwitchReport> switch_closed;  ///< a seek job (StreamOptions::seek_switch) met its switch here
+  std::uint32_t tick_overruns = 0;        ///< ... ticks that started a period late or ran longer than one (0: kept real time)
+  std::uint32_t worst_tick_us = 0;        ///< ... the longest tick, microseconds (0: the controller does not time its ticks)
 };
 
 /// The `curvestep sim` option that replays `holds` ("--hold-at 1.234:0 --hold-at ..."), "" for none.
