@@ -134,6 +134,66 @@ class VelocityProfile {
     return p;
   }
 
+  /// Plans L mm entered at v0 faster than plan() allows (after a lowered feed override: above the
+  /// speed cap, or too fast to reach v1 within L): only slowing down. If v1 is reachable, slow down
+  /// to the largest vp <= min(cap, v0) from which v1 still is, cruise, and slow down to v1 (vp is
+  /// the cap if that fits); otherwise slow down over all of L as far as it goes (exit_speed() then
+  /// lies above v1: the next segment goes on slowing down). Never faster than v0. InvalidLimit for
+  /// non-positive caps, InvalidArgument for a non-positive length or negative speeds.
+  [[nodiscard]] static Result<VelocityProfile> slow_down(double length_mm, double v0, double v1, const ProfileLimits& limits) noexcept {
+    if (!(limits.acceleration_mm_per_s2 > 0) || !(limits.speed_cap_mm_per_s > 0) ||
+        (limits.jerk_limited && !(limits.jerk_mm_per_s3 > 0))) {
+      return fail(Error::InvalidLimit);
+    }
+    if (!(length_mm > 0) || !(v0 >= 0) || !(v1 >= 0)) return fail(Error::InvalidArgument);
+    const double top = std::fmin(limits.speed_cap_mm_per_s, v0);
+    if (v1 > top) v1 = top;
+    double vp = top;
+    if (speed_change_distance(v1, v0, limits) > length_mm) {
+      // v1 out of reach: the lowest speed reachable within L (bisection: D(v, v0) falls as v rises).
+      double low = v1;
+      double high = v0;
+      for (int i = 0; i < 60; ++i) {
+        const double middle = (low + high) / 2;
+        if (speed_change_distance(middle, v0, limits) <= length_mm) {
+          high = middle;
+        } else {
+          low = middle;
+        }
+      }
+      v1 = high;
+      vp = high;
+    } else {
+      auto total = [&](double v) { return speed_change_distance(v0, v, limits) + speed_change_distance(v, v1, limits); };
+      if (total(top) > length_mm) {
+        double low = v1;  // total(v1) = D(v0, v1) <= L
+        double high = top;
+        for (int i = 0; i < 60; ++i) {
+          const double middle = (low + high) / 2;
+          if (total(middle) <= length_mm) {
+            low = middle;
+          } else {
+            high = middle;
+          }
+        }
+        vp = low;
+      }
+    }
+    VelocityProfile p;
+    p.trapezoid_ = !limits.jerk_limited;
+    p.length_ = length_mm;
+    p.entry_ = v0;
+    p.exit_ = v1;
+    p.peak_ = v0;
+    p.add_speed_change(v0, vp, limits);
+    const double cruise = length_mm - speed_change_distance(v0, vp, limits) - speed_change_distance(vp, v1, limits);
+    if (cruise > 0 && vp > 0) p.add_phase(cruise / vp, 0);
+    p.add_speed_change(vp, v1, limits);
+    p.duration_ = 0;
+    for (std::size_t i = 0; i < p.count_; ++i) p.duration_ += p.phases_[i].duration_s;
+    return p;
+  }
+
   /// The shortest stop from speed v and acceleration a within the limits (feed hold): first bring
   /// the acceleration to zero with jerk ∓j, then an S-curve (or trapezoid) down to rest. Its
   /// length_mm() is the distance needed.
