@@ -41,8 +41,8 @@ class OperatorSession {
 /// "--:--" or "m:ss".
 [[nodiscard]] std::string format_seconds(double s);
 
-/// The summary lines of the operator's holds and abort ("" if none), e.g.
-/// "  feed holds:          1 (curvestep sim --hold-at 1.234:0 gives the same setpoints)\n".
+/// The summary lines of the operator's holds, overrides and abort ("" if none), and the `curvestep
+/// sim` options that replay them ("  replay:              curvestep sim --hold-at 1.234:0 gives the same setpoints").
 [[nodiscard]] std::string format_operator_summary(const link::StreamResult& result, double rate_hz);
 
 }  // namespace curvestep::host

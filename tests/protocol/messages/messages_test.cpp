@@ -181,11 +181,15 @@ TEST_CASE("messages: every message type round-trips through encode and decode", 
     status.queue_depth = static_cast<std::uint16_t>(rng());
     status.max_queue_depth = static_cast<std::uint16_t>(rng());
     status.setpoint_index = static_cast<std::uint32_t>(rng());
+    status.feed_override_percent = static_cast<std::uint16_t>(rng());
+    status.rapid_override_percent = static_cast<std::uint16_t>(rng());
+    status.override_index = static_cast<std::uint32_t>(rng());
     status.position = random_point(rng, status.axis_count);
     const auto s = round_trip(status).get<StatusReport>();
     CHECK((s.state == status.state && s.error == status.error && s.axis_count == status.axis_count &&
            s.queue_depth == status.queue_depth && s.max_queue_depth == status.max_queue_depth &&
-           s.setpoint_index == status.setpoint_index &&
+           s.setpoint_index == status.setpoint_index && s.feed_override_percent == status.feed_override_percent &&
+           s.rapid_override_percent == status.rapid_override_percent && s.override_index == status.override_index &&
            s.position == status.position));
 
     SetpointBatch setpoints;
@@ -366,8 +370,8 @@ TEST_CASE("messages: malformed segment fields are BadPayload at their byte offse
 
 TEST_CASE("messages: other malformed fields are BadPayload", "[protocol][messages]") {
   CHECK(decode<Nak>(hex("05 00")).error() == Error::BadPayload);            // reason 0 is not an error
-  CHECK(decode<StatusReport>(hex("04 00 02 0000 0000 00000000 00000000 00000000")).where() == 0);  // state 4
-  CHECK(decode<StatusReport>(hex("00 00 04 0000 0000 00000000 00000000 00000000")).where() == 2);  // 4 axes
+  CHECK(decode<StatusReport>(hex("04 00 02 0000 0000 00000000 6400 6400 00000000 00000000 00000000")).where() == 0);  // state 4
+  CHECK(decode<StatusReport>(hex("00 00 04 0000 0000 00000000 6400 6400 00000000 00000000 00000000")).where() == 2);  // 4 axes
   CHECK(decode<SetpointBatch>(hex("00000000 03 00")).where() == 5);         // zero setpoints
   CHECK(decode<SetpointBatch>(hex("00000000 03 19")).where() == 5);         // 25 setpoints
   CHECK(decode<MachineConfiguration>(hex("01")).where() == 0);              // one axis
@@ -486,8 +490,9 @@ TEST_CASE("messages: a StatusReport carries the deepest queue of the session", "
   r.max_queue_depth = 32;
   r.setpoint_index = 123456;
   r.position = WirePoint{65536, 2 * 65536, -32768};
-  // Python: struct.pack('<BBBHHI', 1, 0, 3, 17, 32, 123456) + '<iii' (65536, 131072, -32768): 23 bytes
-  CHECK(to_hex(payload_of(r)) == to_hex(hex("01 00 03 1100 2000 40e20100 00000100 00000200 0080ffff")));
+  // Python: struct.pack('<BBBHHIHHI', 1, 0, 3, 17, 32, 123456, 100, 100, 0) + '<iii' (65536, 131072,
+  // -32768): 31 bytes (the overrides at their defaults: 100 %, 100 %, set before setpoint 0)
+  CHECK(to_hex(payload_of(r)) == to_hex(hex("01 00 03 1100 2000 40e20100 6400 6400 00000000 00000100 00000200 0080ffff")));
 }
 
 TEST_CASE("messages: setpoint batches travel in the sequenced stream toward the host only", "[protocol][messages]") {

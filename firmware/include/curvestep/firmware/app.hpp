@@ -53,7 +53,9 @@
 //                           from the stop.
 //   Abort                -> stop at once: controller aborted and flushed, board.fault_stop(); the
 //                           next job must start where the machine stopped (StatusReport position).
-//   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, position).
+//   FeedOverride         -> MotionController::set_override (feed_override_command.hpp); a StatusReport
+//                           at once naming the setpoint it was set before. NotSupported without a planner.
+//   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, overrides, position).
 // Every failed command is answered with ErrorReport(code, index, the frame's sequence number); a
 // fault met while running carries the sequence number of the last frame received. The segments of
 // the next job are accepted once the previous job has finished (state Idle again).
@@ -120,6 +122,7 @@
 #include <curvestep/firmware/board_hooks.hpp>
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/event_timeline.hpp>
+#include <curvestep/firmware/feed_override_command.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
 #include <curvestep/firmware/tick_watch.hpp>
@@ -383,6 +386,7 @@ class App {
       stream_.open(now);
       statistics_.max_queue_depth = 0;
       tick_watch_.clear();
+      if constexpr (plans_on_board) override_.reset(controller_);  // a new session starts at 100 %
     } else if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::Ack) ||
                frame.type == static_cast<std::uint8_t>(protocol::MessageType::Nak)) {
       if (!receiver_.connected()) return;
@@ -442,6 +446,13 @@ class App {
       case MessageType::StatusRequest:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
         return send_status();
+      case MessageType::FeedOverride:
+        if constexpr (plans_on_board) {
+          if (auto taken = override_.take(frame.payload, controller_); !taken) return report(taken.failure());
+          return send_status();  // names the setpoint it was set before: the host replays it (sim --override-at)
+        } else {
+          return report(fail(Error::NotSupported));  // the host's planner applies it
+        }
       default: return report(fail(Error::UnknownMessage, frame.type));
     }
   }
@@ -881,6 +892,7 @@ class App {
     s.queue_depth = static_cast<std::uint16_t>(controller_.queued());
     s.max_queue_depth = statistics_.max_queue_depth;
     s.setpoint_index = setpoint_index_;
+    override_.describe(s);
     s.position = position_;
     send_message(s);
   }
@@ -899,6 +911,7 @@ class App {
   protocol::LinkReceiver receiver_;
   SetpointStream<B> stream_;
   Controller controller_{};
+  FeedOverrideCommand override_{};  ///< the override last set (FeedOverride)
   EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
   SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
   protocol::PauseReport pause_{};          ///< the pause in force (paused_), reported once

@@ -52,6 +52,7 @@ enum class MessageType : std::uint8_t {
   StatusRequest = 0x16,         ///< host -> controller: ask for a status report
   QueuePiece = 0x17,            ///< host -> controller: one host-planned piece (controller without a planner)
   QueueEvent = 0x18,            ///< host -> controller: a machine event (spindle, coolant, output, pen, ...) at a joint
+  FeedOverride = 0x19,          ///< host -> controller: feed and rapid override in percent, from now on
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
   SetpointBatch = 0x21,         ///< controller -> host: delta-encoded setpoints (sequenced, acknowledged)
   ErrorReport = 0x22,           ///< controller -> host: an error with index and sequence number
@@ -60,7 +61,7 @@ enum class MessageType : std::uint8_t {
 
 /// True for the types this protocol version defines.
 [[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
-  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || (type >= 0x20 && type <= 0x23);
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x19) || (type >= 0x20 && type <= 0x23);
 }
 
 /// The two ends of the link.
@@ -69,10 +70,10 @@ enum class Endpoint : std::uint8_t {
   Controller,  ///< the firmware
 };
 
-/// True for host commands (0x10 .. 0x18): the host-to-controller reliable stream.
+/// True for host commands (0x10 .. 0x19): the host-to-controller reliable stream.
 [[nodiscard]] constexpr bool is_command(MessageType type) noexcept {
   const auto value = static_cast<std::uint8_t>(type);
-  return value >= 0x10 && value <= 0x18;
+  return value >= 0x10 && value <= 0x19;
 }
 
 /// True for messages that travel in a reliable, sequenced stream: host commands one way,
@@ -296,6 +297,15 @@ struct Resume {
 struct Abort {
   static constexpr MessageType type = MessageType::Abort;  ///< message type
 };
+/// Feed and rapid override from now on (MotionController::set_override): the controller's planner
+/// takes it at its next point of zero acceleration. A controller refuses values outside 10..200
+/// (feed) and 10..100 (rapid) as InvalidArgument at their byte offset (0, 2), and a controller
+/// without a planner as NotSupported (the host's planner applies it).
+struct FeedOverride {
+  static constexpr MessageType type = MessageType::FeedOverride;  ///< message type
+  std::uint16_t feed_percent = 100;                                ///< feed override, percent of the programmed feed
+  std::uint16_t rapid_percent = 100;                               ///< rapid override, percent of the rapid speed
+};
 /// Ask for a StatusReport.
 struct StatusRequest {
   static constexpr MessageType type = MessageType::StatusRequest;  ///< message type
@@ -329,6 +339,9 @@ struct StatusReport {
   std::uint16_t queue_depth = 0;        ///< segments waiting in the queue
   std::uint16_t max_queue_depth = 0;    ///< deepest the queue has been this session (soak diagnostics)
   std::uint32_t setpoint_index = 0;     ///< index of the current setpoint since start
+  std::uint16_t feed_override_percent = 100;   ///< the feed override last set (FeedOverride)
+  std::uint16_t rapid_override_percent = 100;  ///< the rapid override last set
+  std::uint32_t override_index = 0;     ///< it was handed to the planner before this setpoint (sim --override-at)
   WirePoint position{};                 ///< Q16.16 commanded position
 };
 
@@ -373,6 +386,9 @@ struct WireFields<ErrorReport> : WireLayout<&ErrorReport::code, &ErrorReport::in
 /// PauseReport: setpoint index, kind, value (9 bytes).
 template <>
 struct WireFields<PauseReport> : WireLayout<&PauseReport::setpoint_index, &PauseReport::kind, &PauseReport::value> {};
+/// FeedOverride: feed percent, rapid percent (4 bytes).
+template <>
+struct WireFields<FeedOverride> : WireLayout<&FeedOverride::feed_percent, &FeedOverride::rapid_percent> {};
 /// QueueEvent: segment, after_rest_ticks, kind, flag, value (14 bytes).
 template <>
 struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
@@ -429,13 +445,13 @@ struct MessageSet {
 /// Every message of this protocol version (the default of the set-taking functions; host
 /// tools, tests and fuzzers).
 using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
-                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, StatusReport, SetpointBatch, ErrorReport,
-                               PauseReport>;
+                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, FeedOverride, StatusReport, SetpointBatch,
+                               ErrorReport, PauseReport>;
 
 /// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
 /// the controller's setpoint stream.
 using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold, Resume,
-                                    Abort, StatusRequest, QueuePiece, QueueEvent>;
+                                    Abort, StatusRequest, QueuePiece, QueueEvent, FeedOverride>;
 
 /// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
 /// commands, reports, and the setpoint stream.
@@ -673,7 +689,7 @@ template <EmptyMessage Empty>
   return std::size_t{0};
 }
 
-/// Encodes a StatusReport payload (11 + 4 per axis bytes).
+/// Encodes a StatusReport payload (19 + 4 per axis bytes).
 [[nodiscard]] constexpr Result<std::size_t> encode(const StatusReport& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 2);
   ByteWriter w(out);
@@ -683,6 +699,9 @@ template <EmptyMessage Empty>
   w.u16(m.queue_depth);
   w.u16(m.max_queue_depth);
   w.u32(m.setpoint_index);
+  w.u16(m.feed_override_percent);
+  w.u16(m.rapid_override_percent);
+  w.u32(m.override_index);
   detail::write_point(w, m.position, m.axis_count);
   return w.finish();
 }
@@ -898,6 +917,9 @@ template <>
   m.queue_depth = r.u16();
   m.max_queue_depth = r.u16();
   m.setpoint_index = r.u32();
+  m.feed_override_percent = r.u16();
+  m.rapid_override_percent = r.u16();
+  m.override_index = r.u32();
   if (!r.failed()) detail::read_point(r, m.position, m.axis_count);
   CURVESTEP_CHECK(r.finish());
   return m;
@@ -968,6 +990,8 @@ class Message {
   constexpr Message(const QueueEvent& m) noexcept : type_(MessageType::QueueEvent), body_(m) {}  // NOLINT
   /// Holds a PauseReport.
   constexpr Message(const PauseReport& m) noexcept : type_(MessageType::PauseReport), body_(m) {}  // NOLINT
+  /// Holds a FeedOverride.
+  constexpr Message(const FeedOverride& m) noexcept : type_(MessageType::FeedOverride), body_(m) {}  // NOLINT
 
   /// Which message this is.
   [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
@@ -992,6 +1016,7 @@ class Message {
     else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
     else if constexpr (std::is_same_v<T, QueueEvent>) return body_.queue_event;
     else if constexpr (std::is_same_v<T, PauseReport>) return body_.pause_report;
+    else if constexpr (std::is_same_v<T, FeedOverride>) return body_.feed_override;
     else return empty<T>();
   }
 
@@ -1020,6 +1045,7 @@ class Message {
     constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
     constexpr explicit Body(const QueueEvent& m) noexcept : queue_event(m) {}
     constexpr explicit Body(const PauseReport& m) noexcept : pause_report(m) {}
+    constexpr explicit Body(const FeedOverride& m) noexcept : feed_override(m) {}
     Hello hello;
     Capabilities capabilities;
     Ack ack;
@@ -1032,6 +1058,7 @@ class Message {
     ErrorReport error_report;
     QueueEvent queue_event;
     PauseReport pause_report;
+    FeedOverride feed_override;
   };
   MessageType type_ = MessageType::Hello;
   Body body_;
