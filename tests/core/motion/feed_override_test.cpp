@@ -210,3 +210,20 @@ TEST_CASE("feed override: lowered on micro-segments it takes effect at the next 
   CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
   CHECK(peaks.jerk <= m.j_max_mm_per_s3 * 1.01);
 }
+
+TEST_CASE("feed override: with the trapezoid profile, changes keep the speed and acceleration within the limits",
+          "[core][motion][override]") {
+  MachineLimits m = test_machine();
+  m.jerk_limited = false;
+  for (const auto& job : override_jobs()) {
+    const auto plain = run_job<double>(job, m);
+    std::vector<OverrideAt> changes;
+    const std::uint16_t feeds[] = {200, 10, 150, 50};
+    std::size_t k = 0;
+    for (std::uint64_t tick = 53; tick < 3 * plain.size(); tick += 97, ++k) changes.push_back({tick, FeedOverride{feeds[k % 4], 100}});
+    const auto sp = run_with_overrides(job, m, changes);
+    const auto peaks = measure(sp, m.rate_hz);
+    CHECK(peaks.speed <= m.v_max_mm_per_s * 1.01);
+    CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
+  }
+}
