@@ -44,8 +44,7 @@ std::vector<QueueSegment> zigzag() {
 }
 /// index -> setpoint of simulate() with `holds`.
 std::map<std::uint32_t, WirePoint> simulated(const std::vector<QueueSegment>& wire, const std::vector<host::FeedHoldEvent>& holds) {
-  host::SimulationOptions options;
-  options.lookahead = 16;
+  auto options = curvestep::sim_testing::device_window();
   options.holds = holds;
   return curvestep::sim_testing::simulated_setpoints(wire, machine(), options);
 }

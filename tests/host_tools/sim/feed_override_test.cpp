@@ -51,8 +51,7 @@ std::vector<QueueSegment> zigzag() {
 
 /// index -> setpoint of simulate() with `overrides`.
 std::map<std::uint32_t, WirePoint> simulated(const std::vector<QueueSegment>& wire, const std::vector<host::FeedOverrideEvent>& overrides) {
-  host::SimulationOptions options;
-  options.lookahead = 16;
+  auto options = curvestep::sim_testing::device_window();
   options.overrides = overrides;
   return curvestep::sim_testing::simulated_setpoints(wire, machine(), options);
 }

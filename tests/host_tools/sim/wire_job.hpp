@@ -27,6 +27,13 @@ inline host::Job to_host_job(const std::vector<protocol::QueueSegment>& wire) {
   return job;
 }
 
+/// The simulation options of `curvestep device`'s window (App<_, _, 32, 16>: look-ahead 16).
+inline host::SimulationOptions device_window() {
+  host::SimulationOptions options;
+  options.lookahead = 16;
+  return options;
+}
+
 /// index -> Q16.16 setpoint of host::simulate() of `wire` on `machine` with `options`.
 inline std::map<std::uint32_t, protocol::WirePoint> simulated_setpoints(const std::vector<protocol::QueueSegment>& wire,
                                                                         const protocol::MachineConfiguration& machine,
