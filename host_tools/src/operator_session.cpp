@@ -50,6 +50,15 @@ void OperatorSession::end_line() const {
   if (terminal_) std::cerr << "\n";
 }
 
+void add_start_override_options(CLI::App& command, StartOverride& start) {
+  command
+      .add_option("--feed-override", start.feed_percent,
+                  "Feed override at the start, percent of the programmed feed (10..200; keys change it while the job runs)")
+      ->check(CLI::Range(FeedOverride::min_feed_percent, FeedOverride::max_feed_percent));
+  command.add_option("--rapid-override", start.rapid_percent, "Rapid override at the start, percent of the rapid speed (10..100)")
+      ->check(CLI::Range(FeedOverride::min_rapid_percent, FeedOverride::max_rapid_percent));
+}
+
 std::string format_seconds(double s) {
   if (s < 0) return "--:--";
   const long total = static_cast<long>(s + 0.5);

@@ -4,7 +4,10 @@
 // on `?`, and the summary lines of holds and an abort.
 #pragma once
 
+#include <cstdint>
 #include <string>
+
+#include <CLI/CLI.hpp>
 
 #include <curvestep/host/link/operator_keys.hpp>
 #include <curvestep/host/link/streamer.hpp>
@@ -37,6 +40,21 @@ class OperatorSession {
   bool terminal_ = false;
   link::StreamProgress last_{};
 };
+
+/// `--feed-override P` and `--rapid-override R` of `stream` and `gpio`: the override a job starts with.
+struct StartOverride {
+  unsigned feed_percent = 100;   ///< percent of the programmed feed, 10..200
+  unsigned rapid_percent = 100;  ///< percent of the rapid speed, 10..100
+  [[nodiscard]] FeedOverride value() const noexcept {
+    return FeedOverride{static_cast<std::uint16_t>(feed_percent), static_cast<std::uint16_t>(rapid_percent)};
+  }
+};
+/// Adds --feed-override and --rapid-override (range-checked) to `command`.
+void add_start_override_options(CLI::App& command, StartOverride& start);
+/// The help footer's line on the override keys.
+inline constexpr const char* override_keys_footer =
+    "feed override ] [ +/-10 %, } { +/-1 %, = 100 %; rapid override ( 25 %, * 50 %, ) 100 % (shown on the progress line;\n"
+    "the summary prints the curvestep sim --override-at that replays them);\n";
 
 /// "--:--" or "m:ss".
 [[nodiscard]] std::string format_seconds(double s);

@@ -58,8 +58,7 @@ struct StreamCommandOptions {
   JobPipelineOptions pipeline;
   bool lookahead_given = false;    ///< --lookahead given: plan with that count window alone
   bool keys = false;               ///< --keys: read operator keys from stdin even if it is no terminal
-  unsigned feed_override = 100;    ///< --feed-override: percent of the programmed feed at the start
-  unsigned rapid_override = 100;   ///< --rapid-override: percent of the rapid speed at the start
+  StartOverride start_override;    ///< --feed-override, --rapid-override
 };
 
 /// Exit status when the controller or the link failed.
@@ -92,7 +91,7 @@ int run_stream(const StreamCommandOptions& o) {
   options.travel = machine_file.travel;
   options.link.link_timeout_ms = o.link_timeout_ms;
   options.lookahead = o.lookahead;
-  options.feed_override = FeedOverride{static_cast<std::uint16_t>(o.feed_override), static_cast<std::uint16_t>(o.rapid_override)};
+  options.feed_override = o.start_override.value();
   if (!o.lookahead_given) options.lookahead_distance_mm = lookahead_distance_for(machine);
   options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
   OperatorSession session("curvestep stream", o.keys);
@@ -182,15 +181,10 @@ void add_stream_command(CLI::App& app) {
   stream->add_flag("--keys", options->keys,
                    "Read the operator keys from standard input even when it is no terminal (a pipe): ! hold, ~ resume, "
                    "Ctrl-X or Esc abort, ? status, ] [ } { = ( * ) overrides");
-  stream->add_option("--feed-override", options->feed_override,
-                     "Feed override at the start, percent of the programmed feed (10..200; keys change it while the job runs)")
-      ->check(CLI::Range(FeedOverride::min_feed_percent, FeedOverride::max_feed_percent));
-  stream->add_option("--rapid-override", options->rapid_override, "Rapid override at the start, percent of the rapid speed (10..100)")
-      ->check(CLI::Range(FeedOverride::min_rapid_percent, FeedOverride::max_rapid_percent));
+  add_start_override_options(*stream, options->start_override);
   stream->footer(
-      "While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n"
-      "feed override ] [ +/-10 %, } { +/-1 %, = 100 %; rapid override ( 25 %, * 50 %, ) 100 % (shown on the progress line;\n"
-      "the summary prints the curvestep sim --override-at that replays them);\n"
+      std::string("While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n") +
+      override_keys_footer +
       "Ctrl-C holds and asks (a second Ctrl-C aborts), SIGTERM aborts.\n"
       "Exit status: 0 done; 4 the controller or link failed; 6 aborted by the operator; 1 bad input.");
   stream->callback([options, lookahead_option] {
