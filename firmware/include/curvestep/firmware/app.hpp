@@ -911,7 +911,8 @@ class App {
   protocol::LinkReceiver receiver_;
   SetpointStream<B> stream_;
   Controller controller_{};
-  FeedOverrideCommand override_{};  ///< the override last set (FeedOverride)
+  /// The override last set (FeedOverride; nothing without a planner).
+  [[no_unique_address]] std::conditional_t<plans_on_board, FeedOverrideCommand, NoFeedOverride> override_{};
   EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
   SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
   protocol::PauseReport pause_{};          ///< the pause in force (paused_), reported once

@@ -57,4 +57,10 @@ class FeedOverrideCommand {
   std::uint32_t index_ = 0;
 };
 
+/// A controller without a planner has no override (FeedOverride is NotSupported): its StatusReport
+/// keeps the defaults, and no RAM is spent.
+struct NoFeedOverride {
+  void describe(protocol::StatusReport&) const noexcept {}
+};
+
 }  // namespace curvestep::firmware
