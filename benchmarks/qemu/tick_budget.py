@@ -30,15 +30,12 @@ import argparse
 import json
 import math
 import os
-import re
-import socket
 import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "qemu"))
-from qemu_board import QemuBoard  # noqa: E402
+from qemu_board import QemuBoard, read_words  # noqa: E402
 
 # SysTick's processor clock in QEMU 7.2 (SYSCLK_FRQ of hw/arm/stm32f100_soc.c, stm32f205_soc.c, stm32f405_soc.c).
 QEMU_CLOCK_HZ = {"stm32vldiscovery": 24_000_000, "netduino2": 120_000_000, "netduinoplus2": 168_000_000}
@@ -70,29 +67,6 @@ def symbol_address(elf, name):
         if len(parts) == 3 and parts[2] == name:
             return int(parts[0], 16)
     raise SystemExit(f"{elf}: no {name} (build it with -DCURVESTEP_TICK_PROFILE=ON)")
-
-
-def read_words(monitor_path, address, count):
-    """Guest memory words through the QEMU monitor's `xp`."""
-    with socket.socket(socket.AF_UNIX, socket.SOCK_STREAM) as sock:
-        sock.connect(monitor_path)
-        sock.settimeout(5.0)
-        sock.sendall(f"xp /{count}wx 0x{address:08x}\n".encode())
-        data, words = b"", []
-        deadline = time.monotonic() + 10.0
-        while len(words) < count and time.monotonic() < deadline:
-            try:
-                chunk = sock.recv(65536)
-            except socket.timeout:
-                break
-            if not chunk:
-                break
-            data += chunk
-            words = [int(w, 16) for line in data.decode(errors="replace").splitlines()
-                     if re.match(r"^[0-9a-f]{8,16}:", line.strip()) for w in re.findall(r"0x([0-9a-f]{8})\b", line.split(":", 1)[1])]
-    if len(words) < count:
-        raise RuntimeError(f"monitor returned {len(words)} of {count} words")
-    return words[:count]
 
 
 def decode_profile(words):

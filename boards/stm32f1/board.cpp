@@ -12,8 +12,10 @@ using stm32::reg;
 constexpr std::uintptr_t rcc = 0x40021000;
 constexpr std::uintptr_t rcc_cr = rcc + 0x00, rcc_cfgr = rcc + 0x04, rcc_apb2enr = rcc + 0x18;
 constexpr std::uintptr_t flash_acr = 0x40022000;
-constexpr std::uintptr_t gpioa = 0x40010800;
+constexpr std::uintptr_t rcc_apb1enr = rcc + 0x1C;
+constexpr std::uintptr_t gpioa = 0x40010800, gpiob = 0x40010C00;
 static_assert(Stm32F1Chip::gpioa_bsrr == gpioa + 0x10);
+static_assert(Stm32F1Chip::gpiob_bsrr == gpiob + 0x10);
 constexpr std::uintptr_t gpio_crl = 0x00, gpio_crh = 0x04;
 
 constexpr std::uint32_t cr_hseon = 1u << 16, cr_hserdy = 1u << 17, cr_pllon = 1u << 24, cr_pllrdy = 1u << 25;
@@ -48,11 +50,17 @@ Clocks Stm32F1Chip::setup_clocks() noexcept {
 }
 
 void Stm32F1Chip::setup_gpio() noexcept {
-  reg(rcc_apb2enr) = reg(rcc_apb2enr) | (1u << 14) | (1u << 2) | (1u << 0);  // USART1EN, IOPAEN, AFIOEN
-  // CRL: PA0..PA5 general-purpose push-pull output, 10 MHz (MODE = 01, CNF = 00).
+  reg(rcc_apb2enr) = reg(rcc_apb2enr) | (1u << 14) | (1u << 3) | (1u << 2) | (1u << 0);  // USART1EN, IOPBEN, IOPAEN, AFIOEN
+  reg(rcc_apb1enr) = reg(rcc_apb1enr) | (1u << 2) | (1u << 1);                            // TIM4EN, TIM3EN
+  // CRL: PA0..PA5 general-purpose push-pull output, 10 MHz (MODE = 01, CNF = 00); PA6 = TIM3_CH1
+  // alternate-function push-pull, 2 MHz (MODE = 10, CNF = 10: 0xA).
   std::uint32_t crl = reg(gpioa + gpio_crl);
   for (std::uint32_t pin = 0; pin < 6; ++pin) crl = (crl & ~(0xFu << (4 * pin))) | (0x1u << (4 * pin));
+  crl = (crl & ~(0xFu << 24)) | (0xAu << 24);
   reg(gpioa + gpio_crl) = crl;
+  // GPIOB: PB6 = TIM4_CH1 alternate-function push-pull (0xA); PB8..PB15 push-pull outputs, 2 MHz (0x2).
+  reg(gpiob + gpio_crl) = (reg(gpiob + gpio_crl) & ~(0xFu << 24)) | (0xAu << 24);
+  reg(gpiob + gpio_crh) = 0x22222222u;
   // CRH: PA9 alternate-function push-pull 50 MHz (0xB), PA10 floating input (0x4).
   std::uint32_t crh = reg(gpioa + gpio_crh);
   crh = (crh & ~(0xFFu << 4)) | (0xBu << 4) | (0x4u << 8);

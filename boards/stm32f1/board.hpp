@@ -2,7 +2,8 @@
 // Stm32F1Board: STM32F103C8 (Cortex-M3, 72 MHz, no FPU) bring-up: clocks, USART1, SysTick, step/dir GPIO.
 //
 // Pins (see README.md): USART1 TX PA9, RX PA10 (115200 8N1); STEP X/Y/Z = PA0/PA1/PA2,
-// DIR X/Y/Z = PA3/PA4/PA5 (push-pull outputs). Registers from RM0008 (STM32F101/F103 reference
+// DIR X/Y/Z = PA3/PA4/PA5 (push-pull outputs); machine outputs PB8..PB15, spindle PWM PA6 (TIM3),
+// servo pen PB6 (TIM4) (stm32_common/.../machine_outputs.hpp). Registers from RM0008 (STM32F101/F103 reference
 // manual); no vendor SDK. The same image runs on QEMU's stm32vldiscovery (STM32F100): QEMU 7.2
 // models the USART and the Cortex-M core but not RCC, flash interface or GPIO (reads as 0, writes
 // ignored); RCC_CR = 0 is impossible on silicon, so the board then assumes QEMU's 24 MHz core clock.
@@ -27,6 +28,7 @@ struct Stm32F1Chip {
   static constexpr std::uintptr_t usart1 = 0x40013800;         ///< USART1 (APB2)
   static constexpr unsigned usart1_irq = 37;                   ///< its interrupt number
   static constexpr std::uintptr_t gpioa_bsrr = 0x40010800 + 0x10;  ///< GPIOA bit set/reset register
+  static constexpr std::uintptr_t gpiob_bsrr = 0x40010C00 + 0x10;  ///< GPIOB bit set/reset register (machine outputs)
   static constexpr std::size_t step_events_per_tick = 32;      ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = 64;                 ///< timed edges waiting for TIM2 (two ticks)
   static constexpr std::size_t setpoint_window = 2;            ///< setpoint frames in flight (8 KiB of RAM: not 4)
@@ -36,7 +38,8 @@ struct Stm32F1Chip {
 
   /// HSE 8 MHz -> PLL 72 MHz, or HSI 8 MHz if a ready flag does not come; QEMU: 24 MHz.
   static Clocks setup_clocks() noexcept;
-  /// GPIOA, AFIO and USART1 clocks; PA0..PA5 outputs, PA9 TX, PA10 RX.
+  /// GPIOA, GPIOB, AFIO, USART1, TIM3 and TIM4 clocks; PA0..PA5 outputs, PA9 TX, PA10 RX; the
+  /// machine outputs: PB8..PB15 outputs, PA6 (TIM3_CH1) and PB6 (TIM4_CH1) alternate function.
   static void setup_gpio() noexcept;
   /// TIM2 clock on (APB1).
   static void enable_step_timer() noexcept;

@@ -14,9 +14,10 @@ constexpr std::uintptr_t rcc_cr = rcc + 0x00, rcc_pllcfgr = rcc + 0x04, rcc_cfgr
 constexpr std::uintptr_t rcc_ahb1enr = rcc + 0x30, rcc_apb1enr = rcc + 0x40, rcc_apb2enr = rcc + 0x44;
 constexpr std::uintptr_t pwr_cr = 0x40007000;
 constexpr std::uintptr_t flash_acr = 0x40023C00;
-constexpr std::uintptr_t gpioa = 0x40020000;
+constexpr std::uintptr_t gpioa = 0x40020000, gpiob = 0x40020400;
 static_assert(Stm32F4Chip::gpioa_bsrr == gpioa + 0x18);
-constexpr std::uintptr_t gpio_moder = 0x00, gpio_ospeedr = 0x08, gpio_afrh = 0x24;
+static_assert(Stm32F4Chip::gpiob_bsrr == gpiob + 0x18);
+constexpr std::uintptr_t gpio_moder = 0x00, gpio_ospeedr = 0x08, gpio_afrl = 0x20, gpio_afrh = 0x24;
 
 constexpr std::uint32_t cr_hseon = 1u << 16, cr_hserdy = 1u << 17, cr_pllon = 1u << 24, cr_pllrdy = 1u << 25;
 constexpr std::uint32_t wait_attempts = 200'000;  // > 10 ms at 16 MHz; HSE needs ~2 ms
@@ -55,16 +56,22 @@ Clocks Stm32F4Chip::setup_clocks() noexcept {
 }
 
 void Stm32F4Chip::setup_gpio() noexcept {
-  reg(rcc_ahb1enr) = reg(rcc_ahb1enr) | (1u << 0);  // GPIOAEN
-  reg(rcc_apb2enr) = reg(rcc_apb2enr) | (1u << 4);  // USART1EN
+  reg(rcc_ahb1enr) = reg(rcc_ahb1enr) | (1u << 1) | (1u << 0);  // GPIOBEN, GPIOAEN
+  reg(rcc_apb1enr) = reg(rcc_apb1enr) | (1u << 2) | (1u << 1);  // TIM4EN, TIM3EN
+  reg(rcc_apb2enr) = reg(rcc_apb2enr) | (1u << 4);              // USART1EN
   stm32::barrier();
-  // PA0..PA5 general-purpose outputs (01), PA9/PA10 alternate function (10), AF7 = USART1.
+  // PA0..PA5 general-purpose outputs (01), PA6 and PA9/PA10 alternate function (10): AF2 = TIM3_CH1,
+  // AF7 = USART1.
   std::uint32_t moder = reg(gpioa + gpio_moder);
   for (std::uint32_t pin = 0; pin < 6; ++pin) moder = (moder & ~(0b11u << (2 * pin))) | (0b01u << (2 * pin));
-  moder = (moder & ~((0b11u << 18) | (0b11u << 20))) | (0b10u << 18) | (0b10u << 20);
+  moder = (moder & ~((0b11u << 12) | (0b11u << 18) | (0b11u << 20))) | (0b10u << 12) | (0b10u << 18) | (0b10u << 20);
   reg(gpioa + gpio_moder) = moder;
   reg(gpioa + gpio_ospeedr) = reg(gpioa + gpio_ospeedr) | 0xAAAu | (0b10u << 18);  // PA0-5, PA9 fast
+  reg(gpioa + gpio_afrl) = (reg(gpioa + gpio_afrl) & ~(0xFu << 24)) | (2u << 24);
   reg(gpioa + gpio_afrh) = (reg(gpioa + gpio_afrh) & ~0xFF0u) | (7u << 4) | (7u << 8);
+  // GPIOB: PB6 alternate function AF2 = TIM4_CH1, PB8..PB15 general-purpose outputs (01).
+  reg(gpiob + gpio_moder) = (reg(gpiob + gpio_moder) & ~((0b11u << 12) | 0xFFFF0000u)) | (0b10u << 12) | 0x55550000u;
+  reg(gpiob + gpio_afrl) = (reg(gpiob + gpio_afrl) & ~(0xFu << 24)) | (2u << 24);
 }
 
 void Stm32F4Chip::enable_step_timer() noexcept { reg(rcc_apb1enr) = reg(rcc_apb1enr) | 1u; }  // TIM2EN

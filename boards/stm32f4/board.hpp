@@ -2,7 +2,8 @@
 // Stm32F4Board: STM32F405 (Cortex-M4F, 168 MHz, single-precision FPU) bring-up: clocks, USART1, SysTick, step/dir GPIO.
 //
 // Pins (see README.md): USART1 TX PA9, RX PA10 (115200 8N1); STEP X/Y/Z = PA0/PA1/PA2,
-// DIR X/Y/Z = PA3/PA4/PA5 (push-pull outputs). Registers from RM0090 (STM32F405/F407 reference
+// DIR X/Y/Z = PA3/PA4/PA5 (push-pull outputs); machine outputs PB8..PB15, spindle PWM PA6 (TIM3),
+// servo pen PB6 (TIM4) (stm32_common/.../machine_outputs.hpp). Registers from RM0090 (STM32F405/F407 reference
 // manual); no vendor SDK. The same image runs on QEMU's netduinoplus2 (STM32F405): QEMU 7.2
 // models the USART and the Cortex-M core but not RCC, flash interface or GPIO (reads as 0, writes
 // ignored); RCC_CR = 0 is impossible on silicon, so the board then assumes QEMU's 168 MHz core clock.
@@ -26,6 +27,7 @@ struct Stm32F4Chip {
   static constexpr std::uintptr_t usart1 = 0x40011000;          ///< USART1 (APB2)
   static constexpr unsigned usart1_irq = 37;                    ///< its interrupt number
   static constexpr std::uintptr_t gpioa_bsrr = 0x40020000 + 0x18;  ///< GPIOA bit set/reset register
+  static constexpr std::uintptr_t gpiob_bsrr = 0x40020400 + 0x18;  ///< GPIOB bit set/reset register (machine outputs)
   static constexpr std::size_t step_events_per_tick = 128;      ///< StepBatch capacity per control tick
   static constexpr std::size_t edge_ring = 256;                 ///< timed edges waiting for TIM2 (two ticks)
   static constexpr std::size_t setpoint_window = 4;             ///< setpoint frames in flight (firmware::App)
@@ -35,7 +37,8 @@ struct Stm32F4Chip {
 
   /// HSE 25 MHz -> PLL 168 MHz, or HSI 16 MHz if a ready flag does not come; QEMU: 168 MHz.
   static Clocks setup_clocks() noexcept;
-  /// GPIOA and USART1 clocks; PA0..PA5 outputs, PA9/PA10 AF7 (USART1).
+  /// GPIOA, GPIOB, USART1, TIM3 and TIM4 clocks; PA0..PA5 outputs, PA9/PA10 AF7 (USART1); the
+  /// machine outputs: PB8..PB15 outputs, PA6 AF2 (TIM3_CH1), PB6 AF2 (TIM4_CH1).
   static void setup_gpio() noexcept;
   /// TIM2 clock on (APB1).
   static void enable_step_timer() noexcept;

@@ -16,8 +16,10 @@ namespace curvestep::host {
 template <class Output>
 class BoardThread {
  public:
-  /// `fast`: flow-controlled by the link instead of the wall clock (the same setpoints).
-  BoardThread(Output& output, bool fast) : output_(output), fast_(fast), thread_([this] { serve(); }) {}
+  /// `fast`: flow-controlled by the link instead of the wall clock (the same setpoints);
+  /// `machine_outputs`: the board's spindle, coolant, output and pen lines (null: events only logged).
+  BoardThread(Output& output, bool fast, boards::host::MachineOutputHooks* machine_outputs = nullptr)
+      : output_(output), fast_(fast), machine_outputs_(machine_outputs), thread_([this] { serve(); }) {}
   BoardThread(const BoardThread&) = delete;
   BoardThread& operator=(const BoardThread&) = delete;
   /// Stops the device and waits for its thread.
@@ -32,12 +34,14 @@ class BoardThread {
   void serve() {
     boards::host::DeviceOptions options;
     options.fast = fast_;
+    options.machine_outputs = machine_outputs_;
     (void)boards::host::run_device(pty_.master_fd(), output_, options, stop_, nullptr);
   }
 
   link::PseudoTerminal pty_;
   Output& output_;
   bool fast_;
+  boards::host::MachineOutputHooks* machine_outputs_;
   std::atomic<bool> stop_{false};
   std::thread thread_;  // last: started once every other member exists
 };

@@ -12,14 +12,14 @@
 #include <stdexcept>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include <curvestep/boards/host/device.hpp>
 #include <curvestep/boards/host/gpio_output.hpp>
-#include <curvestep/host/job.hpp>
+#include <curvestep/boards/host/gpiod_machine_outputs.hpp>
 #include <curvestep/host/link/transport.hpp>
+#include <curvestep/host/machine_file.hpp>
 
 #include "command_registry.hpp"
+#include "gpio_wiring.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -39,29 +39,10 @@ struct DeviceCommandOptions {
   unsigned retransmit_timeout_ms = 100;
 };
 
-/// The "gpio" section of a machine file: {"chip": "gpiochip0", "x": {"step": "...", "dir": "...",
-/// "invert_dir": false}, "y": {...}, "z": {...}}.
-boards::host::GpioLines read_gpio_lines(const std::string& path) {
-  const nlohmann::json root = nlohmann::json::parse(read_text_file(path), nullptr, true, true);
-  if (!root.contains("gpio")) throw std::runtime_error(path + ": no \"gpio\" section (chip and line names) for --gpio");
-  const auto& gpio = root.at("gpio");
-  boards::host::GpioLines lines;
-  if (!gpio.contains("chip") || !gpio.at("chip").is_string()) throw std::runtime_error(path + ": gpio.chip must be a string");
-  lines.chip = gpio.at("chip").get<std::string>();
-  const char* axes[] = {"x", "y", "z"};
-  for (std::size_t a = 0; a < 3; ++a) {
-    if (!gpio.contains(axes[a])) continue;
-    const auto& axis = gpio.at(axes[a]);
-    lines.step[a] = axis.value("step", std::string());
-    lines.direction[a] = axis.value("dir", std::string());
-    lines.invert_direction[a] = axis.value("invert_dir", false);
-  }
-  return lines;
-}
-
 template <class Output>
-int serve(int fd, Output& output, const DeviceCommandOptions& o) {
+int serve(int fd, Output& output, const DeviceCommandOptions& o, boards::host::MachineOutputHooks* machine_outputs) {
   boards::host::DeviceOptions options;
+  options.machine_outputs = machine_outputs;
   options.fast = o.fast;
   options.app.link_timeout_ms = o.link_timeout_ms;
   options.app.retransmit_timeout_ms = o.retransmit_timeout_ms;
@@ -74,11 +55,16 @@ int run_device_command(const DeviceCommandOptions& o) {
   std::signal(SIGTERM, on_stop_signal);
   std::signal(SIGPIPE, SIG_IGN);
   std::unique_ptr<boards::host::GpiodStepOutput> gpio;
+  std::unique_ptr<boards::host::GpiodMachineOutputs> outputs;  // spindle, coolant, digital outputs, servo pen
   if (o.gpio) {
     if (o.machine.empty()) throw std::runtime_error("--gpio needs --machine with a \"gpio\" section");
-    gpio = std::make_unique<boards::host::GpiodStepOutput>(read_gpio_lines(o.machine),
-                                                          boards::host::SystemClock::step_timer_hz);
+    const MachineWiring wiring = load_machine_wiring(o.machine);
+    if (!wiring.gpio) throw std::runtime_error(o.machine + ": no \"gpio\" section (chip and line names) for --gpio");
+    gpio = std::make_unique<boards::host::GpiodStepOutput>(step_lines(*wiring.gpio), boards::host::SystemClock::step_timer_hz);
+    const auto lines = output_lines(*wiring.gpio, wiring.pen);
+    if (lines.any()) outputs = std::make_unique<boards::host::GpiodMachineOutputs>(lines);
   }
+  boards::host::MachineOutputHooks* hooks = outputs ? &outputs->hooks() : nullptr;
   std::unique_ptr<link::PseudoTerminal> pty;
   std::unique_ptr<link::FdTransport> line;
   int fd = -1;
@@ -91,9 +77,9 @@ int run_device_command(const DeviceCommandOptions& o) {
     fd = line->fd();
     std::cout << o.port << std::endl;
   }
-  if (gpio) return serve(fd, *gpio, o);
+  if (gpio) return serve(fd, *gpio, o, hooks);
   boards::host::CountingStepOutput counting;
-  return serve(fd, counting, o);
+  return serve(fd, counting, o, hooks);
 }
 
 void add_device_command(CLI::App& app) {
@@ -102,7 +88,9 @@ void add_device_command(CLI::App& app) {
   device->add_option("--port", options->port, "Serve on this tty instead of creating a pseudo-terminal");
   device->add_option("--baud", options->baud, "Baud rate of --port");
   device->add_option("--machine,-m", options->machine, "Machine file with a \"gpio\" section (for --gpio)")->check(CLI::ExistingFile);
-  device->add_flag("--gpio", options->gpio, "Drive step/dir lines through libgpiod (chip and line names from --machine)");
+  device->add_flag("--gpio", options->gpio,
+                   "Drive step/dir lines, and the spindle, coolant, digital-output and servo-pen lines it names, through "
+                   "libgpiod (chip and line names from --machine)");
   device->add_flag("--fast", options->fast,
                    "Tests: run ticks as fast as the link allows (flow-controlled), not in real time");
   device->add_flag("--executor", options->executor,

@@ -32,6 +32,7 @@
 #include <curvestep/boards/host/board.hpp>
 #include <curvestep/boards/host/device.hpp>
 #include <curvestep/boards/host/gpio_output.hpp>
+#include <curvestep/boards/host/gpiod_machine_outputs.hpp>
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/core/motion/step_position.hpp>
@@ -47,6 +48,7 @@
 #include "board_thread.hpp"
 #include "command_registry.hpp"
 #include "gpio_command_output.hpp"
+#include "gpio_wiring.hpp"
 #include "job_pipeline_options.hpp"
 #include "operator_session.hpp"
 #include "rate_option.hpp"
@@ -156,7 +158,7 @@ std::string join_steps(const auto& values) {
 
 template <class Inner>
 int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimits& machine, const Plan& plan, Inner* inner,
-                 const std::string& where) {
+                 boards::host::MachineOutputHooks* machine_outputs, const std::string& where) {
   CountingOutput<Inner> output(inner);
   link::StreamOptions options;
   options.link.link_timeout_ms = o.link_timeout_ms;
@@ -174,7 +176,7 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
   const auto started = std::chrono::steady_clock::now();
   std::string failure;
   {
-    BoardThread<CountingOutput<Inner>> board(output, o.dry_run);
+    BoardThread<CountingOutput<Inner>> board(output, o.dry_run, machine_outputs);
     try {
       auto transport = link::open_port(board.port(), 115200);
       result = link::stream_job(*transport, job, machine, options);
@@ -242,16 +244,12 @@ int run_gpio(const GpioCommandOptions& o) {
     if (!file.gpio) {
       throw std::runtime_error(o.machine + ": no \"gpio\" section (chip and step/dir line names; docs/job_format.md)");
     }
-    lines.chip = o.chip.empty() ? file.gpio->chip : o.chip;
-    for (std::size_t a = 0; a < motion_axes; ++a) {
-      if (!file.gpio->axes[a]) continue;
-      lines.step[a] = file.gpio->axes[a]->step;
-      lines.direction[a] = file.gpio->axes[a]->dir;
-      lines.invert_direction[a] = file.gpio->axes[a]->invert_dir;
-    }
+    lines = step_lines(*file.gpio, o.chip);
   }
-  // Open the lines first: a missing chip is reported before anything else happens.
+  if (file.gpio) check_digital_outputs(job, *file.gpio);  // an M62-M65 without a line: refused at job load
+  // Open the lines first: a missing chip or line is reported before anything else happens.
   std::unique_ptr<boards::host::GpiodStepOutput> gpio;
+  std::unique_ptr<boards::host::GpiodMachineOutputs> outputs;  // spindle, coolant, digital outputs, servo pen
   if (!o.dry_run) {
     try {
       // A tick that stood still (a stalled stream) makes the next edges one period late: re-base then.
@@ -259,6 +257,8 @@ int run_gpio(const GpioCommandOptions& o) {
       gpio = std::make_unique<boards::host::GpiodStepOutput>(
           lines, boards::host::SystemClock::step_timer_hz,
           std::min(boards::host::EdgeClock::default_late_limit_ns, half_period_ns));
+      const auto wired = output_lines(*file.gpio, file.pen, o.chip);
+      if (wired.any()) outputs = std::make_unique<boards::host::GpiodMachineOutputs>(wired);
     } catch (const boards::host::GpioError& e) {
       std::cerr << "curvestep gpio: " << e.what() << "\n";
       return exit_gpio_unavailable;
@@ -274,8 +274,10 @@ int run_gpio(const GpioCommandOptions& o) {
     }
   }
   std::signal(SIGPIPE, SIG_IGN);
-  if (o.dry_run) return run_on_board<boards::host::GpiodStepOutput>(o, job, machine, plan, nullptr, "dry run (no lines driven)");
-  return run_on_board(o, job, machine, plan, gpio.get(), "GPIO chip \"" + lines.chip + "\"");
+  if (o.dry_run) {
+    return run_on_board<boards::host::GpiodStepOutput>(o, job, machine, plan, nullptr, nullptr, "dry run (no lines driven)");
+  }
+  return run_on_board(o, job, machine, plan, gpio.get(), outputs ? &outputs->hooks() : nullptr, "GPIO chip \"" + lines.chip + "\"");
 }
 
 void add_gpio_command(CLI::App& app) {

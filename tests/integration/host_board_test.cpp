@@ -3,19 +3,16 @@
 // and the step/dir waveform of a streamed job through a recording output of the same interface.
 #include <catch2/catch.hpp>
 
-#include <atomic>
 #include <memory>
-#include <thread>
 
 #include <curvestep/boards/host/device.hpp>
 #include <curvestep/boards/host/gpio_output.hpp>
 #include <curvestep/core/motion/step_output.hpp>
 #include <curvestep/host/job.hpp>
-#include <curvestep/host/link/streamer.hpp>
-#include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/machine_file.hpp>
 
 #include "hil_support.hpp"
+#include "host_board_stream.hpp"
 #include "process.hpp"
 
 namespace ct = curvestep::test;
@@ -51,22 +48,7 @@ TEST_CASE("host board: the step/dir waveform of a streamed job has the driver ti
   const auto machine = curvestep::host::load_machine(ct::wire_exact_machine());
   using Recorder = curvestep::RecordingStepOutput<65536>;
   auto recorder = std::make_unique<Recorder>();
-  curvestep::host::link::PseudoTerminal pty;
-  std::atomic<bool> stop{false};
-  hb::DeviceOptions options;
-  options.fast = true;
-  std::thread device([&] { hb::run_device(pty.master_fd(), *recorder, options, stop, nullptr); });
-  curvestep::host::link::StreamResult result;
-  try {
-    auto port = curvestep::host::link::open_terminal(pty.slave_path(), 115200);
-    result = curvestep::host::link::stream_job(*port, job, machine);
-  } catch (...) {
-    stop = true;
-    device.join();
-    throw;
-  }
-  stop = true;
-  device.join();
+  const auto result = ct::stream_to_host_board(job, machine, *recorder);
   REQUIRE(result.standing_ticks == 0);
   REQUIRE(recorder->dropped() == 0);
 

@@ -17,7 +17,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from qemu_board import MACHINES, QemuBoard  # noqa: E402
+from qemu_board import MACHINES, QemuBoard, curvestep_can_stream  # noqa: E402
 
 
 
@@ -37,9 +37,7 @@ def main():
                         help="send a copy of the job with its weights rounded to Q16.16 (the wire's format), "
                              "so that it means the same to sim and to the device")
     args = parser.parse_args()
-    probe = subprocess.run([args.curvestep, "stream", "--help"], capture_output=True, text=True)
-    if probe.returncode != 0:
-        print("SKIP: this curvestep has no stream subcommand")
+    if not curvestep_can_stream(args.curvestep):
         return 77
     with tempfile.TemporaryDirectory(prefix="curvestep-hil-") as work:
         capture, simulated = os.path.join(work, "device.csv"), os.path.join(work, "sim.csv")

@@ -7,6 +7,7 @@ import os
 import re
 import select
 import signal
+import socket
 import subprocess
 import sys
 import termios
@@ -103,6 +104,76 @@ class QemuBoard:
             except TimeoutError:
                 continue
         raise TimeoutError(f"no answer to {command!r}; received {self.received[-400:]!r}")
+
+
+def curvestep_can_stream(curvestep):
+    """True if `curvestep` has the `stream` subcommand; else prints the SKIP line (the tests then exit 77)."""
+    probe = subprocess.run([curvestep, "stream", "--help"], capture_output=True, text=True, timeout=30)
+    if probe.returncode != 0:
+        print("SKIP: this curvestep has no stream subcommand")
+        return False
+    return True
+
+
+class QemuMonitor:
+    """The QEMU monitor on a unix socket (`-monitor unix:PATH,server,nowait`), one connection kept
+    open: guest physical memory and memory-mapped registers read with `xp`."""
+
+    PROMPT = b"(qemu) "
+
+    def __init__(self, path, timeout=10.0):
+        deadline = time.monotonic() + timeout
+        while True:
+            try:
+                self.sock = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+                self.sock.connect(path)
+                break
+            except OSError:
+                self.sock.close()
+                if time.monotonic() > deadline:
+                    raise
+                time.sleep(0.1)
+        self.timeout = timeout
+        self._until_prompt()  # the greeting
+
+    def close(self):
+        self.sock.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    def _until_prompt(self):
+        data, deadline = b"", time.monotonic() + self.timeout
+        while not data.endswith(self.PROMPT):
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                raise TimeoutError(f"no monitor prompt; received {data[-200:]!r}")
+            self.sock.settimeout(remaining)
+            chunk = self.sock.recv(65536)
+            if not chunk:
+                raise RuntimeError("the monitor closed its socket")
+            data += chunk
+        return data.decode(errors="replace")
+
+    def words(self, address, count):
+        """`count` 32-bit words of guest physical memory (or registers) from `address`."""
+        self.sock.sendall(f"xp /{count}wx 0x{address:08x}\n".encode())
+        text = self._until_prompt()
+        words = [int(w, 16) for line in text.splitlines() if re.match(r"^[0-9a-f]{8,16}:", line.strip())
+                 for w in re.findall(r"0x([0-9a-f]{8})\b", line.split(":", 1)[1])]
+        if len(words) < count:
+            raise RuntimeError(f"monitor returned {len(words)} of {count} words: {text[-300:]!r}")
+        return words[:count]
+
+
+def read_words(monitor_path, address, count):
+    """Guest memory words through the QEMU monitor's `xp` (one connection)."""
+    with QemuMonitor(monitor_path) as monitor:
+        return monitor.words(address, count)
 
 
 if __name__ == "__main__":

@@ -33,7 +33,7 @@ from fractions import Fraction
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from hil_stream_test import read_csv  # noqa: E402
-from qemu_board import MACHINES, QemuBoard  # noqa: E402
+from qemu_board import MACHINES, QemuBoard, curvestep_can_stream  # noqa: E402
 
 AXES = "xyz"
 STEP_PINS, DIR_PINS = (0, 1, 2), (3, 4, 5)  # PA0..PA2, PA3..PA5 (boards/stm32_common/.../board.hpp)
@@ -153,9 +153,7 @@ def main():
                              "each moves the player 65.5 ms on: the jobs here have no such gap between edges)")
     parser.add_argument("--deadline", type=float, default=150.0, help="seconds for the whole run")
     args = parser.parse_args()
-    probe = subprocess.run([args.curvestep, "stream", "--help"], capture_output=True, text=True, timeout=30)
-    if probe.returncode != 0:
-        print("SKIP: this curvestep has no stream subcommand")
+    if not curvestep_can_stream(args.curvestep):
         return 77
     started, job_name = time.monotonic(), os.path.basename(args.job)
     with open(args.job, encoding="utf-8") as handle:

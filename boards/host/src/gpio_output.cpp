@@ -1,40 +1,21 @@
 // SPDX-License-Identifier: MIT
 #include <curvestep/boards/host/gpio_output.hpp>
 
-#include <cerrno>
-#include <cstring>
 #include <gpiod.h>
 
 #include <curvestep/boards/host/monotonic_time.hpp>
 
+#include "gpiod_request.hpp"
+
 namespace curvestep::boards::host {
-namespace {
-
-constexpr const char* consumer = "curvestep";
-
-}  // namespace
 
 GpiodStepOutput::GpiodStepOutput(const GpioLines& lines, std::uint32_t timer_hz, std::int64_t late_limit_ns)
     : clock_(timer_hz, late_limit_ns) {
-  if (lines.chip.empty()) throw GpioError("GPIO: no chip given (machine file: \"gpio\": {\"chip\": ...})");
-  chip_ = gpiod_chip_open_lookup(lines.chip.c_str());
-  if (chip_ == nullptr) {
-    throw GpioError("GPIO chip \"" + lines.chip + "\" not found: " + std::strerror(errno) +
-                    " (list chips with gpiodetect; this machine may have none)");
-  }
-  const auto request = [this, &lines](const std::string& name, const char* role, std::size_t axis) -> gpiod_line* {
+  chip_ = detail::open_chip(lines.chip);
+  const char* axis_names[] = {"x", "y", "z"};
+  const auto request = [this, &lines, &axis_names](const std::string& name, const char* role, std::size_t axis) -> gpiod_line* {
     if (name.empty()) return nullptr;
-    gpiod_line* line = gpiod_chip_find_line(chip_, name.c_str());
-    const char* axis_names[] = {"x", "y", "z"};
-    if (line == nullptr) {
-      throw GpioError("GPIO line \"" + name + "\" (" + axis_names[axis] + " " + role + ") not found on chip \"" +
-                      lines.chip + "\"");
-    }
-    if (gpiod_line_request_output(line, consumer, 0) != 0) {
-      throw GpioError("GPIO line \"" + name + "\" on chip \"" + lines.chip + "\" cannot be requested as an output: " +
-                      std::strerror(errno));
-    }
-    return line;
+    return detail::request_output_line(chip_, lines.chip, name, std::string(axis_names[axis]) + " " + role);
   };
   try {
     for (std::size_t axis = 0; axis < 3; ++axis) {

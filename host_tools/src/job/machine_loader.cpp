@@ -39,14 +39,60 @@ bool may_be_zero(LimitField field) {
          field == LimitField::AxisVMax || field == LimitField::AxisAMax;
 }
 
-/// The "gpio" section: {"chip": NAME, "x": {"step": LINE, "dir": LINE, "invert_dir": BOOL}, "y": ..., "z": ...}.
+/// Line names of a "gpio" section, each used once.
+class LineNames {
+ public:
+  explicit LineNames(const Reader& reader) : reader_(reader) {}
+  /// The non-empty line name at `node`, which the key `here` names in messages.
+  std::string take(const Node& node, const std::string& here) {
+    std::string name = reader_.string(node);
+    if (name.empty()) reader_.fail(node, "the line name must not be empty (gpioinfo lists the names)");
+    if (const auto twice = used_.find(name); twice != used_.end()) {
+      reader_.fail(node, "line \"" + name + "\" is already used by " + twice->second);
+    }
+    used_.emplace(name, here);
+    return name;
+  }
+  /// The line at optional key `key` of `section` (the key `here`), or "" when absent.
+  std::string optional(const Node& section, const char* key, const std::string& here) {
+    const auto node = reader_.optional(section, key);
+    return node ? take(*node, here + ".\"" + key + "\"") : std::string{};
+  }
+
+ private:
+  const Reader& reader_;
+  std::map<std::string, std::string> used_;  // line name -> the key that uses it
+};
+
+/// The machine outputs of a "gpio" section: "spindle", "coolant", "outputs".
+void parse_output_lines(const Reader& reader, const Node& gpio, LineNames& names, GpioWiring& wiring) {
+  if (const auto spindle = reader.optional(gpio, "spindle")) {
+    reader.check_keys(*spindle, {"enable", "direction"});
+    wiring.spindle_enable = names.optional(*spindle, "enable", "\"gpio\".\"spindle\"");
+    wiring.spindle_direction = names.optional(*spindle, "direction", "\"gpio\".\"spindle\"");
+  }
+  if (const auto coolant = reader.optional(gpio, "coolant")) {
+    reader.check_keys(*coolant, {"mist", "flood"});
+    wiring.coolant_mist = names.optional(*coolant, "mist", "\"gpio\".\"coolant\"");
+    wiring.coolant_flood = names.optional(*coolant, "flood", "\"gpio\".\"coolant\"");
+  }
+  if (const auto outputs = reader.optional(gpio, "outputs")) {
+    const std::vector<Node> lines = reader.array(*outputs, 1, max_digital_outputs);
+    for (std::size_t k = 0; k < lines.size(); ++k) {
+      wiring.outputs.push_back(names.take(lines[k], "\"gpio\".\"outputs\"[" + std::to_string(k) + "]"));
+    }
+  }
+}
+
+/// The "gpio" section: {"chip": NAME, "x": {"step": LINE, "dir": LINE, "invert_dir": BOOL}, "y": ..., "z": ...,
+/// "spindle": {...}, "coolant": {...}, "outputs": [...]}.
 GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
-  reader.check_keys(gpio, {"chip", "x", "y", "z"});
+  reader.check_keys(gpio, {"chip", "x", "y", "z", "spindle", "coolant", "outputs"});
   GpioWiring wiring;
   const Node chip = reader.require(gpio, "chip");
   wiring.chip = reader.string(chip);
   if (wiring.chip.empty()) reader.fail(chip, "the chip name must not be empty (e.g. \"gpiochip0\"; gpiodetect lists them)");
-  std::map<std::string, std::string> used;  // line name -> the key that uses it
+  LineNames names(reader);
   bool any = false;
   for (std::size_t axis = 0; axis < motion_axes; ++axis) {
     const auto entry = reader.optional(gpio, axis_names[axis]);
@@ -54,15 +100,7 @@ GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
     reader.check_keys(*entry, {"step", "dir", "invert_dir"});
     GpioAxisWiring lines;
     const auto line = [&](const char* key) {
-      const Node node = reader.require(*entry, key);
-      std::string name = reader.string(node);
-      if (name.empty()) reader.fail(node, "the line name must not be empty (gpioinfo lists the names)");
-      const std::string here = std::string("\"gpio\".\"") + axis_names[axis] + "\".\"" + key + "\"";
-      if (const auto twice = used.find(name); twice != used.end()) {
-        reader.fail(node, "line \"" + name + "\" is already used by " + twice->second);
-      }
-      used.emplace(name, here);
-      return name;
+      return names.take(reader.require(*entry, key), std::string("\"gpio\".\"") + axis_names[axis] + "\".\"" + key + "\"");
     };
     lines.step = line("step");
     lines.dir = line("dir");
@@ -71,6 +109,7 @@ GpioWiring parse_gpio(const Reader& reader, const Node& gpio) {
     any = true;
   }
   if (!any) reader.fail(gpio, "wires no axis (expected at least one of \"x\", \"y\", \"z\" with \"step\" and \"dir\")");
+  parse_output_lines(reader, gpio, names, wiring);
   return wiring;
 }
 
@@ -234,6 +273,16 @@ MachineFile parse_machine_file(std::string_view text, std::string name) {
     file.blend_tolerance_mm = value;
   }
   return file;
+}
+
+MachineWiring load_machine_wiring(const std::filesystem::path& path) {
+  const detail::JsonDocument document(read_text_file(path), path.string(), Error::InvalidMachine);
+  const Reader reader(document, Error::InvalidMachine);
+  const Node root = reader.root();
+  MachineWiring wiring;
+  if (const auto gpio = reader.optional(root, "gpio")) wiring.gpio = parse_gpio(reader, *gpio);
+  if (const auto pen = reader.optional(root, "pen")) wiring.pen = detail::parse_pen(reader, *pen);
+  return wiring;
 }
 
 MachineLimits parse_machine(std::string_view text, std::string name) { return parse_machine_file(text, std::move(name)).limits; }

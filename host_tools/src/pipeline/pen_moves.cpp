@@ -2,6 +2,7 @@
 // Plotter pen up/down as motion (pen_moves.hpp).
 #include <curvestep/host/pen_moves.hpp>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -65,15 +66,19 @@ class PenJob {
     out_.events.push_back(std::move(event));
   }
 
-  void pen_event(JobEventKind kind) {
+  /// A PenUp/PenDown event; `pulse_us`: a servo's pulse width for it (0 for a pen on z).
+  void pen_event(JobEventKind kind, double pulse_us = 0) {
     JobEvent event;
     event.kind = kind;
+    event.value = pulse_us;
     add_event(std::move(event));
   }
 
-  /// A servo pen's move: its event, then a dwell of the settle time (an exact stop there).
+  /// A servo pen's move: its event, carrying the servo's pulse width for it in whole microseconds
+  /// (the board's PWM resolution: docs/boards.md, "Machine outputs"), then a dwell of the settle
+  /// time (an exact stop there).
   void servo_move(JobEventKind kind) {
-    pen_event(kind);
+    pen_event(kind, std::nearbyint(kind == JobEventKind::PenDown ? pen_.down_pulse_us : pen_.up_pulse_us));
     JobEvent settle;
     settle.kind = JobEventKind::Dwell;
     settle.value = pen_.settle_s;

@@ -37,6 +37,9 @@ struct HookBoard : FakeBoard {
     record("output(" + std::to_string(number) + "," + std::to_string(on) + ")", setpoint);
   }
   void tool_change(std::uint32_t tool, std::uint32_t setpoint) { record("tool(" + std::to_string(tool) + ")", setpoint); }
+  void pen(bool down, std::uint32_t pulse_us, std::uint32_t setpoint) {
+    record("pen(" + std::to_string(down) + "," + std::to_string(pulse_us) + ")", setpoint);
+  }
 };
 static_assert(Board<HookBoard>);
 
@@ -115,6 +118,27 @@ TEST_CASE("firmware: M3 S1000, M8, G4 P0.5, M62 P1, M5, M9 reach the board's hoo
   CHECK(board.at[2] == board.at[0] + 500);               // M62 after the dwell
   CHECK(board.at[3] == setpoints.back().first);          // M5 and M9 at the job's end
   CHECK(board.at[4] == setpoints.back().first);
+}
+
+TEST_CASE("firmware: pen events reach the pen hook with the servo pulse width they carry", "[firmware][app][events]") {
+  struct Rig {
+    HookBoard board;
+    App<HookBoard> app{board};
+    Host<App<HookBoard>> host{board, app};
+  } rig;
+  REQUIRE(rig.host.connect());
+  REQUIRE(rig.host.send(Message(machine(50))));
+  QueueSegment travel = line(p(0, 0), p(10, 0));
+  QueueSegment stroke = line(p(10, 0), p(20, 0));
+  stroke.stop_before = true;
+  stroke.end_of_job = true;
+  // A servo pen lifted (1000 us) before the travel, lowered (2000 us) at the joint, lifted at the end.
+  const std::vector<Message> messages{Message(event(0, 0, MachineEventKind::PenUp, false, 1000)), Message(travel),
+                                      Message(event(1, 0, MachineEventKind::PenDown, false, 2000)),
+                                      Message(event(2, 0, MachineEventKind::PenUp, false, 1000)), Message(stroke)};
+  run(rig.host, rig.app, rig.board, messages);
+  REQUIRE(rig.host.received.errors.empty());
+  CHECK(rig.board.calls == std::vector<std::string>{"pen(0,1000)", "pen(1,2000)", "pen(0,1000)"});
 }
 
 TEST_CASE("firmware: a QueueEvent takes a credit and waits in the App's ring", "[firmware][app][events]") {

@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The machine file's optional "gpio" section (issue 6): parsed into GpioWiring, validated, with
 // errors naming the file, line and key; unknown keys stay errors.
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <unistd.h>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -84,7 +88,17 @@ TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools
       {"\"gpio\": {\"chip\": \"c\",\n  \"x\": {\"step\": \"A\", \"dir\": \"B\", \"pulse_us\": 5}}", 8,
        "\"gpio\".\"x\".\"pulse_us\"", "unknown key (expected one of: step, dir, invert_dir, comment)"},
       {"\"gpio\": {\"chip\": \"c\",\n  \"w\": {\"step\": \"A\", \"dir\": \"B\"}}", 8, "\"gpio\".\"w\"",
-       "unknown key (expected one of: chip, x, y, z, comment)"},
+       "unknown key (expected one of: chip, x, y, z, spindle, coolant, outputs, comment)"},
+      {"\"gpio\": {\"chip\": \"c\", \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"outputs\": [\"C\", \"A\"]}", 8,
+       "\"gpio\".\"outputs\"[1]", "line \"A\" is already used by \"gpio\".\"x\".\"step\""},
+      {"\"gpio\": {\"chip\": \"c\", \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"outputs\": \"C\"}", 8,
+       "\"gpio\".\"outputs\"", "expected an array"},
+      {"\"gpio\": {\"chip\": \"c\", \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"outputs\": []}", 8,
+       "\"gpio\".\"outputs\"", "expected 1 to 64 entries, got 0"},
+      {"\"gpio\": {\"chip\": \"c\", \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"spindle\": {\"enable\": \"E\", \"pwm\": \"P\"}}", 8,
+       "\"gpio\".\"spindle\".\"pwm\"", "unknown key (expected one of: enable, direction, comment)"},
+      {"\"gpio\": {\"chip\": \"c\", \"x\": {\"step\": \"A\", \"dir\": \"B\"},\n  \"coolant\": {\"mist\": \"M\", \"flood\": \"M\"}}", 8,
+       "\"gpio\".\"coolant\".\"flood\"", "line \"M\" is already used by \"gpio\".\"coolant\".\"mist\""},
       {R"("gpio": "gpiochip0")", 7, "\"gpio\"", "expected an object"},
       {R"("gpoi": {"chip": "c"})", 7, "\"gpoi\"", "unknown key"},
   };
@@ -99,4 +113,26 @@ TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools
     CHECK(what.rfind("gpio_machine.json:" + std::to_string(c.line) + ": " + c.field + ": ", 0) == 0);
     CHECK(contains(what, c.cause));
   }
+}
+
+TEST_CASE("machine gpio: the machine outputs' lines map onto GpioWiring, and load_machine_wiring reads only gpio and pen",
+          "[host_tools][jobs][gpio]") {
+  const MachineFile file = parse_machine_file(machine_with(R"("gpio": {"chip": "gpiochip0", "x": {"step": "S", "dir": "D"},
+           "spindle": {"enable": "EN", "direction": "CCW"}, "coolant": {"flood": "FL"}, "outputs": ["O0", "O1", "O2"]})"),
+                                              "m.json");
+  REQUIRE(file.gpio.has_value());
+  CHECK(file.gpio->spindle_enable == "EN");
+  CHECK(file.gpio->spindle_direction == "CCW");
+  CHECK(file.gpio->coolant_mist.empty());  // not wired
+  CHECK(file.gpio->coolant_flood == "FL");
+  CHECK(file.gpio->outputs == std::vector<std::string>{"O0", "O1", "O2"});
+  const auto path = std::filesystem::temp_directory_path() / ("wiring_" + std::to_string(getpid()) + ".json");
+  std::ofstream(path) << R"({"gpio": {"chip": "c", "x": {"step": "S", "dir": "D"}, "outputs": ["O0"]},
+  "pen": {"axis": "servo", "line": "SERVO", "up_pulse_us": 1000, "down_pulse_us": 2000, "settle": 0.1}})";
+  const MachineWiring wiring = load_machine_wiring(path);  // no limits: not read
+  std::filesystem::remove(path);
+  REQUIRE(wiring.gpio.has_value());
+  CHECK(wiring.gpio->outputs == std::vector<std::string>{"O0"});
+  REQUIRE(wiring.pen.has_value());
+  CHECK(wiring.pen->line == "SERVO");
 }

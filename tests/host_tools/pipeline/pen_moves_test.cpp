@@ -132,8 +132,8 @@ TEST_CASE("pen: a servo pen keeps the path and moves by events, each followed by
   PenModel pen;
   pen.servo = true;
   pen.line = "GPIO18";
-  pen.up_pulse_us = 1000;
-  pen.down_pulse_us = 2000;
+  pen.up_pulse_us = 1000.4;  // carried in whole microseconds
+  pen.down_pulse_us = 1999.6;
   pen.settle_s = 0.25;
   const Job job = add_pen_moves(drawing, pen);
   // No z moves: the same four segments, bit for bit.
@@ -151,6 +151,8 @@ TEST_CASE("pen: a servo pen keeps the path and moves by events, each followed by
   for (std::size_t i = 0; i < expected.size(); ++i) {
     check_event(job, i, expected[i].first, expected[i].second);
     if (expected[i].first == JobEventKind::Dwell) CHECK(job.events[i].value == 0.25);
+    if (expected[i].first == JobEventKind::PenUp) CHECK(job.events[i].value == 1000);    // the servo's width, rounded
+    if (expected[i].first == JobEventKind::PenDown) CHECK(job.events[i].value == 2000);
   }
 }
 

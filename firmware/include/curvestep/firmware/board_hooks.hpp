@@ -6,7 +6,7 @@
 //   void spindle(bool on, bool counter_clockwise, std::uint32_t rpm, std::uint32_t setpoint);
 //   void coolant(bool mist, bool flood, std::uint32_t setpoint);       // the state after M7/M8/M9
 //   void digital_output(std::uint32_t number, bool on, std::uint32_t setpoint);
-//   void pen(bool down, std::uint32_t setpoint);
+//   void pen(bool down, std::uint32_t pulse_us, std::uint32_t setpoint);  // servo pulse width, 0: none given
 //   void tool_change(std::uint32_t tool, std::uint32_t setpoint);
 //   void machine_event(const protocol::QueueEvent& event, std::uint32_t setpoint);  // every event (logs)
 //
@@ -69,7 +69,9 @@ void apply_machine_event(B& board, const protocol::QueueEvent& event, std::uint3
       return;
     case MachineEventKind::PenUp:
     case MachineEventKind::PenDown:
-      if constexpr (requires { board.pen(true, setpoint); }) board.pen(event.kind == MachineEventKind::PenDown, setpoint);
+      if constexpr (requires { board.pen(true, std::uint32_t{}, setpoint); }) {
+        board.pen(event.kind == MachineEventKind::PenDown, event.value, setpoint);
+      }
       return;
     case MachineEventKind::ToolChange:
       if constexpr (requires { board.tool_change(std::uint32_t{}, setpoint); }) board.tool_change(event.value, setpoint);

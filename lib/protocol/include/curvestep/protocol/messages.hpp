@@ -153,6 +153,18 @@ enum class ProfileKind : std::uint8_t {
   Trapezoid = 1,  ///< acceleration-limited (trapezoidal) speed profiles
 };
 
+/// MachineConfiguration flag bit 0: trapezoidal profiles (else S-curve).
+inline constexpr std::uint8_t configuration_flag_trapezoid = 0x01;
+/// Payload bytes of a MachineConfiguration before the axes.
+inline constexpr std::size_t configuration_header_size = 62;
+/// Payload bytes of one axis in a MachineConfiguration.
+inline constexpr std::size_t configuration_axis_size = 32;
+
+/// The flags byte of a MachineConfiguration is the profile: only bit 0 (trapezoid) may be set.
+[[nodiscard]] constexpr bool valid_wire_value(const ProfileKind& profile) noexcept {
+  return static_cast<std::uint8_t>(profile) <= configuration_flag_trapezoid;
+}
+
 /// Machine configuration; the firmware validates the values (InvalidLimit, InvalidRate).
 /// Planning limits are binary64 (exact); feeds are Q16.16 like segment feeds.
 struct MachineConfiguration {
@@ -319,6 +331,11 @@ enum class MachineState : std::uint8_t {
   Fault = 3,    ///< stopped by an error (see StatusReport::error), needs Abort
 };
 
+/// The states a StatusReport may carry (0..3).
+[[nodiscard]] constexpr bool valid_wire_value(const MachineState& state) noexcept {
+  return static_cast<std::uint8_t>(state) <= 3;
+}
+
 /// Name of a state, for logs ("idle", "running", "holding", "fault"; "unknown" for another value).
 [[nodiscard]] constexpr const char* machine_state_name(MachineState state) noexcept {
   switch (state) {
@@ -393,6 +410,42 @@ struct WireFields<FeedOverride> : WireLayout<&FeedOverride::feed_percent, &FeedO
 template <>
 struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
                                            &QueueEvent::flag, &QueueEvent::value> {};
+/// Capabilities: version, session, max payload, queue capacity, credit end, fixed-point bits
+/// (total, fraction), axis count, max degree, tick rate, look-ahead (20 bytes).
+template <>
+struct WireFields<Capabilities>
+    : WireLayout<&Capabilities::version, &Capabilities::session, &Capabilities::max_payload, &Capabilities::queue_capacity,
+                 &Capabilities::credit_end, &Capabilities::fixed_total_bits, &Capabilities::fixed_fraction_bits,
+                 &Capabilities::axis_count, &Capabilities::max_degree, &Capabilities::tick_rate_hz,
+                 &Capabilities::lookahead> {};
+/// Capabilities' rules across fields: 2 or 3 axes (byte 12); a degree up to max_segment_degree,
+/// and degree 0 (no segments) only from a controller without a planner (look-ahead 0; byte 13).
+[[nodiscard]] constexpr std::size_t first_invalid_field(const Capabilities& m) noexcept {
+  if (m.axis_count != 2 && m.axis_count != 3) return 12;
+  if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) return 13;
+  return all_fields_valid;
+}
+/// StatusReport's fixed head (19 bytes); the position follows, 4 bytes per axis (axis_count).
+/// Not a WireFields: the position's length depends on axis_count, so encode/decode are written
+/// out below around this one description of the fixed fields.
+using StatusReportHead = WireLayout<&StatusReport::state, &StatusReport::error, &StatusReport::axis_count,
+                                    &StatusReport::queue_depth, &StatusReport::max_queue_depth,
+                                    &StatusReport::setpoint_index, &StatusReport::feed_override_percent,
+                                    &StatusReport::rapid_override_percent, &StatusReport::override_index>;
+/// MachineConfiguration's fixed head (62 bytes: axis count, profile as the flags byte, the
+/// limits, feeds and rate); axis_count AxisConfigurationLayouts follow.
+using MachineConfigurationHead =
+    WireLayout<&MachineConfiguration::axis_count, &MachineConfiguration::profile, &MachineConfiguration::max_velocity_mm_per_s,
+               &MachineConfiguration::max_acceleration_mm_per_s2, &MachineConfiguration::max_jerk_mm_per_s3,
+               &MachineConfiguration::tolerance_mm, &MachineConfiguration::junction_deviation_mm,
+               &MachineConfiguration::max_step_rate_hz, &MachineConfiguration::default_feed_mm_per_s,
+               &MachineConfiguration::rapid_mm_per_s, &MachineConfiguration::control_rate_hz>;
+/// One axis of a MachineConfiguration (32 bytes).
+using AxisConfigurationLayout =
+    WireLayout<&AxisConfiguration::steps_per_mm, &AxisConfiguration::max_velocity_mm_per_s,
+               &AxisConfiguration::max_acceleration_mm_per_s2, &AxisConfiguration::min_position_mm,
+               &AxisConfiguration::max_position_mm>;
+static_assert(MachineConfigurationHead::size == configuration_header_size && AxisConfigurationLayout::size == configuration_axis_size);
 
 namespace detail {
 
@@ -474,54 +527,14 @@ constexpr void read_point(ByteReader& reader, WirePoint& point, std::size_t axes
 
 // --- encoders: each writes the payload only and returns its length (BufferTooSmall if it does not fit) ---
 
-/// Encodes a Capabilities payload (20 bytes).
-[[nodiscard]] constexpr Result<std::size_t> encode(const Capabilities& m, std::span<std::byte> out) noexcept {
-  ByteWriter w(out);
-  w.u16(m.version);
-  w.u16(m.session);
-  w.u16(m.max_payload);
-  w.u16(m.queue_capacity);
-  w.u16(m.credit_end);
-  w.u8(m.fixed_total_bits);
-  w.u8(m.fixed_fraction_bits);
-  w.u8(m.axis_count);
-  w.u8(m.max_degree);
-  w.u32(m.tick_rate_hz);
-  w.u16(m.lookahead);
-  return w.finish();
-}
-
-/// MachineConfiguration flag bit 0: trapezoidal profiles (else S-curve).
-inline constexpr std::uint8_t configuration_flag_trapezoid = 0x01;
-/// Payload bytes of a MachineConfiguration before the axes.
-inline constexpr std::size_t configuration_header_size = 62;
-/// Payload bytes of one axis in a MachineConfiguration.
-inline constexpr std::size_t configuration_axis_size = 32;
 
 /// Encodes a MachineConfiguration payload (62 + 32 per axis bytes); InvalidArgument for 0/1/4+ axes.
 [[nodiscard]] constexpr Result<std::size_t> encode(const MachineConfiguration& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 0);
   if (static_cast<std::uint8_t>(m.profile) > 1) return fail(Error::InvalidArgument, 1);
   ByteWriter w(out);
-  w.u8(m.axis_count);
-  w.u8(m.profile == ProfileKind::Trapezoid ? configuration_flag_trapezoid : std::uint8_t{0});
-  w.f64(m.max_velocity_mm_per_s);
-  w.f64(m.max_acceleration_mm_per_s2);
-  w.f64(m.max_jerk_mm_per_s3);
-  w.f64(m.tolerance_mm);
-  w.f64(m.junction_deviation_mm);
-  w.f64(m.max_step_rate_hz);
-  w.i32(m.default_feed_mm_per_s);
-  w.i32(m.rapid_mm_per_s);
-  w.u32(m.control_rate_hz);
-  for (std::size_t a = 0; a < m.axis_count; ++a) {
-    const AxisConfiguration& axis = m.axes[a];
-    w.f64(axis.steps_per_mm);
-    w.f64(axis.max_velocity_mm_per_s);
-    w.f64(axis.max_acceleration_mm_per_s2);
-    w.i32(axis.min_position_mm);
-    w.i32(axis.max_position_mm);
-  }
+  MachineConfigurationHead::write(w, m);
+  for (std::size_t a = 0; a < m.axis_count; ++a) AxisConfigurationLayout::write(w, m.axes[a]);
   return w.finish();
 }
 
@@ -689,19 +702,11 @@ template <EmptyMessage Empty>
   return std::size_t{0};
 }
 
-/// Encodes a StatusReport payload (19 + 4 per axis bytes).
+/// Encodes a StatusReport payload (its described head, then 4 bytes per axis of position).
 [[nodiscard]] constexpr Result<std::size_t> encode(const StatusReport& m, std::span<std::byte> out) noexcept {
   if (!detail::valid_axis_count(m.axis_count)) return fail(Error::InvalidArgument, 2);
   ByteWriter w(out);
-  w.u8(static_cast<std::uint8_t>(m.state));
-  w.u8(m.error);
-  w.u8(m.axis_count);
-  w.u16(m.queue_depth);
-  w.u16(m.max_queue_depth);
-  w.u32(m.setpoint_index);
-  w.u16(m.feed_override_percent);
-  w.u16(m.rapid_override_percent);
-  w.u32(m.override_index);
+  StatusReportHead::write(w, m);
   detail::write_point(w, m.position, m.axis_count);
   return w.finish();
 }
@@ -752,59 +757,16 @@ template <class T>
   }
 }
 
-/// Decodes a Capabilities payload.
-template <>
-[[nodiscard]] constexpr Result<Capabilities> decode<Capabilities>(std::span<const std::byte> payload) noexcept {
-  ByteReader r(payload);
-  Capabilities m;
-  m.version = r.u16();
-  m.session = r.u16();
-  m.max_payload = r.u16();
-  m.queue_capacity = r.u16();
-  m.credit_end = r.u16();
-  m.fixed_total_bits = r.u8();
-  m.fixed_fraction_bits = r.u8();
-  const std::size_t axes_at = r.offset();
-  m.axis_count = r.u8();
-  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, axes_at);
-  const std::size_t degree_at = r.offset();
-  m.max_degree = r.u8();
-  m.tick_rate_hz = r.u32();
-  m.lookahead = r.u16();  // 0: no planner on board (version 4)
-  // Degree 0 (no segments) only from a controller without a planner, which takes none.
-  if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) r.reject_at(Error::BadPayload, degree_at);
-  CURVESTEP_CHECK(r.finish());
-  return m;
-}
-
 /// Decodes a MachineConfiguration payload.
 template <>
 [[nodiscard]] constexpr Result<MachineConfiguration> decode<MachineConfiguration>(
     std::span<const std::byte> payload) noexcept {
   ByteReader r(payload);
   MachineConfiguration m;
-  m.axis_count = r.u8();
-  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 0);
-  const std::uint8_t flags = r.u8();
-  if ((flags & ~configuration_flag_trapezoid) != 0) r.reject_at(Error::BadPayload, 1);
-  m.profile = (flags & configuration_flag_trapezoid) != 0 ? ProfileKind::Trapezoid : ProfileKind::SCurve;
-  m.max_velocity_mm_per_s = r.f64();
-  m.max_acceleration_mm_per_s2 = r.f64();
-  m.max_jerk_mm_per_s3 = r.f64();
-  m.tolerance_mm = r.f64();
-  m.junction_deviation_mm = r.f64();
-  m.max_step_rate_hz = r.f64();
-  m.default_feed_mm_per_s = r.i32();
-  m.rapid_mm_per_s = r.i32();
-  m.control_rate_hz = r.u32();
-  for (std::size_t a = 0; a < m.axis_count && !r.failed(); ++a) {
-    AxisConfiguration& axis = m.axes[a];
-    axis.steps_per_mm = r.f64();
-    axis.max_velocity_mm_per_s = r.f64();
-    axis.max_acceleration_mm_per_s2 = r.f64();
-    axis.min_position_mm = r.i32();
-    axis.max_position_mm = r.i32();
-  }
+  // The axis count comes first and says how long the payload is: refused before anything else.
+  if (!payload.empty() && !detail::valid_axis_count(std::to_integer<std::uint8_t>(payload[0]))) r.reject_at(Error::BadPayload, 0);
+  MachineConfigurationHead::read(r, m);
+  for (std::size_t a = 0; a < m.axis_count && !r.failed(); ++a) AxisConfigurationLayout::read(r, m.axes[a]);
   CURVESTEP_CHECK(r.finish());
   return m;
 }
@@ -908,18 +870,8 @@ template <>
 [[nodiscard]] constexpr Result<StatusReport> decode<StatusReport>(std::span<const std::byte> payload) noexcept {
   ByteReader r(payload);
   StatusReport m;
-  const std::uint8_t state = r.u8();
-  if (state > 3) r.reject_at(Error::BadPayload, 0);
-  m.state = static_cast<MachineState>(state);
-  m.error = r.u8();
-  m.axis_count = r.u8();
-  if (!detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 2);
-  m.queue_depth = r.u16();
-  m.max_queue_depth = r.u16();
-  m.setpoint_index = r.u32();
-  m.feed_override_percent = r.u16();
-  m.rapid_override_percent = r.u16();
-  m.override_index = r.u32();
+  StatusReportHead::read(r, m);
+  if (!r.failed() && !detail::valid_axis_count(m.axis_count)) r.reject_at(Error::BadPayload, 2);
   if (!r.failed()) detail::read_point(r, m.position, m.axis_count);
   CURVESTEP_CHECK(r.finish());
   return m;

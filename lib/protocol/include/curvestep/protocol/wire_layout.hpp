@@ -9,7 +9,9 @@
 // std::int32_t i32, double f64 (little-endian, docs/protocol.md "Conventions"), bool u8 (0 or 1),
 // an enum its underlying type. Decoding checks each value with valid_wire_value (an overload per
 // enum that has a range; a bool must be 0 or 1) and refuses the first bad one as BadPayload at its
-// byte offset, a short or long payload as ByteReader does.
+// byte offset, a short or long payload as ByteReader does. A message whose fields constrain each
+// other overloads `std::size_t first_invalid_field(const M&)` (the byte offset of the first field
+// that breaks a rule, or all_fields_valid); decoding refuses it there.
 #pragma once
 
 #include <cstddef>
@@ -30,6 +32,9 @@ template <class T>
 }
 /// Errors on the wire are never 0 (0 means "no error" in StatusReport).
 [[nodiscard]] constexpr bool valid_wire_value(const Error& e) noexcept { return static_cast<std::uint8_t>(e) != 0; }
+
+/// What first_invalid_field returns when the fields agree with each other.
+inline constexpr std::size_t all_fields_valid = ~std::size_t{0};
 
 namespace detail {
 
@@ -96,7 +101,7 @@ struct WireLayout {
   template <class M>
   [[nodiscard]] static constexpr Result<std::size_t> encode(const M& m, std::span<std::byte> out) noexcept {
     ByteWriter w(out);
-    (detail::write_member(w, m.*Members), ...);
+    write(w, m);
     return w.finish();
   }
 
@@ -105,9 +110,26 @@ struct WireLayout {
   [[nodiscard]] static constexpr Result<M> decode(std::span<const std::byte> payload) noexcept {
     ByteReader r(payload);
     M m;
-    (detail::read_member(r, m.*Members), ...);
+    read(r, m);
+    if constexpr (requires { first_invalid_field(m); }) {
+      if (!r.failed()) {
+        const std::size_t at = first_invalid_field(m);
+        if (at != all_fields_valid) r.reject_at(Error::BadPayload, at);
+      }
+    }
     CURVESTEP_CHECK(r.finish());
     return m;
+  }
+
+  /// Writes the fields as the head of a longer payload (a message with a variable-length tail).
+  template <class M>
+  static constexpr void write(ByteWriter& w, const M& m) noexcept {
+    (detail::write_member(w, m.*Members), ...);
+  }
+  /// Reads the fields as the head of a longer payload; the reader records the first bad byte.
+  template <class M>
+  static constexpr void read(ByteReader& r, M& m) noexcept {
+    (detail::read_member(r, m.*Members), ...);
   }
 };
 

@@ -7,6 +7,8 @@
 // Output that satisfies the core's StepOutput concept: GpiodStepOutput on a Raspberry-Pi-class
 // board, RecordingStepOutput in tests, CountingStepOutput when no pins are wired (a virtual
 // device). Choosing the output is a template parameter, so the tick path has no virtual call.
+// Machine events are logged, and with MachineOutputHooks (machine_outputs.hpp: spindle, coolant,
+// digital outputs and a servo pen on GPIO lines) also driven; an event is rare, one virtual call.
 #pragma once
 
 #include <cerrno>
@@ -17,6 +19,7 @@
 #include <span>
 #include <unistd.h>
 
+#include <curvestep/boards/host/machine_outputs.hpp>
 #include <curvestep/boards/host/monotonic_time.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/core/motion/step_output.hpp>
@@ -64,9 +67,10 @@ class HostBoard {
     return StepTiming{SystemClock::step_timer_hz, 2000, 2000, 1000, 1000};
   }
 
-  /// A board on the non-blocking descriptor `serial_fd` (not owned) driving `output`.
-  HostBoard(int serial_fd, Output& output) noexcept
-      : fd_(serial_fd), output_(output), epoch_ns_(to_nanoseconds(monotonic_now())) {}
+  /// A board on the non-blocking descriptor `serial_fd` (not owned) driving `output`, and the
+  /// machine outputs `machine_outputs` (not owned; null: machine events are only logged).
+  HostBoard(int serial_fd, Output& output, MachineOutputHooks* machine_outputs = nullptr) noexcept
+      : fd_(serial_fd), output_(output), machine_outputs_(machine_outputs), epoch_ns_(to_nanoseconds(monotonic_now())) {}
 
   /// Milliseconds since the board was made (wraps at 2^32).
   [[nodiscard]] std::uint32_t now_ms() const noexcept {
@@ -109,6 +113,22 @@ class HostBoard {
     ::dprintf(STDERR_FILENO, "curvestep device: event %s value %u flag %d at setpoint %u\n", protocol::machine_event_name(event.kind),
               static_cast<unsigned>(event.value), event.flag ? 1 : 0, static_cast<unsigned>(setpoint));
   }
+  /// Spindle hook: to the machine outputs, if any.
+  void spindle(bool on, bool counter_clockwise, std::uint32_t rpm, std::uint32_t) noexcept {
+    if (machine_outputs_ != nullptr) machine_outputs_->spindle(on, counter_clockwise, rpm);
+  }
+  /// Coolant hook: to the machine outputs, if any.
+  void coolant(bool mist, bool flood, std::uint32_t) noexcept {
+    if (machine_outputs_ != nullptr) machine_outputs_->coolant(mist, flood);
+  }
+  /// Digital output hook (M62-M65): to the machine outputs, if any.
+  void digital_output(std::uint32_t number, bool on, std::uint32_t) noexcept {
+    if (machine_outputs_ != nullptr) machine_outputs_->digital_output(number, on);
+  }
+  /// Pen hook (servo pulse width in µs): to the machine outputs, if any.
+  void pen(bool down, std::uint32_t pulse_us, std::uint32_t) noexcept {
+    if (machine_outputs_ != nullptr) machine_outputs_->pen(down, pulse_us);
+  }
 
   /// True if the last write could not take every byte (the host is not reading).
   [[nodiscard]] bool backed_up() const noexcept { return backed_up_; }
@@ -127,6 +147,7 @@ class HostBoard {
  private:
   int fd_;
   Output& output_;
+  MachineOutputHooks* machine_outputs_;
   std::int64_t epoch_ns_;  ///< CLOCK_MONOTONIC when the board was made
   bool backed_up_ = false;
   void (*observer_)(void*, std::span<const std::byte>) = nullptr;

@@ -48,6 +48,7 @@ namespace curvestep::boards::host {
 struct DeviceOptions {
   bool fast = false;               ///< ticks as fast as the link allows (tests), not real time
   firmware::AppSettings app{};     ///< link timeout, heartbeat, setpoint streaming
+  MachineOutputHooks* machine_outputs = nullptr;  ///< spindle, coolant, outputs, pen lines (null: events only logged)
 };
 
 /// Serves the firmware on the non-blocking descriptor `fd` until `stop` is set. State changes
@@ -57,7 +58,7 @@ template <StepOutput Output, std::size_t Lookahead = 16>
 int run_device(int fd, Output& output, const DeviceOptions& options, const std::atomic<bool>& stop, std::FILE* log) {
   using Board = HostBoard<Output>;
   using Application = firmware::App<Board, Q16_16, 32, Lookahead>;
-  Board board(fd, output);
+  Board board(fd, output, options.machine_outputs);
   firmware::AppSettings settings = options.app;
   // Ticks are timed against the clock in real time only; a late tick is counted, not a fault: the
   // tick clock and the edge clock re-base after a pause (tick_clock.hpp, edge_clock.hpp), which

@@ -2,15 +2,18 @@
 // stm32::Board<Chip>: the part of the STM32 boards that does not depend on the chip — the console
 // on USART1 (interrupt driven, usart.hpp), SysTick, the step/dir pins on GPIOA (STEP X/Y/Z =
 // PA0/PA1/PA2, DIR X/Y/Z = PA3/PA4/PA5, one BSRR write each) and the TIM2 edge player
-// (step_edges.hpp), with the bring-up monitor's interface and the firmware::Board concept.
+// (step_edges.hpp), the machine outputs (spindle, coolant, digital outputs, servo pen on GPIOB,
+// TIM3 and TIM4: machine_outputs.hpp) with the bring-up monitor's interface and the
+// firmware::Board concept with its machine event hooks (firmware/board_hooks.hpp).
 //
 // The chip supplies (boards/stm32f1/board.hpp, boards/stm32f4/board.hpp):
 //   using Scalar; name; hse_hz; target_hclk_hz        setpoint scalar and clock targets
-//   usart1, usart1_irq, gpioa_bsrr                     addresses (reference manual memory map)
+//   usart1, usart1_irq, gpioa_bsrr, gpiob_bsrr         addresses (reference manual memory map)
 //   step_events_per_tick, edge_ring                    StepBatch and edge ring capacities
 //   fallback_clocks                                    the clocks before init() (HSI)
 //   static Clocks setup_clocks() noexcept              clock tree, bounded waits, emulator detection
-//   static void setup_gpio() noexcept                  peripheral clocks, pin modes, USART1 pins
+//   static void setup_gpio() noexcept                  peripheral clocks, pin modes, USART1 pins,
+//                                                      the machine outputs' pins and TIM3/TIM4 clocks
 //   static void enable_step_timer() noexcept           TIM2 clock on
 // and its board.cpp routes USART1_IRQHandler, TIM2_IRQHandler and curvestep_board_fault_putc to
 // on_usart_interrupt(), on_step_timer_interrupt() and fault_putc().
@@ -22,6 +25,7 @@
 
 #include <curvestep/boards/stm32/clocks.hpp>
 #include <curvestep/boards/stm32/cycle_counter.hpp>
+#include <curvestep/boards/stm32/machine_outputs.hpp>
 #include <curvestep/boards/stm32/mmio.hpp>
 #include <curvestep/boards/stm32/startup.hpp>
 #include <curvestep/boards/stm32/step_edges.hpp>
@@ -43,10 +47,12 @@ class Board {
   static constexpr std::uint32_t hse_hz = Chip::hse_hz;           ///< crystal
   static constexpr std::uint32_t target_hclk_hz = Chip::target_hclk_hz;  ///< PLL target
 
-  /// Clocks (HSE -> PLL, or the HSI fallback), GPIO and USART1 with its interrupt.
+  /// Clocks (HSE -> PLL, or the HSI fallback), GPIO, USART1 with its interrupt, and the machine
+  /// outputs off (pins low, no spindle PWM, no servo pulse).
   Clocks init() noexcept {
     clocks_ = Chip::setup_clocks();
     Chip::setup_gpio();
+    Outputs::start(apb1_timer_clock());
     console_.start(clocks_.pclk2_hz, baud, 0x20);
     if (!clocks_.emulated) start_cycle_counter();  // QEMU 7.2 models no DWT
     enable_interrupts();
@@ -118,10 +124,8 @@ class Board {
   void start_steps(std::uint32_t control_rate_hz) noexcept {
     Chip::enable_step_timer();
     barrier();
-    // APB1 timers run at twice PCLK1 when the APB1 prescaler is not 1 (RCC clock tree).
-    const std::uint32_t timer_clock = clocks_.pclk1_hz == clocks_.hclk_hz ? clocks_.pclk1_hz : 2 * clocks_.pclk1_hz;
     const std::uint32_t timer_hz = step_timing().timer_hz;
-    edges_.start(timer_clock, timer_hz, control_rate_hz == 0 ? timer_hz / 1000 : timer_hz / control_rate_hz,
+    edges_.start(apb1_timer_clock(), timer_hz, control_rate_hz == 0 ? timer_hz / 1000 : timer_hz / control_rate_hz,
                  step_pin_numbers, dir_pin_numbers, clocks_.emulated);
   }
   /// Processor clocks, free running (wraps at 2^32): DWT CYCCNT, or in an emulator SysTick's
@@ -131,6 +135,18 @@ class Board {
   [[nodiscard]] std::uint32_t cycles_per_second() const noexcept { return clocks_.hclk_hz; }
   /// Edges lost to a full edge ring (App faults with StepsLost when this grows; 0 in an emulator).
   [[nodiscard]] std::uint32_t edges_dropped() const noexcept { return edges_.edges_dropped(); }
+
+  // --- machine event hooks (firmware/board_hooks.hpp; pins and timers: machine_outputs.hpp) ---
+  /// Spindle enable/direction pins and PWM duty (rpm / CURVESTEP_SPINDLE_MAX_RPM).
+  void spindle(bool on, bool counter_clockwise, std::uint32_t rpm, std::uint32_t) noexcept {
+    Outputs::spindle(on, counter_clockwise, rpm);
+  }
+  /// Coolant mist and flood pins.
+  void coolant(bool mist, bool flood, std::uint32_t) noexcept { Outputs::coolant(mist, flood); }
+  /// Digital outputs 0..3 (M62-M65); higher numbers are ignored.
+  void digital_output(std::uint32_t number, bool on, std::uint32_t) noexcept { Outputs::digital_output(number, on); }
+  /// Servo pen pulse width (µs, from the event; 0 leaves the servo as it is).
+  void pen(bool, std::uint32_t pulse_us, std::uint32_t) noexcept { Outputs::pen(pulse_us); }
 
   /// Clocks measured by init().
   [[nodiscard]] const Clocks& clocks() const noexcept { return clocks_; }
@@ -146,6 +162,12 @@ class Board {
  private:
   using Console = Usart<Chip::usart1, Chip::usart1_irq, console_buffer, console_tx_buffer>;
   using Edges = StepEdges<0x40000000, Chip::gpioa_bsrr, Chip::edge_ring>;  // TIM2
+  using Outputs = MachineOutputs<Chip::gpiob_bsrr>;
+
+  /// Kernel clock of the APB1 timers (TIM2..TIM4): twice PCLK1 when the APB1 prescaler is not 1 (RCC clock tree).
+  [[nodiscard]] std::uint32_t apb1_timer_clock() const noexcept {
+    return clocks_.pclk1_hz == clocks_.hclk_hz ? clocks_.pclk1_hz : 2 * clocks_.pclk1_hz;
+  }
 
   static constexpr std::uint8_t step_pin_numbers[3] = {0, 1, 2};  // PA0, PA1, PA2
   static constexpr std::uint8_t dir_pin_numbers[3] = {3, 4, 5};   // PA3, PA4, PA5

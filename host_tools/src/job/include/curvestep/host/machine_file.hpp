@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
@@ -25,10 +26,21 @@ struct GpioAxisWiring {
   bool invert_dir = false;  ///< the positive direction is the low level of the direction line
 };
 
-/// The "gpio" section: a chip and, per axis, its step and direction lines (no entry: not wired).
+/// Digital outputs a "gpio" section may wire (M62-M65 P0 .. P63).
+inline constexpr std::size_t max_digital_outputs = 64;
+
+/// The "gpio" section: a chip and, per axis, its step and direction lines (no entry: not wired);
+/// optionally the machine outputs' lines (empty: not wired): "spindle": {"enable": L,
+/// "direction": L}, "coolant": {"mist": L, "flood": L}, "outputs": [L0, L1, ...] (M62-M65 P0, P1, ...).
+/// A servo pen's line is the "pen" section's "line" (on this chip).
 struct GpioWiring {
   std::string chip;                                              ///< "gpiochip0", "/dev/gpiochip0" or "0"
   std::array<std::optional<GpioAxisWiring>, motion_axes> axes{};  ///< x, y, z
+  std::string spindle_enable;         ///< high while the spindle turns (M3/M4)
+  std::string spindle_direction;      ///< high for counter-clockwise (M4)
+  std::string coolant_mist;           ///< M7
+  std::string coolant_flood;          ///< M8
+  std::vector<std::string> outputs;   ///< digital outputs 0, 1, ...
 };
 
 /// A tool of the "tools" table: its length (G43 H) and cutter diameter (G41/G42 D), mm.
@@ -90,6 +102,16 @@ struct MachineFile {
   /// anything moves (its swept extent, arcs included) and the controller gets them.
   MachineTravel travel{};
 };
+
+/// The wiring of a machine file: only its "gpio" and "pen" sections, validated as in a whole
+/// machine file, other keys not read (`curvestep device --gpio`: the limits come from the host).
+struct MachineWiring {
+  std::optional<GpioWiring> gpio;  ///< the "gpio" section, if present
+  std::optional<PenModel> pen;     ///< the "pen" section, if present
+};
+
+/// Loads the wiring of a machine file; throws as load_machine.
+[[nodiscard]] MachineWiring load_machine_wiring(const std::filesystem::path& path);
 
 /// Loads a machine file with its optional "gpio" section; throws as load_machine.
 [[nodiscard]] MachineFile load_machine_file(const std::filesystem::path& path);
