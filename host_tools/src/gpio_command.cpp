@@ -65,6 +65,7 @@ struct GpioCommandOptions {
   unsigned link_timeout_ms = 3000;
   JobPipelineOptions pipeline;
   bool keys = false;  ///< --keys: operator keys from stdin even if it is no terminal
+  StartOverride start_override;  ///< --feed-override, --rapid-override
 };
 
 /// Exit status: the job asks an axis for more steps per second than the machine allows.
@@ -168,6 +169,7 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
     if (++*warnings <= shown) std::cerr << "curvestep gpio: warning: " << text << "\n";
   };
   // Keys and signals act through the protocol (FeedHold, Resume, Abort), as with `curvestep stream`.
+  options.feed_override = o.start_override.value();
   OperatorSession session("curvestep gpio", o.keys);
   session.attach(options);
   link::StreamResult result;
@@ -294,9 +296,11 @@ void add_gpio_command(CLI::App& app) {
   gpio->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
   gpio->add_flag("--keys", options->keys,
                  "Read the operator keys from standard input even when it is no terminal (a pipe)");
+  add_start_override_options(*gpio, options->start_override);
   add_job_pipeline_options(gpio, options->pipeline);
   gpio->footer(
-      "While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n"
+      std::string("While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n") +
+      override_keys_footer +
       "Ctrl-C holds and asks (a second Ctrl-C aborts), SIGTERM aborts.\n"
       "Exit status: 0 done; 3 an axis would exceed max_step_rate (nothing moved); 4 the controller or link failed;\n"
       "5 the GPIO chip or a line cannot be opened; 6 aborted by the operator; 1 bad input.");

@@ -33,6 +33,7 @@ link::OperatorCommand OperatorSession::next_command() {
          << format_number(last_.position_mm[2]) << "|Setpoint:" << last_.setpoint_index << "|Controller:" << last_.machine_state;
     if (last_.tick_overruns != 0) line << "|Overruns:" << last_.tick_overruns;
   }
+  line << "|Ov:" << last_.override_percent.feed_percent << "," << last_.override_percent.rapid_percent;
   line << "|" << last_.unit << ":" << last_.sent << "/" << last_.total << ">";
   end_line();
   std::cerr << line.str() << "\n" << std::flush;
@@ -42,7 +43,8 @@ link::OperatorCommand OperatorSession::next_command() {
 void OperatorSession::draw(const link::StreamProgress& p) {
   last_ = p;
   if (!terminal_) return;
-  std::cerr << "\r  " << p.state << "  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
+  std::cerr << "\r  " << p.state << "  feed " << p.override_percent.feed_percent << "% rapid " << p.override_percent.rapid_percent
+            << "%  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
             << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s);
   if (p.tick_overruns != 0) std::cerr << "  tick overruns " << p.tick_overruns;
   std::cerr << "   " << std::flush;
@@ -54,6 +56,15 @@ void OperatorSession::warn_tick_overruns(const link::StreamResult& result, doubl
 
 void OperatorSession::end_line() const {
   if (terminal_) std::cerr << "\n";
+}
+
+void add_start_override_options(CLI::App& command, StartOverride& start) {
+  command
+      .add_option("--feed-override", start.feed_percent,
+                  "Feed override at the start, percent of the programmed feed (10..200; keys change it while the job runs)")
+      ->check(CLI::Range(FeedOverride::min_feed_percent, FeedOverride::max_feed_percent));
+  command.add_option("--rapid-override", start.rapid_percent, "Rapid override at the start, percent of the rapid speed (10..100)")
+      ->check(CLI::Range(FeedOverride::min_rapid_percent, FeedOverride::max_rapid_percent));
 }
 
 std::string format_seconds(double s) {
@@ -77,10 +88,20 @@ std::string format_operator_summary(const link::StreamResult& result, double rat
         out << ", not resumed";
       }
     }
-    const std::string replay = link::hold_at_option(result.holds, rate_hz);
-    if (!replay.empty() && !result.aborted) out << "\n                       (curvestep sim " << replay << " gives the same setpoints)";
     out << "\n";
   }
+  if (!result.overrides.empty()) {
+    out << "  overrides:           " << result.overrides.size();
+    for (const link::StreamOverride& o : result.overrides) {
+      out << "\n                       feed " << o.value.feed_percent << " %, rapid " << o.value.rapid_percent << " % "
+          << (o.tick == 0 ? "from the start" : "before setpoint " + std::to_string(o.tick));
+    }
+    out << "\n";
+  }
+  std::string replay = link::hold_at_option(result.holds, rate_hz);
+  const std::string overrides = link::override_at_option(result.overrides, rate_hz);
+  if (!overrides.empty()) replay += (replay.empty() ? "" : " ") + overrides;
+  if (!replay.empty() && !result.aborted) out << "  replay:              curvestep sim " << replay << " gives the same setpoints\n";
   if (result.aborted) {
     out << "  aborted:             by the operator at setpoint " << result.final_setpoint_index << ", position ";
     for (std::size_t a = 0; a < 3; ++a) out << (a == 0 ? "" : " ") << "xyz"[a] << " " << format_number(result.final_position_q16[a] / 65536.0);

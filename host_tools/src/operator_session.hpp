@@ -4,7 +4,10 @@
 // on `?`, and the summary lines of the controller's tick timing, holds and an abort.
 #pragma once
 
+#include <cstdint>
 #include <string>
+
+#include <CLI/CLI.hpp>
 
 #include <curvestep/host/link/operator_keys.hpp>
 #include <curvestep/host/link/streamer.hpp>
@@ -40,12 +43,33 @@ class OperatorSession {
   link::StreamProgress last_{};
 };
 
+/// `--feed-override P` and `--rapid-override R` of `stream` and `gpio`: the override a job starts with.
+struct StartOverride {
+  unsigned feed_percent = 100;   ///< percent of the programmed feed, 10..200
+  unsigned rapid_percent = 100;  ///< percent of the rapid speed, 10..100
+  [[nodiscard]] FeedOverride value() const noexcept {
+    return FeedOverride{static_cast<std::uint16_t>(feed_percent), static_cast<std::uint16_t>(rapid_percent)};
+  }
+};
+/// Adds --feed-override and --rapid-override (range-checked) to `command`.
+void add_start_override_options(CLI::App& command, StartOverride& start);
+/// The help footer's line on the override keys.
+inline constexpr const char* override_keys_footer =
+    "feed override ] [ +/-10 %, } { +/-1 %, = 100 %; rapid override ( 25 %, * 50 %, ) 100 % (shown on the progress line;\n"
+    "the summary prints the curvestep sim --override-at that replays them);\n";
+
 /// "--:--" or "m:ss".
 [[nodiscard]] std::string format_seconds(double s);
 
-/// The summary lines of the controller's tick timing (always: "  tick overruns:       0 (worst
-/// tick 42 us of the 1000 us period)\n") and of the operator's holds and abort (if any), e.g.
-/// "  feed holds:          1 (curvestep sim --hold-at 1.234:0 gives the same setpoints)\n".
+  std::cerr << "\r  " << p.state << "  feed " << p.override_percent.feed_percent << "% rapid " << p.override_percent.rapid_percent
+            << "%  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
+            << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s);
+  if (p.tick_overruns != 0) std::cerr << "  tick overruns " << p.tick_overruns;
+  std::cerr << "   " << std::flush;
+}
+
+void OperatorSession::warn_tick_overruns(const link::StreamResult& result, double rate_hz) const {
+  std::cerr << link::tick_overrun_warning(command_, result.tick_overruns, result.worst_tick_us, rate_hz);
 [[nodiscard]] std::string format_operator_summary(const link::StreamResult& result, double rate_hz);
 
 }  // namespace curvestep::host

@@ -40,30 +40,58 @@ struct SimOptions {
   std::string report;
   bool double_precision = false;
   std::vector<std::string> holds;  ///< --hold-at T[:R], seconds
+  std::vector<std::string> overrides;  ///< --override-at T:F[:R], seconds and percent
   JobPipelineOptions pipeline;
 };
+
+/// A number >= 0 in `part` of `option`'s value `text` (the error names both and `what`).
+double parse_non_negative(const std::string& option, const std::string& text, const std::string& part, const char* what) {
+  std::size_t used = 0;
+  double value = -1;
+  try {
+    value = std::stod(part, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != part.size() || !(value >= 0) || !std::isfinite(value)) {
+    throw std::runtime_error(option + " " + text + ": " + what + " must be a number >= 0");
+  }
+  return value;
+}
 
 /// `--hold-at T[:R]`: a feed hold before the setpoint at T seconds (index T × rate, rounded), standing
 /// R seconds (default 0) once stopped, then resume (FeedHoldEvent).
 FeedHoldEvent parse_hold(const std::string& text, double rate_hz) {
   const auto colon = text.find(':');
   const auto seconds = [&](const std::string& part, const char* what) {
-    std::size_t used = 0;
-    double value = -1;
-    try {
-      value = std::stod(part, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != part.size() || !(value >= 0) || !std::isfinite(value)) {
-      throw std::runtime_error("--hold-at " + text + ": " + what + " must be a number of seconds >= 0");
-    }
-    return static_cast<std::uint64_t>(std::llround(value * rate_hz));
+    return static_cast<std::uint64_t>(std::llround(parse_non_negative("--hold-at", text, part, what) * rate_hz));
   };
   FeedHoldEvent hold;
-  hold.tick = seconds(text.substr(0, colon), "the hold time T");
-  if (colon != std::string::npos) hold.standing_ticks = seconds(text.substr(colon + 1), "the standing time R");
+  hold.tick = seconds(text.substr(0, colon), "the hold time T (seconds)");
+  if (colon != std::string::npos) hold.standing_ticks = seconds(text.substr(colon + 1), "the standing time R (seconds)");
   return hold;
+}
+
+/// `--override-at T:F[:R]`: feed override F % and rapid override R % (default 100) set before the
+/// setpoint at T seconds (index T × rate, rounded) (FeedOverrideEvent).
+FeedOverrideEvent parse_override(const std::string& text, double rate_hz) {
+  const auto first = text.find(':');
+  if (first == std::string::npos) throw std::runtime_error("--override-at " + text + ": expected T:F[:R] (seconds, feed %, rapid %)");
+  const auto second = text.find(':', first + 1);
+  const auto percent = [&](const std::string& part, const char* what) {
+    const double value = parse_non_negative("--override-at", text, part, what);
+    if (value != std::floor(value) || value > 65535) throw std::runtime_error("--override-at " + text + ": " + what + " must be a whole number");
+    return static_cast<std::uint16_t>(value);
+  };
+  FeedOverrideEvent event;
+  event.tick = static_cast<std::uint64_t>(std::llround(parse_non_negative("--override-at", text, text.substr(0, first), "the time T (seconds)") * rate_hz));
+  event.value.feed_percent = percent(text.substr(first + 1, second == std::string::npos ? std::string::npos : second - first - 1),
+                                     "the feed override F (percent)");
+  if (second != std::string::npos) event.value.rapid_percent = percent(text.substr(second + 1), "the rapid override R (percent)");
+  if (!event.value.valid()) {
+    throw std::runtime_error("--override-at " + text + ": the feed override must be 10..200 % and the rapid override 10..100 %");
+  }
+  return event;
 }
 
 /// The job's machine events as summary lines (count, pen moves counted, then up to 8 others with where they happen).
@@ -146,6 +174,7 @@ int run_sim(const SimOptions& o) {
   }
   options.fixed_point = !o.double_precision;
   for (const auto& text : o.holds) options.holds.push_back(parse_hold(text, machine.rate_hz));
+  for (const auto& text : o.overrides) options.overrides.push_back(parse_override(text, machine.rate_hz));
   options.progress = make_terminal_progress();  // a bar with ETA on a terminal, quiet otherwise
   // The setpoints go to the CSV as they are made and are kept nowhere; the HTML report runs the
   // simulation again for its plots (write_html_report_streamed).
@@ -199,6 +228,10 @@ int run_sim(const SimOptions& o) {
     std::cout << "  feed hold:           before setpoint " << hold.tick << ", standing " << hold.standing_ticks
               << " ticks once stopped, then resumed\n";
   }
+  for (const FeedOverrideEvent& event : options.overrides) {
+    std::cout << "  override:            before setpoint " << event.tick << ", feed " << event.value.feed_percent << " %, rapid "
+              << event.value.rapid_percent << " %\n";
+  }
   for (const auto& note : prepared.notes) std::cout << "  note: " << note << "\n";
   if (!o.output.empty()) std::cout << "  wrote " << o.output << "\n";
   if (!o.report.empty()) std::cout << "  wrote " << o.report << "\n";
@@ -227,6 +260,12 @@ void add_sim_command(CLI::App& app) {
                   "Feed hold at T seconds (before setpoint T x rate), resume R seconds after the machine stands (default 0); "
                   "repeatable. `curvestep stream` prints the --hold-at that replays its holds bit for bit")
       ->type_name("T[:R]");
+  sim->add_option("--override-at", options->overrides,
+                  "Feed override F % (10..200) and rapid override R % (10..100, default 100) set at T seconds (before "
+                  "setpoint T x rate); it takes effect where the plan is at zero acceleration (docs/motion.md). Repeatable, "
+                  "or comma-separated. `curvestep stream` prints the --override-at that replays its overrides bit for bit")
+      ->type_name("T:F[:R]")
+      ->delimiter(',');
   add_job_pipeline_options(sim, options->pipeline);
   sim->callback([options, lookahead_option] {
     options->lookahead_given = lookahead_option->count() > 0;

@@ -5,6 +5,7 @@
 // controller's setpoint stream (the CSV of `curvestep sim -o`) and reports its errors. A
 // controller without a planner (look-ahead 0) gets the job planned here with --lookahead N
 // (default 16) as pieces: its stream is then `curvestep sim --lookahead N`'s.
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -58,6 +59,7 @@ struct StreamCommandOptions {
   JobPipelineOptions pipeline;
   bool lookahead_given = false;    ///< --lookahead given: plan with that count window alone
   bool keys = false;               ///< --keys: read operator keys from stdin even if it is no terminal
+  StartOverride start_override;    ///< --feed-override, --rapid-override
 };
 
 /// Exit status when the controller or the link failed.
@@ -91,6 +93,7 @@ int run_stream(const StreamCommandOptions& o) {
   options.link.link_timeout_ms = o.link_timeout_ms;
   options.link.retransmit_timeout_ms = o.retransmit_timeout_ms;
   options.lookahead = o.lookahead;
+  options.feed_override = o.start_override.value();
   if (!o.lookahead_given) options.lookahead_distance_mm = lookahead_distance_for(machine);
   options.warn = [](const std::string& text) { std::cerr << "curvestep stream: warning: " << text << "\n"; };
   OperatorSession session("curvestep stream", o.keys);
@@ -185,9 +188,11 @@ void add_stream_command(CLI::App& app) {
                    "Go on at once after program pauses (M0/M1), tool changes (M6) and pen changes (scripts, tests)");
   stream->add_flag("--keys", options->keys,
                    "Read the operator keys from standard input even when it is no terminal (a pipe): ! hold, ~ resume, "
-                   "Ctrl-X or Esc abort, ? status");
+                   "Ctrl-X or Esc abort, ? status, ] [ } { = ( * ) overrides");
+  add_start_override_options(*stream, options->start_override);
   stream->footer(
-      "While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n"
+      std::string("While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n") +
+      override_keys_footer +
       "Ctrl-C holds and asks (a second Ctrl-C aborts), SIGTERM aborts.\n"
       "Exit status: 0 done; 4 the controller or link failed; 6 aborted by the operator; 1 bad input.");
   stream->callback([options, lookahead_option] {

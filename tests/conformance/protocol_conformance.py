@@ -108,6 +108,7 @@ def q16(mm):
 
 HELLO, CAPABILITIES, ACK, NAK = 0x01, 0x02, 0x03, 0x04
 CONFIGURATION, SEGMENT, START, FEED_HOLD, RESUME, ABORT, STATUS_REQUEST = 0x10, 0x11, 0x12, 0x13, 0x14, 0x15, 0x16
+FEED_OVERRIDE = 0x19
 STATUS_REPORT, SETPOINT_BATCH, ERROR_REPORT = 0x20, 0x21, 0x22
 VERSION = 4
 
@@ -197,11 +198,14 @@ def document_examples():
     check(len(example) == 126 and mine == example, 'MachineConfiguration example (126 bytes)')
     arc = bytes.fromhex('0134' '02000000' '00000a00' '00000000' '00000000' '00000a00' '00000000' '0000ffff' '00000000' '00000000')
     check(len(arc) == 38 and arc[1] == 0x04 | 0x10 | 0x20, 'QueueSegment arc example: flags three axes, end of job, turns')
-    status = bytes.fromhex('01 00 03 11 00 20 00 40 e2 01 00 06 00 00 01 00 00 00 02 00 00 80 ff ff'.replace(' ', ''))
-    state, error, axes, depth, deepest, index, switches = struct.unpack('<BBBHHIB', status[:12])
-    position = struct.unpack('<iii', status[12:])
-    check((state, error, axes, depth, deepest, index, switches) == (1, 0, 3, 17, 32, 123456, 6) and position == (q16(1), q16(2), q16(-0.5)),
+    status = bytes.fromhex('01 00 03 11 00 20 00 40 e2 01 00 06 03 00 00 00 64 02 00 00 64 00 64 00 00 00 00 00'
+                           ' 00 00 01 00 00 00 02 00 00 80 ff ff'.replace(' ', ''))
+    state, error, axes, depth, deepest, index, switches, overruns, worst, feed, rapid, override_index = struct.unpack('<BBBHHIBIIHHI', status[:28])
+    position = struct.unpack('<iii', status[28:])
+    check((state, error, axes, depth, deepest, index, switches, overruns, worst) == (1, 0, 3, 17, 32, 123456, 6, 3, 612)
+          and (feed, rapid, override_index) == (100, 100, 0) and position == (q16(1), q16(2), q16(-0.5)),
           'StatusReport example decodes')
+    check(bytes.fromhex('96 00 19 00'.replace(' ', '')) == struct.pack('<HH', 150, 25), 'FeedOverride example (feed 150 %, rapid 25 %)')
     batch = bytes.fromhex('e8030000 03 03 00000100 00000200 0080ffff c801 01 00 808001 818001 7e'.replace(' ', ''))
     first, points = decode_setpoints(batch)
     check(first == 1000 and points == [(65536, 131072, -32768), (65636, 131071, -32768), (73828, 122878, -32705)],
@@ -459,6 +463,18 @@ def run_device_checks(program, codes):
         frames = d.answers(0.5)
         check(not error_reports(frames), 'a valid MachineConfiguration is taken without an ErrorReport')
         check(d.credit_end == queue_capacity // 7, 'credit after the configuration: queue slots / 7 (%d)' % (queue_capacity // 7))
+        # FeedOverride (0x19): answered by a StatusReport with the values and the setpoint they were set
+        # before (0: nothing moved); out of range: InvalidArgument at the field's offset; back to 100 %.
+        d.command(FEED_OVERRIDE, struct.pack('<HH', 150, 25))
+        report, _ = d.wait_for(lambda t, s, m: t == STATUS_REPORT)
+        check(report is not None and struct.unpack('<HHI', report[2][11:19]) == (150, 25, 0),
+              'FeedOverride 150 %, 25 %: a StatusReport says 150 %, 25 %, set before setpoint 0')
+        seq = d.command(FEED_OVERRIDE, struct.pack('<HH', 201, 100))
+        check((codes['InvalidArgument'], 0, seq) in error_reports(d.answers()), 'a feed override of 201 % gets InvalidArgument, index 0')
+        seq = d.command(FEED_OVERRIDE, struct.pack('<HH', 100, 101))
+        check((codes['InvalidArgument'], 2, seq) in error_reports(d.answers()), 'a rapid override of 101 % gets InvalidArgument, index 2')
+        d.command(FEED_OVERRIDE, struct.pack('<HH', 100, 100))
+        d.answers()
         # Limits outside their documented ranges are refused, the configuration in force stays (24.3, 24.4).
         seq = d.command(CONFIGURATION, configuration_message(axes=axis_count, v=5e-324))
         frames = d.answers()

@@ -31,6 +31,22 @@ void install(int signal_number, struct sigaction& saved) {
 constexpr char ctrl_x = 0x18;
 constexpr char escape = 0x1b;
 
+/// The override keys: ] [ feed ±10 %, } { ±1 %, = 100 %; ( ) * rapid 25 / 100 / 50 %; and grbl's
+/// real-time bytes 0x90 .. 0x97 (feed 100 %, +10, −10, +1, −1, rapid 100, 50, 25 %) a sender may pipe.
+OperatorCommand override_key(char key) {
+  switch (static_cast<unsigned char>(key)) {
+    case ']': case 0x91: return OperatorCommand::FeedPlus10;
+    case '[': case 0x92: return OperatorCommand::FeedMinus10;
+    case '}': case 0x93: return OperatorCommand::FeedPlus1;
+    case '{': case 0x94: return OperatorCommand::FeedMinus1;
+    case '=': case 0x90: return OperatorCommand::FeedReset;
+    case ')': case 0x95: return OperatorCommand::RapidFull;
+    case '*': case 0x96: return OperatorCommand::RapidHalf;
+    case '(': case 0x97: return OperatorCommand::RapidQuarter;
+    default: return OperatorCommand::None;
+  }
+}
+
 }  // namespace
 
 OperatorConsole::OperatorConsole(bool keys_from_stdin, int input_fd, int output_fd) : output_fd_(output_fd) {
@@ -62,7 +78,8 @@ OperatorConsole::~OperatorConsole() {
 }
 
 std::string_view OperatorConsole::key_help() noexcept {
-  return "keys: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status; Ctrl-C holds and asks, twice aborts";
+  return "keys: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status; ] [ feed +/-10 %, } { +/-1 %, = feed 100 %, "
+         "( ) * rapid 25/100/50 %; Ctrl-C holds and asks, twice aborts";
 }
 
 void OperatorConsole::ask(std::string_view question) {
@@ -126,6 +143,8 @@ void OperatorConsole::take_key(const char* bytes, std::size_t count, std::size_t
   if (key == '~') command = OperatorCommand::Resume;
   if (key == ctrl_x || key == escape) command = OperatorCommand::Abort;
   if (key == '?') command = OperatorCommand::Status;
+  const OperatorCommand override_command = override_key(key);
+  if (override_command != OperatorCommand::None) command = override_command;
   if (question_open_ && (key == '\r' || key == '\n' || key == 'r' || key == 'R')) command = OperatorCommand::Resume;
   if (question_open_ && (key == 'a' || key == 'A')) command = OperatorCommand::Abort;
   if (command == OperatorCommand::Resume || command == OperatorCommand::Abort) question_open_ = false;

@@ -53,6 +53,7 @@ class Upload {
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
       if (options_.seek_switch) submit_marked(protocol::Message(protocol::SeekSwitch{*options_.seek_switch}));
+      if (!piece_mode_ && requested_override_ != FeedOverride{}) submit_override(requested_override_);
       while (!(aborting_ ? abort_settled() : finished())) {
         settle_acknowledged();
         take_operator_command();
@@ -83,7 +84,10 @@ class Upload {
       case OperatorCommand::Hold: return hold();
       case OperatorCommand::Resume: return resume();
       case OperatorCommand::Abort: return abort();
-      default: pending_command_ = OperatorCommand::None; return;
+      default:
+        if (changes_override(pending_command_)) return change_override();
+        pending_command_ = OperatorCommand::None;
+        return;
     }
   }
 
@@ -121,6 +125,41 @@ class Upload {
     holding_ = false;
     resumed_.back() = true;
     pending_command_ = OperatorCommand::None;
+  }
+
+  /// The operator's override key: FeedOverride with the new values (no credit), once the link has room.
+  void change_override() {
+    const OperatorCommand command = pending_command_;
+    if (piece_mode_ || aborting_) {
+      if (piece_mode_) warn("this controller has no planner: the job was planned here with the start override (--feed-override); it cannot change now");
+      pending_command_ = OperatorCommand::None;
+      return;
+    }
+    const FeedOverride next = adjusted_override(requested_override_, command);
+    if (next == requested_override_) {
+      pending_command_ = OperatorCommand::None;
+      return;
+    }
+    if (!link_.can_submit(protocol::MessageType::FeedOverride)) return;  // later
+    submit_override(next);
+    pending_command_ = OperatorCommand::None;
+  }
+
+  void submit_override(FeedOverride value) {
+    submit_operator_message(protocol::Message(protocol::FeedOverride{value.feed_percent, value.rapid_percent}));
+    requested_override_ = value;
+  }
+
+  /// A StatusReport's override fields: a new value or index is an override the controller took.
+  void note_override(const protocol::StatusReport& status) {
+    const StreamOverride seen{status.override_index, FeedOverride{status.feed_override_percent, status.rapid_override_percent}};
+    if (seen.tick == last_override_.tick && seen.value == last_override_.value) return;
+    if (!overrides_.empty() && overrides_.back().tick == seen.tick) {
+      overrides_.back() = seen;  // set again before the same setpoint: the last one counts
+    } else {
+      overrides_.push_back(seen);
+    }
+    last_override_ = seen;
   }
 
   /// Abort, then a StatusRequest for where the machine stopped; nothing more is queued.
@@ -166,6 +205,10 @@ class Upload {
     SimulationOptions planning;
     planning.lookahead = options_.lookahead;
     planning.lookahead_distance_mm = options_.lookahead_distance_mm;
+    if (requested_override_ != FeedOverride{}) {
+      planning.overrides.push_back({0, requested_override_});
+      overrides_.push_back({0, requested_override_});
+    }
     const std::vector<PlannedPiece> planned = plan_pieces(job_, machine_, planning);
     pieces_.reserve(planned.size());
     for (const PlannedPiece& piece : planned) {
@@ -260,7 +303,7 @@ class Upload {
     if (found == sequence_to_unit_.end()) return "";
     if (found->second == configuration_marker) return " in the machine configuration";
     if (found->second == start_marker) return " in the Start command";
-    if (found->second == operator_marker) return " in the operator's FeedHold, Resume or Abort";
+    if (found->second == operator_marker) return " in the operator's FeedHold, Resume, Abort or FeedOverride";
     const std::size_t k = found->second;
     const std::string text = " in " + job_.name + " segment " + std::to_string(file_segment(k));
     return piece_mode_ ? text + " (" + piece_text(k) + ")" : text;
@@ -346,6 +389,7 @@ class Upload {
       case protocol::MessageType::StatusReport: {
         last_status_ = m.get<protocol::StatusReport>();
         have_status_ = true;
+        if (!piece_mode_) note_override(last_status_);
         if (hold_index_pending_ && last_status_.state == protocol::MachineState::Holding) {
           hold_index_pending_ = false;  // the answer to the StatusRequest sent with FeedHold
           // Index 0: held before the job began moving (armed), or right after its first setpoint;
@@ -447,6 +491,7 @@ class Upload {
       p.tick_overruns = last_status_.tick_overruns;
       for (std::size_t a = 0; a < 3; ++a) p.position_mm[a] = static_cast<double>(last_status_.position[a]) / 65536.0;
     }
+    p.override_percent = piece_mode_ || !have_status_ ? requested_override_ : last_override_.value;
     options_.progress(p);
   }
 
@@ -467,6 +512,7 @@ class Upload {
     result.frames_rejected = link_.statistics().frames_rejected;
     result.bytes_sent = link_.statistics().bytes_sent;
     result.holds = holds_;
+    result.overrides = overrides_;
     for (std::size_t k = 0; k < result.holds.size(); ++k) {
       const std::uint64_t until = k + 1 < holds_.size() ? holds_[k + 1].tick : std::uint64_t{0xffffffff};
       if (resumed_[k]) result.holds[k].standing_ticks = standing_between(holds_[k].tick, until);
@@ -536,6 +582,9 @@ class Upload {
   bool abort_reported_ = false;      // a report after the Abort says the controller stands
   std::vector<StreamHold> holds_;
   std::vector<bool> resumed_;  // per hold: Resume sent
+  FeedOverride requested_override_ = options_.feed_override;  // the override last sent (or planned with)
+  StreamOverride last_override_{};         // the override fields of the last StatusReport
+  std::vector<StreamOverride> overrides_;  // the overrides the controller took, in order
 };
 
 }  // namespace
@@ -547,6 +596,15 @@ std::string hold_at_option(const std::vector<StreamHold>& holds, double rate_hz)
     if (!text.empty()) text += " ";
     text += "--hold-at " + format_number(static_cast<double>(hold.tick) / rate_hz) + ":" +
             format_number(static_cast<double>(*hold.standing_ticks) / rate_hz);
+  }
+  return text;
+}
+
+std::string override_at_option(const std::vector<StreamOverride>& overrides, double rate_hz) {
+  std::string text;
+  for (const StreamOverride& o : overrides) {
+    text += (text.empty() ? "--override-at " : ",") + format_number(static_cast<double>(o.tick) / rate_hz) + ":" +
+            std::to_string(o.value.feed_percent) + ":" + std::to_string(o.value.rapid_percent);
   }
   return text;
 }

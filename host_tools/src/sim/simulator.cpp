@@ -44,7 +44,7 @@ template <class... Controllers>
 class LockstepRun {
  public:
   LockstepRun(const Job& job, const MachineLimits& machine, const SimulationOptions& options, std::vector<FeedHoldEvent> holds = {})
-      : job_(job), entries_(joint_stops(job, machine.rate_hz)), holds_(std::move(holds)) {
+      : job_(job), entries_(joint_stops(job, machine.rate_hz)), holds_(std::move(holds)), overrides_(options.overrides) {
     std::apply([&](auto&... c) { (check(c.configure(machine), "machine"), ...); }, controllers_);
     std::apply([&](auto&... c) { (check(c.set_lookahead(options.lookahead), "lookahead"), ...); }, controllers_);
     std::apply([&](auto&... c) { (check(c.set_lookahead_distance(options.lookahead_distance_mm), "lookahead distance"), ...); },
@@ -56,10 +56,12 @@ class LockstepRun {
   template <class OnTick>
   void run(OnTick&& on_tick) {
     fill();
+    apply_override();  // one at tick 0 is set before the start, as a device takes it while idle
     std::apply([&](auto&... c) { (check(c.start(), no_index), ...); }, controllers_);
     while (!lead().finished()) {
       fill();
       apply_feed_hold();
+      apply_override();
       // A braced list evaluates left to right: the controllers tick in their order.
       on_tick(std::apply([&](auto&... c) { return std::tuple{next_of(c)...}; }, controllers_));
     }
@@ -68,8 +70,12 @@ class LockstepRun {
   /// The first controller (it decides when the queue is full and when the job is over).
   [[nodiscard]] const auto& lead() const { return std::get<0>(controllers_); }
 
-  /// Throws if a feed hold was asked for at a tick the job never reached (after its end).
+  /// Throws if a feed hold or an override was asked for at a tick the job never reached (after its end).
   void check_holds_done() const {
+    if (next_override_ < overrides_.size()) {
+      throw std::runtime_error(job_.name + ": --override-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
+                               ", before the override at setpoint " + std::to_string(overrides_[next_override_].tick));
+    }
     if (next_hold_ < holds_.size()) {
       throw std::runtime_error(job_.name + ": --hold-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
                                ", before the hold at setpoint " + std::to_string(holds_[next_hold_].tick));
@@ -94,6 +100,15 @@ class LockstepRun {
       }
       std::apply([](auto&... c) { (c.hold(), ...); }, controllers_);
       ++next_hold_;
+    }
+  }
+
+  /// Between two ticks, as the firmware takes FeedOverride: set_override() before the override's tick.
+  void apply_override() {
+    while (next_override_ < overrides_.size() && lead().tick() == overrides_[next_override_].tick) {
+      const FeedOverride value = overrides_[next_override_].value;
+      std::apply([&](auto&... c) { (check(c.set_override(value), "--override-at"), ...); }, controllers_);
+      ++next_override_;
     }
   }
 
@@ -141,6 +156,8 @@ class LockstepRun {
   std::vector<FeedHoldEvent> holds_;  // in tick order
   std::size_t next_hold_ = 0;         // the next hold to apply
   std::uint64_t standing_ = 0;        // ticks stood in the current hold
+  std::vector<FeedOverrideEvent> overrides_;  // in tick order
+  std::size_t next_override_ = 0;             // the next override to set
 };
 
 // The controllers' largest window is the distance window's; set_lookahead() keeps the count window
@@ -158,6 +175,19 @@ void check_request(const Job& job, const MachineLimits& machine, const Simulatio
   if (options.lookahead < 1 || options.lookahead > max_lookahead) {
     throw std::runtime_error("lookahead: must be between 1 and " + std::to_string(max_lookahead) + " segments, not " +
                              std::to_string(options.lookahead));
+  }
+  for (std::size_t k = 1; k < options.overrides.size(); ++k) {
+    if (options.overrides[k].tick < options.overrides[k - 1].tick) {
+      throw std::runtime_error("--override-at: the overrides must come in time order (setpoint " +
+                               std::to_string(options.overrides[k].tick) + " after setpoint " +
+                               std::to_string(options.overrides[k - 1].tick) + ")");
+    }
+  }
+  for (const FeedOverrideEvent& event : options.overrides) {
+    if (!event.value.valid()) {
+      throw std::runtime_error("--override-at: feed " + std::to_string(event.value.feed_percent) + " %, rapid " +
+                               std::to_string(event.value.rapid_percent) + " %: the feed override must be 10..200 % and the rapid override 10..100 %");
+    }
   }
   for (std::size_t k = 1; k < options.holds.size(); ++k) {
     if (options.holds[k].tick <= options.holds[k - 1].tick) {

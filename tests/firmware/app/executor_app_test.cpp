@@ -159,6 +159,16 @@ TEST_CASE("executor app: QueueSegment is an unknown message and FeedHold is not 
   CHECK_FALSE(rig.app.moving());
 }
 
+TEST_CASE("executor app: FeedOverride is not supported (the host plans the override into the pieces)",
+          "[firmware][app][executor][override]") {
+  ExecutorRig rig;
+  rig.connect_and_configure();
+  rig.send(Message(protocol::FeedOverride{50, 100}));
+  REQUIRE(rig.host.received.errors.size() == 1);
+  CHECK(rig.host.received.errors[0].code == Error::NotSupported);
+  CHECK(rig.app.state() == MachineState::Idle);
+}
+
 TEST_CASE("executor app: FeedHold while running is refused and the job runs on unchanged", "[firmware][app][executor]") {
   ExecutorRig rig;
   rig.connect_and_configure();

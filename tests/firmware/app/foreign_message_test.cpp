@@ -48,12 +48,12 @@ TEST_CASE("firmware: a command type the controller does not know is acknowledged
   Host<App<FakeBoard>> host{board, app};
   REQUIRE(host.connect());
   const std::array<std::byte, 2> payload{std::byte{0x12}, std::byte{0x34}};
-  send_raw(board, 0x19, 0, payload);  // the first command of the session: sequence 0
+  send_raw(board, 0x1c, 0, payload);  // the first command of the session: sequence 0
   app.poll();
   host.take_output();
   REQUIRE(host.received.errors.size() == 1);
   CHECK(host.received.errors[0].code == Error::UnknownMessage);
-  CHECK(host.received.errors[0].index == 0x19);
+  CHECK(host.received.errors[0].index == 0x1c);
   CHECK(host.received.errors[0].sequence == 0);
   REQUIRE_FALSE(host.received.acks.empty());
   CHECK(host.received.acks.back().next_expected == 1);  // it took its sequence number like any command

@@ -202,3 +202,35 @@ TEST_CASE("stream in process: with a setpoint sink the setpoints arrive there in
   CHECK(run.result.standing_ticks == 0);
   require_same_setpoints(sunk, run.expected);
 }
+
+TEST_CASE("stream in process: the start override reaches a planning App and is planned into an executor's pieces, as sim replays it",
+          "[host_tools][stream][override]") {
+  const auto machine = host::load_machine(examples / "machine.json");
+  const auto job = host::load_job(examples / "inch_square.json");
+  hl::StreamOptions options;
+  options.feed_override = FeedOverride{60, 50};
+  host::SimulationOptions replay;
+  replay.overrides = {{0, FeedOverride{60, 50}}};
+  {
+    using PlanningApp = firmware::App<firmware::testing::FakeBoard, Q16_16, 32, 16>;
+    hl::testing::InProcessDevice<PlanningApp> device;
+    const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+    REQUIRE(result.overrides.size() == 1);
+    CHECK(result.overrides[0].tick == 0);
+    CHECK(result.overrides[0].value == FeedOverride{60, 50});
+    CHECK(hl::override_at_option(result.overrides, 1000) == "--override-at 0:60:50");
+    replay.lookahead = 16;
+    const auto [device_job, device_machine] = hl::as_device_sees(job, machine);
+    const auto expected = host::simulate(device_job, device_machine, replay).setpoints;
+    CHECK(expected.size() != host::simulate(device_job, device_machine).setpoints.size());  // the override matters
+    require_same_setpoints(result.setpoints, expected);
+  }
+  {
+    hl::testing::InProcessDevice<ExecutorApp> device;
+    const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+    REQUIRE(result.overrides.size() == 1);
+    CHECK(result.overrides[0].value == FeedOverride{60, 50});
+    replay.lookahead = host::SimulationOptions::max_lookahead;
+    require_same_setpoints(result.setpoints, host::simulate(job, machine, replay).setpoints);
+  }
+}

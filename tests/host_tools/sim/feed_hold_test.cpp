@@ -44,13 +44,9 @@ std::vector<QueueSegment> zigzag() {
 }
 /// index -> setpoint of simulate() with `holds`.
 std::map<std::uint32_t, WirePoint> simulated(const std::vector<QueueSegment>& wire, const std::vector<host::FeedHoldEvent>& holds) {
-  host::SimulationOptions options;
-  options.lookahead = 16;
+  auto options = curvestep::sim_testing::device_window();
   options.holds = holds;
-  const auto result = host::simulate(to_host_job(wire), to_machine_limits(machine()).value(), options);
-  std::map<std::uint32_t, WirePoint> out;
-  for (const auto& r : result.setpoints) out[static_cast<std::uint32_t>(r.index)] = WirePoint{r.raw_q16[0], r.raw_q16[1], r.raw_q16[2]};
-  return out;
+  return curvestep::sim_testing::simulated_setpoints(wire, machine(), options);
 }
 
 /// Streams the job to the App, sending FeedHold before tick `hold_tick` and Resume once the App's

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -218,6 +219,38 @@ TEST_CASE("sim: --help documents --lookahead", "[host_tools][sim][lookahead]") {
   CHECK(r.status == 0);
   CHECK(r.output.find("--lookahead") != std::string::npos);
   CHECK(r.output.find("1..16") != std::string::npos);
+}
+
+TEST_CASE("sim: --override-at sets the override of the simulation, and a bad one fails with a one-line cause",
+          "[host_tools][sim][override]") {
+  const std::string base = "sim " + source("examples/jobs/seed_cubic.json") + " --machine " + source("examples/jobs/machine.json") +
+                           " --lookahead 16";
+  const Run plain = run(base + " -o " + scratch("plain.csv"));
+  REQUIRE(plain.status == 0);
+  // 10 % from the start, comma-separated with a later event, and the same as two options.
+  const Run listed = run(base + " --override-at 0:10:100,0.05:20 -o " + scratch("listed.csv"));
+  INFO(listed.output);
+  REQUIRE(listed.status == 0);
+  CHECK(listed.output.find("override:            before setpoint 0, feed 10 %, rapid 100 %") != std::string::npos);
+  CHECK(listed.output.find("override:            before setpoint 50, feed 20 %, rapid 100 %") != std::string::npos);
+  const Run repeated = run(base + " --override-at 0:10:100 --override-at 0.05:20:100 -o " + scratch("repeated.csv"));
+  REQUIRE(repeated.status == 0);
+  std::ifstream a(scratch("listed.csv"));
+  std::ifstream b(scratch("repeated.csv"));
+  std::ifstream c(scratch("plain.csv"));
+  const std::string listed_csv((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+  const std::string repeated_csv((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+  const std::string plain_csv((std::istreambuf_iterator<char>(c)), std::istreambuf_iterator<char>());
+  CHECK(listed_csv == repeated_csv);
+  CHECK(listed_csv.size() > plain_csv.size());  // slower: more setpoints
+  for (const std::string bad : {"1:201", "1:9", "1:100:101", "x:100", "1", "1:50.5"}) {
+    const Run r = run(base + " --override-at " + bad);
+    INFO(bad << ": " << r.output);
+    CHECK(r.status != 0);
+    CHECK(r.output.find("--override-at") != std::string::npos);
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+  }
+  for (const char* name : {"plain.csv", "listed.csv", "repeated.csv"}) std::filesystem::remove(scratch(name));
 }
 
 TEST_CASE("sim: every example G-code program (CAM-style, parametric) runs within the limits", "[host_tools][sim][gcode]") {

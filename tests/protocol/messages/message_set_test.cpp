@@ -61,9 +61,11 @@ std::vector<Vector> vectors() {
       {0x17, Direction::ToController, "01 02 01 00 07 00 00 00 00 00 00 00 00 00 f8 3f 00 00 00 00 00 00 00 c0"},
       // QueueEvent: before segment 3, 500 ticks into the rest there, SpindleOn, counter-clockwise, 1000 rev/min
       {0x18, Direction::ToController, "03 00 00 00 f4 01 00 00 01 01 e8 03 00 00"},
+      {0x19, Direction::ToController, "96 00 32 00"},  // FeedOverride: feed 150 %, rapid 50 %
       // StatusReport: running, no error, 2 axes, depth 3, deepest 5, setpoint 100, no switch closed,
-      // 2 tick overruns, worst tick 1234 us, at (1, -1) mm
-      {0x20, Direction::ToHost, "01 00 02 03 00 05 00 64 00 00 00 00 02 00 00 00 d2 04 00 00 00 00 01 00 00 00 ff ff"},
+      // 2 tick overruns, worst tick 1234 us, feed override 150 %, rapid 50 %, set before setpoint 90,
+      // at (1, -1) mm
+      {0x20, Direction::ToHost, "01 00 02 03 00 05 00 64 00 00 00 00 02 00 00 00 d2 04 00 00 96 00 32 00 5a 00 00 00 00 00 01 00 00 00 ff ff"},
       // SetpointBatch: the hand-computed zig-zag batch of messages_test.cpp
       {0x21, Direction::ToHost, "e8 03 00 00 03 03 00 00 01 00 00 00 02 00 00 80 ff ff c8 01 01 00 80 80 01 81 80 01 7e"},
       {0x22, Direction::ToHost, "69 04 00 07"},  // ErrorReport: BadPayload, index 4, sequence 7

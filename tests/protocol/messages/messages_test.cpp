@@ -184,12 +184,16 @@ TEST_CASE("messages: every message type round-trips through encode and decode", 
     status.limit_switches = static_cast<std::uint8_t>(rng());
     status.tick_overruns = static_cast<std::uint32_t>(rng());
     status.worst_tick_us = static_cast<std::uint32_t>(rng());
+    status.feed_override_percent = static_cast<std::uint16_t>(rng());
+    status.rapid_override_percent = static_cast<std::uint16_t>(rng());
+    status.override_index = static_cast<std::uint32_t>(rng());
     status.position = random_point(rng, status.axis_count);
     const auto s = round_trip(status).get<StatusReport>();
     CHECK((s.state == status.state && s.error == status.error && s.axis_count == status.axis_count &&
            s.queue_depth == status.queue_depth && s.max_queue_depth == status.max_queue_depth &&
            s.setpoint_index == status.setpoint_index && s.limit_switches == status.limit_switches &&
            s.tick_overruns == status.tick_overruns && s.worst_tick_us == status.worst_tick_us &&
+           s.rapid_override_percent == status.rapid_override_percent && s.override_index == status.override_index &&
            s.position == status.position));
 
     SetpointBatch setpoints;
@@ -370,8 +374,8 @@ TEST_CASE("messages: malformed segment fields are BadPayload at their byte offse
 
 TEST_CASE("messages: other malformed fields are BadPayload", "[protocol][messages]") {
   CHECK(decode<Nak>(hex("05 00")).error() == Error::BadPayload);            // reason 0 is not an error
-  CHECK(decode<StatusReport>(hex("04 00 02 0000 0000 00000000 00 00000000 00000000 00000000 00000000")).where() == 0);  // state 4
-  CHECK(decode<StatusReport>(hex("00 00 04 0000 0000 00000000 00 00000000 00000000 00000000 00000000")).where() == 2);  // 4 axes
+  CHECK(decode<StatusReport>(hex("04 00 02 0000 0000 00000000 00 00000000 00000000 6400 6400 00000000 00000000 00000000")).where() == 0);  // state 4
+  CHECK(decode<StatusReport>(hex("00 00 04 0000 0000 00000000 00 00000000 00000000 6400 6400 00000000 00000000 00000000")).where() == 2);  // 4 axes
   CHECK(decode<SetpointBatch>(hex("00000000 03 00")).where() == 5);         // zero setpoints
   CHECK(decode<SetpointBatch>(hex("00000000 03 19")).where() == 5);         // 25 setpoints
   CHECK(decode<MachineConfiguration>(hex("01")).where() == 0);              // one axis
@@ -493,14 +497,16 @@ TEST_CASE("messages: a StatusReport carries the deepest queue and the tick overr
   r.tick_overruns = 3;
   r.worst_tick_us = 612;
   r.position = WirePoint{65536, 2 * 65536, -32768};
-  // Python: struct.pack('<BBBHHIBII', 1, 0, 3, 17, 32, 123456, 6, 3, 612) + '<iii' (65536, 131072, -32768): 32 bytes
-  const auto bytes = hex("01 00 03 1100 2000 40e20100 06 03000000 64020000 00000100 00000200 0080ffff");
+  // Python: struct.pack('<BBBHHIBIIHHI', 1, 0, 3, 17, 32, 123456, 6, 3, 612, 100, 100, 0) + '<iii' (65536, 131072,
+  // -32768): 40 bytes (the overrides at their defaults: 100 %, 100 %, set before setpoint 0)
+  const auto bytes = hex("01 00 03 1100 2000 40e20100 06 03000000 64020000 6400 6400 00000000 00000100 00000200 0080ffff");
   CHECK(to_hex(payload_of(r)) == to_hex(bytes));
   const auto back = decode<StatusReport>(bytes);
   REQUIRE(back.has_value());
   CHECK(back.value().limit_switches == 0x06);
   CHECK(back.value().tick_overruns == 3);
   CHECK(back.value().worst_tick_us == 612);
+  CHECK(back.value().feed_override_percent == 100);
   CHECK(back.value().position == r.position);
   // One byte short of the third axis: BadPayload.
   CHECK(decode<StatusReport>(std::span<const std::byte>(bytes).first(bytes.size() - 1)).error() == Error::BadPayload);

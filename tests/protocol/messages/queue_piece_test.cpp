@@ -119,7 +119,7 @@ void check_refused(const QueuePiece& p, Error code, std::size_t at) {
 
 }  // namespace
 
-static_assert(is_known(0x17) && is_known(0x18) && !is_known(0x19));
+static_assert(is_known(0x17) && is_known(0x18) && is_known(0x19) && is_known(0x1a) && is_known(0x1b) && !is_known(0x1c));
 static_assert(is_command(MessageType::QueuePiece) && is_sequenced(MessageType::QueuePiece));
 static_assert(consumes_credit(MessageType::QueuePiece) && consumes_credit(MessageType::QueueSegment));
 static_assert(!consumes_credit(MessageType::Start) && !consumes_credit(MessageType::SetpointBatch));

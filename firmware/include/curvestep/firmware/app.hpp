@@ -53,7 +53,10 @@
 //                           from the stop.
 //   Abort                -> stop at once: controller aborted and flushed, board.fault_stop(); the
 //                           next job must start where the machine stopped (StatusReport position).
-//   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, position).
+//   FeedOverride         -> MotionController::set_override (feed_override_command.hpp); a StatusReport
+//                           at once naming the setpoint it was set before. NotSupported without a planner.
+//   StatusRequest        -> StatusReport (state, last error, queue depth, setpoint index, limit switches,
+//                           tick timing, overrides, position).
 //   SeekSwitch           -> homing: the next job ends at once where that limit switch closes
 //                           (SwitchReport; limit_switches.hpp); SetPosition -> new coordinates at rest.
 // Every failed command is answered with ErrorReport(code, index, the frame's sequence number); a
@@ -125,6 +128,7 @@
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/event_timeline.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
+#include <curvestep/firmware/feed_override_command.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
 #include <curvestep/firmware/tick_watch.hpp>
@@ -398,6 +402,7 @@ class App {
       stream_.open(now);
       statistics_.max_queue_depth = 0;
       tick_watch_.clear();
+      if constexpr (plans_on_board) override_.reset(controller_);  // a new session starts at 100 %
     } else if (frame.type == static_cast<std::uint8_t>(protocol::MessageType::Ack) ||
                frame.type == static_cast<std::uint8_t>(protocol::MessageType::Nak)) {
       if (!receiver_.connected()) return;
@@ -459,6 +464,13 @@ class App {
         return send_status();
       case MessageType::SeekSwitch: return on_seek_switch(frame.payload);
       case MessageType::SetPosition: return on_set_position(frame.payload);
+      case MessageType::FeedOverride:
+        if constexpr (plans_on_board) {
+          if (auto taken = override_.take(frame.payload, controller_); !taken) return report(taken.failure());
+          return send_status();  // names the setpoint it was set before: the host replays it (sim --override-at)
+        } else {
+          return report(fail(Error::NotSupported));  // the host's planner applies it
+        }
       default: return report(fail(Error::UnknownMessage, frame.type));
     }
   }
@@ -946,6 +958,7 @@ class App {
     s.limit_switches = read_limit_switches(board_);
     s.tick_overruns = tick_watch_.overruns();
     if constexpr (has_cycle_clock) s.worst_tick_us = tick_watch_.worst_microseconds(board_.cycles_per_second());
+    override_.describe(s);
     s.position = position_;
     send_message(s);
   }
@@ -964,6 +977,8 @@ class App {
   protocol::LinkReceiver receiver_;
   SetpointStream<B> stream_;
   Controller controller_{};
+  /// The override last set (FeedOverride; nothing without a planner).
+  [[no_unique_address]] std::conditional_t<plans_on_board, FeedOverrideCommand, NoFeedOverride> override_{};
   EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
   SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
   protocol::PauseReport pause_{};          ///< the pause in force (paused_), reported once

@@ -52,6 +52,7 @@ enum class MessageType : std::uint8_t {
   StatusRequest = 0x16,         ///< host -> controller: ask for a status report
   QueuePiece = 0x17,            ///< host -> controller: one host-planned piece (controller without a planner)
   QueueEvent = 0x18,            ///< host -> controller: a machine event (spindle, coolant, output, pen, ...) at a joint
+  FeedOverride = 0x19,          ///< host -> controller: feed and rapid override in percent, from now on
   SeekSwitch = 0x1A,            ///< host -> controller: the next job stops at once when this limit switch closes (homing)
   SetPosition = 0x1B,           ///< host -> controller: the machine stands at these coordinates (homing), at rest
   StatusReport = 0x20,          ///< controller -> host: state, queue depth, position, error
@@ -63,8 +64,7 @@ enum class MessageType : std::uint8_t {
 
 /// True for the types this protocol version defines.
 [[nodiscard]] constexpr bool is_known(std::uint8_t type) noexcept {
-  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x18) || type == 0x1A || type == 0x1B ||
-         (type >= 0x20 && type <= 0x24);
+  return (type >= 0x01 && type <= 0x04) || (type >= 0x10 && type <= 0x1B) || (type >= 0x20 && type <= 0x24);
 }
 
 /// The two ends of the link.
@@ -73,10 +73,10 @@ enum class Endpoint : std::uint8_t {
   Controller,  ///< the firmware
 };
 
-/// True for host commands (0x10 .. 0x18, 0x1A, 0x1B): the host-to-controller reliable stream.
+/// True for host commands (0x10 .. 0x1B): the host-to-controller reliable stream.
 [[nodiscard]] constexpr bool is_command(MessageType type) noexcept {
   const auto value = static_cast<std::uint8_t>(type);
-  return (value >= 0x10 && value <= 0x18) || value == 0x1A || value == 0x1B;
+  return value >= 0x10 && value <= 0x1B;
 }
 
 /// True for messages that travel in a reliable, sequenced stream: host commands one way,
@@ -312,6 +312,15 @@ struct Resume {
 struct Abort {
   static constexpr MessageType type = MessageType::Abort;  ///< message type
 };
+/// Feed and rapid override from now on (MotionController::set_override): the controller's planner
+/// takes it at its next point of zero acceleration. A controller refuses values outside 10..200
+/// (feed) and 10..100 (rapid) as InvalidArgument at their byte offset (0, 2), and a controller
+/// without a planner as NotSupported (the host's planner applies it).
+struct FeedOverride {
+  static constexpr MessageType type = MessageType::FeedOverride;  ///< message type
+  std::uint16_t feed_percent = 100;                                ///< feed override, percent of the programmed feed
+  std::uint16_t rapid_percent = 100;                               ///< rapid override, percent of the rapid speed
+};
 /// Ask for a StatusReport.
 struct StatusRequest {
   static constexpr MessageType type = MessageType::StatusRequest;  ///< message type
@@ -353,6 +362,9 @@ struct StatusReport {
   std::uint8_t limit_switches = 0;      ///< limit switches closed now: bit 2 x axis (min), 2 x axis + 1 (max)
   std::uint32_t tick_overruns = 0;      ///< ticks this session that started a period late or ran longer than one (TickWatch)
   std::uint32_t worst_tick_us = 0;      ///< the longest tick this session, microseconds (0: ticks not timed)
+  std::uint16_t feed_override_percent = 100;   ///< the feed override last set (FeedOverride)
+  std::uint16_t rapid_override_percent = 100;  ///< the rapid override last set
+  std::uint32_t override_index = 0;     ///< it was handed to the planner before this setpoint (sim --override-at)
   WirePoint position{};                 ///< Q16.16 commanded position
 };
 
@@ -425,6 +437,9 @@ struct WireFields<ErrorReport> : WireLayout<&ErrorReport::code, &ErrorReport::in
 /// PauseReport: setpoint index, kind, value (9 bytes).
 template <>
 struct WireFields<PauseReport> : WireLayout<&PauseReport::setpoint_index, &PauseReport::kind, &PauseReport::value> {};
+/// FeedOverride: feed percent, rapid percent (4 bytes).
+template <>
+struct WireFields<FeedOverride> : WireLayout<&FeedOverride::feed_percent, &FeedOverride::rapid_percent> {};
 /// QueueEvent: segment, after_rest_ticks, kind, flag, value (14 bytes).
 template <>
 struct WireFields<QueueEvent> : WireLayout<&QueueEvent::segment, &QueueEvent::after_rest_ticks, &QueueEvent::kind,
@@ -444,13 +459,15 @@ struct WireFields<Capabilities>
   if (m.max_degree > max_segment_degree || (m.max_degree == 0 && m.lookahead != 0)) return 13;
   return all_fields_valid;
 }
-/// StatusReport's fixed head (20 bytes); the position follows, 4 bytes per axis (axis_count).
+/// StatusReport's fixed head (28 bytes); the position follows, 4 bytes per axis (axis_count).
 /// Not a WireFields: the position's length depends on axis_count, so encode/decode are written
 /// out below around this one description of the fixed fields.
 using StatusReportHead = WireLayout<&StatusReport::state, &StatusReport::error, &StatusReport::axis_count,
                                     &StatusReport::queue_depth, &StatusReport::max_queue_depth,
                                     &StatusReport::setpoint_index, &StatusReport::limit_switches,
-                                    &StatusReport::tick_overruns, &StatusReport::worst_tick_us>;
+                                    &StatusReport::tick_overruns, &StatusReport::worst_tick_us,
+                                    &StatusReport::feed_override_percent, &StatusReport::rapid_override_percent,
+                                    &StatusReport::override_index>;
 /// MachineConfiguration's fixed head (62 bytes: axis count, profile as the flags byte, the
 /// limits, feeds and rate); axis_count AxisConfigurationLayouts follow.
 using MachineConfigurationHead =
@@ -527,13 +544,13 @@ struct MessageSet {
 /// Every message of this protocol version (the default of the set-taking functions; host
 /// tools, tests and fuzzers).
 using AllMessages = MessageSet<Hello, Capabilities, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold,
-                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, SeekSwitch, SetPosition, StatusReport,
-                               SetpointBatch, ErrorReport, PauseReport, SwitchReport>;
+                               Resume, Abort, StatusRequest, QueuePiece, QueueEvent, FeedOverride, SeekSwitch, SetPosition,
+                               StatusReport, SetpointBatch, ErrorReport, PauseReport, SwitchReport>;
 
 /// What a host sends and a controller receives: the handshake, the commands, and Ack / Nak of
 /// the controller's setpoint stream.
 using HostToController = MessageSet<Hello, Ack, Nak, MachineConfiguration, QueueSegment, Start, FeedHold, Resume,
-                                    Abort, StatusRequest, QueuePiece, QueueEvent, SeekSwitch, SetPosition>;
+                                    Abort, StatusRequest, QueuePiece, QueueEvent, FeedOverride, SeekSwitch, SetPosition>;
 
 /// What a controller sends and a host receives: the handshake answer, Ack / Nak of the host's
 /// commands, reports, and the setpoint stream.
@@ -977,6 +994,8 @@ class Message {
   constexpr Message(const SetPosition& m) noexcept : type_(MessageType::SetPosition), body_(m) {}  // NOLINT
   /// Holds a SwitchReport.
   constexpr Message(const SwitchReport& m) noexcept : type_(MessageType::SwitchReport), body_(m) {}  // NOLINT
+  /// Holds a FeedOverride.
+  constexpr Message(const FeedOverride& m) noexcept : type_(MessageType::FeedOverride), body_(m) {}  // NOLINT
 
   /// Which message this is.
   [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
@@ -1004,6 +1023,7 @@ class Message {
     else if constexpr (std::is_same_v<T, SeekSwitch>) return body_.seek_switch;
     else if constexpr (std::is_same_v<T, SetPosition>) return body_.set_position;
     else if constexpr (std::is_same_v<T, SwitchReport>) return body_.switch_report;
+    else if constexpr (std::is_same_v<T, FeedOverride>) return body_.feed_override;
     else return empty<T>();
   }
 
@@ -1035,6 +1055,7 @@ class Message {
     constexpr explicit Body(const SeekSwitch& m) noexcept : seek_switch(m) {}
     constexpr explicit Body(const SetPosition& m) noexcept : set_position(m) {}
     constexpr explicit Body(const SwitchReport& m) noexcept : switch_report(m) {}
+    constexpr explicit Body(const FeedOverride& m) noexcept : feed_override(m) {}
     Hello hello;
     Capabilities capabilities;
     Ack ack;
@@ -1050,6 +1071,7 @@ class Message {
     SeekSwitch seek_switch;
     SetPosition set_position;
     SwitchReport switch_report;
+    FeedOverride feed_override;
   };
   MessageType type_ = MessageType::Hello;
   Body body_;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <curvestep/core/motion/feed_override.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/host/job.hpp>
@@ -50,6 +51,15 @@ struct FeedHoldEvent {
   std::uint64_t standing_ticks = 0;
 };
 
+/// A feed or rapid override during a simulation (`curvestep sim --override-at T:F[:R]`): the
+/// controller's set_override() before the setpoint of index `tick` (T × rate) is made, as the
+/// firmware takes FeedOverride between two ticks. The controller lets it take effect at its next
+/// point of zero acceleration (docs/motion.md, "Feed override").
+struct FeedOverrideEvent {
+  std::uint64_t tick = 0;
+  FeedOverride value{};
+};
+
 /// Options of one simulation.
 struct SimulationOptions {
   /// The largest look-ahead window the simulator's controllers have (their template Lookahead).
@@ -70,6 +80,9 @@ struct SimulationOptions {
   /// Feed holds in tick order (simulate and simulate_stream; plan_pieces ignores them). A hold at a
   /// tick where the job is not moving (it ended) is refused with std::runtime_error.
   std::vector<FeedHoldEvent> holds;
+  /// Overrides in tick order (simulate, simulate_stream and plan_pieces); one past the job's end is
+  /// refused with std::runtime_error.
+  std::vector<FeedOverrideEvent> overrides;
 };
 
 /// The look-ahead distance that lets a planner reach any speed the machine allows and stop again:

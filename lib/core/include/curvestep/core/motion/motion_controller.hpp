@@ -26,6 +26,14 @@
 // the segment, while the clock that drives the profiles stands still (time_now() counts motion
 // ticks only), so the motion after a rest is bit for bit the motion without it, later by rest_ticks.
 //
+// Feed and rapid override (set_override, feed_override.hpp): scales the programmed speeds, never a
+// machine or geometric cap. A new override takes effect at once while stopped, on start and resume,
+// and while moving at the first tick not inside a chunk whose profile acceleration is 0 (a cruise,
+// or a segment's start) where the rest of the segment can be re-planned from that state with it:
+// slowing down to a lower cap must fit in the rest of the segment, and the exit speed the window
+// gives must be reachable. Until then the plan follows the override in effect. The rule is a pure
+// function of the ticks at which overrides are set, so `sim --override-at` replays a device.
+//
 // Per-tick work (docs/motion.md, "Per-tick work"): inside one profile phase of one segment the
 // ticks are cut into chunks of N = 2^k <= max_chunk_ticks() ticks. At a chunk's end the path is
 // evaluated exactly (position, velocity, acceleration); the ticks inside follow the quintic Hermite
@@ -50,6 +58,7 @@
 #include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/controller_state.hpp>
 #include <curvestep/core/motion/cusps.hpp>
+#include <curvestep/core/motion/feed_override.hpp>
 #include <curvestep/core/motion/joint_stop.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
@@ -93,6 +102,23 @@ class MotionController {
     return ok();
   }
   [[nodiscard]] double lookahead_distance_mm() const noexcept { return lookahead_distance_mm_; }
+
+  /// Sets the feed and rapid override (percent of the programmed speeds). While stopped it takes
+  /// effect at once; while moving it is requested and takes effect at the first tick where the
+  /// rest of the segment can be re-planned with it (see the top of this file), at the latest on the
+  /// next resume. InvalidArgument outside FeedOverride's ranges. Kept by reset().
+  [[nodiscard]] Result<void> set_override(FeedOverride requested) noexcept {
+    if (!requested.valid()) return fail(Error::InvalidArgument);
+    requested_override_ = requested;
+    if (stopped()) take_override();
+    return ok();
+  }
+  /// The override the plan follows now.
+  [[nodiscard]] FeedOverride override_in_effect() const noexcept { return override_; }
+  /// The override last set (in effect, or waiting for a point where it can take effect).
+  [[nodiscard]] FeedOverride requested_override() const noexcept { return requested_override_; }
+  /// The tick of the first setpoint planned with the override in effect.
+  [[nodiscard]] std::uint64_t override_tick() const noexcept { return override_tick_; }
 
   /// Sets the machine. InvalidLimit/InvalidRate from MachineLimits::validate; InvalidState while moving.
   [[nodiscard]] Result<void> configure(const MachineLimits& machine) noexcept {
@@ -182,6 +208,8 @@ class MotionController {
     end_of_job_ = false;
     has_previous_ = false;
     tick_ = 0;
+    override_ = requested_override_;
+    override_tick_ = 0;
     rested_ticks_ = 0;
     rest_left_ = 0;
     chunk_end_tick_ = no_chunk;
@@ -262,15 +290,16 @@ class MotionController {
   /// What the queue keeps of a SegmentPlan (the end tangents and curvatures are needed only for
   /// the junction with the next pushed segment: previous_plan_).
   struct QueuedPlan {
-    double length_mm = 0;   ///< arc length
-    ProfileLimits limits{};  ///< caps for the segment's speed profile
+    double length_mm = 0;    ///< arc length
+    ProfileLimits limits{};  ///< caps for the segment's speed profile at 100 % override
+    OverridableCaps caps{};  ///< what an override scales (limits_under)
   };
 
   /// A queue slot: the segment in compact form (PathSegment::compact; front() expands it).
   struct Entry {
     CompactSegment segment{};
     QueuedPlan plan{};
-    double junction_in = 0;       ///< speed cap at the joint into this segment
+    double junction_apart = 0;    ///< speed cap at the joint into this segment, apart from the segments' caps
     std::uint32_t job_index = 0;  ///< the segment's index in the job
     std::uint32_t serial = 0;     ///< push count, identifies the slot's content for front()
     std::uint32_t rest_ticks = 0; ///< ticks of rest at the joint into this segment (JointStop)
@@ -280,7 +309,6 @@ class MotionController {
   struct Front {
     const PathSegment& segment;
     const QueuedPlan& plan;
-    double junction_in;
     std::uint32_t job_index;
   };
 
@@ -316,7 +344,7 @@ class MotionController {
                                         bool& has_previous, bool commit) noexcept {
     CURVESTEP_TRY(const SegmentPlan plan, plan_piece(piece, job_index));
     const bool passed_moving = has_previous && !entry.at_rest();
-    if (commit) enqueue(piece, plan, passed_moving ? junction_speed(previous, plan, machine_) : 0, job_index, entry.rest_ticks);
+    if (commit) enqueue(piece, plan, passed_moving ? junction_speed_caps_apart(previous, plan, machine_) : 0, job_index, entry.rest_ticks);
     previous = plan;
     has_previous = true;
     return ok();
@@ -325,7 +353,7 @@ class MotionController {
   /// Queues a planned piece (its own frame: the entry is not on the stack while planning).
   [[gnu::noinline]] void enqueue(const PathSegment& piece, const SegmentPlan& plan, double junction, std::uint32_t job_index,
                                  std::uint32_t rest_ticks) noexcept {
-    const Entry entry{piece.compact(), QueuedPlan{plan.length_mm, plan.limits}, junction, job_index, ++pushed_serial_, rest_ticks};
+    const Entry entry{piece.compact(), QueuedPlan{plan.length_mm, plan.limits, plan.caps}, junction, job_index, ++pushed_serial_, rest_ticks};
     [[maybe_unused]] const bool pushed = queue_.try_push(entry);
   }
 
@@ -349,7 +377,7 @@ class MotionController {
       current_ = PathSegment::expand(e.segment).value();  // compact() of a valid PathSegment: cannot fail
       expanded_serial_ = e.serial;
     }
-    return Front{current_, e.plan, e.junction_in, e.job_index};
+    return Front{current_, e.plan, e.job_index};
   }
   /// The profiles' clock: motion ticks only (rests stop it), so a rest shifts what follows by whole ticks.
   [[nodiscard]] double time_now() const noexcept { return static_cast<double>(tick_ - rested_ticks_) / machine_.rate_hz; }
@@ -369,21 +397,39 @@ class MotionController {
     return window;
   }
 
-  [[nodiscard]] double exit_speed(double v0, double remaining_mm) const noexcept {
+  /// The limits of queued segment `e` under override `o` (entered at `entry_mm_per_s`).
+  [[nodiscard]] static ProfileLimits limits_under(const Entry& e, FeedOverride o, double entry_mm_per_s = 0) noexcept {
+    return e.plan.caps.limits(e.plan.limits, o, entry_mm_per_s);
+  }
+
+  /// The speed cap at the joint into queue_[m] (m >= 1) under override `o`.
+  [[nodiscard]] double junction_into(std::size_t m, FeedOverride o) const noexcept {
+    return std::fmin(std::fmin(queue_[m - 1].plan.caps.speed_cap(o), queue_[m].plan.caps.speed_cap(o)), queue_[m].junction_apart);
+  }
+
+  /// The highest exit speed of the front segment (limits `front_limits`) when entered at v0 under
+  /// override `o`.
+  [[nodiscard]] double exit_speed(FeedOverride o, double v0, double remaining_mm, const ProfileLimits& front_limits) const noexcept {
     const std::size_t window = window_size();
     if (window == 0) return 0;
     double v = 0;  // the largest entry speed of segment m from which a stop by the window's end works
     for (std::size_t m = window; m >= 1; --m) {
-      const Entry& e = queue_[m];
-      v = std::fmin(e.junction_in, reachable_speed(v, e.plan.length_mm, e.plan.limits.speed_cap_mm_per_s, e.plan.limits));
+      const ProfileLimits limits = limits_under(queue_[m], o);
+      v = std::fmin(junction_into(m, o), reachable_speed(v, queue_[m].plan.length_mm, limits.speed_cap_mm_per_s, limits));
     }
-    const auto& limits = front().plan.limits;
-    return std::fmin(v, reachable_speed(v0, remaining_mm, limits.speed_cap_mm_per_s, limits));
+    return std::fmin(v, reachable_speed(v0, remaining_mm, front_limits.speed_cap_mm_per_s, front_limits));
   }
 
   /// Starts following the front segment from arc length `offset` at speed v0 at time `origin`.
   [[nodiscard]] Result<void> begin_segment(double offset, double v0, double origin) noexcept {
     CURVESTEP_TRY(table_, PathLengthTable<TableIntervals>::build(front().segment));
+    if (requested_override_ != override_ && override_fits(v0, table_.length() - offset)) take_override();
+    return plan_rest(offset, v0, origin);
+  }
+
+  /// Plans the rest of the front segment, from arc length `offset` at speed v0 (acceleration 0) at
+  /// time `origin`, under the override in effect (from above its cap: slowing down first).
+  [[nodiscard]] Result<void> plan_rest(double offset, double v0, double origin) noexcept {
     chunk_end_tick_ = no_chunk;
     clear_state_cache();
     offset_mm_ = offset;
@@ -393,11 +439,51 @@ class MotionController {
       profile_ = VelocityProfile{};
       return ok();
     }
-    const double v1 = exit_speed(v0, remaining);
-    auto profile = VelocityProfile::plan(remaining, v0, v1, front().plan.limits);
+    const ProfileLimits limits = limits_under(queue_.front(), override_, v0);
+    const double v1 = exit_speed(override_, v0, remaining, limits);
+    // Entered faster than the override's caps or exit allow (it was lowered): only slow down.
+    const bool too_fast = v0 > limits.speed_cap_mm_per_s ||
+                          (v1 < v0 && speed_change_distance(v1, v0, limits) > remaining * (1 + 1e-9) + 1e-12);
+    auto profile = too_fast ? VelocityProfile::slow_down(remaining, v0, v1, limits) : VelocityProfile::plan(remaining, v0, v1, limits);
     if (!profile) return fail(profile.error(), front().job_index);
     profile_ = profile.value();
     return ok();
+  }
+
+  /// True if the requested override can take effect at speed v0 (acceleration 0) with `remaining`
+  /// mm of the front segment left. Caps only: the plan so far stays within what the new caps
+  /// allow, or slows down to them (plan_rest, VelocityProfile::slow_down) segment after segment,
+  /// as fast as the plan so far could brake for its corners. Raising the feed above 100 % from at
+  /// most 100 % also lowers the acceleration of curved segments (OverridableCaps): that must let
+  /// the exit speed of the new window be reached within this segment.
+  [[nodiscard]] bool override_fits(double v0, double remaining) const noexcept {
+    const bool slower_braking = override_.feed_percent <= 100 && requested_override_.feed_percent > 100;
+    if (!slower_braking || !(remaining > 1e-12)) return true;
+    const ProfileLimits limits = limits_under(queue_.front(), requested_override_, v0);
+    const double v1 = exit_speed(requested_override_, v0, remaining, limits);
+    return v1 >= v0 || speed_change_distance(v1, v0, limits) <= remaining;
+  }
+
+  void take_override() noexcept {
+    override_ = requested_override_;
+    override_tick_ = tick_;
+  }
+
+  /// True if a requested override may take effect at segment time tau: following the plan (not
+  /// braking for a hold), inside the profile, at zero acceleration.
+  [[nodiscard]] bool override_due(double tau) const noexcept {
+    return requested_override_ != override_ && !hold_deferred_ && profile_.phase_count() > 0 && tau < profile_.duration_s() &&
+           profile_.at(tau).acceleration_mm_per_s2 == 0;
+  }
+
+  /// At segment time tau (override_due): re-plans the rest of the segment under the requested
+  /// override from the present state if it fits there; the setpoint of this tick is unchanged.
+  [[nodiscard]] Result<void> take_override_here(double tau) noexcept {
+    const MotionState m = profile_.at(tau);
+    const double offset = offset_mm_ + m.distance_mm;
+    if (!override_fits(m.speed_mm_per_s, table_.length() - offset)) return ok();
+    take_override();
+    return plan_rest(offset, m.speed_mm_per_s, time_now());
   }
 
   [[nodiscard]] Result<Setpoint<S>> running_tick() noexcept {
@@ -410,9 +496,12 @@ class MotionController {
         return emit(chunk_.next(), profile_.state_in(chunk_span_, tau).speed_mm_per_s, front().job_index);
       }
       chunk_end_tick_ = no_chunk;
-      PathTickState end = chunk_end_state_;  // evaluated exactly when the chunk was planned
-      plan_chunk(tau, end);
-      return emit(end.position, end.speed_mm_per_s, front().job_index);
+      if (!override_due(tau)) {
+        PathTickState end = chunk_end_state_;  // evaluated exactly when the chunk was planned
+        plan_chunk(tau, end);
+        return emit(end.position, end.speed_mm_per_s, front().job_index);
+      }
+      // An override may take effect here: the exact path below evaluates this tick again (the same bits).
     }
     if (rest_left_ > 0) return rest_tick();
     const double t = time_now();
@@ -443,6 +532,10 @@ class MotionController {
         state_ = ControllerState::Starved;
       }
       return emit(end, 0, last_segment_);
+    }
+    if (override_due(tau)) {
+      if (auto taken = take_override_here(tau); !taken) return fault(taken.failure());
+      tau = t - origin_s_;
     }
     PathTickState now = exact_state(tau);
     plan_chunk(tau, now);
@@ -625,11 +718,12 @@ class MotionController {
   /// leaves), keeps following the plan (hold_deferred_) and tries again where the next segment begins.
   void begin_stop() noexcept {
     const auto now = profile_.at(time_now() - origin_s_);
-    ProfileLimits limits = front().plan.limits;
+    ProfileLimits limits = limits_under(queue_.front(), override_, now.speed_mm_per_s);
     const std::size_t window = window_size();
     for (std::size_t i = 1; i <= window; ++i) {
-      limits.acceleration_mm_per_s2 = std::fmin(limits.acceleration_mm_per_s2, queue_[i].plan.limits.acceleration_mm_per_s2);
-      limits.jerk_mm_per_s3 = std::fmin(limits.jerk_mm_per_s3, queue_[i].plan.limits.jerk_mm_per_s3);
+      const ProfileLimits next = limits_under(queue_[i], override_);
+      limits.acceleration_mm_per_s2 = std::fmin(limits.acceleration_mm_per_s2, next.acceleration_mm_per_s2);
+      limits.jerk_mm_per_s3 = std::fmin(limits.jerk_mm_per_s3, next.jerk_mm_per_s3);
     }
     const VelocityProfile stop = VelocityProfile::stop(now.speed_mm_per_s, now.acceleration_mm_per_s2, limits);
     hold_deferred_ = !stop_respects_joints(stop, profile_.length_mm() - now.distance_mm);
@@ -647,7 +741,7 @@ class MotionController {
     double joint = to_joint_mm;
     for (std::size_t m = 1; m < queue_.size(); ++m) {
       if (joint >= stop.length_mm()) return true;  // at rest before this joint
-      if (speed_at_distance(stop, joint) > queue_[m].junction_in * (1 + 1e-9) + 1e-9) return false;
+      if (speed_at_distance(stop, joint) > junction_into(m, override_) * (1 + 1e-9) + 1e-9) return false;
       joint += queue_[m].plan.length_mm;
     }
     return joint >= stop.length_mm();
@@ -738,6 +832,9 @@ class MotionController {
   bool end_of_job_ = false;
   std::size_t lookahead_ = Lookahead;  ///< the look-ahead window in use (set_lookahead)
   double lookahead_distance_mm_ = 0;   ///< extends the window by distance (set_lookahead_distance), 0: off
+  FeedOverride override_{};            ///< the override the plan follows
+  FeedOverride requested_override_{};  ///< the override last set (set_override)
+  std::uint64_t override_tick_ = 0;    ///< the first tick planned with override_
   ControllerState state_ = ControllerState::Idle;
   Failure fault_{Error::InvalidState, no_index};
   RingBuffer<Entry, QueueCapacity> queue_{};

@@ -24,6 +24,7 @@
 #include <limits>
 
 #include <curvestep/core/detail/golden_section.hpp>
+#include <curvestep/core/motion/feed_override.hpp>
 #include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/path_segment.hpp>
@@ -40,6 +41,7 @@ struct SegmentPlan {
   MachinePoint start_curvature{};       ///< curvature vector κN at u = 0
   MachinePoint end_curvature{};         ///< curvature vector κN at u = 1
   double max_curvature_per_mm = 0;      ///< largest κ along the segment
+  OverridableCaps caps{};               ///< what a feed or rapid override scales (limits: at 100 %)
 };
 
 namespace detail {
@@ -78,9 +80,11 @@ template <std::size_t Intervals = 64>
   SegmentPlan& plan = out.value();
   plan.length_mm = table.length();
   double a_max = machine.a_max_mm_per_s2;
-  double speed_cap = segment.rapid() ? (machine.rapid_mm_per_s > 0 ? machine.rapid_mm_per_s : machine.v_max_mm_per_s)
-                                     : (segment.feed_mm_per_s() > 0 ? segment.feed_mm_per_s() : machine.feed_mm_per_s);
-  speed_cap = std::fmin(speed_cap, machine.v_max_mm_per_s);
+  // The programmed speed (what an override scales) and every other cap apart: the cap is their
+  // minimum, the same value as taking them in turn (fmin is exact).
+  const double programmed = segment.rapid() ? (machine.rapid_mm_per_s > 0 ? machine.rapid_mm_per_s : machine.v_max_mm_per_s)
+                                            : (segment.feed_mm_per_s() > 0 ? segment.feed_mm_per_s() : machine.feed_mm_per_s);
+  double speed_cap = machine.v_max_mm_per_s;
 
   constexpr std::size_t samples = 128;
   // The speeds are not kept (129 doubles, 1 KiB of a microcontroller's stack): the scan from a
@@ -180,18 +184,30 @@ template <std::size_t Intervals = 64>
     const double dt = 1.0 / machine.rate_hz;
     speed_cap = std::fmin(speed_cap, std::sqrt(8 * machine.tolerance_mm / max_kappa) / dt);  // chord sagitta
   }
+  const double geometric_cap = speed_cap;
+  speed_cap = std::fmin(programmed, geometric_cap);
   // Tangential acceleration: what the centripetal part c = v_cap² κ (<= a_max/2) leaves of the whole
-  // vector, √(a_max² − c²) (>= 0.866 a_max), and per axis a_t |T_axis| + v_cap² κ |N_axis| <= a_axis.
-  const double centripetal_max = speed_cap * speed_cap * max_kappa;
-  double acceleration = std::sqrt(std::fmax(0.0, a_max * a_max - centripetal_max * centripetal_max));
-  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-    const double limit = machine.axes[axis].a_max_mm_per_s2;
-    if (!(limit > 0) || !(max_tangent_component[axis] > 0)) continue;
-    const double centripetal = max_kappa > 0 ? speed_cap * speed_cap * max_kappa * max_normal_component[axis] : 0.0;
-    acceleration = std::fmin(acceleration, (limit - centripetal) / max_tangent_component[axis]);
-  }
+  // vector, √(a_max² − c²) (>= 0.866 a_max), and per axis a_t |T_axis| + v_cap² κ |N_axis| <= a_axis;
+  // with curvature also 3 v_cap a κ <= j/4. A function of the speed cap: also taken at the cap of
+  // the largest feed override (OverridableCaps).
+  const auto acceleration_at = [&](double cap) {
+    const double centripetal_max = cap * cap * max_kappa;
+    double acceleration = std::sqrt(std::fmax(0.0, a_max * a_max - centripetal_max * centripetal_max));
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+      const double limit = machine.axes[axis].a_max_mm_per_s2;
+      if (!(limit > 0) || !(max_tangent_component[axis] > 0)) continue;
+      const double centripetal = max_kappa > 0 ? cap * cap * max_kappa * max_normal_component[axis] : 0.0;
+      acceleration = std::fmin(acceleration, (limit - centripetal) / max_tangent_component[axis]);
+    }
+    if (max_kappa > 0) acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * cap * max_kappa));  // 3 v a κ <= j/4
+    return acceleration;
+  };
+  const double acceleration = acceleration_at(speed_cap);
+  const double fastest_cap = segment.rapid() ? speed_cap
+                                             : std::fmin(programmed * (FeedOverride::max_feed_percent / 100.0), geometric_cap);
+  plan.caps = OverridableCaps{programmed, geometric_cap, fastest_cap > speed_cap ? acceleration_at(fastest_cap) : acceleration,
+                              segment.rapid()};
   if (max_kappa > 0) {
-    acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * speed_cap * max_kappa));  // 3 v a κ <= j/4
     // Jerk: the profile keeps half. The normal part (<= j/2 by the caps above) would leave more,
     // but a joint's curvature jump spends the other half within one tick (junction_speed: v²|Δ(κN)|
     // <= ½ j Δt) beside the profile's own jerk at the joint.
@@ -247,8 +263,10 @@ inline constexpr double corner_limit_excess = 0.0075;
 ///     with the S-curve v² |Δ(κN)| <= ½ j_max Δt.
 /// Sharp corners remain slow: corner blending (host_tools smoothing) replaces them by curves of
 /// continuous curvature, which this function then passes at their full speed.
-[[nodiscard]] inline double junction_speed(const SegmentPlan& previous, const SegmentPlan& next, const MachineLimits& machine) noexcept {
-  double v = std::fmin(previous.limits.speed_cap_mm_per_s, next.limits.speed_cap_mm_per_s);
+/// junction_speed_caps_apart gives the same without the segments' caps (a feed override changes them).
+[[nodiscard]] inline double junction_speed_caps_apart(const SegmentPlan& previous, const SegmentPlan& next,
+                                                      const MachineLimits& machine) noexcept {
+  double v = std::numeric_limits<double>::infinity();
   const double dt = 1.0 / machine.rate_hz;
   const double cos_theta = dot(previous.end_tangent, next.start_tangent);
   const double half_angle_sin = std::sqrt(std::fmax(0.0, (1 - cos_theta) / 2));  // sin(θ/2)
@@ -266,6 +284,12 @@ inline constexpr double corner_limit_excess = 0.0075;
     v = std::fmin(v, std::sqrt(0.5 * machine.j_max_mm_per_s3 * dt / curvature_jump));
   }
   return v;
+}
+
+/// The junction speed of junction_speed_caps_apart capped by both segments' speed caps.
+[[nodiscard]] inline double junction_speed(const SegmentPlan& previous, const SegmentPlan& next, const MachineLimits& machine) noexcept {
+  return std::fmin(std::fmin(previous.limits.speed_cap_mm_per_s, next.limits.speed_cap_mm_per_s),
+                   junction_speed_caps_apart(previous, next, machine));
 }
 
 }  // namespace curvestep

@@ -53,22 +53,34 @@ struct ProfileLimits {
   return (v0 + v1) / 2 * speed_change_time(dv, limits);
 }
 
-/// The largest v1 <= cap reachable from v0 within `distance` (accelerating; by symmetry also the
-/// largest v0 from which v1 can be reached decelerating).
-[[nodiscard]] inline double reachable_speed(double v0, double distance, double cap, const ProfileLimits& limits) noexcept {
-  if (cap <= v0) return cap;
-  if (speed_change_distance(v0, cap, limits) <= distance) return cap;
-  double low = v0;
-  double high = cap;
+namespace detail {
+/// The two ends of a bisection.
+struct Bracket {
+  double low;
+  double high;
+};
+/// Bisection of [low, high] by 60 halvings (deterministic, exact to double rounding): `low_side`
+/// of a middle says whether the boundary lies above it (the middle becomes `low`) or not.
+template <class LowSide>
+[[nodiscard]] Bracket bisect(double low, double high, const LowSide& low_side) noexcept {
   for (int i = 0; i < 60; ++i) {
     const double middle = (low + high) / 2;
-    if (speed_change_distance(v0, middle, limits) <= distance) {
+    if (low_side(middle)) {
       low = middle;
     } else {
       high = middle;
     }
   }
-  return low;
+  return Bracket{low, high};
+}
+}  // namespace detail
+
+/// The largest v1 <= cap reachable from v0 within `distance` (accelerating; by symmetry also the
+/// largest v0 from which v1 can be reached decelerating).
+[[nodiscard]] inline double reachable_speed(double v0, double distance, double cap, const ProfileLimits& limits) noexcept {
+  if (cap <= v0) return cap;
+  if (speed_change_distance(v0, cap, limits) <= distance) return cap;
+  return detail::bisect(v0, cap, [&](double v) { return speed_change_distance(v0, v, limits) <= distance; }).low;
 }
 
 /// The speed profile of one segment: up to 7 phases of constant jerk.
@@ -106,32 +118,35 @@ class VelocityProfile {
     const double floor_speed = v0 > v1 ? v0 : v1;
     auto total = [&](double vp) { return speed_change_distance(v0, vp, limits) + speed_change_distance(vp, v1, limits); };
     double vp = cap;
-    if (total(cap) > length_mm) {
-      double low = floor_speed;
-      double high = cap;
-      for (int i = 0; i < 60; ++i) {
-        const double middle = (low + high) / 2;
-        if (total(middle) <= length_mm) {
-          low = middle;
-        } else {
-          high = middle;
-        }
-      }
-      vp = low;
+    if (total(cap) > length_mm) vp = detail::bisect(floor_speed, cap, [&](double v) { return total(v) <= length_mm; }).low;
+    return assemble(length_mm, v0, vp, v1, limits);
+  }
+
+  /// Plans L mm entered at v0 faster than plan() allows (after a lowered feed override: above the
+  /// speed cap, or too fast to reach v1 within L): only slowing down. If v1 is reachable, slow down
+  /// to the largest vp <= min(cap, v0) from which v1 still is, cruise, and slow down to v1 (vp is
+  /// the cap if that fits); otherwise slow down over all of L as far as it goes (exit_speed() then
+  /// lies above v1: the next segment goes on slowing down). Never faster than v0. InvalidLimit for
+  /// non-positive caps, InvalidArgument for a non-positive length or negative speeds.
+  [[nodiscard]] static Result<VelocityProfile> slow_down(double length_mm, double v0, double v1, const ProfileLimits& limits) noexcept {
+    if (!(limits.acceleration_mm_per_s2 > 0) || !(limits.speed_cap_mm_per_s > 0) ||
+        (limits.jerk_limited && !(limits.jerk_mm_per_s3 > 0))) {
+      return fail(Error::InvalidLimit);
     }
-    VelocityProfile p;
-    p.trapezoid_ = !limits.jerk_limited;
-    p.length_ = length_mm;
-    p.entry_ = v0;
-    p.exit_ = v1;
-    p.peak_ = vp;
-    p.add_speed_change(v0, vp, limits);
-    const double cruise = length_mm - total(vp);
-    if (cruise > 0 && vp > 0) p.add_phase(cruise / vp, 0);
-    p.add_speed_change(vp, v1, limits);
-    p.duration_ = 0;
-    for (std::size_t i = 0; i < p.count_; ++i) p.duration_ += p.phases_[i].duration_s;
-    return p;
+    if (!(length_mm > 0) || !(v0 >= 0) || !(v1 >= 0)) return fail(Error::InvalidArgument);
+    const double top = std::fmin(limits.speed_cap_mm_per_s, v0);
+    if (v1 > top) v1 = top;
+    double vp = top;
+    if (speed_change_distance(v1, v0, limits) > length_mm) {
+      // v1 out of reach: the lowest speed reachable within L (D(v, v0) falls as v rises).
+      v1 = detail::bisect(v1, v0, [&](double v) { return speed_change_distance(v, v0, limits) > length_mm; }).high;
+      vp = v1;
+    } else {
+      auto total = [&](double v) { return speed_change_distance(v0, v, limits) + speed_change_distance(v, v1, limits); };
+      // total(v1) = D(v0, v1) <= L
+      if (total(top) > length_mm) vp = detail::bisect(v1, top, [&](double v) { return total(v) <= length_mm; }).low;
+    }
+    return assemble(length_mm, v0, vp, v1, limits);
   }
 
   /// The shortest stop from speed v and acceleration a within the limits (feed hold): first bring
@@ -229,6 +244,23 @@ class VelocityProfile {
       start.speed_mm_per_s = entry_;
     }
     return start;
+  }
+
+  /// L mm from v0 through a cruise at vp to v1 (the cruise fills what the two speed changes leave).
+  [[nodiscard]] static VelocityProfile assemble(double length_mm, double v0, double vp, double v1, const ProfileLimits& limits) noexcept {
+    VelocityProfile p;
+    p.trapezoid_ = !limits.jerk_limited;
+    p.length_ = length_mm;
+    p.entry_ = v0;
+    p.exit_ = v1;
+    p.peak_ = vp > v0 ? vp : v0;
+    p.add_speed_change(v0, vp, limits);
+    const double cruise = length_mm - (speed_change_distance(v0, vp, limits) + speed_change_distance(vp, v1, limits));
+    if (cruise > 0 && vp > 0) p.add_phase(cruise / vp, 0);
+    p.add_speed_change(vp, v1, limits);
+    p.duration_ = 0;
+    for (std::size_t i = 0; i < p.count_; ++i) p.duration_ += p.phases_[i].duration_s;
+    return p;
   }
 
   void append(double duration, double jerk, const MotionState& start) noexcept {

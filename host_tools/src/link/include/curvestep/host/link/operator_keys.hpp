@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // OperatorConsole: the operator's keys and signals while a job runs (`curvestep stream`, `gpio`, `jog`).
 //
-// Keys, as grbl senders use them: `!` feed hold, `~` resume, Ctrl-X or Esc abort, `?` status line.
+// Keys, as grbl senders use them: `!` feed hold, `~` resume, Ctrl-X or Esc abort, `?` status line;
+// feed override `]` / `[` ±10 %, `}` / `{` ±1 %, `=` 100 %; rapid override `(` 25 %, `*` 50 %, `)`
+// 100 % (and grbl's real-time override bytes 0x90 .. 0x97).
 // While a question is open (ask()), Enter or `r` also resume and `a` aborts. An escape sequence
 // (an arrow or function key: Esc followed at once by `[` or `O`) is ignored, not taken as Esc.
 // Signals: SIGINT (Ctrl-C) is a feed hold and asks whether to resume or abort; a second SIGINT

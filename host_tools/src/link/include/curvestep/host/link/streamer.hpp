@@ -23,6 +23,13 @@
 // upload ends with StreamResult::aborted once the controller reports it stopped. A controller
 // without a planner cannot hold (warn). `curvestep sim --hold-at T:R` with T = tick / rate and R =
 // the ticks it stood / rate gives the held job's setpoints bit for bit (hold_at_option()).
+// Feed and rapid override: StreamOptions::feed_override is sent (FeedOverride) before the first
+// segment; the override commands send FeedOverride as the operator asks. The controller answers
+// each with a StatusReport naming the setpoint it was set before (override_index): a new
+// (values, index) there is a StreamOverride, and `curvestep sim --override-at T:F:R` with
+// T = index / rate replays them bit for bit (override_at_option()). A controller without a
+// planner gets the job planned here with the start override (plan_pieces: the same replay); the
+// override cannot change while it runs (warn).
 #pragma once
 
 #include <cstddef>
@@ -59,6 +66,7 @@ struct StreamProgress {
   const char* machine_state = "";      ///< ... its state (Idle, Running, Holding, Fault)
   std::array<double, 3> position_mm{}; ///< ... its commanded position
   std::uint32_t tick_overruns = 0;     ///< ... its late or long control ticks this session (StatusReport::tick_overruns)
+  FeedOverride override_percent{};     ///< the feed and rapid override last set (as the controller reports it)
 };
 
 /// Options of one upload.
@@ -95,6 +103,14 @@ struct StreamOptions {
   /// Homing: the job ends at once where this limit switch closes (SeekSwitch; bit 2 x axis, + 1
   /// for max); StreamResult::switch_closed says where. None: an ordinary job.
   std::optional<std::uint8_t> seek_switch;
+  /// The feed and rapid override the job starts with (`--feed-override`, `--rapid-override`).
+  FeedOverride feed_override{};
+};
+
+/// One feed or rapid override of a streamed job, as the controller took it.
+struct StreamOverride {
+  std::uint64_t tick = 0;  ///< set before this setpoint index (sim --override-at T = tick / rate)
+  FeedOverride value{};    ///< feed and rapid percent
 };
 
 /// One feed hold of a streamed job.
@@ -132,6 +148,7 @@ struct StreamResult {
   std::size_t frames_rejected = 0;        ///< damaged frames from the controller
   std::size_t bytes_sent = 0;             ///< bytes written, retransmissions included
   std::vector<StreamHold> holds;          ///< the operator's feed holds, in order
+  std::vector<StreamOverride> overrides;  ///< the overrides the controller took (and the start one), in order
   bool aborted = false;                   ///< the operator aborted the job (the controller stopped at once)
   std::uint32_t final_setpoint_index = 0; ///< the controller's last StatusReport: setpoint index
   std::array<std::int32_t, 3> final_position_q16{};  ///< ... and commanded position (Q16.16 raw)
@@ -143,6 +160,9 @@ struct StreamResult {
 /// The `curvestep sim` option that replays `holds` ("--hold-at 1.234:0 --hold-at ..."), "" for none.
 /// Holds never resumed (the job was aborted there) and holds before the start are left out.
 [[nodiscard]] std::string hold_at_option(const std::vector<StreamHold>& holds, double rate_hz);
+
+/// The `curvestep sim` option that replays `overrides` ("--override-at 0:150:100,1.234:50:100"), "" for none.
+[[nodiscard]] std::string override_at_option(const std::vector<StreamOverride>& overrides, double rate_hz);
 
 /// Runs `job` on the controller behind `transport`. Throws StreamError (controller error, link
 /// failure), TransportError (line closed) or std::runtime_error (job cannot be sent or planned,
