@@ -183,3 +183,27 @@ TEST_CASE("hil: 48 S and M words between two moves run on curvestep device in or
   program += "G1 Y10\nM2\n";
   check_many_events("spindle48", program, events);
 }
+
+TEST_CASE("hil: more events before the first move than curvestep device's ring holds are refused at load, naming the line",
+          "[integration][hil][events][credit]") {
+  // Before the first move nothing moves, so the device cannot work events off to make room: the
+  // host refuses the 33rd (the device's ring holds 32) before anything is queued.
+  const auto machine = ct::wire_exact_machine();
+  const auto job = ct::scratch_dir() / "too_many_first.ngc";
+  std::string program = "G21 G90\n";
+  for (int k = 0; k < 20; ++k) program += "M62 P1\nM63 P1\n";
+  program += "G1 X10 F600\nM2\n";
+  std::ofstream(job) << program;
+  ct::Process device({"device", "--fast"}, "too_many_first_device.stderr");
+  const std::string port = device.first_line();
+  REQUIRE(port.rfind("/dev/pts/", 0) == 0);
+  std::string errors;
+  std::string output;
+  const int status = ct::run_program({"stream", job.string(), "--machine", machine.string(), "--port", port}, errors, "too_many_first",
+                                     std::chrono::seconds(60), &output);
+  INFO(output);
+  CHECK(status != 0);
+  // The 33rd event is line 34 (line 1 G21, then M62/M63 from line 2).
+  CHECK_THAT(errors, Catch::Contains("too_many_first.ngc:34: M62: more than 32 machine events before the first move"));
+  CHECK(device.stop() == 0);
+}

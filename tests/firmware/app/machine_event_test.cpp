@@ -235,25 +235,30 @@ TEST_CASE("firmware: 40 events before one segment, more than the ring holds, run
     messages.push_back(Message(second));
     return messages;
   };
-  HookBoard one_board;
-  App<HookBoard> one_app{one_board};
-  Host<App<HookBoard>> one_host{one_board, one_app};
-  REQUIRE(one_host.connect());
-  REQUIRE(one_host.send(Message(machine(50))));
-  run(one_host, one_app, one_board, job(1));
-  REQUIRE(one_board.at.size() == 1);  // M2 has no hook on this board
-
-  HookBoard board;
-  App<HookBoard> app{board};
-  Host<App<HookBoard>> host{board, app};
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(machine(50))));
-  run(host, app, board, job(40));
-  CHECK(host.received.errors.empty());
-  REQUIRE(board.calls.size() == 40);
+  struct Run {
+    HookBoard board;
+    std::vector<std::pair<std::uint32_t, WirePoint>> setpoints;
+    bool errors = false;
+  };
+  const auto run_job = [&job](std::size_t events) {
+    Run r;
+    App<HookBoard> app{r.board};
+    Host<App<HookBoard>> host{r.board, app};
+    REQUIRE(host.connect());
+    REQUIRE(host.send(Message(machine(50))));
+    run(host, app, r.board, job(events));
+    r.setpoints = host.setpoints();
+    r.errors = !host.received.errors.empty();
+    return r;
+  };
+  const Run one = run_job(1);
+  REQUIRE(one.board.at.size() == 1);  // M2 has no hook on this board
+  const Run many = run_job(40);
+  CHECK_FALSE(many.errors);
+  REQUIRE(many.board.calls.size() == 40);
   for (std::size_t k = 0; k < 40; ++k) {
-    CHECK(board.calls[k] == (k % 2 == 0 ? "output(1,1)" : "output(1,0)"));
-    CHECK(board.at[k] == one_board.at[0]);
+    CHECK(many.board.calls[k] == (k % 2 == 0 ? "output(1,1)" : "output(1,0)"));
+    CHECK(many.board.at[k] == one.board.at[0]);
   }
-  CHECK(host.setpoints() == one_host.setpoints());
+  CHECK(many.setpoints == one.setpoints);
 }
