@@ -10,7 +10,7 @@
 // BadPayload with the byte offset of the offending field; the firmware validates meaning
 // (limits, rates, continuity) with the planner's own error codes.
 // Memory: a Message is about 300 bytes (the union's largest member is SetpointBatch). A
-// controller short of stack can check Frame::type and call decode<QueueSegment> (140 bytes)
+// controller short of stack can check Frame::type and call decode<QueueSegment> (156 bytes)
 // or decode<QueuePiece> (160 bytes) directly instead of decode_message.
 // Code size: each endpoint names the messages it receives or sends as a MessageSet
 // (HostToController, ControllerToHost, or a smaller set of its own), and decode_message<Set>,
