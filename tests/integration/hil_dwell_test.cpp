@@ -35,6 +35,30 @@ std::size_t still_setpoints(const std::vector<ct::RawSetpoint>& setpoints) {
   return still;
 }
 
+/// A dwell after the job's last move: the job ends 2 s after its last move, on the device too.
+std::filesystem::path final_dwell_program() {
+  const auto path = ct::scratch_dir() / "final_dwell.ngc";
+  std::ofstream(path) << "G21 G90\nG1 X10 F600\nG1 Y5\nG4 P2\nM2\n";
+  return path;
+}
+
+void check_final_dwell(const std::vector<std::string>& device_options, const std::string& tag) {
+  const auto machine = ct::wire_exact_machine();
+  const auto job = final_dwell_program();
+  const auto expected = ct::simulate(job, machine);
+  // The simulated stream is the job without the dwell and then 2 s x 1 kHz = 2000 setpoints at its
+  // end point (10, 5).
+  const auto plain_job = ct::scratch_dir() / "final_dwell_plain.ngc";
+  std::ofstream(plain_job) << "G21 G90\nG1 X10 F600\nG1 Y5\nM2\n";
+  const auto plain = ct::simulate(plain_job, machine);
+  REQUIRE(expected.size() == plain.size() + 2000);
+  for (std::size_t i = 0; i < plain.size(); ++i) REQUIRE(expected[i].raw == plain[i].raw);
+  for (std::size_t i = plain.size(); i < expected.size(); ++i) REQUIRE(expected[i].raw == plain.back().raw);
+  std::string output;
+  // The device's stream equals sim's, the 2000 setpoints of the final rest included (same count).
+  (void)ct::stream_to_new_device(job, machine, device_options, tag, expected, output);
+}
+
 void check_streamed(const std::vector<std::string>& device_options, const std::string& tag) {
   const auto machine = ct::wire_exact_machine();
   const auto job = dwell_program();
@@ -56,4 +80,14 @@ TEST_CASE("hil: a G-code job with dwells and a tool change streams to curvestep 
 TEST_CASE("hil: the same job to curvestep device --executor replays its rests as rest pieces, bit for bit",
           "[integration][hil][dwell][pieces]") {
   check_streamed({"device", "--fast", "--executor"}, "executor_dwell");
+}
+
+TEST_CASE("hil: a dwell after the last move (G4 P2 then M2) rests on curvestep device as in sim, same setpoint count",
+          "[integration][hil][dwell]") {
+  check_final_dwell({"device", "--fast"}, "device_final_dwell");
+}
+
+TEST_CASE("hil: the dwell after the last move reaches curvestep device --executor as rest pieces, bit for bit",
+          "[integration][hil][dwell][pieces]") {
+  check_final_dwell({"device", "--fast", "--executor"}, "executor_final_dwell");
 }

@@ -101,6 +101,7 @@ std::string explain(Error code, const std::string& word) {
       if (is({"G33", "G33.1", "G76"})) return "threading (spindle-synchronised motion) is not supported";
       if (is({"G7", "G8"})) return "lathe diameter/radius modes are not supported (this is a mill/plotter controller)";
       if (is({"G38.2", "G38.3", "G38.4", "G38.5"})) return "probing is not supported";
+      if (!word.empty() && word[0] == 'R') return "coordinate system rotation (R on G10 L2) is not supported: give R0 or leave it out";
       if (!word.empty() && word[0] == 'M') return "unsupported M code (supported: M0 M1 M2 M30 M3 M4 M5 M6 M7 M8 M9 M48-M53 M62-M65)";
       if (!word.empty() && word[0] == 'G') return "unsupported G code (docs/gcode.md lists the supported ones)";
       return "unsupported word";
@@ -120,7 +121,7 @@ std::string explain(Error code, const std::string& word) {
       return "no motion mode (G0, G1, G2, G3, G5, G5.1, G5.2) is active";
     case Error::GcodeArcRadiusMismatch:
       if (word.starts_with("R")) return "the radius is too small to reach the end point";
-      return "radius to end of arc differs from radius to start (allowed: 0.5 mm / 0.05 in, or 0.005 mm / 0.0005 in when within "
+      return "radius to end of arc differs from radius to start (allowed: 2.83 mm / 0.283 in, and 0.0283 mm / 0.00283 in beyond "
              "0.1 % of the radius), or the radius is zero";
     case Error::GcodeCannedCycle:
       if (word.starts_with("R")) return "canned cycle: the retract plane R is below the hole bottom Z";
@@ -139,7 +140,8 @@ std::string explain(Error code, const std::string& word) {
         return "cutter radius compensation is already on: G40 first (it cannot be turned on again or change side while on)";
       }
       if (word.starts_with("D")) {
-        return "tool " + word.substr(1) + " has no diameter in the machine file's tool table (G41.1/G42.1 D<diameter> give the diameter directly)";
+        const std::string tool = word.size() > 1 ? "tool " + word.substr(1) : std::string("the tool D names");  // D#1: no digits
+        return tool + " has no diameter in the machine file's tool table (G41.1/G42.1 D<diameter> give the diameter directly)";
       }
       if (word.starts_with("L")) return "the tool orientation L is for lathe tools: this controller compensates mills in G17 (leave L out or give L0)";
       if (word.starts_with("G17") || word.starts_with("G18") || word.starts_with("G19")) {
@@ -309,10 +311,10 @@ class GcodeLoader {
     if (block.find('R') != nullptr) fail(column, Error::GcodeArcRadiusMismatch);
     const auto [r0, r1] = interpreter_.refused_arc_radii();
     const char* allowed = interpreter_.units() == machine::Units::Inches
-                              ? "allowed: 0.05 in, or 0.0005 in when within 0.1 % of the radius"
-                              : "allowed: 0.5 mm, or 0.005 mm when within 0.1 % of the radius";
+                              ? "allowed: 0.283 in, and 0.00283 in beyond 0.1 % of the radius (LinuxCNC's 2*0.001*sqrt(2) in)"
+                              : "allowed: 2.83 mm, and 0.0283 mm beyond 0.1 % of the radius (LinuxCNC's 2*0.01*sqrt(2) mm)";
     fail_message(column,
-                 r0 == 0 ? std::string("zero radius: the centre is the start point")
+                 std::fmin(r0, r1) < machine::arc_zero_radius_mm ? std::string("zero-radius arc: the centre is on the start or end point")
                          : "radius to end of arc differs from radius to start: start radius " + format_number(r0) +
                                " mm, end radius " + format_number(r1) + " mm, difference " + format_number(std::fabs(r1 - r0)) +
                                " mm (" + allowed + ")",

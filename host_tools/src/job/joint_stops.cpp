@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include <curvestep/host/joint_stops.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -33,10 +34,16 @@ std::uint32_t dwell_ticks(double seconds, double rate_hz) {
 }
 
 std::vector<JointStop> joint_stops(const Job& job, double rate_hz) {
-  std::vector<JointStop> stops(job.segments.size());
+  std::vector<JointStop> stops(job.segments.size() + 1);  // the last: after the last move
+  std::vector<std::size_t> machine_events(stops.size(), 0);
   for (const JobEvent& event : job.events) {
-    if (event.before_segment >= stops.size() || !needs_rest(event.kind)) continue;
-    JointStop& stop = stops[event.before_segment];
+    if (event.kind == JobEventKind::Dwell || event.kind == JobEventKind::Message) continue;
+    const std::size_t joint = std::min(event.before_segment, job.segments.size());
+    if (++machine_events[joint] > max_events_passed_at_speed) stops[joint].stop = true;
+  }
+  for (const JobEvent& event : job.events) {
+    if (!needs_rest(event.kind)) continue;
+    JointStop& stop = stops[std::min(event.before_segment, job.segments.size())];
     stop.stop = true;
     if (event.kind != JobEventKind::Dwell) continue;
     const std::string where = job.name + (event.line > 0 ? ":" + std::to_string(event.line) : std::string{}) + ": ";

@@ -49,7 +49,9 @@ class Upload {
         for (const auto& note : wire_job_.notes) warn(note);
         if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
       }
+      if (units() == 0) throw StreamError(Error::NothingQueued, job_.name + ": the job has no moves: nothing to stream");
       events_ = to_wire_events(job_, machine_.rate_hz, piece_mode_);
+      check_event_room(link_.capabilities().queue_capacity);
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
       if (options_.seek_switch) submit_marked(protocol::Message(protocol::SeekSwitch{*options_.seek_switch}));
@@ -220,6 +222,43 @@ class Upload {
       }
     }
     piece_mode_ = true;
+  }
+
+  /// The machine events at one joint that this controller cannot take before the segment after
+  /// it (its event ring holds `capacity`, docs/protocol.md "Credit"): a controller with a planner
+  /// waits at the joint and takes any number of them, except before the first move (nothing moves
+  /// yet), after a dwell there (the rest comes with the segment) and after the last move (they
+  /// travel before it); one without a planner takes at
+  /// most `capacity` per joint. StreamError (CapacityExceeded) naming the line of the first event
+  /// too many, before anything is queued.
+  void check_event_room(std::size_t capacity) const {
+    std::size_t joint = ~std::size_t{0};
+    std::size_t count = 0;
+    bool after_dwell = false;
+    for (const JobEvent& event : job_.events) {
+      if (event.before_segment != joint) {
+        joint = event.before_segment;
+        count = 0;
+        after_dwell = false;
+      }
+      if (event.kind == JobEventKind::Dwell) {
+        after_dwell = true;
+        continue;
+      }
+      if (event.kind == JobEventKind::Message) continue;
+      ++count;
+      const bool last = joint >= job_.segments.size();
+      const bool limited = piece_mode_ || joint == 0 || after_dwell || last;
+      if (!limited || count <= capacity) continue;
+      const char* where = piece_mode_ ? "at one joint (a controller without a planner cannot wait there for more)"
+                          : joint == 0 ? "before the first move"
+                          : last       ? "after the last move"
+                                       : "after a dwell at one joint";
+      throw StreamError(Error::CapacityExceeded, job_.name + (event.line > 0 ? ":" + std::to_string(event.line) : "") + ": " +
+                                                     event.text + ": more than " + std::to_string(capacity) +
+                                                     " machine events " + where + "; this controller's event ring holds " +
+                                                     std::to_string(capacity) + " (docs/gcode.md, \"Machine events\")");
+    }
   }
 
   /// What the job is sent as: queue segments, or planned pieces for a controller without a planner.

@@ -107,6 +107,7 @@ WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz) {
     q.rapid = s.rapid();
     q.stop_before = entries[i].stop;
     q.rest_ticks = entries[i].rest_ticks;
+    if (i + 1 == job.segments.size()) q.end_rest_ticks = entries.back().rest_ticks;  // dwells after the last move
     bool exact = true;
     const auto coordinate = [&](double value) {
       try {
@@ -239,7 +240,7 @@ std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz,
       rested = 0;
     }
     if (event.kind == JobEventKind::Dwell) {
-      if (joint < job.segments.size()) rested += dwell_ticks(event.value, rate_hz);
+      rested += dwell_ticks(event.value, rate_hz);
       continue;
     }
     const auto kind = wire_kind(event.kind);
@@ -249,12 +250,10 @@ std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz,
     e.flag = event.flag;
     e.value = wire_value(job, event);
     e.after_rest_ticks = static_cast<std::uint32_t>(rested);
-    if (joint >= job.segments.size()) {
-      e.segment = after_last_segment;
-    } else {
-      const std::size_t label = file_labels && !job.source_index.empty() ? job.source_index[joint] : joint;
-      e.segment = static_cast<std::uint32_t>(label);
-    }
+    const auto label_of = [&](std::size_t k) { return file_labels && !job.source_index.empty() ? job.source_index[k] : k; };
+    // After the last move: the label after the last segment's (the rest at the job's end carries it).
+    const std::size_t label = joint < job.segments.size() ? label_of(joint) : (job.segments.empty() ? 0 : label_of(job.segments.size() - 1) + 1);
+    e.segment = static_cast<std::uint32_t>(label);
     out.push_back(e);
   }
   return out;

@@ -55,6 +55,7 @@ class LockstepRun {
   /// controller) until the first controller has finished the job.
   template <class OnTick>
   void run(OnTick&& on_tick) {
+    if (job_.segments.empty()) return;  // a program without moves (modes, S, M words only): no setpoints
     fill();
     apply_override();  // one at tick 0 is set before the start, as a device takes it while idle
     std::apply([&](auto&... c) { (check(c.start(), no_index), ...); }, controllers_);
@@ -123,7 +124,8 @@ class LockstepRun {
       ++next_;
     }
     if (next_ == job_.segments.size()) {
-      std::apply([](auto&... c) { (c.end_of_job(), ...); }, controllers_);
+      const std::uint32_t final_rest = entries_.back().rest_ticks;  // the dwells after the last move
+      std::apply([final_rest](auto&... c) { (c.end_of_job(final_rest), ...); }, controllers_);
     }
   }
 
@@ -150,7 +152,7 @@ class LockstepRun {
   }
 
   const Job& job_;
-  std::vector<JointStop> entries_;  ///< per segment: an exact stop and rest before it (job events)
+  std::vector<JointStop> entries_;  ///< per segment: an exact stop and rest before it (job events); then the end's
   std::size_t next_ = 0;
   std::tuple<Controllers...> controllers_;
   std::vector<FeedHoldEvent> holds_;  // in tick order
@@ -165,10 +167,10 @@ class LockstepRun {
 using ExactController = MotionController<double, queue_capacity, max_distance_window>;
 using FixedController = MotionController<Q16_16, queue_capacity, max_distance_window>;
 
-/// Refuses what neither simulate() nor plan_pieces() can run: an empty job, an invalid machine, a
-/// look-ahead window outside 1..max_lookahead.
-void check_request(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
-  if (job.segments.empty()) throw std::runtime_error(job.name + ": the job has no segments");
+/// Refuses what neither simulate() nor plan_pieces() can run: an invalid machine, a look-ahead
+/// window outside 1..max_lookahead. A job without segments runs and makes no setpoints (LinuxCNC
+/// runs a program without moves too).
+void check_request(const MachineLimits& machine, const SimulationOptions& options) {
   if (auto valid = machine.validate(); !valid) {
     throw std::runtime_error("machine: " + std::string(describe(valid.error())));
   }
@@ -233,7 +235,7 @@ void note_violation(SimulationSummary& s, const char* what, double measured, dou
 
 SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, const SimulationOptions& options,
                                   const SetpointSink& sink) {
-  check_request(job, machine, options);
+  check_request(machine, options);
   SimulationSummary s;
   LockstepRun<ExactController, FixedController> run(job, machine, options, options.holds);
   const double dt = 1.0 / machine.rate_hz;
@@ -314,7 +316,7 @@ double lookahead_distance_for(const MachineLimits& machine) {
 }
 
 std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
-  check_request(job, machine, options);
+  check_request(machine, options);
   LockstepRun<FixedController> run(job, machine, options);
   std::vector<PlannedPiece> pieces;
   PieceRecorder recorder;

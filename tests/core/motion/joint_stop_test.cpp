@@ -89,6 +89,49 @@ TEMPLATE_TEST_CASE("joint stop: a rest before the first segment holds the start"
   check_rest_inserted(plain, rested, 0, 7, mp(1, 2), 0);
 }
 
+TEMPLATE_TEST_CASE("joint stop: a rest after the last move adds its ticks at the end point, labelled after the last segment",
+                   "[core][motion][joint_stop]", double, Q16_16) {
+  // A G4 dwell after the job's last move: the motion is unchanged, then 250 setpoints stand at the
+  // end point (10, 5) with speed 0, labelled 2 (last segment 1, + 1), and only then the job finishes.
+  const MachineLimits m = test_machine();
+  const std::vector<PathSegment> job{line(mp(0, 0), mp(10, 0)), line(mp(10, 0), mp(10, 5))};
+  const auto plain = run_job<TestType>(job, m);
+  const auto rested = run_job<TestType>(job, m, 2000000, {JointStop{}, JointStop{}, JointStop{true, 250}});
+  check_rest_inserted(plain, rested, plain.size(), 250, mp(10, 5), 2);
+}
+
+TEST_CASE("joint stop: a feed hold during the rest after the last move holds, resume serves the rest, then finishes",
+          "[core][motion][joint_stop]") {
+  const MachineLimits m = test_machine();
+  MotionController<double> controller;
+  REQUIRE(controller.configure(m).has_value());
+  REQUIRE(controller.try_push(line(mp(0, 0), mp(10, 0)), 0).has_value());
+  controller.end_of_job(100);
+  REQUIRE(controller.start().has_value());
+  std::size_t rest_seen = 0;
+  while (rest_seen < 30) {
+    REQUIRE(controller.next_setpoint().has_value());
+    if (controller.resting()) ++rest_seen;
+  }
+  controller.hold();
+  REQUIRE(controller.state() == ControllerState::Held);
+  for (int i = 0; i < 20; ++i) {
+    const auto sp = controller.next_setpoint();
+    REQUIRE(sp.has_value());
+    CHECK(sp.value().position[0] == 10.0);
+  }
+  REQUIRE(controller.resume().has_value());
+  for (int i = 0; i < 70; ++i) {
+    REQUIRE_FALSE(controller.finished());
+    const auto sp = controller.next_setpoint();
+    REQUIRE(sp.has_value());
+    REQUIRE(controller.resting());
+    CHECK(sp.value().position[0] == 10.0);
+    CHECK(sp.value().segment == 1u);
+  }
+  CHECK(controller.finished());
+}
+
 TEST_CASE("joint stop: a rest through a cusp split stays before the first piece", "[core][motion][joint_stop]") {
   const MachineLimits m = test_machine();
   // A cubic with a cusp (queued as two pieces) after a line into it at a corner.

@@ -69,7 +69,8 @@ std::vector<Setpoint<S>> run_job(const std::vector<PathSegment>& job, const Mach
       REQUIRE(pushed.has_value());
       ++next;
     }
-    if (next == job.size()) controller.end_of_job();
+    // entries[job.size()], if given, is the rest after the last move (its rest_ticks).
+    if (next == job.size()) controller.end_of_job(entries.size() > job.size() ? entries[job.size()].rest_ticks : 0);
   };
   fill();
   REQUIRE(controller.start().has_value());

@@ -241,3 +241,48 @@ TEST_CASE("firmware: Abort switches a running spindle and the coolant off throug
   host.pump(3);
   CHECK(board.calls.size() == 4);
 }
+
+TEST_CASE("firmware: 40 events before one segment, more than the ring holds, run in order at the joint, the stream unchanged",
+          "[firmware][app][events][credit]") {
+  // G1 X10 / 20 x (M62 P1, M63 P1) / G1 X20 (an exact stop: more than 16 events there, joint_stops)
+  // with 32 event slots: the App waits at the joint for the segment its events precede. Oracle:
+  // the same job with one event there, which fits the ring and never waits: same setpoints, and
+  // every one of the 40 events at the setpoint where that one happens.
+  const auto job = [](std::size_t events) {
+    QueueSegment first = line(p(0, 0), p(10, 0));
+    QueueSegment second = line(p(10, 0), p(20, 0));
+    second.stop_before = true;
+    second.end_of_job = true;
+    std::vector<Message> messages{Message(first)};
+    for (std::size_t k = 0; k < events; ++k) messages.push_back(Message(event(1, 0, MachineEventKind::DigitalOutput, k % 2 == 0, 1)));
+    messages.push_back(Message(event(2, 0, MachineEventKind::ProgramEnd)));  // M2: after the last move, sent before it
+    messages.push_back(Message(second));
+    return messages;
+  };
+  struct Run {
+    HookBoard board;
+    std::vector<std::pair<std::uint32_t, WirePoint>> setpoints;
+    bool errors = false;
+  };
+  const auto run_job = [&job](std::size_t events) {
+    Run r;
+    App<HookBoard> app{r.board};
+    Host<App<HookBoard>> host{r.board, app};
+    REQUIRE(host.connect());
+    REQUIRE(host.send(Message(machine(50))));
+    run(host, app, r.board, job(events));
+    r.setpoints = host.setpoints();
+    r.errors = !host.received.errors.empty();
+    return r;
+  };
+  const Run one = run_job(1);
+  REQUIRE(one.board.at.size() == 1);  // M2 has no hook on this board
+  const Run many = run_job(40);
+  CHECK_FALSE(many.errors);
+  REQUIRE(many.board.calls.size() == 40);
+  for (std::size_t k = 0; k < 40; ++k) {
+    CHECK(many.board.calls[k] == (k % 2 == 0 ? "output(1,1)" : "output(1,0)"));
+    CHECK(many.board.at[k] == one.board.at[0]);
+  }
+  CHECK(many.setpoints == one.setpoints);
+}

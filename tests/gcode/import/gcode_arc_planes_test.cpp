@@ -86,14 +86,18 @@ TEST_CASE("arc planes: the offset letter along the normal is refused, R works in
 }
 
 TEST_CASE("arc radius tolerance: LinuxCNC's figures in the program's units", "[gcode][import][arc]") {
-  // Radius 0.1 in (2.54 mm), end radius longer by 0.0004 in (0.01016 mm): within 0.0005 in, accepted
-  // in G20; the same arc in mm exceeds 0.005 mm and 0.1 % of the radius (0.00254 mm): refused.
-  CHECK_NOTHROW(parse_gcode_job("G20 G90\nG2 X0.2004 Y0 I0.1 J0 F10\n", "inch.ngc"));
-  CHECK_THAT(message_of("G21 G90\nG2 X5.09016 Y0 I2.54 J0 F10\n"),
-             Catch::Contains("arc.ngc:2:1") && Catch::Contains("differs from radius to start") && Catch::Contains("0.005 mm"));
-  // 0.0006 in (0.01524 mm) is beyond 0.0005 in and 0.1 %: refused in G20 too, with the inch figures.
-  CHECK_THAT(message_of("G20 G90\nG2 X0.2006 Y0 I0.1 J0 F10\n"), Catch::Contains("0.0005 in"));
-  // A large radius: 0.04 in off at 100 in (0.04 %) is within 0.05 in; 1.016 mm would exceed 0.5 mm.
-  CHECK_NOTHROW(parse_gcode_job("G20 G90\nG2 X200.04 Y0 I100 J0 F10\n", "big_inch.ngc"));
-  CHECK_THAT(message_of("G21 G90\nG2 X5081.016 Y0 I2540 J0 F10\n"), Catch::Contains("differs from radius to start"));
+  // LinuxCNC's t = 2 x 0.001 x sqrt(2) in = 0.0028284 in (2 x 0.01 x sqrt(2) mm under G21). Radius
+  // 0.1 in, end radius longer by 0.0028 in: within t, accepted in G20; the same arc in mm (0.07112 mm
+  // longer, 2.7 % of the radius) is beyond 0.028284 mm: refused with the metric figures.
+  CHECK_NOTHROW(parse_gcode_job("G20 G90\nG2 X0.2028 Y0 I0.1 J0 F10\n", "inch.ngc"));
+  CHECK_THAT(message_of("G21 G90\nG2 X5.15112 Y0 I2.54 J0 F10\n"),
+             Catch::Contains("arc.ngc:2:1") && Catch::Contains("differs from radius to start") && Catch::Contains("0.0283 mm"));
+  // 0.0029 in is beyond t and 0.1 %: refused in G20 too, with the inch figures.
+  CHECK_THAT(message_of("G20 G90\nG2 X0.2029 Y0 I0.1 J0 F10\n"), Catch::Contains("0.00283 in"));
+  // A large radius: 0.28 in off at 300 in (0.093 %) is within 100 t = 0.28284 in; 0.29 in is not.
+  CHECK_NOTHROW(parse_gcode_job("G20 G90\nG2 X600.28 Y0 I300 J0 F10\n", "big_inch.ngc"));
+  CHECK_THAT(message_of("G20 G90\nG2 X600.29 Y0 I300 J0 F10\n"), Catch::Contains("differs from radius to start"));
+  // The same in mm: 2.8 mm at 3000 mm passes, 2.9 mm fails (100 t = 2.8284 mm).
+  CHECK_NOTHROW(parse_gcode_job("G21 G90\nG2 X6002.8 Y0 I3000 J0 F10\n", "big_mm.ngc"));
+  CHECK_THAT(message_of("G21 G90\nG2 X6002.9 Y0 I3000 J0 F10\n"), Catch::Contains("2.83 mm"));
 }

@@ -138,17 +138,29 @@ TEST_CASE("gcode interpreter: full circles, extra turns and helical arcs", "[gco
 }
 
 TEST_CASE("gcode interpreter: arc radius tolerance follows LinuxCNC", "[gcode][interpreter]") {
-  // r0 = 10. Within: |r1 - r0| = 0.004 <= 0.005. Also within: 0.02 at r0 = 100 (<= 0.1 % of r0).
+  // LinuxCNC (rs274ngc interp_internal.hh, interp_arc.cc): t = 2 x 0.01 x sqrt(2) = 0.028284 mm; an
+  // arc fails if |r1 - r0| > 100 t (2.8284 mm), or if |r1 - r0| > t and > 0.1 % of max(r0, r1).
+  // Within: 0.028 <= t at r0 = 10; 0.09 at r0 = 100 (0.0899 % of 100.09); 2.8 <= 100 t at r0 = 3000.
   Machine a;
-  CHECK(run(a, {"G0 X10", "G3 X0 Y10.004 I-10"}).kind == MotionKind::Arc);
+  CHECK(run(a, {"G0 X10", "G3 X0 Y10.028 I-10"}).kind == MotionKind::Arc);
   Machine b;
-  CHECK(run(b, {"G0 X100", "G3 X0 Y100.02 I-100"}).kind == MotionKind::Arc);
-  // Beyond: 0.02 at r0 = 10 (> 0.005 and > 0.01), and 0.6 > 0.5 at r0 = 1000.
-  auto f = run_failing({"G0 X10", "G3 X0 Y10.02 I-10"});
+  CHECK(run(b, {"G0 X100", "G3 X0 Y100.09 I-100"}).kind == MotionKind::Arc);
+  Machine c;
+  CHECK(run(c, {"G0 X3000", "G3 X0 Y3002.8 I-3000"}).kind == MotionKind::Arc);
+  // Beyond: 0.03 at r0 = 10 (> t and 0.3 %), 0.11 at r0 = 100 (> t and 0.1099 %), and 2.9 > 100 t at
+  // r0 = 3000 although only 0.0966 %.
+  auto f = run_failing({"G0 X10", "G3 X0 Y10.03 I-10"});
   CHECK(f.code == Error::GcodeArcRadiusMismatch);
   CHECK(f.index == 1);
-  f = run_failing({"G0 X1000", "G3 X0 Y1000.6 I-1000"});
+  CHECK(run_failing({"G0 X100", "G3 X0 Y100.11 I-100"}).code == Error::GcodeArcRadiusMismatch);
+  f = run_failing({"G0 X3000", "G3 X0 Y3002.9 I-3000"});
   CHECK(f.code == Error::GcodeArcRadiusMismatch);
+  // Under G20 the tolerance is 2 x 0.001 x sqrt(2) in: 0.0028 in off at r0 = 0.1 in passes, 0.0029 in fails.
+  Machine d;
+  CHECK(run(d, {"G20 G0 X0.1", "G3 X0 Y0.1028 I-0.1"}).kind == MotionKind::Arc);
+  CHECK(run_failing({"G20 G0 X0.1", "G3 X0 Y0.1029 I-0.1"}).code == Error::GcodeArcRadiusMismatch);
+  // LinuxCNC's zero-radius arc: a radius below 0.00005 in (0.00127 mm).
+  CHECK(run_failing({"G0 X0.001", "G3 X0 Y0.001 I-0.001"}).code == Error::GcodeArcRadiusMismatch);
   // A radius too small to reach the end.
   f = run_failing({"G2 X10 Y0 R4"});
   CHECK(f.code == Error::GcodeArcRadiusMismatch);
@@ -398,6 +410,20 @@ TEST_CASE("gcode interpreter: G40 G41 G42 G41.1 G42.1 set the compensation each 
   CHECK(m.compensation_side() == CompensationSide::Off);  // M2 resets to G40
 }
 
+TEST_CASE("gcode interpreter: a negative G41.1/G42.1 diameter compensates on the other side, as LinuxCNC does",
+          "[gcode][interpreter][compensation]") {
+  // LinuxCNC's convert_cutter_compensation_on: radius = D / 2; a negative radius switches the side
+  // and keeps its size (tests/interp/crazy-paths runs its paths with G41.1 D-.5 and D.5).
+  Machine m;
+  auto motion = run(m, {"G41.1 D-2", "G1 X10 F100"});
+  CHECK(motion.compensation_side == CompensationSide::Right);
+  CHECK(motion.compensation_radius_mm == 1.0);
+  Machine n;
+  motion = run(n, {"G20 G42.1 D-0.5", "G1 X10 F100"});
+  CHECK(motion.compensation_side == CompensationSide::Left);
+  CHECK(motion.compensation_radius_mm == Approx(6.35));  // 0.25 in
+}
+
 TEST_CASE("gcode interpreter: compensation errors at the word at fault", "[gcode][interpreter][compensation]") {
   const struct {
     std::initializer_list<std::string_view> lines;
@@ -410,7 +436,7 @@ TEST_CASE("gcode interpreter: compensation errors at the word at fault", "[gcode
       {{"G18 G41 D0"}, Error::GcodeUnsupportedWord, 5},         // G17 only
       {{"G41 D0", "G19"}, Error::GcodeCutterCompensation, 1},   // no plane change while on
       {{"G41.1"}, Error::GcodeMissingWord, 1},
-      {{"G41.1 D-1"}, Error::GcodeBadNumber, 7},
+      {{"G41.1 D99999"}, Error::GcodeBadNumber, 7},             // beyond +-32767 mm
       {{"G41.1 D2 L1"}, Error::GcodeCutterCompensation, 10},    // lathe orientation
       {{"G41 D1.5"}, Error::GcodeBadNumber, 5},
       {{"G41 D0", "G5.1 X1 Y1 I1 J0"}, Error::GcodeCutterCompensation, 1},
@@ -454,4 +480,12 @@ TEST_CASE("gcode interpreter: tool numbers are any whole number up to 99999, the
   CHECK(full.set_tool_length_mm(1000, 2.0));  // an existing tool can still change
   CHECK_FALSE(full.set_tool_length_mm(5, 1.0));
   CHECK_FALSE(m.set_tool_diameter_mm(100000, 1.0));
+}
+
+TEST_CASE("gcode interpreter: G10 L2 R (LinuxCNC's rotation of a coordinate system) is refused unless 0", "[gcode][interpreter]") {
+  Machine m;
+  CHECK(run(m, {"G10 L2 P1 X5 R0", "G54 G0 X0"}).end == pt(5, 0));  // R0: no rotation, the offset applies
+  const Failure f = run_failing({"G10 L2 P1 X1 Y2 R45"});
+  CHECK(f.code == Error::GcodeUnsupportedWord);
+  CHECK(f.index == 17);  // the R word
 }

@@ -101,9 +101,22 @@ TEST_CASE("dwell: joint stops come from the events before each segment", "[host_
   const Job job = parse_gcode_job("G21 G90\nG4 P0.01\nG1 X10 F600\nM3 S1000\nG1 X20\nG4 P0.002\nM0\nG1 X30\nG4 P9\n", "stops.ngc");
   REQUIRE(job.segments.size() == 3);
   const auto stops = joint_stops(job, 1000);
-  REQUIRE(stops.size() == 3);
+  REQUIRE(stops.size() == 4);  // one per segment, then the job's end
   CHECK(stops[0] == JointStop{true, 10});
   CHECK(stops[1] == JointStop{});  // M3 alone: passed at speed
   CHECK(stops[2] == JointStop{true, 2});
-  // The dwell after the last move shapes no motion; the job still ends at X30.
+  CHECK(stops[3] == JointStop{true, 9000});  // G4 P9 after the last move: 9 s at 1 kHz at its end
+}
+
+TEST_CASE("dwell: a G4 after the last move rests at the end point and adds its time", "[host_tools][sim][dwell]") {
+  // G4 P2 then M2: the motion to X10 is unchanged, then 2 s x 1 kHz = 2000 setpoints at X10 with
+  // speed 0; the job (and sim's duration) ends exactly 2 s later.
+  const auto plain = run("G21 G90\nG1 X10 F600\nM2\n");
+  const auto dwelled = run("G21 G90\nG1 X10 F600\nG4 P2\nM2\n");
+  check_rest_inserted(plain, dwelled, 2000, 10.0);
+  CHECK(dwelled.size() == plain.size() + 2000);
+  CHECK(dwelled.back().time_s == Approx(plain.back().time_s + 2.0).margin(1e-9));
+  CHECK(dwelled.back().index == plain.back().index + 2000);
+  const auto summary = simulate(parse_gcode_job("G21 G90\nG1 X10 F600\nG4 P2\nM2\n", "dwell.ngc"), machine_1khz()).summary;
+  CHECK(summary.duration_s == Approx(plain.back().time_s + 2.0).margin(1e-9));
 }

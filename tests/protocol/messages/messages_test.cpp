@@ -73,6 +73,7 @@ QueueSegment random_segment(std::mt19937& rng) {
   }
   s.stop_before = rng() % 2 == 0;
   s.rest_ticks = rng() % 3 == 0 ? static_cast<std::uint32_t>(rng()) | 1u : 0;
+  s.end_rest_ticks = s.end_of_job && rng() % 2 == 0 ? static_cast<std::uint32_t>(rng()) | 1u : 0;
   return s;
 }
 
@@ -80,7 +81,7 @@ bool same(const QueueSegment& a, const QueueSegment& b) {
   return a.kind == b.kind && a.axis_count == b.axis_count && a.degree == b.degree && a.rapid == b.rapid &&
          a.has_feed == b.has_feed && a.feed_mm_per_s == b.feed_mm_per_s && a.points == b.points &&
          a.weights == b.weights && a.end_of_job == b.end_of_job && a.turns == b.turns && a.stop_before == b.stop_before &&
-         a.rest_ticks == b.rest_ticks &&
+         a.rest_ticks == b.rest_ticks && a.end_rest_ticks == b.end_rest_ticks &&
          (a.kind != SegmentKind::Arc || a.direction == b.direction);
 }
 
@@ -484,6 +485,35 @@ TEST_CASE("messages: a segment after a dwell carries its stop and rest ticks", "
   QueueSegment stop = s;
   stop.rest_ticks = 0;
   CHECK(to_hex(payload_of(stop)) == to_hex(hex("00 40 00000a00 00000000 00001400 00000000")));
+}
+
+TEST_CASE("messages: the job's last segment carries the rest after it in end_rest_ticks", "[protocol][messages]") {
+  QueueSegment s;  // a 2-axis line, the job's last, then a 2 s dwell at 1 kHz
+  s.end_of_job = true;
+  s.end_rest_ticks = 2000;
+  s.points[0] = WirePoint{0, 0, 0};
+  s.points[1] = WirePoint{10 * 65536, 0, 0};
+  // kind 0 | 0x80 (end rest), flags 0x10 (end of job), end rest 2000 (0x7d0), start XY, end XY
+  const auto expected = hex("80 10 d0070000 00000000 00000000 00000a00 00000000");
+  CHECK(to_hex(payload_of(s)) == to_hex(expected));
+  const auto back = decode<QueueSegment>(expected);
+  REQUIRE(back.has_value());
+  CHECK(back.value().kind == SegmentKind::Line);
+  CHECK(back.value().end_of_job);
+  CHECK(back.value().end_rest_ticks == 2000);
+  // Only on the job's last segment: without the end-of-job flag the kind byte is malformed (0).
+  const auto not_last = decode<QueueSegment>(hex("80 00 d0070000 00000000 00000000 00000a00 00000000"));
+  REQUIRE_FALSE(not_last.has_value());
+  CHECK(not_last.error() == Error::BadPayload);
+  CHECK(not_last.where() == 0);
+  // A count of 0 is malformed at its offset (2); encoding refuses a rest without the flag.
+  const auto zero = decode<QueueSegment>(hex("80 10 00000000 00000000 00000000 00000a00 00000000"));
+  REQUIRE_FALSE(zero.has_value());
+  CHECK(zero.where() == 2);
+  QueueSegment middle = s;
+  middle.end_of_job = false;
+  std::array<std::byte, 160> out{};
+  CHECK_FALSE(encode(middle, out).has_value());
 }
 
 TEST_CASE("messages: a StatusReport carries the deepest queue and the tick overruns of the session", "[protocol][messages]") {

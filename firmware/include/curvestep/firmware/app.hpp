@@ -228,6 +228,9 @@ class App {
       return;
     }
     stalled_ = false;
+    if constexpr (Events > 0 && plans_on_board) {
+      if (wait_at_joint()) return;
+    }
     const ControllerState before = controller_.state();
     auto next = controller_.next_setpoint();
     if (!next) {
@@ -505,10 +508,35 @@ class App {
     using protocol::MachineEventKind;
     return kind == MachineEventKind::ProgramPause || kind == MachineEventKind::ToolChange || kind == MachineEventKind::LayerChange;
   }
-  /// A due machine event: the board's hooks, and a pause if it is one.
-  void act_on(const protocol::QueueEvent& e) noexcept {
-    apply_machine_event(board_, e, setpoint_index_, spindle_, coolant_);
-    if (pauses(e.kind) && !paused_) pause_for(e);
+  /// A due machine event at setpoint `at` (by default the last one): the board's hooks, and a
+  /// pause if it is one.
+  void act_on(const protocol::QueueEvent& e) noexcept { act_on(e, setpoint_index_); }
+  void act_on(const protocol::QueueEvent& e, std::uint32_t at) noexcept {
+    apply_machine_event(board_, e, at, spindle_, coolant_);
+    if (pauses(e.kind) && !paused_) pause_for(e, at);
+  }
+
+  /// Machine events for the segment after everything queued (more of them than the event ring
+  /// holds, docs/protocol.md "Credit"): rather than run the queue dry, the motion waits at the
+  /// setpoint before the queue's end (at rest or within a tick of it: the plan's window ends at
+  /// rest there) and acts on the events due at that joint, naming the setpoint they precede, so
+  /// that their room brings the rest of them and the segment. Once that came, the motion goes on
+  /// when the look-ahead window is as full as after an underrun (window_ready(1)): the setpoints
+  /// are those it would have made without waiting. True while waiting (no setpoint this tick).
+  [[nodiscard]] bool wait_at_joint() noexcept {
+    if (phase_ != Phase::Running || controller_.state() != ControllerState::Running) {
+      waiting_at_joint_ = false;
+      return false;
+    }
+    const bool at_end = controller_.next_tick_ends_queue();
+    if (!waiting_at_joint_ && !(at_end && machine_events_.waiting_for(job_segments_))) return false;
+    if (!at_end && window_ready(1)) {
+      waiting_at_joint_ = false;
+      return false;
+    }
+    waiting_at_joint_ = true;
+    machine_events_.at_joint(job_segments_, [this](const protocol::QueueEvent& e) { act_on(e, setpoint_index_ + 1); });
+    return true;
   }
 
   /// Abort and faults: a running spindle and coolant are switched off through the same hooks (as
@@ -526,9 +554,9 @@ class App {
   }
 
   /// Stops producing setpoints after this one until Resume; poll() reports the pause.
-  void pause_for(const protocol::QueueEvent& e) noexcept {
+  void pause_for(const protocol::QueueEvent& e, std::uint32_t at) noexcept {
     paused_ = true;
-    pause_ = protocol::PauseReport{setpoint_index_, e.kind, e.value};
+    pause_ = protocol::PauseReport{at, e.kind, e.value};
     phase_ = Phase::Holding;
     events_.paused = true;
   }
@@ -673,7 +701,7 @@ class App {
     has_last_end_ = true;
     note_queued();
     if (s.end_of_job) {
-      controller_.end_of_job();
+      controller_.end_of_job(s.end_rest_ticks);
       job_end_known_ = true;
     }
     return ok();
@@ -777,6 +805,7 @@ class App {
     machine_events_.clear();
     seek_switch_ = no_limit_switch;
     paused_ = false;
+    waiting_at_joint_ = false;
     moving_ = false;
     job_end_known_ = false;
     events_ = TickEvents{};
@@ -985,6 +1014,7 @@ class App {
   protocol::SwitchReport switch_report_{};  ///< where a SeekSwitch job stopped, reported once
   std::uint8_t seek_switch_ = no_limit_switch;  ///< the switch that ends the next job (SeekSwitch), or none
   bool paused_ = false;                    ///< a pause event holds the job until Resume
+  bool waiting_at_joint_ = false;          ///< the motion waits for the segment its events precede (wait_at_joint)
   CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};

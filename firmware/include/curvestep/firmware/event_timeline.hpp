@@ -70,6 +70,25 @@ class EventTimeline {
     }
   }
 
+  /// True if the first waiting event precedes segment `next_segment` or a later one: the segment
+  /// not yet queued (the count of segments taken) that the motion, at the end of what is queued,
+  /// needs next. The App then waits there rather than running the queue dry (at_joint()).
+  [[nodiscard]] bool waiting_for(std::uint32_t next_segment) const noexcept {
+    return !events_.empty() && events_.front().segment >= next_segment;
+  }
+
+  /// The motion waits at the joint before segment `next_segment`, not yet queued: calls
+  /// `act(event)` for the events due right at that joint (keyed to it, no rest before them), in
+  /// order, so that their room takes more events, and the segment, from the host. Events after a
+  /// rest at that joint wait for it (the rest comes with the segment).
+  template <class Act>
+  void at_joint(std::uint32_t next_segment, Act&& act) {
+    while (!events_.empty() && events_.front().segment == next_segment && events_.front().after_rest_ticks == 0) {
+      act(events_.front());
+      events_.pop_front();
+    }
+  }
+
   /// The job ended: calls `act(event)` for every event left, in order.
   template <class Act>
   void finish(Act&& act) {
@@ -105,6 +124,9 @@ class EventTimeline<0> {
   void reached(std::uint32_t, Act&&) {}
   template <class Act>
   void finish(Act&&) {}
+  [[nodiscard]] bool waiting_for(std::uint32_t) const noexcept { return false; }
+  template <class Act>
+  void at_joint(std::uint32_t, Act&&) {}
   void clear() noexcept {}
   [[nodiscard]] std::size_t size() const noexcept { return 0; }
   [[nodiscard]] std::size_t free() const noexcept { return ~std::size_t{0}; }

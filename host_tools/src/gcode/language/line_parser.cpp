@@ -168,6 +168,11 @@ void parse_words(Cursor& cursor, ParsedLine& line) {
       line.assignments.push_back(parse_assignment(cursor, line.nodes));
       continue;
     }
+    if (c == '@' || c == '^') {
+      cursor.advance();
+      cursor.fail(start, "LinuxCNC's polar coordinates (@ radius, ^ angle) are not supported: give X and Y",
+                  Error::GcodeUnsupportedWord);
+    }
     if (!is_letter(c)) {
       cursor.advance();
       cursor.fail(start, "unexpected character: a word starts with a letter", Error::GcodeSyntax);

@@ -10,8 +10,8 @@
 //   G2/G3 X Y Z I J P  arc in the XY plane (G17; G18, G19 below), clockwise / counter-clockwise; centre = start +
 //                      (I,J) in G91.1 (the default) or (I,J) in G90.1. Z moving makes a helix. End
 //                      equal to start is a full circle; P n adds n-1 extra turns. The radii to start
-//                      r0 and end r1 must agree: error if |r0-r1| > 0.5 mm (0.05 in), or if |r0-r1| > 0.005 mm
-//                      (0.0005 in) and > 0.1 % of r0 (LinuxCNC's documented tolerance, in the program's units).
+//                      r0 and end r1 must agree within LinuxCNC's tolerance t = 2·0.01·√2 mm (2·0.001·√2 in
+//                      under G20): error if |r0-r1| > 100·t, or if |r0-r1| > t and > 0.1 % of max(r0, r1).
 //   G2/G3 X Y Z R      radius form: centre on the perpendicular bisector of the chord at distance
 //                      sqrt(R² - (c/2)²); R > 0 the arc of at most half a turn, R < 0 the longer one.
 //   G5 X Y I J P Q     cubic Bézier with control points P0, P0+(I,J), P1+(P,Q), P1 (offsets always
@@ -34,7 +34,8 @@
 //                      *programmed* path and tells each Motion the side and tool radius in force; the
 //                      host offsets it (host_tools/src/gcode/cutter_compensation.hpp). G41/G42 D<tool>
 //                      take the radius from the tool table (set_tool_diameter_mm; no D: the loaded
-//                      tool; tool 0: radius 0), G41.1/G42.1 D<diameter> directly (L only as 0).
+//                      tool; tool 0: radius 0), G41.1/G42.1 D<diameter> directly (L only as 0; a negative
+//                      diameter compensates on the other side, as in LinuxCNC).
 //                      Refused while on: G41/G42 again, a plane change, G28/G30, G53, splines, cycles.
 // Arcs turn in the selected plane: G17 X Y with I J (K refused), G18 Z X with K I (J refused), G19
 // Y Z with J K (I refused); the third axis makes a helix. Motion::plane says which.
@@ -47,6 +48,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <numbers>
 #include <span>
 #include <string_view>
 
@@ -160,14 +162,25 @@ inline constexpr double max_cycle_repeats = 10000.0;
   return code_tenths == 730 || (code_tenths >= 810 && code_tenths <= 890 && code_tenths != 840 && code_tenths != 870 && code_tenths != 880);
 }
 
-/// Whether radii r0 (start) and r1 (end), in mm, disagree beyond LinuxCNC's tolerance for the
-/// program's units: more than 0.5 mm (0.05 in), or more than 0.005 mm (0.0005 in) and more than
-/// 0.1 % of r0.
+/// LinuxCNC's centre-format arc tolerance in mm for the program's units (rs274ngc
+/// CENTER_ARC_RADIUS_TOLERANCE_MM/_INCH: 2·0.01·√2 mm, 2·0.001·√2 in, so that an arc whose end and
+/// centre were rounded to 0.01 mm or 0.001 in passes).
+[[nodiscard]] inline double arc_radius_tolerance_mm(Units units) noexcept {
+  return units == Units::Inches ? 2 * 0.001 * std::numbers::sqrt2 * millimetres_per_inch : 2 * 0.01 * std::numbers::sqrt2;
+}
+/// LinuxCNC's relative arc tolerance (SPIRAL_RELATIVE_TOLERANCE): 0.1 % of the larger radius.
+inline constexpr double arc_relative_tolerance = 0.001;
+/// Below this radius (mm) an arc is LinuxCNC's "zero-radius arc" (RADIUS_TOLERANCE_INCH 0.00005 in,
+/// the same length under G21).
+inline constexpr double arc_zero_radius_mm = 0.00005 * millimetres_per_inch;
+
+/// Whether radii r0 (start) and r1 (end), in mm, disagree beyond LinuxCNC's tolerance t for the
+/// program's units (interp_arc.cc, arc_data_ijk): by more than 100·t, or by more than t and more
+/// than 0.1 % of the larger radius.
 [[nodiscard]] inline bool arc_radii_mismatch(double r0, double r1, Units units = Units::Millimetres) noexcept {
   const double difference = std::fabs(r1 - r0);
-  const double absolute = units == Units::Inches ? 0.05 * millimetres_per_inch : 0.5;
-  const double small = units == Units::Inches ? 0.0005 * millimetres_per_inch : 0.005;
-  return difference > absolute || (difference > small && difference > 0.001 * r0);
+  const double tolerance = arc_radius_tolerance_mm(units);
+  return difference > 100 * tolerance || (difference > tolerance && difference > arc_relative_tolerance * std::fmax(r0, r1));
 }
 
 /// The axes of a plane: the arc's first and second axis (counter-clockwise from first to second,
@@ -468,7 +481,7 @@ class Interpreter {
         consumed = true;
       }
       if (w.letter == 'Q' && path_word != nullptr && path_word->code_tenths == 640) consumed = true;
-      if (w.letter == 'L' && group0_word != nullptr && group0_word->code_tenths == 100) consumed = true;
+      if ((w.letter == 'L' || w.letter == 'R') && group0_word != nullptr && group0_word->code_tenths == 100) consumed = true;
       if (w.letter == 'L' && compensation_word != nullptr && compensation_word->code_tenths % 10 == 1) consumed = true;
       if (uses_axes && (w.letter == 'X' || w.letter == 'Y' || w.letter == 'Z')) consumed = true;
       if (!consumed) (void)motion_block.try_push(w);
@@ -543,9 +556,9 @@ class Interpreter {
     double radius = 0;
     if (g.code_tenths % 10 == 1) {  // G41.1 / G42.1 D<diameter> [L0]
       if (d == nullptr) return fail(Error::GcodeMissingWord, g.column);
-      if (!(d->value >= 0 && d->value * scale() <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, d->column);
+      if (!(std::fabs(d->value) * scale() <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, d->column);
       if (const Word* l = block.find('L'); l != nullptr && l->value != 0) return fail(Error::GcodeCutterCompensation, l->column);
-      radius = d->value * scale() / 2;
+      radius = d->value * scale() / 2;  // negative: the other side (below)
     } else {  // G41 / G42 [D<tool>]: the tool table's diameter; no D: the loaded tool; tool 0: no offset
       std::size_t tool = loaded_tool_;
       if (d != nullptr) {
@@ -560,8 +573,10 @@ class Interpreter {
         radius = diameter / 2;
       }
     }
-    compensation_side_ = g.code_tenths / 10 == 41 ? CompensationSide::Left : CompensationSide::Right;
-    compensation_radius_mm_ = radius;
+    const bool left = g.code_tenths / 10 == 41;
+    // LinuxCNC (convert_cutter_compensation_on): a negative radius switches the side and keeps its size.
+    compensation_side_ = (left != (radius < 0)) ? CompensationSide::Left : CompensationSide::Right;
+    compensation_radius_mm_ = std::fabs(radius);
     return ok();
   }
 
@@ -611,6 +626,10 @@ class Interpreter {
         if (l == nullptr || p == nullptr) return fail(Error::GcodeMissingWord, g.column);
         if (l->value != 2 && l->value != 20) return fail(Error::GcodeUnsupportedWord, l->column);
         if (!(p->value >= 0 && p->value <= 9) || p->value != std::floor(p->value)) return fail(Error::GcodeBadNumber, p->column);
+        // R: LinuxCNC's rotation of the system about Z (G10 L2 only); none (R0) is all this supports.
+        if (const Word* r = block.find('R'); r != nullptr && (l->value != 2 || r->value != 0)) {
+          return fail(Error::GcodeUnsupportedWord, r->column);
+        }
         const std::size_t system = p->value == 0 ? coordinate_system_ : static_cast<std::size_t>(p->value) - 1;
         for (std::size_t axis = 0; axis < 3; ++axis) {
           double v = 0;
@@ -867,7 +886,7 @@ class Interpreter {
     }
     const double r0 = std::sqrt((su - cu) * (su - cu) + (sv - cv) * (sv - cv));
     const double r1 = std::sqrt((eu - cu) * (eu - cu) + (ev - cv) * (ev - cv));
-    if (!(r0 > 0) || arc_radii_mismatch(r0, r1, units_)) {
+    if (!(r0 >= arc_zero_radius_mm && r1 >= arc_zero_radius_mm) || arc_radii_mismatch(r0, r1, units_)) {
       refused_arc_radii_ = {r0, r1};
       return fail(Error::GcodeArcRadiusMismatch, column);
     }

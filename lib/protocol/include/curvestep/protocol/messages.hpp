@@ -10,7 +10,7 @@
 // BadPayload with the byte offset of the offending field; the firmware validates meaning
 // (limits, rates, continuity) with the planner's own error codes.
 // Memory: a Message is about 300 bytes (the union's largest member is SetpointBatch). A
-// controller short of stack can check Frame::type and call decode<QueueSegment> (140 bytes)
+// controller short of stack can check Frame::type and call decode<QueueSegment> (156 bytes)
 // or decode<QueuePiece> (160 bytes) directly instead of decode_message.
 // Code size: each endpoint names the messages it receives or sends as a MessageSet
 // (HostToController, ControllerToHost, or a smaller set of its own), and decode_message<Set>,
@@ -207,6 +207,7 @@ struct QueueSegment {
   std::uint32_t turns = 0;  ///< Arc only: extra full turns beyond the sweep from start to end (a helix)
   bool stop_before = false;     ///< an exact stop at the joint into this segment (a job event there)
   std::uint32_t rest_ticks = 0; ///< control ticks of rest at that joint (a G4 dwell); > 0 implies the stop
+  std::uint32_t end_rest_ticks = 0;  ///< end_of_job only: control ticks of rest at the job's end point (a dwell after the last move)
   std::int32_t feed_mm_per_s = 0;                           ///< Q16.16 feed, if has_feed
   std::array<WirePoint, max_segment_degree + 1> points{};  ///< Q16.16 points, point_count() used
   std::array<std::int32_t, max_segment_degree + 1> weights{};  ///< Q16.16 weights > 0, RationalBezier only
@@ -593,6 +594,8 @@ inline constexpr std::uint8_t segment_flag_end_of_job = 0x10; ///< the last segm
 inline constexpr std::uint8_t segment_flag_turns = 0x20;      ///< Arc only: a u32 count of extra full turns follows
 inline constexpr std::uint8_t segment_flag_stop_before = 0x40; ///< an exact stop at the joint into the segment
 inline constexpr std::uint8_t segment_flag_rest = 0x80;       ///< a u32 count of rest ticks at that joint follows
+/// Bit 7 of a QueueSegment's kind byte (byte 0): a u32 `end_rest_ticks` follows (end of job only).
+inline constexpr std::uint8_t segment_kind_end_rest = 0x80;
 
 /// Encodes a QueueSegment payload; InvalidArgument (index = field number) for an impossible segment.
 [[nodiscard]] constexpr Result<std::size_t> encode(const QueueSegment& m, std::span<std::byte> out) noexcept {
@@ -610,13 +613,15 @@ inline constexpr std::uint8_t segment_flag_rest = 0x80;       ///< a u32 count o
   if (m.turns != 0) flags |= segment_flag_turns;
   if (m.stop_before) flags |= segment_flag_stop_before;
   if (m.rest_ticks != 0) flags |= segment_flag_rest;
+  if (m.end_rest_ticks != 0 && !m.end_of_job) return fail(Error::InvalidArgument, 0);
   ByteWriter w(out);
-  w.u8(static_cast<std::uint8_t>(m.kind));
+  w.u8(static_cast<std::uint8_t>(static_cast<std::uint8_t>(m.kind) | (m.end_rest_ticks != 0 ? segment_kind_end_rest : 0)));
   w.u8(flags);
   if (bezier) w.u8(m.degree);
   if (m.has_feed) w.i32(m.feed_mm_per_s);
   if (m.turns != 0) w.u32(m.turns);
   if (m.rest_ticks != 0) w.u32(m.rest_ticks);
+  if (m.end_rest_ticks != 0) w.u32(m.end_rest_ticks);
   if (m.kind == SegmentKind::Arc) {
     detail::write_point(w, m.points[0], m.axis_count);
     detail::write_point(w, m.points[1], m.axis_count);
@@ -822,10 +827,13 @@ template <>
 [[nodiscard]] constexpr Result<QueueSegment> decode<QueueSegment>(std::span<const std::byte> payload) noexcept {
   ByteReader r(payload);
   QueueSegment m;
-  const std::uint8_t kind = r.u8();
+  const std::uint8_t kind_byte = r.u8();
+  const std::uint8_t kind = kind_byte & static_cast<std::uint8_t>(~segment_kind_end_rest);
   if (kind > 3) r.reject_at(Error::BadPayload, 0);
   m.kind = static_cast<SegmentKind>(kind);
   const std::uint8_t flags = r.u8();
+  const bool end_rest = (kind_byte & segment_kind_end_rest) != 0;
+  if (end_rest && (flags & segment_flag_end_of_job) == 0) r.reject_at(Error::BadPayload, 0);  // end of job only
   const std::uint8_t allowed = static_cast<std::uint8_t>(
       segment_flag_rapid | segment_flag_feed | segment_flag_three_axes | segment_flag_end_of_job | segment_flag_stop_before |
       segment_flag_rest | (m.kind == SegmentKind::Arc ? segment_flag_clockwise | segment_flag_turns : 0));
@@ -854,6 +862,11 @@ template <>
     const std::size_t at = r.offset();
     m.rest_ticks = r.u32();
     if (!r.failed() && m.rest_ticks == 0) r.reject_at(Error::BadPayload, at);  // the flag means "some"
+  }
+  if (end_rest) {
+    const std::size_t at = r.offset();
+    m.end_rest_ticks = r.u32();
+    if (!r.failed() && m.end_rest_ticks == 0) r.reject_at(Error::BadPayload, at);  // the bit means "some"
   }
   if (m.kind == SegmentKind::Arc) {
     detail::read_point(r, m.points[0], m.axis_count);

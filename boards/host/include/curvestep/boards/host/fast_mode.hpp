@@ -6,8 +6,9 @@
 //     planner the piece the next setpoint needs);
 //   * not held or starved (nothing moves until the host resumes or refills);
 //   * with a planner, the queue holds its look-ahead window (Lookahead + 2 entries, so the next
-//     segment is planned with a full window), unless the job's last segment has arrived or the
-//     controller is braking.
+//     segment is planned with a full window), unless the job's last segment has arrived, the
+//     controller is braking, or the App has no credit left to give (machine events fill its ring:
+//     more cannot come before the motion works them off, App::wait_at_joint).
 #pragma once
 
 #include <curvestep/core/motion/controller_state.hpp>
@@ -23,7 +24,7 @@ template <class Application>
   if constexpr (requires { Application::Controller::lookahead; }) {  // a planner on board
     const bool window_full = controller.queued() >= Application::Controller::lookahead + 2;
     const bool braking = controller.state() != ControllerState::Running;
-    return window_full || app.job_end_known() || braking;
+    return window_full || app.job_end_known() || braking || app.free_segments() == 0;
   }
   return true;
 }

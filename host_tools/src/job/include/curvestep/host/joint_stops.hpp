@@ -4,6 +4,7 @@
 // carries them to the controller (QueueSegment's stop and rest fields), so both plan the same.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,9 +22,17 @@ namespace curvestep::host {
 /// negative or non-finite time, or one longer than 2^32 - 1 ticks.
 [[nodiscard]] std::uint32_t dwell_ticks(double seconds, double rate_hz);
 
+/// Machine events (QueueEvents: not dwells, not operator messages) a joint may have and still be
+/// passed at speed. A joint with more is an exact stop: a controller whose event ring cannot hold
+/// them all before the segment after it waits for that segment at the joint (docs/protocol.md,
+/// "Credit"), and at an exact stop waiting changes nothing, so it moves as `sim` plans.
+inline constexpr std::size_t max_events_passed_at_speed = 16;
+
 /// One JointStop per segment of `job` (the entry into Job::segments[k]) from its events at the
-/// control rate `rate_hz`: a stop where needs_rest(), plus the dwells' ticks (each dwell rounded
-/// by dwell_ticks, then added). Events after the last segment shape no motion. Throws
+/// control rate `rate_hz`: a stop where needs_rest() or where more than max_events_passed_at_speed
+/// machine events are, plus the dwells' ticks (each dwell rounded
+/// by dwell_ticks, then added); and one more for the job's end, whose rest_ticks are the dwells
+/// after the last move (the rest at its end point, MotionController::end_of_job). Throws
 /// std::runtime_error naming the job file and line of a dwell dwell_ticks refuses.
 [[nodiscard]] std::vector<JointStop> joint_stops(const Job& job, double rate_hz);
 

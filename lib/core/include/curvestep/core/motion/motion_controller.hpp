@@ -148,8 +148,13 @@ class MotionController {
     return ok();
   }
 
-  /// No more segments will come: the last queued one ends the job with a stop.
-  void end_of_job() noexcept { end_of_job_ = true; }
+  /// No more segments will come: the last queued one ends the job with a stop, then the machine
+  /// rests `final_rest_ticks` ticks at its end (a G4 dwell after the job's last move): setpoints at
+  /// the end point, speed 0, labelled with the last segment's job index + 1 (the joint "after" it).
+  void end_of_job(std::uint32_t final_rest_ticks = 0) noexcept {
+    end_of_job_ = true;
+    final_rest_ticks_ = final_rest_ticks;
+  }
 
   /// Starts moving from the first queued segment. NothingQueued, ConfigurationMissing, InvalidState.
   [[nodiscard]] Result<void> start() noexcept {
@@ -170,7 +175,7 @@ class MotionController {
   /// Feed hold: brake to a stop along the path within the limits. Ignored unless running.
   void hold() noexcept {
     if (state_ != ControllerState::Running) return;
-    if (rest_left_ > 0) return hold_at_rest();
+    if (rest_left_ > 0 || final_rest_left_ > 0) return hold_at_rest();
     state_ = ControllerState::Holding;
     begin_stop();
   }
@@ -196,6 +201,7 @@ class MotionController {
   void abort() noexcept {
     queue_.clear();
     rest_left_ = 0;
+    final_rest_left_ = 0;
     hold_deferred_ = false;
     state_ = ControllerState::Aborted;
   }
@@ -206,6 +212,8 @@ class MotionController {
     state_ = ControllerState::Idle;
     hold_deferred_ = false;
     end_of_job_ = false;
+    final_rest_ticks_ = 0;
+    final_rest_left_ = 0;
     has_previous_ = false;
     tick_ = 0;
     override_ = requested_override_;
@@ -234,6 +242,15 @@ class MotionController {
   }
 
   [[nodiscard]] ControllerState state() const noexcept { return state_; }
+  /// True if the next setpoint would be the last of everything queued before the job's end is
+  /// known (it would leave the controller Starved): a caller with more to queue for that joint (the
+  /// App's machine events, firmware/app.hpp) may wait instead of ticking, at the setpoint before the
+  /// end, where the plan (whose window ends at rest) is already at rest or within a tick of it;
+  /// queueing the next segment then continues exactly as if it had been there all along.
+  [[nodiscard]] bool next_tick_ends_queue() const noexcept {
+    return state_ == ControllerState::Running && !end_of_job_ && queue_.size() == 1 && rest_left_ == 0 &&
+           chunk_end_tick_ == no_chunk && time_now() - origin_s_ >= profile_.duration_s();
+  }
   [[nodiscard]] bool finished() const noexcept { return state_ == ControllerState::Finished; }
   /// The error that put the controller into Fault.
   [[nodiscard]] Failure fault() const noexcept { return fault_; }
@@ -503,6 +520,7 @@ class MotionController {
       }
       // An override may take effect here: the exact path below evaluates this tick again (the same bits).
     }
+    if (final_rest_left_ > 0) return final_rest_tick();
     if (rest_left_ > 0) return rest_tick();
     const double t = time_now();
     double tau = t - origin_s_;
@@ -524,7 +542,12 @@ class MotionController {
       // Last queued segment done: the job's end (exactly) or a starved queue.
       const MachinePoint end = front().segment.end();
       last_segment_ = front().job_index;
-      if (end_of_job_) {
+      if (end_of_job_ && final_rest_ticks_ > 0) {  // the rest follows at the end point, then Finished
+        final_rest_left_ = final_rest_ticks_;
+        final_rest_ticks_ = 0;
+        rest_position_ = end;
+        final_rest_label_ = last_segment_ + 1;
+      } else if (end_of_job_) {
         queue_.pop_front();
         state_ = ControllerState::Finished;
       } else {
@@ -774,7 +797,7 @@ class MotionController {
       return setpoint;
     }
     state_ = ControllerState::Holding;
-    if (rest_left_ > 0) {  // reached a joint with a rest: held there, as hold() at rest
+    if (rest_left_ > 0 || final_rest_left_ > 0) {  // reached a rest: held there, as hold() at rest
       hold_at_rest();
     } else if (queue_.front().serial != serial) {
       begin_stop();
@@ -808,6 +831,19 @@ class MotionController {
     ++rested_ticks_;
     auto sp = emit(rest_position_, 0, front().job_index);
     last_was_rest_ = true;
+    return sp;
+  }
+
+  /// One tick of the rest after the job's last move: its end point, speed 0; Finished after the last.
+  [[nodiscard]] Result<Setpoint<S>> final_rest_tick() noexcept {
+    --final_rest_left_;
+    ++rested_ticks_;
+    auto sp = emit(rest_position_, 0, final_rest_label_);
+    last_was_rest_ = true;
+    if (final_rest_left_ == 0) {
+      queue_.pop_front();
+      state_ = ControllerState::Finished;
+    }
     return sp;
   }
 
@@ -853,6 +889,9 @@ class MotionController {
   std::uint64_t tick_ = 0;
   std::uint64_t rested_ticks_ = 0;  ///< ticks spent resting at joints (time_now() leaves them out)
   std::uint32_t rest_left_ = 0;     ///< ticks of the current rest still to come
+  std::uint32_t final_rest_ticks_ = 0;  ///< the rest after the job's last move (end_of_job), not begun
+  std::uint32_t final_rest_left_ = 0;   ///< ticks of that rest still to come once begun
+  std::uint32_t final_rest_label_ = 0;  ///< the segment label of its setpoints (last job index + 1)
   MachinePoint rest_position_{};    ///< the joint of the current rest
   bool last_was_rest_ = false;      ///< the last setpoint was a rest tick (resting())
   MachinePoint last_position_{};

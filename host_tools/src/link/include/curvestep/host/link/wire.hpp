@@ -44,15 +44,14 @@ struct WireJob {
 /// controller, a coordinate outside Q16.16), or the line of a dwell joint_stops refuses.
 [[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz);
 
-/// The segment number of a QueueEvent for events after the job's last move (reached at its end).
-inline constexpr std::uint32_t after_last_segment = 0xFFFFFFFFu;
-
 /// The job's events that a controller acts on, as QueueEvents in program order (G4 dwells are
 /// motion, JointStop; operator messages stay on the host). Each is keyed by the setpoints'
 /// segment number where it happens: the PathSegment index it precedes (`file_labels` false: a
 /// planner on board numbers the segments as they arrive) or that segment's job-file index
-/// (`file_labels` true: host-planned pieces carry it), after_last_segment after the last move;
-/// `after_rest_ticks` adds the dwells at its joint before it (joint_stops' rounding). Spindle
+/// (`file_labels` true: host-planned pieces carry it); after the last move, that of the last
+/// segment + 1, the label of the setpoints of the rest at the job's end (a dwell after the last
+/// move; without one the events are left for the job's end). `after_rest_ticks` adds the dwells
+/// at its joint before it (joint_stops' rounding). Spindle
 /// speeds round to whole rev/min; output and tool numbers must be whole and >= 0 (else
 /// std::runtime_error naming the job file and line).
 [[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels);
