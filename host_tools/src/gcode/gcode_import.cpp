@@ -183,7 +183,7 @@ class GcodeLoader {
 
   Job load(std::string_view text) {
     language::ProgramReader reader(text, job_.name);
-    if (sink_ == nullptr) reserve_per_line(std::count(text.begin(), text.end(), '\n') + 1);
+    reserve_per_line(std::count(text.begin(), text.end(), '\n') + 1);
     std::size_t nurbs_line = 0;
     std::size_t nurbs_column = 0;
     write_parameters(reader.parameters());
@@ -420,10 +420,11 @@ class GcodeLoader {
   /// once). Pages reserved and never written take no memory.
   void reserve_per_line(std::ptrdiff_t lines) {
     const auto count = static_cast<std::size_t>(lines);
+    job_.sources.reserve(count);
+    if (sink_ != nullptr) return;  // a streamed load keeps only the sources
     job_.segments.reserve(count);
     job_.source_index.reserve(count);
     job_.blend_tolerance_mm.reserve(count);
-    job_.sources.reserve(count);
   }
 
   void add(const machine::Motion& motion) {

@@ -54,6 +54,13 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     // Room for every line at once: a vector that doubles as it grows holds up to three times its
     // lines while it moves them (a large program's peak memory).
     const std::size_t line_count = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+    const std::size_t written_lines = line_count - (text.empty() || text.back() == '\n' ? 1 : 0);  // a last '\n' ends a line
+    if (written_lines > options_.max_lines) {
+      throw LoadError(SourceLocation{file_, options_.max_lines + 1, 1, std::nullopt, {}, {}},
+                      "the program has more than " + std::to_string(options_.max_lines) +
+                          " lines, the most a G-code file may have (docs/robustness.md): split it into several files",
+                      Error::CapacityExceeded);
+    }
     sources_.reserve(line_count);
     lines_.reserve(line_count);
     for (;;) {
@@ -337,7 +344,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
 
   std::string file_;
   ProgramOptions options_;
-  std::vector<std::string> sources_;
+  std::vector<std::string_view> sources_;  ///< each line, in the program's text (which outlives the reader)
   // A program's parse trees would take about 0.7 KB per line: only the O-word lines (control flow
   // comes back to them) keep theirs; every line keeps what the structure scan needs.
   std::vector<detail::LineSummary> lines_;
