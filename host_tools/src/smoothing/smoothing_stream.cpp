@@ -82,8 +82,18 @@ void SmoothingStream::segment(const PathSegment& segment, std::size_t source, st
     ++pushed_;
     return;
   }
-  const double tolerance = previous_ ? joint_tolerance(segment, blend_tolerance_mm) : 0.0;
-  pending_.push_back(Pending{segment, source, pushed_, tolerance});
+  Pending pending;
+  if (!fittable_line(segment, options_)) pending.other = std::make_unique<PathSegment>(segment);
+  pending.start = segment.start();
+  pending.end = segment.end();
+  pending.feed_mm_per_s = segment.feed_mm_per_s();
+  pending.source = source;
+  pending.index = pushed_;
+  if (previous_) {
+    pending.joint_tolerance_mm = joint_tolerance(segment, blend_tolerance_mm);
+    pending.deflection_cos = deflection_cos(*previous_, segment);
+  }
+  pending_.push_back(std::move(pending));
   previous_ = segment;
   ++pushed_;
   make_items(false);
@@ -94,12 +104,11 @@ void SmoothingStream::segment(const PathSegment& segment, std::size_t source, st
 void SmoothingStream::make_items(bool at_end) {
   while (!pending_.empty()) {
     std::size_t end = 1;
-    if (options_.fit_line_runs && fittable_line(pending_[0].segment, options_)) {
+    if (options_.fit_line_runs && pending_[0].fittable()) {
       end = std::max<std::size_t>(end, verified_run_);
-      while (end < pending_.size() && fittable_line(pending_[end].segment, options_) && pending_[end].joint_tolerance_mm > 0 &&
-             pending_[end].joint_tolerance_mm == pending_[1].joint_tolerance_mm &&
-             pending_[end].segment.feed_mm_per_s() == pending_[0].segment.feed_mm_per_s() &&
-             deflection_cos(pending_[end - 1].segment, pending_[end].segment) >= cos_max_run_deflection_) {
+      while (end < pending_.size() && end < options_.fit_max_run_lines && pending_[end].fittable() &&
+             pending_[end].joint_tolerance_mm > 0 && pending_[end].joint_tolerance_mm == pending_[1].joint_tolerance_mm &&
+             pending_[end].feed_mm_per_s == pending_[0].feed_mm_per_s && pending_[end].deflection_cos >= cos_max_run_deflection_) {
         ++end;
       }
       verified_run_ = end;
@@ -110,10 +119,10 @@ void SmoothingStream::make_items(bool at_end) {
     const bool next_known = end < pending_.size();  // false: the job's last segment ends the run
     std::optional<LineRunFit> fit;
     if (end >= 3) {
-      std::vector<MachinePoint> vertices{pending_[0].segment.start()};
+      std::vector<MachinePoint> vertices{pending_[0].start};
       vertices.reserve(end + 1);
-      for (std::size_t i = 0; i < end; ++i) vertices.push_back(pending_[i].segment.end());
-      fit = fit_line_run(vertices, 0.5 * pending_[1].joint_tolerance_mm, pending_[0].segment.feed_mm_per_s());
+      for (std::size_t i = 0; i < end; ++i) vertices.push_back(pending_[i].end);
+      fit = fit_line_run(vertices, 0.5 * pending_[1].joint_tolerance_mm, pending_[0].feed_mm_per_s);
     }
     const std::size_t consumed = fit ? end : 1;
     for (std::size_t i = 0; i < consumed; ++i) {
@@ -132,13 +141,20 @@ void SmoothingStream::make_items(bool at_end) {
       figures_.max_deviation_mm = std::fmax(figures_.max_deviation_mm, fit->deviation_mm);
       if (next_known) items_.back().joint_tolerance_mm = pending_[end].joint_tolerance_mm;
     } else {
-      add_item(pending_[0].segment, pending_[0].source, false);
+      add_item(pending_[0].segment(), pending_[0].source, false);
       if (pending_.size() > 1) items_.back().joint_tolerance_mm = pending_[1].joint_tolerance_mm;
     }
     pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(consumed));
     verified_run_ = 0;  // a run after a failed fit is looked at afresh, as a new one
     write_items(false);
   }
+}
+
+PathSegment SmoothingStream::Pending::segment() const {
+  if (other) return *other;
+  PathSegment line = PathSegment::make_line(start, end).value();  // it was made from these ends once
+  line.set_feed_mm_per_s(feed_mm_per_s);
+  return line;
 }
 
 void SmoothingStream::add_item(const PathSegment& segment, std::size_t source, bool fitted) {
