@@ -4,7 +4,7 @@
 // 15 000 and 150 000 setpoints; the largest resident size of the child process (getrusage through
 // wait4) may grow by at most 4 MiB. A program that kept its setpoints (64-byte records, and 16 bytes
 // more per point for the plot's strokes) would grow by more than 8 MiB. A G-code program is read
-// as a stream (docs/robustness.md): what stays is about 220 bytes per program line, so a program
+// as a stream (docs/robustness.md): what stays is about 185 bytes per program line, so a program
 // 200 000 lines longer may cost at most 300 bytes a line more (60 MB; the whole-job load took
 // about 0.8 KB a line, 160 MB).
 #include <cerrno>

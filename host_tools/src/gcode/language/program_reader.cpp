@@ -86,6 +86,8 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       start = stop + 1;
     }
     structure_ = detail::scan_structure(lines_, options_.block_delete, file_);
+    // Without O-words control never jumps: the links (40 bytes a line) are all empty.
+    if (owords_.empty()) std::vector<detail::ControlLink>().swap(structure_.links);
     frames_.emplace_back();
     store_.set_named("_value", 0.0);
     store_.set_named("_value_returned", 0.0);
@@ -147,7 +149,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// The budget that turns an endless loop into an error naming the loop.
   void count_line() {
     if (++executed_ <= options_.max_executed_lines) return;
-    const std::size_t loop = structure_.links[pc_].loop;
+    const std::size_t loop = structure_.links.empty() ? no_line : structure_.links[pc_].loop;
     const std::string message = "more than " + std::to_string(options_.max_executed_lines) +
                                 " lines executed: an endless loop? (the limit keeps a program from running forever)";
     if (loop != no_line) {

@@ -18,8 +18,8 @@ namespace curvestep::host::gcode {
 
 /// Lines a program may execute (O-word lines included) before it is taken for an endless loop.
 inline constexpr std::size_t default_max_executed_lines = 10'000'000;
-/// Lines a program file may have: the reader keeps about 80 bytes per line and the importer about
-/// 140 (docs/robustness.md), so a file cannot make the host run out of memory.
+/// Lines a program file may have: the reader keeps 40 bytes per line (80 with O-words) and the
+/// importer about 140 (docs/robustness.md), so a file cannot make the host run out of memory.
 inline constexpr std::size_t default_max_program_lines = 10'000'000;
 /// Subroutine calls that may be nested.
 inline constexpr std::size_t default_max_call_depth = 64;
