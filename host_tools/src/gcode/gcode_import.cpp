@@ -21,6 +21,8 @@
 #include <curvestep/gcode.hpp>
 #include <curvestep/host/csv.hpp>
 #include <curvestep/host/gcode/program_reader.hpp>
+#include <curvestep/host/parameter_speed.hpp>
+#include <curvestep/host/swept_extent.hpp>
 #include <curvestep/host/wire_value.hpp>
 
 #include "cutter_compensation.hpp"
@@ -170,7 +172,7 @@ std::string explain(Error code, const std::string& word) {
 
 class GcodeLoader {
  public:
-  GcodeLoader(std::string name, const GcodeOptions& options) {
+  GcodeLoader(std::string name, const GcodeOptions& options, JobSink* sink = nullptr) : sink_(sink) {
     job_.name = std::move(name);
     for (const auto& [tool, length] : options.tool_length_mm) {
       if (tool < 0 || !interpreter_.set_tool_length_mm(static_cast<std::size_t>(tool), length)) refuse_tool(tool);
@@ -215,8 +217,10 @@ class GcodeLoader {
       add(motion.value());
       add_events(motion.value(), true);
       write_parameters(reader.parameters());
+      hand_over();
     }
     if (compensation_.active()) flush(compensation_.stop());  // the end of the program: the last move ends square
+    hand_over();
     if (interpreter_.in_nurbs_block()) {
       line_number_ = nurbs_line;
       line_ = {};
@@ -244,6 +248,31 @@ class GcodeLoader {
       if (w.letter == 'F') feed_column_ = word.column;
     }
     return block;
+  }
+
+  /// Segments made so far (handed over or not): the index the next one gets.
+  std::size_t segment_count() const noexcept { return handed_over_ + job_.segments.size(); }
+
+  /// A streamed load: the segments and events made so far go to the sink, checked as load_job_file
+  /// checks every segment, and the sources they came from keep only what messages need.
+  void hand_over() {
+    if (sink_ == nullptr) return;
+    std::size_t e = 0;
+    for (std::size_t j = 0; j < job_.segments.size(); ++j) {
+      const std::size_t source = job_.source_index[j];
+      check_swept_extent(job_.segments[j], job_, source);
+      check_parameter_speed(job_.segments[j], job_, source);
+      while (e < job_.events.size() && job_.events[e].before_segment <= handed_over_ + j) sink_->event(std::move(job_.events[e++]));
+      sink_->segment(job_.segments[j], source, job_.blend_tolerance_mm[j]);
+    }
+    for (; e < job_.events.size(); ++e) sink_->event(std::move(job_.events[e]));
+    for (std::size_t s = released_sources_; s < job_.sources.size(); ++s) release_geometry(job_.sources[s]);
+    released_sources_ = job_.sources.size();
+    handed_over_ += job_.segments.size();
+    job_.segments.clear();
+    job_.source_index.clear();
+    job_.blend_tolerance_mm.clear();
+    job_.events.clear();
   }
 
   /// The system parameters LinuxCNC keeps, in the program's units: #5211-#5213 the G92 offset,
@@ -393,10 +422,11 @@ class GcodeLoader {
   /// once). Pages reserved and never written take no memory.
   void reserve_per_line(std::ptrdiff_t lines) {
     const auto count = static_cast<std::size_t>(lines);
+    job_.sources.reserve(count);
+    if (sink_ != nullptr) return;  // a streamed load keeps only the sources
     job_.segments.reserve(count);
     job_.source_index.reserve(count);
     job_.blend_tolerance_mm.reserve(count);
-    job_.sources.reserve(count);
   }
 
   void add(const machine::Motion& motion) {
@@ -458,7 +488,7 @@ class GcodeLoader {
     emit_compensated(*finished, false);
     for (Held& h : held_) {
       if (h.is_event) {
-        h.event.before_segment = job_.segments.size();
+        h.event.before_segment = segment_count();
         job_.events.push_back(std::move(h.event));
       } else {
         emit(at_xy(h.motion, finished->end), h.line);
@@ -553,7 +583,7 @@ class GcodeLoader {
     }
     if (source.breaks.empty()) source.breaks = {0.0, 1.0};
     const std::size_t index = job_.sources.size();
-    source.first_piece = job_.segments.size();
+    source.first_piece = segment_count();
     for (auto& piece : pieces) {
       piece.set_feed_mm_per_s(source.type == SegmentType::Rapid ? 0.0 : source.feed_mm_per_s);
       job_.segments.push_back(piece);
@@ -667,7 +697,7 @@ class GcodeLoader {
   void add_event(JobEventKind kind, double value, bool flag, const std::string& text) {
     JobEvent event;
     event.kind = kind;
-    event.before_segment = job_.segments.size();
+    event.before_segment = segment_count();
     event.value = value;
     event.flag = flag;
     event.line = line_number_;
@@ -727,6 +757,9 @@ class GcodeLoader {
   };
 
   Job job_;
+  JobSink* sink_ = nullptr;          ///< a streamed load's receiver (nullptr: the whole job is kept)
+  std::size_t handed_over_ = 0;      ///< segments handed to the sink
+  std::size_t released_sources_ = 0; ///< sources whose geometry was released
   Interpreter interpreter_;
   CutterCompensation compensation_;
   std::vector<Held> held_;
@@ -746,6 +779,16 @@ Job parse_gcode_job(std::string_view text, std::string name) { return parse_gcod
 Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options) {
   GcodeLoader loader(std::move(name), options);
   return loader.load(text);
+}
+
+Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options, JobSink& sink) {
+  GcodeLoader loader(std::move(name), options, &sink);
+  return loader.load(text);
+}
+
+Job import_gcode(const std::filesystem::path& path, const GcodeOptions& options, JobSink& sink) {
+  const std::string text = read_text_file(path);
+  return parse_gcode_job(text, path.string(), options, sink);
 }
 
 Job import_gcode(const std::filesystem::path& path) { return import_gcode(path, GcodeOptions{}); }

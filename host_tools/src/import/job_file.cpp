@@ -16,7 +16,8 @@ namespace curvestep::host {
 
 namespace {
 
-Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
+/// The file's extension in lower case, after checking that the SVG-only options are not given to another format.
+std::string checked_extension(const std::filesystem::path& path, const JobFileOptions& options) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -25,8 +26,17 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
     throw std::invalid_argument(path.string() + ": --page, --center, --fit and --rotate apply to SVG drawings only");
   }
   if (!svg_file && !options.layers.empty()) throw std::invalid_argument(path.string() + ": --layers applies to SVG drawings only");
+  return extension;
+}
+
+bool is_gcode(const std::string& extension) {
+  return extension == ".ngc" || extension == ".nc" || extension == ".gcode" || extension == ".tap";
+}
+
+Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
+  const std::string extension = checked_extension(path, options);
   if (extension == ".json") return load_job(path);
-  if (extension == ".ngc" || extension == ".nc" || extension == ".gcode" || extension == ".tap") return import_gcode(path, options.gcode);
+  if (is_gcode(extension)) return import_gcode(path, options.gcode);
   if (extension == ".svg") {
     SvgOptions svg;
     svg.optimize = options.optimize;
@@ -66,6 +76,11 @@ Job load_job_file(const std::filesystem::path& path, const JobFileOptions& optio
   check_swept_extent(job);
   check_parameter_speed(job);
   return job;
+}
+
+Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes, JobSink& sink) {
+  if (is_gcode(checked_extension(path, options))) return import_gcode(path, options.gcode, sink);  // checked as it streams
+  return feed_job(load_job_file(path, options, notes), sink);
 }
 
 }  // namespace curvestep::host

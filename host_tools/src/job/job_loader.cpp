@@ -476,18 +476,29 @@ std::string read_text_file(const std::filesystem::path& path) {
   return text.str();
 }
 
-SourceLocation piece_location(const Job& job, std::size_t piece) {
+SourceLocation source_location(const Job& job, std::size_t source) {
   SourceLocation location;
   location.file = job.name;
-  if (piece < job.source_index.size()) {
-    const std::size_t index = job.source_index[piece];
-    location.segment = index;
-    if (index < job.sources.size()) {
-      location.line = job.sources[index].line;
-      location.segment_type = std::string(segment_type_name(job.sources[index].type));
-    }
+  location.segment = source;
+  if (source < job.sources.size()) {
+    location.line = job.sources[source].line;
+    location.segment_type = std::string(segment_type_name(job.sources[source].type));
   }
   return location;
+}
+
+SourceLocation piece_location(const Job& job, std::size_t piece) {
+  if (piece < job.source_index.size()) return source_location(job, job.source_index[piece]);
+  SourceLocation location;
+  location.file = job.name;
+  return location;
+}
+
+void release_geometry(SourceSegment& source) {
+  std::vector<MachinePoint>().swap(source.points);
+  std::vector<double>().swap(source.weights);
+  std::vector<double>().swap(source.knots);
+  std::vector<double>().swap(source.breaks);
 }
 
 Job parse_job(std::string_view text, std::string name) { return JobParser(text, std::move(name)).parse(); }

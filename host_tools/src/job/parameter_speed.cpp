@@ -16,6 +16,7 @@
 #include <cmath>
 #include <limits>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 #include <curvestep/core/motion/path_length_table.hpp>
@@ -54,23 +55,29 @@ double table_speed_factor(const PathSegment& segment) {
   return worst;
 }
 
+namespace {
+
+void check_parameter_speed(const PathSegment& segment, const std::function<SourceLocation()>& where) {
+  if (segment.kind() != SegmentKind::RationalBezier) return;  // polynomial speeds are followed
+  const double factor = table_speed_factor(segment);
+  if (factor <= max_table_speed_factor) return;
+  char digits[32];
+  std::snprintf(digits, sizeof digits, "%.3g", factor);
+  throw LoadError(where(),
+                  "the weights vary too strongly: the controller's arc-length table cannot follow this curve's "
+                  "parameter speed (the machine would move " + std::string(digits) +
+                      " times faster than planned); lower the weight ratio or split the curve",
+                  Error::InvalidJob);
+}
+
+}  // namespace
+
 void check_parameter_speed(const Job& job) {
-  const auto three_digits = [](double value) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.3g", value);
-    return std::string(text);
-  };
-  for (std::size_t k = 0; k < job.segments.size(); ++k) {
-    const PathSegment& segment = job.segments[k];
-    if (segment.kind() != SegmentKind::RationalBezier) continue;  // polynomial speeds are followed
-    const double factor = table_speed_factor(segment);
-    if (factor <= max_table_speed_factor) continue;
-    throw LoadError(piece_location(job, k),
-                    "the weights vary too strongly: the controller's arc-length table cannot follow this curve's "
-                    "parameter speed (the machine would move " + three_digits(factor) +
-                        " times faster than planned); lower the weight ratio or split the curve",
-                    Error::InvalidJob);
-  }
+  for (std::size_t k = 0; k < job.segments.size(); ++k) check_parameter_speed(job.segments[k], [&] { return piece_location(job, k); });
+}
+
+void check_parameter_speed(const PathSegment& segment, const Job& job, std::size_t source) {
+  check_parameter_speed(segment, [&] { return source_location(job, source); });
 }
 
 }  // namespace curvestep::host

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <functional>
 #include <string>
 
 #include <curvestep/host/csv.hpp>
@@ -71,15 +72,25 @@ void check_travel(const Job& job, const MachineTravel& travel, const std::string
   }
 }
 
+namespace {
+
+void check_swept_extent(const PathSegment& segment, const std::function<SourceLocation()>& where) {
+  const std::string outside = outside_q16(swept_box(segment));
+  if (outside.empty()) return;
+  throw LoadError(where(),
+                  "the " + std::string(kind_name(segment.kind())) + " reaches " + outside +
+                      ", outside the Q16.16 range (-32768 to 32768 mm) the controller works in",
+                  Error::FixedOverflow);
+}
+
+}  // namespace
+
 void check_swept_extent(const Job& job) {
-  for (std::size_t k = 0; k < job.segments.size(); ++k) {
-    const std::string outside = outside_q16(swept_box(job.segments[k]));
-    if (outside.empty()) continue;
-    throw LoadError(piece_location(job, k),
-                    "the " + std::string(kind_name(job.segments[k].kind())) + " reaches " + outside +
-                        ", outside the Q16.16 range (-32768 to 32768 mm) the controller works in",
-                    Error::FixedOverflow);
-  }
+  for (std::size_t k = 0; k < job.segments.size(); ++k) check_swept_extent(job.segments[k], [&] { return piece_location(job, k); });
+}
+
+void check_swept_extent(const PathSegment& segment, const Job& job, std::size_t source) {
+  check_swept_extent(segment, [&] { return source_location(job, source); });
 }
 
 }  // namespace curvestep::host

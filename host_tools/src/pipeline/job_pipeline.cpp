@@ -9,6 +9,7 @@
 
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/pen_moves.hpp>
+#include <curvestep/host/smoothing/smoothing_stream.hpp>
 #include <curvestep/host/swept_extent.hpp>
 
 namespace curvestep::host {
@@ -73,8 +74,18 @@ namespace {
 PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions& file_options, const MachineLimits& machine,
                     double machine_blend_tolerance_mm, const JobPipelineOptions& options, const std::optional<PenModel>& pen) {
   PreparedJob prepared;
+  const double tolerance_mm = smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm);
+  if (!(pen && is_svg(job_file))) {  // streamed: the load hands each segment to smoothing as it is read
+    std::vector<std::string> rate_notes;
+    prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &rate_notes);
+    smoothing::SmoothingStream stream(smoothing::options_for(prepared.machine, tolerance_mm));
+    Job rest = load_job_file(job_file, file_options, &prepared.notes, stream);
+    prepared.job = stream.finish(std::move(rest), &prepared.smoothing);
+    prepared.notes.insert(prepared.notes.end(), rate_notes.begin(), rate_notes.end());
+    return prepared;
+  }
   Job programmed = load_job_file(job_file, file_options, &prepared.notes);
-  if (pen && is_svg(job_file)) {  // plotter art: the pen moves become part of the motion
+  {  // plotter art: the pen moves become part of the motion
     PenMovesReport report;
     programmed = add_pen_moves(programmed, *pen, &report);
     check_swept_extent(programmed);
@@ -88,9 +99,7 @@ PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions&
     prepared.notes.push_back(line.str());
   }
   prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &prepared.notes);
-  prepared.job = smoothing::smooth_for_machine(
-      std::move(programmed), prepared.machine, smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm),
-      &prepared.smoothing);
+  prepared.job = smoothing::smooth_for_machine(std::move(programmed), prepared.machine, tolerance_mm, &prepared.smoothing);
   return prepared;
 }
 

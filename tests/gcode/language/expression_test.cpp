@@ -17,7 +17,8 @@ namespace {
 
 /// The value of `expression` written as the X word of one line.
 double x_of(const std::string& expression) {
-  ProgramReader reader("G1 X" + expression, "expr.ngc");
+  const std::string text = "G1 X" + expression;  // the reader keeps views into its text
+  ProgramReader reader(text, "expr.ngc");
   const auto block = reader.next();
   REQUIRE(block);
   const ProgramWord* x = block->find('X');

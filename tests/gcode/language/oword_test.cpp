@@ -288,3 +288,22 @@ TEST_CASE("language: a bolt circle of 6 holes from a while loop and a subroutine
   }
   CHECK(word(blocks.back(), 'M') == 2.0);
 }
+
+TEST_CASE("language: a file longer than max_lines is refused at the first line past the limit", "[gcode][language][limits]") {
+  curvestep::host::gcode::ProgramOptions options;
+  options.max_lines = 3;
+  SECTION("three lines, the last ended by a newline or not, are read") {
+    CHECK(run_program("G0 X1\nG0 X2\nG0 X3\n", options).size() == 3);
+    CHECK(run_program("G0 X1\nG0 X2\nG0 X3", options).size() == 3);
+  }
+  SECTION("a fourth line (even an empty one without a newline) is refused") {
+    for (const std::string text : {"G0 X1\nG0 X2\nG0 X3\nG0 X4\n", "G0 X1\nG0 X2\nG0 X3\n\n", "G0 X1\nG0 X2\nG0 X3\nG0"}) {
+      const LoadError e = program_error(text, options);
+      CHECK(e.code() == Error::CapacityExceeded);
+      CHECK(e.location().line == 4);
+      CHECK(e.location().file == "test.ngc");
+      CHECK(e.message() == "the program has more than 3 lines, the most a G-code file may have (docs/robustness.md): split it into several files");
+    }
+  }
+  CHECK(curvestep::host::gcode::default_max_program_lines == 10'000'000);
+}

@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
-// Memory independent of the job's length (issue 19, item 7): `curvestep sim`, `sim --report` and
+// Memory of a run (issue 19, item 7). `curvestep sim`, `sim --report` and
 // `curvestep plot` hand each setpoint on as it is made and keep none. The same ten lines are run at two lengths,
 // 15 000 and 150 000 setpoints; the largest resident size of the child process (getrusage through
 // wait4) may grow by at most 4 MiB. A program that kept its setpoints (64-byte records, and 16 bytes
-// more per point for the plot's strokes) would grow by more than 8 MiB.
+// more per point for the plot's strokes) would grow by more than 8 MiB. A G-code program is read
+// as a stream (docs/robustness.md): what stays is about 185 bytes per program line, so a program
+// 200 000 lines longer may cost at most 300 bytes a line more (60 MB; the whole-job load took
+// about 0.8 KB a line, 160 MB).
 #include <cerrno>
 #include <cstdlib>
 #include <fcntl.h>
@@ -79,7 +82,52 @@ long peak_resident_kib(const std::vector<std::string>& arguments) {
   return usage.ru_maxrss;  // KiB on Linux
 }
 
+/// `lines` G1 moves of 0.01 mm in rows of 10 mm (1000 moves, then a step of 0.01 mm in y to the
+/// next row, which is run backwards) at 200 mm/s: every row is a run of short lines that smoothing
+/// fits, as CAM output of a raster is.
+std::string write_raster_program(const std::string& name, int lines) {
+  const std::string path = scratch(name);
+  std::ofstream out(path);
+  out << "G21 G90 G17\nF12000\nG0 X0 Y0\n";
+  int x_hundredths = 0;
+  int y_hundredths = 0;
+  int direction = 1;
+  const auto move = [&out, &x_hundredths, &y_hundredths] {
+    out << "G1 X" << x_hundredths / 100 << "." << (x_hundredths % 100 < 10 ? "0" : "") << x_hundredths % 100 << " Y" << y_hundredths / 100
+        << "." << (y_hundredths % 100 < 10 ? "0" : "") << y_hundredths % 100 << "\n";
+  };
+  for (int written = 0; written < lines;) {
+    for (int i = 0; i < 1000 && written < lines; ++i, ++written) {
+      x_hundredths += direction;
+      move();
+    }
+    ++y_hundredths;
+    direction = -direction;
+    if (written < lines) {
+      move();
+      ++written;
+    }
+  }
+  return path;
+}
+
 }  // namespace
+
+TEST_CASE("memory: sim of a G-code program 200 000 lines longer costs at most 300 bytes a line more", "[host_tools][report][memory]") {
+  const std::string machine = source("examples/jobs/machine.json");
+  const std::string short_program = write_raster_program("short.ngc", 20'000);
+  const std::string long_program = write_raster_program("long.ngc", 220'000);
+  constexpr long bytes_per_line = 300;
+  constexpr long margin_kib = 200'000 * bytes_per_line / 1024;
+
+  const long sim_short = peak_resident_kib({"sim", short_program, "--machine", machine});
+  const long sim_long = peak_resident_kib({"sim", long_program, "--machine", machine});
+  INFO("sim: " << sim_short << " KiB for 20 000 lines, " << sim_long << " KiB for 220 000");
+  CHECK(sim_long <= sim_short + margin_kib);
+
+  std::remove(short_program.c_str());
+  std::remove(long_program.c_str());
+}
 
 TEST_CASE("memory: sim, its report and plot use the same memory for a job ten times longer", "[host_tools][report][memory]") {
   const std::string machine = source("examples/jobs/machine.json");

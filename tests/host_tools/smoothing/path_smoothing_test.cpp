@@ -135,6 +135,18 @@ TEST_CASE("smoothing: runs of short lines become few curves, and the joints insi
   }
 }
 
+TEST_CASE("smoothing: a run longer than fit_max_run_lines is fitted as consecutive runs of that many lines", "[host][smoothing]") {
+  smoothing::SmoothingOptions options = smoothing::options_for(example_machine(), 0.01);
+  options.fit_max_run_lines = 1000;
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_job(polyline_job(circle_chords(3600)), options, &report);
+  // 3600 = 1000 + 1000 + 1000 + 600 lines: four runs, their three joints inside the circle.
+  CHECK(report.runs_fitted == 4);
+  CHECK(report.lines_fitted == 3600);
+  CHECK(smoothing::SmoothingOptions{}.fit_max_run_lines == 100'000);
+  CHECK(smoothed.segments.front().start() == polyline_job(circle_chords(3600)).segments.front().start());
+}
+
 TEST_CASE("smoothing: a blended corner is curvature-continuous and passed at the blend's own speed", "[host][smoothing]") {
   // Two 10 mm lines meeting at 20 degrees: too few lines to fit, so a blend.
   const Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}},

@@ -54,6 +54,13 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     // Room for every line at once: a vector that doubles as it grows holds up to three times its
     // lines while it moves them (a large program's peak memory).
     const std::size_t line_count = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+    const std::size_t written_lines = line_count - (text.empty() || text.back() == '\n' ? 1 : 0);  // a last '\n' ends a line
+    if (written_lines > options_.max_lines) {
+      throw LoadError(SourceLocation{file_, options_.max_lines + 1, 1, std::nullopt, {}, {}},
+                      "the program has more than " + std::to_string(options_.max_lines) +
+                          " lines, the most a G-code file may have (docs/robustness.md): split it into several files",
+                      Error::CapacityExceeded);
+    }
     sources_.reserve(line_count);
     lines_.reserve(line_count);
     for (;;) {
@@ -79,6 +86,8 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       start = stop + 1;
     }
     structure_ = detail::scan_structure(lines_, options_.block_delete, file_);
+    // Without O-words control never jumps: the links (40 bytes a line) are all empty.
+    if (owords_.empty()) std::vector<detail::ControlLink>().swap(structure_.links);
     frames_.emplace_back();
     store_.set_named("_value", 0.0);
     store_.set_named("_value_returned", 0.0);
@@ -140,7 +149,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// The budget that turns an endless loop into an error naming the loop.
   void count_line() {
     if (++executed_ <= options_.max_executed_lines) return;
-    const std::size_t loop = structure_.links[pc_].loop;
+    const std::size_t loop = structure_.links.empty() ? no_line : structure_.links[pc_].loop;
     const std::string message = "more than " + std::to_string(options_.max_executed_lines) +
                                 " lines executed: an endless loop? (the limit keeps a program from running forever)";
     if (loop != no_line) {
@@ -337,7 +346,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
 
   std::string file_;
   ProgramOptions options_;
-  std::vector<std::string> sources_;
+  std::vector<std::string_view> sources_;  ///< each line, in the program's text (which outlives the reader)
   // A program's parse trees would take about 0.7 KB per line: only the O-word lines (control flow
   // comes back to them) keep theirs; every line keeps what the structure scan needs.
   std::vector<detail::LineSummary> lines_;

@@ -38,4 +38,11 @@ struct GcodeOptions {
 [[nodiscard]] Job parse_gcode_job(std::string_view text, std::string name);
 [[nodiscard]] Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options);
 
+/// A streamed load: each line's segments and events go to `sink` once the line ran (after the
+/// checks load_job_file makes of every segment: swept extent, parameter speed), and are not kept.
+/// The job returned holds the name and the sources, each without its points, weights, knots and
+/// breaks (the file's lines and segment types, what messages name). Throws what import_gcode throws.
+[[nodiscard]] Job import_gcode(const std::filesystem::path& path, const GcodeOptions& options, JobSink& sink);
+[[nodiscard]] Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options, JobSink& sink);
+
 }  // namespace curvestep::host

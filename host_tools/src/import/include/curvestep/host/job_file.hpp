@@ -29,4 +29,11 @@ struct JobFileOptions {
 [[nodiscard]] Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options = {},
                                 std::vector<std::string>* notes = nullptr);
 
+/// load_job_file handing the job's segments and events to `sink` (job.hpp) instead of keeping them;
+/// returns the rest of the job (name, version, sources). A G-code program is streamed line by
+/// line, so its memory does not grow with its segments (its sources keep only lines and types:
+/// gcode_import.hpp); JSON and SVG jobs are read whole, checked, then handed over (feed_job).
+[[nodiscard]] Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes,
+                                JobSink& sink);
+
 }  // namespace curvestep::host

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -91,6 +92,22 @@ struct Job {
   std::vector<double> blend_tolerance_mm;
 };
 
+/// Receives a job's path in program order as it is read (a streamed load, job_pipeline.hpp): every
+/// event before the segment it precedes (JobEvent::before_segment is the index that segment has in
+/// the file's job), then the segment, with the index of the file segment it comes from and the
+/// path-control tolerance of the joint into it (Job::blend_tolerance_mm) if the job has them.
+class JobSink {
+ public:
+  virtual ~JobSink() = default;
+  virtual void event(JobEvent event) = 0;
+  virtual void segment(const PathSegment& segment, std::size_t source, std::optional<double> blend_tolerance_mm) = 0;
+};
+
+/// Hands `job`'s events (all of them first, in their order) and then its segments to `sink`, and
+/// returns the rest of the job (name, version, sources). What a streamed load does with a file
+/// read whole.
+[[nodiscard]] Job feed_job(Job job, JobSink& sink);
+
 /// Loads a job file. Throws LoadError (naming file, line, segment, field) or std::runtime_error
 /// if the file cannot be read.
 [[nodiscard]] Job load_job(const std::filesystem::path& path);
@@ -106,6 +123,12 @@ struct Job {
 /// Where Job::segments[piece] comes from, for a message: the job's file, the line and index of
 /// the file's segment it belongs to, and that segment's type.
 [[nodiscard]] SourceLocation piece_location(const Job& job, std::size_t piece);
+/// The same for the file's segment `source` of `job`.
+[[nodiscard]] SourceLocation source_location(const Job& job, std::size_t source);
+
+/// `source` without its geometry (points, weights, knots, breaks; memory of a streamed load): the
+/// line, type, degree and feed stay.
+void release_geometry(SourceSegment& source);
 
 /// Reads a whole text file; std::runtime_error naming the file if it cannot be read.
 [[nodiscard]] std::string read_text_file(const std::filesystem::path& path);

@@ -20,5 +20,7 @@ inline constexpr double max_table_speed_factor = 1.05;
 /// segment of `job` whose table_speed_factor() exceeds max_table_speed_factor: the machine would
 /// move faster than planned, up to a jump of the whole curve in one tick (weights 1, 100, 1).
 void check_parameter_speed(const Job& job);
+/// The same check for one segment of `job` that comes from its file segment `source` (a streamed load).
+void check_parameter_speed(const PathSegment& segment, const Job& job, std::size_t source);
 
 }  // namespace curvestep::host

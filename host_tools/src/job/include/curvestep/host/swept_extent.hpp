@@ -24,6 +24,8 @@ using SweptBox = SegmentBounds;
 /// `job` whose swept box leaves the Q16.16 range (-32768 .. 32767.99998 mm), so that no job starts
 /// that the controller would refuse halfway (issue 19 item 3).
 void check_swept_extent(const Job& job);
+/// The same check for one segment of `job` that comes from its file segment `source` (a streamed load).
+void check_swept_extent(const PathSegment& segment, const Job& job, std::size_t source);
 
 /// Throws LoadError (OutsideTravel, naming the job file, line and segment, the axis and by how much)
 /// for the first segment of `job` whose swept box leaves `travel` (issue 22.5: soft limits checked

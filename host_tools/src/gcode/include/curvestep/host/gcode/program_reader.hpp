@@ -18,6 +18,9 @@ namespace curvestep::host::gcode {
 
 /// Lines a program may execute (O-word lines included) before it is taken for an endless loop.
 inline constexpr std::size_t default_max_executed_lines = 10'000'000;
+/// Lines a program file may have: the reader keeps 40 bytes per line (80 with O-words) and the
+/// importer about 140 (docs/robustness.md), so a file cannot make the host run out of memory.
+inline constexpr std::size_t default_max_program_lines = 10'000'000;
 /// Subroutine calls that may be nested.
 inline constexpr std::size_t default_max_call_depth = 64;
 /// The highest parameter a program may set; #5400-#5602 are set by the machine layer only.
@@ -28,14 +31,17 @@ struct ProgramOptions {
   bool block_delete = false;  ///< the block delete switch: on skips lines starting with '/' (LinuxCNC starts with it off)
   std::size_t max_executed_lines = default_max_executed_lines;  ///< IterationLimit beyond this
   std::size_t max_call_depth = default_max_call_depth;          ///< CapacityExceeded beyond this
+  std::size_t max_lines = default_max_program_lines;            ///< CapacityExceeded at the line after the last one allowed
 };
 
 /// Reads one program. Every error is a LoadError naming file:line:column and the expression,
 /// parameter or O-word at fault, with a G-code error code (GcodeSyntax, GcodeBadNumber, ...),
-/// DivisionByZero, IterationLimit (endless loop) or CapacityExceeded (calls nested too deep).
+/// DivisionByZero, IterationLimit (endless loop) or CapacityExceeded (calls nested too deep, a file
+/// of more than max_lines lines).
 class ProgramReader {
  public:
-  /// Parses `text` and checks its O-word structure (throws LoadError). `file_name` is used in messages.
+  /// Parses `text` and checks its O-word structure (throws LoadError). `file_name` is used in
+  /// messages. The reader keeps views into `text`, which must outlive it.
   ProgramReader(std::string_view text, std::string file_name, ProgramOptions options = {});
   ~ProgramReader();
   ProgramReader(ProgramReader&&) noexcept;

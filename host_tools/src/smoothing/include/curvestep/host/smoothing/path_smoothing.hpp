@@ -36,6 +36,7 @@ struct SmoothingOptions {
   bool blend_corners = true;            ///< replace corners by G2 blends
   double fit_max_line_mm = 5;           ///< longer lines are features, never fitted
   double fit_max_deflection_deg = 30;   ///< a sharper corner ends a run
+  std::size_t fit_max_run_lines = 100'000;  ///< a longer run is fitted in runs of this many lines (bounds a streamed load's memory)
   double blend_max_share = 0.49;        ///< a blend takes at most this share of a neighbour (each end)
   double a_max_mm_per_s2 = 1000;        ///< the machine's limits (to shape blends for speed)
   double j_max_mm_per_s3 = 10000;

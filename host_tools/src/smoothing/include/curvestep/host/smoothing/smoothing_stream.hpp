@@ -1,0 +1,95 @@
+// SPDX-License-Identifier: MIT
+// Path smoothing fed one programmed segment at a time (path_smoothing.hpp says what it does). It
+// holds only what is not decided yet: the run of short lines being collected (and its fit) and the
+// piece whose corner with the next one is open; everything before goes out at once. smooth_job()
+// is this stream fed a whole job, so a streamed load (job_pipeline.hpp) and a job read whole are
+// smoothed into the same segments bit for bit, while memory follows the longest line run instead
+// of the job.
+#pragma once
+
+#include <cstddef>
+#include <deque>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/smoothing/corner_blend.hpp>
+#include <curvestep/host/smoothing/path_smoothing.hpp>
+
+namespace curvestep::host::smoothing {
+
+class SmoothingStream final : public JobSink {
+ public:
+  explicit SmoothingStream(const SmoothingOptions& options);
+
+  /// An event of the programmed job; its before_segment is renumbered to the smoothed job's. It
+  /// must come before the segment it precedes.
+  void event(JobEvent event) override;
+  /// The next programmed segment (JobSink).
+  void segment(const PathSegment& segment, std::size_t source, std::optional<double> blend_tolerance_mm) override;
+  /// The job ended: `rest` (what the load returned: name, version, sources) with the smoothed
+  /// segments, their source indices and the events. With tolerance 0 the job as pushed, blend
+  /// tolerances included. `report` (optional) receives the figures. Call once.
+  [[nodiscard]] Job finish(Job rest, SmoothingReport* report = nullptr);
+
+  /// One piece of the path between smoothing steps.
+  struct Item {
+    PathSegment segment;
+    std::size_t source = 0;         ///< Job::source_index of the programmed segment it comes from
+    double length_mm = 0;           ///< arc length (before any cut)
+    bool fitted = false;            ///< part of a fitted run
+    bool run_inside_next = false;   ///< the joint to the next item is inside a fitted run (smooth)
+    double joint_tolerance_mm = 0;  ///< tolerance at the joint to the next item (0: keep the joint)
+    double start_u = 0;             ///< cut by the blend before it
+    double end_u = 1;               ///< cut by the blend after it
+    MachinePoint start_point{};
+    MachinePoint end_point{};
+  };
+
+ private:
+  /// A programmed segment waiting for its line run to end: a line that may join a run by its ends
+  /// (88 bytes: a run of a million lines is held in 88 MB), any other segment whole.
+  struct Pending {
+    std::unique_ptr<PathSegment> other;  ///< nullptr: a fittable line (fittable_line), kept as start, end, feed
+    MachinePoint start{};
+    MachinePoint end{};
+    double feed_mm_per_s = 0;
+    std::size_t source = 0;
+    std::size_t index = 0;              ///< its index in the programmed job
+    double joint_tolerance_mm = 0;      ///< of the joint into it (0: keep it)
+    double deflection_cos = 1;          ///< of the joint into it (tangent after · tangent before)
+    [[nodiscard]] bool fittable() const noexcept { return other == nullptr; }
+    /// The segment as pushed (a line made again from its ends: make_line is exact).
+    [[nodiscard]] PathSegment segment() const;
+  };
+
+  /// The tolerance of the joint into `segment` (after previous_), 0 if it must stay.
+  [[nodiscard]] double joint_tolerance(const PathSegment& segment, std::optional<double> blend_tolerance_mm) const;
+  /// Step 1: turns the pending segments into items as far as their runs are decided (all at the end).
+  void make_items(bool at_end);
+  void add_item(const PathSegment& segment, std::size_t source, bool fitted);
+  /// Steps 2 and 3: blends the corner after the first item and writes it out, while it has a next one.
+  void write_items(bool at_end);
+  void decide_corner(Item& a, Item& b);
+  void write_item(const Item& item, const Item* next);
+
+  SmoothingOptions options_;
+  double cos_max_run_deflection_ = 1;
+  SmoothingReport figures_;
+  Job out_;
+  std::size_t pushed_ = 0;
+  std::optional<PathSegment> previous_;
+  std::deque<Pending> pending_;
+  std::size_t verified_run_ = 0;  ///< pending_[0 .. verified_run_) are known to form one run
+  std::deque<Item> items_;
+  std::optional<CornerBlend> front_blend_;  ///< the blend after items_[0], once decided
+  std::size_t items_made_ = 0;    ///< items made so far (items_.front() is number items_made_ - items_.size())
+  /// Events waiting for their programmed segment's first item, and for that item's output index
+  /// (values: positions in out_.events).
+  std::multimap<std::size_t, std::size_t> events_at_segment_;
+  std::multimap<std::size_t, std::size_t> events_at_item_;
+};
+
+}  // namespace curvestep::host::smoothing

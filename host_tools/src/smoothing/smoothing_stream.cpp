@@ -1,0 +1,270 @@
+// SPDX-License-Identifier: MIT
+// Path smoothing one segment at a time (smoothing_stream.hpp): line runs fitted, then corners blended.
+#include <curvestep/host/smoothing/smoothing_stream.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include <curvestep/host/smoothing/line_run_fit.hpp>
+#include <curvestep/host/smoothing/segment_geometry.hpp>
+
+namespace curvestep::host::smoothing {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+/// A joint counts as a corner above this deflection (rad); below it, a curvature jump above
+/// `curvature_jump_per_mm` still makes it one.
+constexpr double corner_deflection_rad = 1e-7;
+constexpr double curvature_jump_per_mm = 1e-9;
+/// Deflections above this are reversals: kept, the planner stops there.
+constexpr double reversal_deflection_deg = 179;
+
+double deflection_cos(const PathSegment& a, const PathSegment& b) {
+  return dot(local_frame(a, 1.0).tangent, local_frame(b, 0.0).tangent);
+}
+
+/// Time to change speed by v from or to rest: S-curve v/a + a/j (or 2√(v/j) below a²/j), trapezoid v/a.
+double speed_change_time(double v, double a, double j) {
+  if (!(j < 1e11)) return v / a;
+  return v > a * a / j ? v / a + a / j : 2 * std::sqrt(v / j);
+}
+
+/// Whether passing the blend (at its curvature speed) beats stopping at the corner and starting
+/// again from that speed: at sharp corners under a jerk limit, a tolerance-sized blend is so tight
+/// that it must be crawled through for longer than a stop takes.
+bool blend_pays(const CornerBlend& blend, const SmoothingOptions& options) {
+  const double v = blend.speed_cap_mm_per_s;
+  if (!std::isfinite(v)) return true;
+  const double through = length_between(blend.curve, 0, 1) / v;
+  const double stop_and_go = 2 * speed_change_time(v, options.a_max_mm_per_s2, options.j_max_mm_per_s3);
+  return through < stop_and_go;
+}
+
+bool fittable_line(const PathSegment& s, const SmoothingOptions& options) {
+  return s.kind() == SegmentKind::Line && !s.rapid() && norm(s.end() - s.start()) <= options.fit_max_line_mm;
+}
+
+bool smoothing_on(const SmoothingOptions& options) { return options.tolerance_mm > 0; }
+
+}  // namespace
+
+SmoothingStream::SmoothingStream(const SmoothingOptions& options)
+    : options_(options), cos_max_run_deflection_(std::cos(options.fit_max_deflection_deg * pi / 180)) {
+  figures_.tolerance_mm = options.tolerance_mm;
+}
+
+void SmoothingStream::event(JobEvent event) {
+  if (smoothing_on(options_)) {
+    if (event.before_segment < pushed_) throw std::logic_error("SmoothingStream: an event came after the segment it precedes");
+    events_at_segment_.emplace(event.before_segment, out_.events.size());
+  }
+  out_.events.push_back(std::move(event));
+}
+
+double SmoothingStream::joint_tolerance(const PathSegment& segment, std::optional<double> blend_tolerance_mm) const {
+  if (events_at_segment_.count(pushed_) != 0) return 0;
+  if (previous_->rapid() || segment.rapid()) return 0;
+  double tolerance = options_.tolerance_mm;
+  if (blend_tolerance_mm) {
+    if (*blend_tolerance_mm < 0) return 0;
+    if (*blend_tolerance_mm > 0) tolerance = *blend_tolerance_mm;
+  }
+  return tolerance;
+}
+
+void SmoothingStream::segment(const PathSegment& segment, std::size_t source, std::optional<double> blend_tolerance_mm) {
+  if (!smoothing_on(options_)) {  // the job as programmed
+    out_.segments.push_back(segment);
+    out_.source_index.push_back(source);
+    if (blend_tolerance_mm) out_.blend_tolerance_mm.push_back(*blend_tolerance_mm);
+    ++pushed_;
+    return;
+  }
+  Pending pending;
+  if (!fittable_line(segment, options_)) pending.other = std::make_unique<PathSegment>(segment);
+  pending.start = segment.start();
+  pending.end = segment.end();
+  pending.feed_mm_per_s = segment.feed_mm_per_s();
+  pending.source = source;
+  pending.index = pushed_;
+  if (previous_) {
+    pending.joint_tolerance_mm = joint_tolerance(segment, blend_tolerance_mm);
+    pending.deflection_cos = deflection_cos(*previous_, segment);
+  }
+  pending_.push_back(std::move(pending));
+  previous_ = segment;
+  ++pushed_;
+  make_items(false);
+}
+
+// 1. Runs of short lines -> splines. A run [0, end) of the pending segments is decided once a
+// segment that cannot join it arrived (or the job ended).
+void SmoothingStream::make_items(bool at_end) {
+  while (!pending_.empty()) {
+    std::size_t end = 1;
+    if (options_.fit_line_runs && pending_[0].fittable()) {
+      end = std::max<std::size_t>(end, verified_run_);
+      while (end < pending_.size() && end < options_.fit_max_run_lines && pending_[end].fittable() &&
+             pending_[end].joint_tolerance_mm > 0 && pending_[end].joint_tolerance_mm == pending_[1].joint_tolerance_mm &&
+             pending_[end].feed_mm_per_s == pending_[0].feed_mm_per_s && pending_[end].deflection_cos >= cos_max_run_deflection_) {
+        ++end;
+      }
+      verified_run_ = end;
+      if (end == pending_.size() && !at_end) return;  // the run may go on
+    } else if (pending_.size() < 2 && !at_end) {
+      return;  // the joint after it is not known yet
+    }
+    const bool next_known = end < pending_.size();  // false: the job's last segment ends the run
+    std::optional<LineRunFit> fit;
+    if (end >= 3) {
+      std::vector<MachinePoint> vertices{pending_[0].start};
+      vertices.reserve(end + 1);
+      for (std::size_t i = 0; i < end; ++i) vertices.push_back(pending_[i].end);
+      fit = fit_line_run(vertices, 0.5 * pending_[1].joint_tolerance_mm, pending_[0].feed_mm_per_s);
+    }
+    const std::size_t consumed = fit ? end : 1;
+    for (std::size_t i = 0; i < consumed; ++i) {
+      const auto [first, last] = events_at_segment_.equal_range(pending_[i].index);
+      for (auto e = first; e != last; ++e) events_at_item_.emplace(items_made_, e->second);
+      events_at_segment_.erase(first, last);
+    }
+    if (fit) {
+      for (std::size_t p = 0; p < fit->pieces.size(); ++p) {
+        add_item(fit->pieces[p], pending_[0].source, true);
+        items_.back().run_inside_next = p + 1 < fit->pieces.size();
+      }
+      ++figures_.runs_fitted;
+      figures_.lines_fitted += end;
+      figures_.fitted_pieces += fit->pieces.size();
+      figures_.max_deviation_mm = std::fmax(figures_.max_deviation_mm, fit->deviation_mm);
+      if (next_known) items_.back().joint_tolerance_mm = pending_[end].joint_tolerance_mm;
+    } else {
+      add_item(pending_[0].segment(), pending_[0].source, false);
+      if (pending_.size() > 1) items_.back().joint_tolerance_mm = pending_[1].joint_tolerance_mm;
+    }
+    pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(consumed));
+    verified_run_ = 0;  // a run after a failed fit is looked at afresh, as a new one
+    write_items(false);
+  }
+}
+
+PathSegment SmoothingStream::Pending::segment() const {
+  if (other) return *other;
+  PathSegment line = PathSegment::make_line(start, end).value();  // it was made from these ends once
+  line.set_feed_mm_per_s(feed_mm_per_s);
+  return line;
+}
+
+void SmoothingStream::add_item(const PathSegment& segment, std::size_t source, bool fitted) {
+  Item item;
+  item.segment = segment;
+  item.source = source;
+  item.length_mm = length_between(segment, 0, 1);
+  item.fitted = fitted;
+  item.start_point = segment.start();
+  item.end_point = segment.end();
+  items_.push_back(std::move(item));
+  ++items_made_;
+}
+
+void SmoothingStream::write_items(bool at_end) {
+  while (items_.size() >= 2) {
+    decide_corner(items_[0], items_[1]);
+    write_item(items_[0], &items_[1]);
+    items_.pop_front();
+  }
+  if (at_end && items_.size() == 1) {
+    write_item(items_[0], nullptr);
+    items_.pop_front();
+  }
+}
+
+// 2. Corners -> blends.
+void SmoothingStream::decide_corner(Item& a, Item& b) {
+  front_blend_.reset();
+  if (a.run_inside_next || !(a.joint_tolerance_mm > 0)) return;
+  const double cos_theta = deflection_cos(a.segment, b.segment);
+  const double deflection = std::acos(std::clamp(cos_theta, -1.0, 1.0));
+  const double curvature_jump = norm(local_frame(a.segment, 1.0).curvature - local_frame(b.segment, 0.0).curvature);
+  if (deflection <= corner_deflection_rad && curvature_jump <= curvature_jump_per_mm) return;
+  ++figures_.corners;
+  if (!options_.blend_corners || deflection * 180 / pi > reversal_deflection_deg) return;
+  if (!can_cut(a.segment) || !can_cut(b.segment)) return;
+  CornerRequest request;
+  request.incoming = &a.segment;
+  request.incoming_length_mm = a.length_mm;
+  request.incoming_available_mm = options_.blend_max_share * a.length_mm;
+  request.outgoing = &b.segment;
+  request.outgoing_length_mm = b.length_mm;
+  request.outgoing_available_mm = options_.blend_max_share * b.length_mm;
+  request.tolerance_mm = (a.fitted || b.fitted) ? 0.5 * a.joint_tolerance_mm : a.joint_tolerance_mm;
+  request.a_max_mm_per_s2 = options_.a_max_mm_per_s2;
+  request.j_max_mm_per_s3 = options_.j_max_mm_per_s3;
+  auto blend = blend_corner(request);
+  if (!blend) return;
+  if (!blend_pays(*blend, options_)) {
+    ++figures_.corners_stopped;
+    return;
+  }
+  a.end_u = blend->incoming_u;
+  a.end_point = blend->curve.start();
+  b.start_u = blend->outgoing_u;
+  b.start_point = blend->curve.end();
+  ++figures_.corners_blended;
+  const double fitted_share = (a.fitted || b.fitted) ? 0.5 * a.joint_tolerance_mm : 0.0;
+  figures_.max_deviation_mm = std::fmax(figures_.max_deviation_mm, blend->deviation_mm + fitted_share);
+  front_blend_ = std::move(blend);
+}
+
+// 3. The smoothed job: each item cut to what the blends left, then its blend.
+void SmoothingStream::write_item(const Item& item, const Item* next) {
+  const std::size_t number = items_made_ - items_.size();
+  const auto [first, last] = events_at_item_.equal_range(number);
+  for (auto e = first; e != last; ++e) out_.events[e->second].before_segment = out_.segments.size();
+  events_at_item_.erase(first, last);
+  if (item.start_u == 0 && item.end_u == 1) {
+    out_.segments.push_back(item.segment);
+    out_.source_index.push_back(item.source);
+  } else if (item.start_u < item.end_u && item.start_point != item.end_point) {
+    auto piece = piece_between(item.segment, item.start_u, item.end_u, item.start_point, item.end_point);
+    if (piece) {
+      out_.segments.push_back(*piece);
+      out_.source_index.push_back(item.source);
+    } else if (item.start_point != item.end_point) {
+      // A piece that cannot be cut stays a straight connection between the cut points.
+      auto line = PathSegment::make_line(item.start_point, item.end_point);
+      if (line) {
+        line.value().set_feed_mm_per_s(item.segment.feed_mm_per_s());
+        out_.segments.push_back(line.value());
+        out_.source_index.push_back(item.source);
+      }
+    }
+  }
+  if (next != nullptr && front_blend_) {
+    out_.segments.push_back(front_blend_->curve);
+    out_.source_index.push_back(next->source);
+  }
+}
+
+Job SmoothingStream::finish(Job rest, SmoothingReport* report) {
+  figures_.segments_before = pushed_;
+  if (smoothing_on(options_) && pushed_ > 0) {
+    make_items(true);
+    write_items(true);
+    // Events after the last segment (or past the job's end) stay after it.
+    for (const auto& [index, position] : events_at_segment_) out_.events[position].before_segment = out_.segments.size();
+    for (const auto& [item, position] : events_at_item_) out_.events[position].before_segment = out_.segments.size();
+    events_at_segment_.clear();
+    events_at_item_.clear();
+  }
+  figures_.segments_after = out_.segments.size();
+  if (report != nullptr) *report = figures_;
+  out_.version = rest.version;
+  out_.name = std::move(rest.name);
+  out_.sources = std::move(rest.sources);
+  return std::move(out_);
+}
+
+}  // namespace curvestep::host::smoothing
