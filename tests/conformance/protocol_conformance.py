@@ -110,7 +110,7 @@ HELLO, CAPABILITIES, ACK, NAK = 0x01, 0x02, 0x03, 0x04
 CONFIGURATION, SEGMENT, START, FEED_HOLD, RESUME, ABORT, STATUS_REQUEST = 0x10, 0x11, 0x12, 0x13, 0x14, 0x15, 0x16
 FEED_OVERRIDE = 0x19
 STATUS_REPORT, SETPOINT_BATCH, ERROR_REPORT = 0x20, 0x21, 0x22
-VERSION = 4
+VERSION = 5
 
 
 def configuration_message(axes=3, flags=0, v=200.0, a=2000.0, j=50000.0, tolerance=0.01, junction=0.05,
@@ -416,7 +416,7 @@ def run_device_checks(program, codes):
             return
         (version, echo, max_payload, queue_capacity, credit_end, total_bits, fraction_bits, axis_count, max_degree,
          tick_rate, lookahead) = struct.unpack('<HHHHHBBBBIH', caps[2])
-        check(len(caps[2]) == 20 and version == VERSION and echo == session, 'Capabilities: 20 bytes, version 4, the session echoed')
+        check(len(caps[2]) == 20 and version == VERSION and echo == session, 'Capabilities: 20 bytes, version 5, the session echoed')
         check(max_payload == 162 and (total_bits, fraction_bits) == (32, 16), 'Capabilities: max_payload 162, Q16.16')
         check(credit_end == 0, 'credit: 0 before a configuration')
         check(lookahead >= 1 and axis_count in (2, 3) and 1 <= max_degree <= 7, 'Capabilities: a planner on board, its axes and degree')

@@ -227,7 +227,7 @@ TEST_CASE("hil: curvestep stream refuses a controller of another protocol versio
   INFO(errors);
   CHECK(status == 4);
   CHECK_THAT(errors, Catch::Contains("VersionMismatch") &&
-                         Catch::Contains("the controller speaks protocol version 1, this host speaks version 4"));
+                         Catch::Contains("the controller speaks protocol version 1, this host speaks version 5"));
 }
 
 TEST_CASE("hil: a device frozen for 2 s (SIGSTOP) with --link-timeout-ms 30000 on both ends finishes the job and "

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """The App<Board> firmware image in QEMU answers the protocol handshake over -serial pty:
-Hello(version 4, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
+Hello(version 5, session 0x1234) -> Capabilities (docs/protocol.md). The frame bytes are built
 here independently of the C++ encoder (COBS, the payload's CRC-32C table-driven, the frame's
 CRC-16/CCITT-FALSE via binascii.crc_hqx).
 Usage: firmware_test.py <stm32f1|stm32f4|stm32f2-m3> <firmware.elf> [--executor]
@@ -75,7 +75,7 @@ def main():
     executor = "--executor" in sys.argv[3:]
     expected = EXECUTOR_QUEUE_AND_LOOKAHEAD if executor else EXPECTED_QUEUE_AND_LOOKAHEAD[board_name]
     expected_degree = 0 if executor else 7
-    hello = frame(0x01, 0, struct.pack("<HH", 4, 0x1234))
+    hello = frame(0x01, 0, struct.pack("<HH", 5, 0x1234))
     assert hello == bytes.fromhex("02010204093412 a7e2993c 43c800".replace(" ", "")), hello.hex()  # docs/protocol.md
     with QemuBoard(MACHINES[board_name], elf) as board:
         deadline = time.monotonic() + 20
@@ -95,7 +95,7 @@ def main():
             if body[0] != 0x02:
                 continue  # e.g. an Ack: wait for the Capabilities
             if len(body) != 2 + 20 + 4:
-                print(f"FAIL: Capabilities of {len(body) - 6} bytes (version 4: 20)")
+                print(f"FAIL: Capabilities of {len(body) - 6} bytes (version 5: 20)")
                 return 1
             (version, session, max_payload, queue, credit_end, total_bits, fraction_bits, axes, degree,
              tick_rate, lookahead) = struct.unpack("<HHHHHBBBBIH", body[2:22])
@@ -103,7 +103,7 @@ def main():
                   f"credit_end={credit_end} fixed={total_bits}/{fraction_bits} axes={axes} degree={degree} "
                   f"tick_rate={tick_rate} lookahead={lookahead}")
             # The image's queue and look-ahead (firmware_main.cpp): App needs queue >= look-ahead + 8.
-            ok = (version == 4 and session == 0x1234 and max_payload == 162 and total_bits == 32 and
+            ok = (version == 5 and session == 0x1234 and max_payload == 162 and total_bits == 32 and
                   fraction_bits == 16 and axes == 3 and tick_rate == 1_000_000 and degree == expected_degree and
                   (queue, lookahead) == expected)
             print("PASS" if ok else "FAIL: unexpected Capabilities")

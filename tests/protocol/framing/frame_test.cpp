@@ -33,7 +33,7 @@ const char* const example_raw =
     "11 05 00 02 00 00 14 00 00 00 00 00 00 00 00 00 00 80 0a 00 00 c0 fd ff 7a bb 32 e6 79 04";
 const char* const example_wire =
     "03 11 05 02 02 01 02 14 01 01 01 01 01 01 01 01 01 03 80 0a 01 0a c0 fd ff 7a bb 32 e6 79 04 00";
-const char* const hello_wire = "02 01 02 04 09 34 12 a7 e2 99 3c 43 c8 00";  // Hello(version 4, session 0x1234), sequence 0
+const char* const hello_wire = "02 01 02 05 09 34 12 1f 48 dc e1 36 69 00";  // Hello(version 5, session 0x1234), sequence 0
 const char* const ack_wire = "05 03 07 06 28 07 a6 a8 6f 27 02 fd 00";       // Ack(6, 40), sequence 7
 
 QueueSegment example_segment() {

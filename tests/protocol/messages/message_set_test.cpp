@@ -42,7 +42,7 @@ std::string zeros(std::size_t count) {
 
 std::vector<Vector> vectors() {
   return {
-      {0x01, Direction::ToController, "04 00 34 12"},  // Hello: version 4, session 0x1234
+      {0x01, Direction::ToController, "05 00 34 12"},  // Hello: version 5, session 0x1234
       // Capabilities: version 4, session 0x1234, payload 162, queue 16, credit 16, 32/16 bits,
       // 3 axes, degree 7, 1 MHz ticks, look-ahead 8
       {0x02, Direction::ToHost, "04 00 34 12 a2 00 10 00 10 00 20 10 03 07 40 42 0f 00 08 00"},

@@ -126,7 +126,7 @@ static_assert(!consumes_credit(MessageType::Start) && !consumes_credit(MessageTy
 static_assert(is_sequenced_toward(Endpoint::Controller, 0x17) && !is_sequenced_toward(Endpoint::Host, 0x17));
 static_assert(HostToController::contains<QueuePiece> && AllMessages::contains<QueuePiece> &&
               !ControllerToHost::contains<QueuePiece>);
-static_assert(protocol_version == 4);
+static_assert(protocol_version >= 4);  // QueuePiece since version 4
 static_assert(max_piece_ticks == curvestep::HermiteChunk::max_ticks);
 
 TEST_CASE("queue piece: the protocol's tick rule is core's valid_piece_ticks", "[protocol][messages]") {

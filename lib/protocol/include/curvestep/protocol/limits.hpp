@@ -8,7 +8,7 @@
 namespace curvestep::protocol {
 
 /// Protocol version exchanged in the handshake; both ends must agree exactly.
-inline constexpr std::uint16_t protocol_version = 4;
+inline constexpr std::uint16_t protocol_version = 5;
 
 /// Bytes of frame header: message type, sequence number.
 inline constexpr std::size_t frame_header_size = 2;
