@@ -61,15 +61,10 @@ inline constexpr const char* override_keys_footer =
 /// "--:--" or "m:ss".
 [[nodiscard]] std::string format_seconds(double s);
 
-  std::cerr << "\r  " << p.state << "  feed " << p.override_percent.feed_percent << "% rapid " << p.override_percent.rapid_percent
-            << "%  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
-            << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s);
-  if (p.tick_overruns != 0) std::cerr << "  tick overruns " << p.tick_overruns;
-  std::cerr << "   " << std::flush;
-}
-
-void OperatorSession::warn_tick_overruns(const link::StreamResult& result, double rate_hz) const {
-  std::cerr << link::tick_overrun_warning(command_, result.tick_overruns, result.worst_tick_us, rate_hz);
+/// The summary lines of the controller's tick timing (always: "  tick overruns:       0 (worst
+/// tick 42 us of the 1000 us period)\n") and of the operator's holds, overrides and abort (if any),
+/// with the `curvestep sim` options that replay them ("  replay:              curvestep sim
+/// --hold-at 1.234:0 gives the same setpoints").
 [[nodiscard]] std::string format_operator_summary(const link::StreamResult& result, double rate_hz);
 
 }  // namespace curvestep::host

@@ -467,7 +467,7 @@ def run_device_checks(program, codes):
         # before (0: nothing moved); out of range: InvalidArgument at the field's offset; back to 100 %.
         d.command(FEED_OVERRIDE, struct.pack('<HH', 150, 25))
         report, _ = d.wait_for(lambda t, s, m: t == STATUS_REPORT)
-        check(report is not None and struct.unpack('<HHI', report[2][11:19]) == (150, 25, 0),
+        check(report is not None and struct.unpack('<HHI', report[2][20:28]) == (150, 25, 0),
               'FeedOverride 150 %, 25 %: a StatusReport says 150 %, 25 %, set before setpoint 0')
         seq = d.command(FEED_OVERRIDE, struct.pack('<HH', 201, 100))
         check((codes['InvalidArgument'], 0, seq) in error_reports(d.answers()), 'a feed override of 201 % gets InvalidArgument, index 0')

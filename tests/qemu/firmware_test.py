@@ -76,7 +76,7 @@ def main():
     expected = EXECUTOR_QUEUE_AND_LOOKAHEAD if executor else EXPECTED_QUEUE_AND_LOOKAHEAD[board_name]
     expected_degree = 0 if executor else 7
     hello = frame(0x01, 0, struct.pack("<HH", 5, 0x1234))
-    assert hello == bytes.fromhex("02010204093412 a7e2993c 43c800".replace(" ", "")), hello.hex()  # docs/protocol.md
+    assert hello == bytes.fromhex("02010205093412 1f48dce1 366900".replace(" ", "")), hello.hex()  # docs/protocol.md
     with QemuBoard(MACHINES[board_name], elf) as board:
         deadline = time.monotonic() + 20
         while True:

@@ -276,7 +276,7 @@ TEST_CASE("frame: the decoder resynchronises on 0x00 after garbage", "[protocol]
 }
 
 TEST_CASE("frame: the Hello and Ack examples of docs/protocol.md encode byte for byte", "[protocol][framing]") {
-  CHECK(to_hex(wire_frame(Message(Hello{4, 0x1234}), 0)) == hello_wire);
+  CHECK(to_hex(wire_frame(Message(Hello{5, 0x1234}), 0)) == hello_wire);
   CHECK(to_hex(wire_frame(Message(Ack{6, 40}), 7)) == ack_wire);
 }
 
