@@ -37,6 +37,10 @@
 //                      tool; tool 0: radius 0), G41.1/G42.1 D<diameter> directly (L only as 0; a negative
 //                      diameter compensates on the other side, as in LinuxCNC).
 //                      Refused while on: G41/G42 again, a plane change, G28/G30, G53, splines, cycles.
+//   @ ^                LinuxCNC's polar coordinates, instead of X Y (G17 only): @ the distance, ^ the
+//                      angle in degrees (counter-clockwise from +X), about the XY origin of the coordinate
+//                      system in force; G90 replaces the current point's distance/angle, G91 adds to them
+//                      (see polar_end_point). With G0 G1 G2 G3; refused with canned cycles and splines.
 // Arcs turn in the selected plane: G17 X Y with I J (K refused), G18 Z X with K I (J refused), G19
 // Y Z with J K (I refused); the third axis makes a helix. Motion::plane says which.
 //
@@ -350,6 +354,10 @@ class Interpreter {
                            group0_word->code_tenths != 301 && group0_word->code_tenths != 921 &&
                            group0_word->code_tenths != 922 && group0_word->code_tenths != 923;
     if (uses_axes && motion_word != nullptr) return fail(Error::GcodeConflictingWords, motion_word->column);
+    // Polar words are for motion only (LinuxCNC): not with G10, G28, G30, G53, G92.
+    if (const Word* polar = polar_word(block); polar != nullptr && (uses_axes || g53_word != nullptr)) {
+      return fail(Error::GcodeConflictingWords, polar->column);
+    }
     if (in_nurbs_ && (group0_word != nullptr || g53_word != nullptr)) {
       return fail(Error::GcodeNurbsBlock, (group0_word != nullptr ? group0_word : g53_word)->column);
     }
@@ -689,7 +697,17 @@ class Interpreter {
     }
   }
 
-  /// The end point from X Y Z (absolute or incremental), range-checked.
+  /// The block's first polar word (@ distance or ^ angle), or nullptr.
+  template <std::size_t Capacity>
+  [[nodiscard]] static const Word* polar_word(const Block<Capacity>& block) noexcept {
+    const Word* distance = block.find('@');
+    const Word* angle = block.find('^');
+    if (distance == nullptr) return angle;
+    if (angle == nullptr) return distance;
+    return distance->column < angle->column ? distance : angle;
+  }
+
+  /// The end point from X Y Z (absolute or incremental), range-checked; X Y may come from @ ^.
   template <std::size_t Capacity>
   [[nodiscard]] Result<Point> end_point(const Block<Capacity>& block) const noexcept {
     Point end = position_;
@@ -701,7 +719,44 @@ class Interpreter {
         end[axis] = v;
       }
     }
+    if (polar_word(block) != nullptr) CURVESTEP_CHECK(polar_end_point(block, end));
     return end;
+  }
+
+  /// LinuxCNC's polar coordinates: X Y of `end` from @ (distance) and ^ (angle, degrees,
+  /// counter-clockwise from +X) about the XY origin of the coordinate system in force. G90: the
+  /// given ones replace the current point's distance and angle (about that origin); G91: they are
+  /// added to them. Errors (at the polar word): X or Y in the block (GcodeConflictingWords); the
+  /// current point at the origin, where its angle is undefined, when that angle is needed (G90 @
+  /// without ^, any G91 polar move: GcodeMissingWord); the result out of range (GcodeBadNumber).
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> polar_end_point(const Block<Capacity>& block, Point& end) const noexcept {
+    const Word* polar = polar_word(block);
+    if (block.find('X') != nullptr || block.find('Y') != nullptr) return fail(Error::GcodeConflictingWords, polar->column);
+    const Word* distance = block.find('@');
+    const Word* angle = block.find('^');
+    const Point origin = offset_in_force();
+    const double x = position_[0] - origin[0];
+    const double y = position_[1] - origin[1];
+    const bool at_origin = x == 0 && y == 0;
+    if (at_origin && (incremental_ || angle == nullptr)) return fail(Error::GcodeMissingWord, polar->column);
+    double radius = std::hypot(x, y);
+    double theta = std::atan2(y, x);
+    const double distance_mm = distance != nullptr ? distance->value * scale() : 0.0;
+    const double angle_rad = angle != nullptr ? angle->value * (std::numbers::pi / 180.0) : 0.0;
+    if (incremental_) {
+      radius += distance_mm;
+      theta += angle_rad;
+    } else {
+      if (distance != nullptr) radius = distance_mm;
+      if (angle != nullptr) theta = angle_rad;
+    }
+    const double ex = radius * std::cos(theta) + origin[0];
+    const double ey = radius * std::sin(theta) + origin[1];
+    if (!(std::fabs(ex) <= max_coordinate_mm && std::fabs(ey) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, polar->column);
+    end[0] = ex;
+    end[1] = ey;
+    return ok();
   }
 
   /// An offset word (I J K P Q R) in mm, or 0 if absent.
@@ -780,7 +835,7 @@ class Interpreter {
       mode_ = motion_word->code_tenths;
       mode_column_ = motion_word->column;
     }
-    const bool moves = has_any(block, "XYZIJKRPQL");
+    const bool moves = has_any(block, "XYZIJKRPQL@^");
     if (!moves) {
       if (motion_word == nullptr) return motion;
       if (is_cycle_code(mode_)) return fail(Error::GcodeCannedCycle, motion_word->column);  // no X Y Z
@@ -810,10 +865,13 @@ class Interpreter {
     if (compensation_side_ != CompensationSide::Off && (mode_ == 50 || mode_ == 51 || mode_ == 52 || is_cycle_code(mode_))) {
       return fail(Error::GcodeCutterCompensation, column);  // splines and cycles cannot be compensated
     }
+    if (const Word* polar = polar_word(block); polar != nullptr && (plane_ != Plane::XY || !(mode_ == 0 || mode_ == 10 || mode_ == 20 || mode_ == 30))) {
+      return fail(Error::GcodeUnsupportedWord, polar->column);  // polar: G17 only (LinuxCNC); here G0 G1 G2 G3 only
+    }
     switch (mode_) {
       case 0:
       case 10: {
-        CURVESTEP_CHECK(only(block, "XYZ", Error::GcodeConflictingWords));
+        CURVESTEP_CHECK(only(block, "XYZ@^", Error::GcodeConflictingWords));
         CURVESTEP_TRY(motion.end, end_point(block));
         previous_cubic_ = false;
         if (motion.end == position_) return motion;
@@ -836,7 +894,7 @@ class Interpreter {
   [[nodiscard]] Result<Motion> arc(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
     constexpr std::string_view offset_letters = "IJK";  // the centre offsets along X, Y, Z
     const PlaneAxes axes = axes_of(plane_);
-    CURVESTEP_CHECK(only(block, "XYZIJKRP", Error::GcodeConflictingWords));
+    CURVESTEP_CHECK(only(block, "XYZIJKRP@^", Error::GcodeConflictingWords));
     // The offset along the normal has no meaning; CAM posts (FreeCAD's grbl post) write K0 on G17 arcs.
     if (const Word* k = block.find(offset_letters[axes.normal]); k != nullptr && k->value != 0) {
       return fail(Error::GcodeConflictingWords, k->column);
