@@ -91,7 +91,7 @@ std::string explain(Error code, const std::string& word) {
       };
       if (polar) {
         return "polar coordinates (@ distance, ^ angle) work in the G17 (XY) plane only, as in LinuxCNC, and here with G0 G1 G2 G3 "
-               "only (not with canned cycles or splines: give X and Y)";
+               "and canned cycles (not with splines: give X and Y)";
       }
       if (!word.empty() && (word[0] == 'A' || word[0] == 'B' || word[0] == 'C' || word[0] == 'U' || word[0] == 'V' || word[0] == 'W')) {
         return "rotary and parallel axes (A B C U V W) are not supported: this is a 3-axis (X Y Z) machine";

@@ -58,6 +58,6 @@ TEST_CASE("gcode polar: errors name file:line:column, the polar word and LinuxCN
   CHECK_THAT(m, Catch::Contains("polar.ngc:2:4") && Catch::Contains("G17 (XY) plane only"));
   m = message_of("G21\nG92 @1 ^0\n");
   CHECK_THAT(m, Catch::Contains("polar.ngc:2:5") && Catch::Contains("for motion only"));
-  m = message_of("G21 G0 Z5\nG81 @10 ^0 Z-1 R1 F100\n");
-  CHECK_THAT(m, Catch::Contains("polar.ngc:2:5") && Catch::Contains("not with canned cycles"));
+  m = message_of("G21 G0 X1\nG5 @1 ^0 I1 J0 P1 Q0 F100\n");
+  CHECK_THAT(m, Catch::Contains("polar.ngc:2:4") && Catch::Contains("not with splines"));
 }

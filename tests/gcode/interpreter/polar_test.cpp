@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <initializer_list>
 #include <string_view>
 
@@ -181,13 +182,49 @@ TEST_CASE("polar: the reference's errors and this controller's limits, at the po
   f = run_failing({"@1 ^0"});
   CHECK(f.code == Error::GcodeMissingWord);
   CHECK(f.index == 1);
-  // This controller: polar end points for G0 G1 G2 G3 only (LinuxCNC also places canned-cycle holes).
-  f = run_failing({"G0 Z5", "G81 @10 ^0 Z-1 R1 F100"});
-  CHECK(f.code == Error::GcodeUnsupportedWord);
+  // Canned cycles: X or Y with polar words; G91 polar holes from the origin (LinuxCNC: "Incremental
+  // motion with polar coordinates is indeterminate when at the origin").
+  f = run_failing({"G0 Z5", "G81 @10 X1 Z-1 R1 F100"});
+  CHECK(f.code == Error::GcodeConflictingWords);
   CHECK(f.index == 5);
+  f = run_failing({"G0 Z5", "G91 G81 @1 ^33 R1 Z-1 L5 F100"});
+  CHECK(f.code == Error::GcodeMissingWord);
+  CHECK(f.index == 9);
+  // This controller: no polar words with splines.
   f = run_failing({"G0 X1", "G5 @1 ^0 I1 J0 P1 Q0 F100"});
   CHECK(f.code == Error::GcodeUnsupportedWord);
   CHECK(f.index == 4);
+}
+
+TEST_CASE("polar: canned-cycle holes, G90 at @ ^ and G91 turning per repeat", "[gcode][interpreter][polar][cycle]") {
+  SECTION("LinuxCNC's hole-circle sample: G91 G81 ^60 L6 from X1.5 (inches)") {
+    // Six holes 1.5 in = 38.1 mm from the origin at 60, 120, ..., 360 degrees; R .1 above the start
+    // Z 0 (2.54 mm), Z -.5 below R (2.54 - 12.7 = -10.16 mm).
+    Machine m;
+    const Motion cycle = run(m, {"G20 G17 G90", "G0 X1.5 Y0 Z0", "G91 G81 R.1 Z-.5 ^60 L6 F10"});
+    REQUIRE(cycle.kind == MotionKind::Cycle);
+    CHECK(cycle.cycle.repeats == 6);
+    CHECK(cycle.cycle.r_z == Approx(2.54));
+    CHECK(cycle.cycle.bottom_z == Approx(-10.16));
+    const double r = 38.1;
+    const double expected[6][2] = {{r / 2, r * sqrt3_half}, {-r / 2, r * sqrt3_half}, {-r, 0},
+                                   {-r / 2, -r * sqrt3_half}, {r / 2, -r * sqrt3_half}, {r, 0}};
+    for (std::uint32_t k = 0; k < 6; ++k) {
+      INFO("hole " << k);
+      const CyclePoint hole = cycle_hole(cycle.cycle, k);
+      CHECK(hole[0] == Approx(expected[k][0]).margin(1e-9));
+      CHECK(hole[1] == Approx(expected[k][1]).margin(1e-9));
+    }
+    // The tool ends over the last hole at the clear level (G98: the start Z 0 is below R, so R).
+    check_end(cycle, r, 0, 2.54);
+  }
+  SECTION("LinuxCNC's polar sample: G90 G81 @2.5^120 (inches) about a G54 origin") {
+    // 2.5 in = 63.5 mm at 120 degrees: (-31.75, 63.5 sin 120) = (-31.75, 54.992613) plus (10, 20).
+    Machine m;
+    const Motion cycle = run(m, {"G21 G90 G10 L2 P1 X10 Y20", "G20 G54 G0 X0 Y0 Z0", "G81 @2.5^120 R.1 Z-0.5 F60"});
+    REQUIRE(cycle.kind == MotionKind::Cycle);
+    check_end(cycle, 10 - 31.75, 20 + 63.5 * sqrt3_half, 2.54);
+  }
 }
 
 TEST_CASE("polar: the line parser reads @ and ^ as words with their columns", "[gcode][parser][polar]") {

@@ -865,8 +865,9 @@ class Interpreter {
     if (compensation_side_ != CompensationSide::Off && (mode_ == 50 || mode_ == 51 || mode_ == 52 || is_cycle_code(mode_))) {
       return fail(Error::GcodeCutterCompensation, column);  // splines and cycles cannot be compensated
     }
-    if (const Word* polar = polar_word(block); polar != nullptr && (plane_ != Plane::XY || !(mode_ == 0 || mode_ == 10 || mode_ == 20 || mode_ == 30))) {
-      return fail(Error::GcodeUnsupportedWord, polar->column);  // polar: G17 only (LinuxCNC); here G0 G1 G2 G3 only
+    if (const Word* polar = polar_word(block);
+        polar != nullptr && (plane_ != Plane::XY || !(mode_ == 0 || mode_ == 10 || mode_ == 20 || mode_ == 30 || is_cycle_code(mode_)))) {
+      return fail(Error::GcodeUnsupportedWord, polar->column);  // polar: G17 only (LinuxCNC); here not with splines
     }
     switch (mode_) {
       case 0:
@@ -965,11 +966,13 @@ class Interpreter {
   template <std::size_t Capacity>
   [[nodiscard]] Result<Motion> canned_cycle(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
     if (plane_ != Plane::XY) return fail(Error::GcodeUnsupportedWord, column);
-    CURVESTEP_CHECK(only(block, "XYZRQPL", Error::GcodeConflictingWords));
+    CURVESTEP_CHECK(only(block, "XYZRQPL@^", Error::GcodeConflictingWords));
     const Word* x = block.find('X');
     const Word* y = block.find('Y');
     const Word* z = block.find('Z');
-    if (x == nullptr && y == nullptr && z == nullptr) return fail(Error::GcodeCannedCycle, column);
+    const Word* polar = polar_word(block);
+    if (x == nullptr && y == nullptr && z == nullptr && polar == nullptr) return fail(Error::GcodeCannedCycle, column);
+    if (polar != nullptr && (x != nullptr || y != nullptr)) return fail(Error::GcodeConflictingWords, polar->column);
     // Sticky words: this block's, else the previous cycle block's.
     const auto sticky = [&](char letter, StickyValue& kept) -> Result<bool> {
       if (const Word* w = block.find(letter)) {
@@ -1020,11 +1023,11 @@ class Interpreter {
       c.r_z = cycle_sticky_.r.value * scale() + offset[2];
       c.bottom_z = cycle_sticky_.z.value * scale() + offset[2];
     }
+    if (polar != nullptr) CURVESTEP_CHECK(polar_holes(block, c));
     if (c.r_z < c.bottom_z) return fail(Error::GcodeCannedCycle, here('R'));
     c.clear_z = retract_to_initial_ && initial_z > c.r_z ? initial_z : c.r_z;
-    const double last = static_cast<double>(c.repeats - 1);
-    for (const double v : {c.first_hole[0], c.first_hole[1], c.first_hole[0] + last * c.step[0], c.first_hole[1] + last * c.step[1],
-                           c.r_z, c.bottom_z}) {
+    const CyclePoint last_hole = cycle_hole(c, c.repeats - 1);
+    for (const double v : {c.first_hole[0], c.first_hole[1], last_hole[0], last_hole[1], c.r_z, c.bottom_z}) {
       if (!(std::fabs(v) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, column);
     }
     motion.kind = MotionKind::Cycle;
@@ -1033,6 +1036,44 @@ class Interpreter {
     position_ = motion.end;
     previous_cubic_ = false;
     return motion;
+  }
+
+  /// The holes of a cycle block with polar words (LinuxCNC's convert_cycle_xy): G90 places the
+  /// hole at @ ^ about the XY origin in force (a missing one from the current point; at the origin
+  /// the angle is 0, as atan2(0, 0) gives LinuxCNC); G91 adds @ to the distance and ^ to the angle
+  /// per repeat (GcodeMissingWord if it starts at the origin, where the angle is undefined).
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> polar_holes(const Block<Capacity>& block, CannedCycle& c) const noexcept {
+    const Word* polar = polar_word(block);
+    const Word* distance = block.find('@');
+    const Word* angle = block.find('^');
+    const Point origin = offset_in_force();
+    const double x = position_[0] - origin[0];
+    const double y = position_[1] - origin[1];
+    const double distance_mm = distance != nullptr ? distance->value * scale() : 0.0;
+    const double angle_rad = angle != nullptr ? angle->value * (std::numbers::pi / 180.0) : 0.0;
+    c.polar_origin = origin;
+    c.step = Point{};
+    c.first_radius_mm = std::hypot(x, y);
+    c.first_angle_rad = std::atan2(y, x);
+    if (incremental_) {
+      if (x == 0 && y == 0) return fail(Error::GcodeMissingWord, polar->column);
+      c.polar_steps = true;
+      c.step_radius_mm = distance_mm;
+      c.step_angle_rad = angle_rad;
+      c.first_radius_mm += distance_mm;
+      c.first_angle_rad += angle_rad;
+    } else {
+      if (distance != nullptr) c.first_radius_mm = distance_mm;
+      if (angle != nullptr) c.first_angle_rad = angle_rad;
+    }
+    c.first_hole = Point{{origin[0] + c.first_radius_mm * std::cos(c.first_angle_rad),
+                          origin[1] + c.first_radius_mm * std::sin(c.first_angle_rad), 0.0}};
+    const double reach = std::fabs(c.first_radius_mm) + static_cast<double>(c.repeats - 1) * std::fabs(c.step_radius_mm);
+    if (!(std::fabs(origin[0]) + reach <= max_coordinate_mm && std::fabs(origin[1]) + reach <= max_coordinate_mm)) {
+      return fail(Error::GcodeBadNumber, polar->column);
+    }
+    return ok();
   }
 
   template <std::size_t Capacity>
