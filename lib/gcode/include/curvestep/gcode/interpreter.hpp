@@ -723,6 +723,44 @@ class Interpreter {
     return end;
   }
 
+  /// A block's polar words applied to the current point (about the XY origin in force): the
+  /// distance and angle of the end (G90: the given ones replace the current point's; G91: they are
+  /// added), the given increments, and whether the current point is at the origin.
+  struct PolarMove {
+    const Word* word = nullptr;  ///< the first polar word
+    Point origin{};              ///< the XY origin in force, machine coordinates
+    bool at_origin = false;      ///< the current point is at that origin (its angle undefined)
+    bool has_angle = false;      ///< ^ was given
+    double step_mm = 0;          ///< @ in mm (0 if absent)
+    double step_rad = 0;         ///< ^ in radians (0 if absent)
+    double radius_mm = 0;        ///< distance of the end from the origin
+    double angle_rad = 0;        ///< angle of the end about the origin
+  };
+  template <std::size_t Capacity>
+  [[nodiscard]] PolarMove polar_move(const Block<Capacity>& block) const noexcept {
+    PolarMove p;
+    p.word = polar_word(block);
+    const Word* distance = block.find('@');
+    const Word* angle = block.find('^');
+    p.origin = offset_in_force();
+    const double x = position_[0] - p.origin[0];
+    const double y = position_[1] - p.origin[1];
+    p.at_origin = x == 0 && y == 0;
+    p.has_angle = angle != nullptr;
+    p.step_mm = distance != nullptr ? distance->value * scale() : 0.0;
+    p.step_rad = angle != nullptr ? angle->value * (std::numbers::pi / 180.0) : 0.0;
+    p.radius_mm = std::hypot(x, y);
+    p.angle_rad = std::atan2(y, x);
+    if (incremental_) {
+      p.radius_mm += p.step_mm;
+      p.angle_rad += p.step_rad;
+    } else {
+      if (distance != nullptr) p.radius_mm = p.step_mm;
+      if (angle != nullptr) p.angle_rad = p.step_rad;
+    }
+    return p;
+  }
+
   /// LinuxCNC's polar coordinates: X Y of `end` from @ (distance) and ^ (angle, degrees,
   /// counter-clockwise from +X) about the XY origin of the coordinate system in force. G90: the
   /// given ones replace the current point's distance and angle (about that origin); G91: they are
@@ -731,29 +769,12 @@ class Interpreter {
   /// without ^, any G91 polar move: GcodeMissingWord); the result out of range (GcodeBadNumber).
   template <std::size_t Capacity>
   [[nodiscard]] Result<void> polar_end_point(const Block<Capacity>& block, Point& end) const noexcept {
-    const Word* polar = polar_word(block);
-    if (block.find('X') != nullptr || block.find('Y') != nullptr) return fail(Error::GcodeConflictingWords, polar->column);
-    const Word* distance = block.find('@');
-    const Word* angle = block.find('^');
-    const Point origin = offset_in_force();
-    const double x = position_[0] - origin[0];
-    const double y = position_[1] - origin[1];
-    const bool at_origin = x == 0 && y == 0;
-    if (at_origin && (incremental_ || angle == nullptr)) return fail(Error::GcodeMissingWord, polar->column);
-    double radius = std::hypot(x, y);
-    double theta = std::atan2(y, x);
-    const double distance_mm = distance != nullptr ? distance->value * scale() : 0.0;
-    const double angle_rad = angle != nullptr ? angle->value * (std::numbers::pi / 180.0) : 0.0;
-    if (incremental_) {
-      radius += distance_mm;
-      theta += angle_rad;
-    } else {
-      if (distance != nullptr) radius = distance_mm;
-      if (angle != nullptr) theta = angle_rad;
-    }
-    const double ex = radius * std::cos(theta) + origin[0];
-    const double ey = radius * std::sin(theta) + origin[1];
-    if (!(std::fabs(ex) <= max_coordinate_mm && std::fabs(ey) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, polar->column);
+    const PolarMove p = polar_move(block);
+    if (block.find('X') != nullptr || block.find('Y') != nullptr) return fail(Error::GcodeConflictingWords, p.word->column);
+    if (p.at_origin && (incremental_ || !p.has_angle)) return fail(Error::GcodeMissingWord, p.word->column);
+    const double ex = p.radius_mm * std::cos(p.angle_rad) + p.origin[0];
+    const double ey = p.radius_mm * std::sin(p.angle_rad) + p.origin[1];
+    if (!(std::fabs(ex) <= max_coordinate_mm && std::fabs(ey) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, p.word->column);
     end[0] = ex;
     end[1] = ey;
     return ok();
@@ -1044,34 +1065,19 @@ class Interpreter {
   /// per repeat (GcodeMissingWord if it starts at the origin, where the angle is undefined).
   template <std::size_t Capacity>
   [[nodiscard]] Result<void> polar_holes(const Block<Capacity>& block, CannedCycle& c) const noexcept {
-    const Word* polar = polar_word(block);
-    const Word* distance = block.find('@');
-    const Word* angle = block.find('^');
-    const Point origin = offset_in_force();
-    const double x = position_[0] - origin[0];
-    const double y = position_[1] - origin[1];
-    const double distance_mm = distance != nullptr ? distance->value * scale() : 0.0;
-    const double angle_rad = angle != nullptr ? angle->value * (std::numbers::pi / 180.0) : 0.0;
-    c.polar_origin = origin;
+    const PolarMove p = polar_move(block);
+    if (incremental_ && p.at_origin) return fail(Error::GcodeMissingWord, p.word->column);
+    c.polar_origin = p.origin;
     c.step = Point{};
-    c.first_radius_mm = std::hypot(x, y);
-    c.first_angle_rad = std::atan2(y, x);
-    if (incremental_) {
-      if (x == 0 && y == 0) return fail(Error::GcodeMissingWord, polar->column);
-      c.polar_steps = true;
-      c.step_radius_mm = distance_mm;
-      c.step_angle_rad = angle_rad;
-      c.first_radius_mm += distance_mm;
-      c.first_angle_rad += angle_rad;
-    } else {
-      if (distance != nullptr) c.first_radius_mm = distance_mm;
-      if (angle != nullptr) c.first_angle_rad = angle_rad;
-    }
-    c.first_hole = Point{{origin[0] + c.first_radius_mm * std::cos(c.first_angle_rad),
-                          origin[1] + c.first_radius_mm * std::sin(c.first_angle_rad), 0.0}};
+    c.polar_steps = incremental_;
+    c.step_radius_mm = incremental_ ? p.step_mm : 0.0;
+    c.step_angle_rad = incremental_ ? p.step_rad : 0.0;
+    c.first_radius_mm = p.radius_mm;
+    c.first_angle_rad = p.angle_rad;
+    c.first_hole = Point{{p.origin[0] + p.radius_mm * std::cos(p.angle_rad), p.origin[1] + p.radius_mm * std::sin(p.angle_rad), 0.0}};
     const double reach = std::fabs(c.first_radius_mm) + static_cast<double>(c.repeats - 1) * std::fabs(c.step_radius_mm);
-    if (!(std::fabs(origin[0]) + reach <= max_coordinate_mm && std::fabs(origin[1]) + reach <= max_coordinate_mm)) {
-      return fail(Error::GcodeBadNumber, polar->column);
+    if (!(std::fabs(p.origin[0]) + reach <= max_coordinate_mm && std::fabs(p.origin[1]) + reach <= max_coordinate_mm)) {
+      return fail(Error::GcodeBadNumber, p.word->column);
     }
     return ok();
   }
