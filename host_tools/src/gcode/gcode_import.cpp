@@ -80,6 +80,7 @@ std::string explain(Error code, const std::string& word) {
   const bool g5_1 = word.starts_with("G5.1");
   const bool g5 = word.starts_with("G5") && !word.starts_with("G5.");
   const bool arc = word.starts_with("G2") || word.starts_with("G3");
+  const bool polar = word.starts_with("@") || word.starts_with("^");
   switch (code) {
     case Error::GcodeUnsupportedWord: {
       const auto is = [&word](std::initializer_list<const char*> codes) {
@@ -88,6 +89,10 @@ std::string explain(Error code, const std::string& word) {
         }
         return false;
       };
+      if (polar) {
+        return "polar coordinates (@ distance, ^ angle) work in the G17 (XY) plane only, as in LinuxCNC, and here with G0 G1 G2 G3 "
+               "and canned cycles (not with splines: give X and Y)";
+      }
       if (!word.empty() && (word[0] == 'A' || word[0] == 'B' || word[0] == 'C' || word[0] == 'U' || word[0] == 'V' || word[0] == 'W')) {
         return "rotary and parallel axes (A B C U V W) are not supported: this is a 3-axis (X Y Z) machine";
       }
@@ -110,6 +115,10 @@ std::string explain(Error code, const std::string& word) {
     }
     case Error::GcodeBadNumber: return "malformed or out-of-range number (an integer part of at most 15 digits; coordinates within +-32767 mm)";
     case Error::GcodeMissingWord:
+      if (polar) {
+        return "polar coordinates: the current point is at the XY origin, where its angle is undefined: give ^ with @ (G90), "
+               "or leave the origin first (a G91 polar move from the origin is indeterminate)";
+      }
       if (word == "G41.1" || word == "G42.1") return "G41.1/G42.1 need D (the tool diameter)";
       if (word == "G41" || word == "G42") {
         return "G41/G42 without D use the loaded tool, which has no diameter in the machine file's tool table: give D<tool> of a tool "
@@ -158,7 +167,12 @@ std::string explain(Error code, const std::string& word) {
     case Error::GcodeSplineNoTangent: return "G5 without I J must follow a G5 whose end tangent it continues (the first of a series needs I J)";
     case Error::GcodeSyntax:
       return "syntax error (unexpected character, unclosed comment, N not first, or too many words)";
-    case Error::GcodeConflictingWords: return "cannot appear with the other words of the line (or twice)";
+    case Error::GcodeConflictingWords:
+      if (polar) {
+        return "polar coordinates (@ distance, ^ angle) cannot be mixed with X or Y on one line, and are for motion only "
+               "(not with G10, G28, G30, G53, G80, G92)";
+      }
+      return "cannot appear with the other words of the line (or twice)";
     case Error::GcodeNurbsBlock:
       if (word.starts_with("G5.3")) return "G5.3 without an open G5.2 block, or with fewer control points than the order L";
       if (word.starts_with("L")) return "the order L must be an integer from 2 to 8, given on the G5.2 line";

@@ -10,46 +10,16 @@
 
 #include <curvestep/gcode.hpp>
 
+#include "run_lines.hpp"
+
 using namespace curvestep;
 using namespace curvestep::gcode;
 
 namespace {
 
-using Machine = Interpreter<16>;
-
-/// Runs `lines` (all must succeed) and returns the last line's motion.
-Motion run(Machine& machine, std::initializer_list<std::string_view> lines) {
-  Motion last;
-  for (const auto line : lines) {
-    INFO(line);
-    const auto block = parse_line(line);
-    REQUIRE(block);
-    const auto motion = machine.execute(block.value());
-    REQUIRE(motion);
-    last = motion.value();
-  }
-  return last;
-}
-
-/// Runs `lines`; all but the last must succeed; returns the last one's failure.
-Failure run_failing(std::initializer_list<std::string_view> lines) {
-  Machine machine;
-  std::size_t i = 0;
-  for (const auto line : lines) {
-    INFO(line);
-    const auto block = parse_line(line);
-    REQUIRE(block);
-    const auto motion = machine.execute(block.value());
-    if (++i < lines.size()) {
-      REQUIRE(motion);
-    } else {
-      REQUIRE_FALSE(motion);
-      return motion.failure();
-    }
-  }
-  FAIL("no lines");
-  return {};
-}
+using curvestep::gcode::testing::Machine;
+using curvestep::gcode::testing::run;
+using curvestep::gcode::testing::run_failing;
 
 Point pt(double x, double y, double z = 0) { return Point{{x, y, z}}; }
 

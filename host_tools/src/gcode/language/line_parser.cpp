@@ -168,19 +168,15 @@ void parse_words(Cursor& cursor, ParsedLine& line) {
       line.assignments.push_back(parse_assignment(cursor, line.nodes));
       continue;
     }
-    if (c == '@' || c == '^') {
-      cursor.advance();
-      cursor.fail(start, "LinuxCNC's polar coordinates (@ radius, ^ angle) are not supported: give X and Y",
-                  Error::GcodeUnsupportedWord);
-    }
-    if (!is_letter(c)) {
+    const bool polar = c == '@' || c == '^';  // LinuxCNC's polar distance and angle words
+    if (!is_letter(c) && !polar) {
       cursor.advance();
       cursor.fail(start, "unexpected character: a word starts with a letter", Error::GcodeSyntax);
     }
     if (c == 'n') cursor.fail(start, "N (line number) must be the first word of the line", Error::GcodeSyntax);
     if (c == 'o') cursor.fail(start, "an O-word must be the first word of its line", Error::GcodeSyntax);
     cursor.advance();
-    WordValue word{upper(c), no_node, cursor.column(start)};
+    WordValue word{polar ? c : upper(c), no_node, cursor.column(start)};
     word.value = parse_real_value(cursor, line.nodes);
     if (word.letter != 'G' && word.letter != 'M') {
       for (const auto& other : line.words) {

@@ -22,6 +22,7 @@
 // The backoff is 0.010 inch (0.254 mm), LinuxCNC's figure, in both unit systems.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include <curvestep/core/geometry/vec.hpp>
@@ -36,6 +37,15 @@ struct CannedCycle {
   std::int32_t code = 81;             ///< 73, 81, 82, 83, 85, 86 or 89
   CyclePoint first_hole{};            ///< x, y of the first hole (z unused)
   CyclePoint step{};                  ///< x, y added per repeat (G91 with L > 1), else 0
+  /// G91 with polar words (@ ^): each repeat adds step_radius_mm to the hole's distance and
+  /// step_angle_rad to its angle about polar_origin (the XY origin of the coordinate system in
+  /// force), LinuxCNC's polar increments; the first hole is at first_radius_mm, first_angle_rad.
+  bool polar_steps = false;
+  CyclePoint polar_origin{};
+  double first_radius_mm = 0;
+  double first_angle_rad = 0;
+  double step_radius_mm = 0;
+  double step_angle_rad = 0;
   std::uint32_t repeats = 1;          ///< L
   double r_z = 0;                     ///< the R plane
   double bottom_z = 0;                ///< the Z of the hole's bottom
@@ -61,6 +71,15 @@ struct CycleStep {
   double seconds = 0;   ///< Dwell: seconds
 };
 
+/// x, y of hole `index` (0-based) of `cycle` (z unused).
+[[nodiscard]] inline CyclePoint cycle_hole(const CannedCycle& cycle, std::uint32_t index) noexcept {
+  const double k = static_cast<double>(index);
+  if (!cycle.polar_steps) return CyclePoint{{cycle.first_hole[0] + k * cycle.step[0], cycle.first_hole[1] + k * cycle.step[1], 0.0}};
+  const double radius = cycle.first_radius_mm + k * cycle.step_radius_mm;
+  const double angle = cycle.first_angle_rad + k * cycle.step_angle_rad;
+  return CyclePoint{{cycle.polar_origin[0] + radius * std::cos(angle), cycle.polar_origin[1] + radius * std::sin(angle), 0.0}};
+}
+
 /// Calls visit(CycleStep) for each move of `cycle` starting at `start`, in order. Moves of zero
 /// length are skipped. Returns where the tool ends.
 template <typename Visit>
@@ -74,8 +93,8 @@ constexpr CyclePoint expand_cycle(const CannedCycle& cycle, const CyclePoint& st
   const auto z_to = [&](CycleStepKind kind, double z) { move(kind, CyclePoint{{at[0], at[1], z}}); };
   if (at[2] < cycle.r_z) z_to(CycleStepKind::Rapid, cycle.r_z);
   for (std::uint32_t repeat = 0; repeat < cycle.repeats; ++repeat) {
-    const double k = static_cast<double>(repeat);
-    move(CycleStepKind::Rapid, CyclePoint{{cycle.first_hole[0] + k * cycle.step[0], cycle.first_hole[1] + k * cycle.step[1], at[2]}});
+    const CyclePoint hole = cycle_hole(cycle, repeat);
+    move(CycleStepKind::Rapid, CyclePoint{{hole[0], hole[1], at[2]}});
     z_to(CycleStepKind::Rapid, cycle.r_z);
     switch (cycle.code) {
       case 73:

@@ -37,6 +37,10 @@
 //                      tool; tool 0: radius 0), G41.1/G42.1 D<diameter> directly (L only as 0; a negative
 //                      diameter compensates on the other side, as in LinuxCNC).
 //                      Refused while on: G41/G42 again, a plane change, G28/G30, G53, splines, cycles.
+//   @ ^                LinuxCNC's polar coordinates, instead of X Y (G17 only): @ the distance, ^ the
+//                      angle in degrees (counter-clockwise from +X), about the XY origin of the coordinate
+//                      system in force; G90 replaces the current point's distance/angle, G91 adds to them
+//                      (see polar_end_point). With G0 G1 G2 G3; refused with canned cycles and splines.
 // Arcs turn in the selected plane: G17 X Y with I J (K refused), G18 Z X with K I (J refused), G19
 // Y Z with J K (I refused); the third axis makes a helix. Motion::plane says which.
 //
@@ -350,6 +354,10 @@ class Interpreter {
                            group0_word->code_tenths != 301 && group0_word->code_tenths != 921 &&
                            group0_word->code_tenths != 922 && group0_word->code_tenths != 923;
     if (uses_axes && motion_word != nullptr) return fail(Error::GcodeConflictingWords, motion_word->column);
+    // Polar words are for motion only (LinuxCNC): not with G10, G28, G30, G53, G92.
+    if (const Word* polar = polar_word(block); polar != nullptr && (uses_axes || g53_word != nullptr)) {
+      return fail(Error::GcodeConflictingWords, polar->column);
+    }
     if (in_nurbs_ && (group0_word != nullptr || g53_word != nullptr)) {
       return fail(Error::GcodeNurbsBlock, (group0_word != nullptr ? group0_word : g53_word)->column);
     }
@@ -689,7 +697,17 @@ class Interpreter {
     }
   }
 
-  /// The end point from X Y Z (absolute or incremental), range-checked.
+  /// The block's first polar word (@ distance or ^ angle), or nullptr.
+  template <std::size_t Capacity>
+  [[nodiscard]] static const Word* polar_word(const Block<Capacity>& block) noexcept {
+    const Word* distance = block.find('@');
+    const Word* angle = block.find('^');
+    if (distance == nullptr) return angle;
+    if (angle == nullptr) return distance;
+    return distance->column < angle->column ? distance : angle;
+  }
+
+  /// The end point from X Y Z (absolute or incremental), range-checked; X Y may come from @ ^.
   template <std::size_t Capacity>
   [[nodiscard]] Result<Point> end_point(const Block<Capacity>& block) const noexcept {
     Point end = position_;
@@ -701,7 +719,65 @@ class Interpreter {
         end[axis] = v;
       }
     }
+    if (polar_word(block) != nullptr) CURVESTEP_CHECK(polar_end_point(block, end));
     return end;
+  }
+
+  /// A block's polar words applied to the current point (about the XY origin in force): the
+  /// distance and angle of the end (G90: the given ones replace the current point's; G91: they are
+  /// added), the given increments, and whether the current point is at the origin.
+  struct PolarMove {
+    const Word* word = nullptr;  ///< the first polar word
+    Point origin{};              ///< the XY origin in force, machine coordinates
+    bool at_origin = false;      ///< the current point is at that origin (its angle undefined)
+    bool has_angle = false;      ///< ^ was given
+    double step_mm = 0;          ///< @ in mm (0 if absent)
+    double step_rad = 0;         ///< ^ in radians (0 if absent)
+    double radius_mm = 0;        ///< distance of the end from the origin
+    double angle_rad = 0;        ///< angle of the end about the origin
+  };
+  template <std::size_t Capacity>
+  [[nodiscard]] PolarMove polar_move(const Block<Capacity>& block) const noexcept {
+    PolarMove p;
+    p.word = polar_word(block);
+    const Word* distance = block.find('@');
+    const Word* angle = block.find('^');
+    p.origin = offset_in_force();
+    const double x = position_[0] - p.origin[0];
+    const double y = position_[1] - p.origin[1];
+    p.at_origin = x == 0 && y == 0;
+    p.has_angle = angle != nullptr;
+    p.step_mm = distance != nullptr ? distance->value * scale() : 0.0;
+    p.step_rad = angle != nullptr ? angle->value * (std::numbers::pi / 180.0) : 0.0;
+    p.radius_mm = std::hypot(x, y);
+    p.angle_rad = std::atan2(y, x);
+    if (incremental_) {
+      p.radius_mm += p.step_mm;
+      p.angle_rad += p.step_rad;
+    } else {
+      if (distance != nullptr) p.radius_mm = p.step_mm;
+      if (angle != nullptr) p.angle_rad = p.step_rad;
+    }
+    return p;
+  }
+
+  /// LinuxCNC's polar coordinates: X Y of `end` from @ (distance) and ^ (angle, degrees,
+  /// counter-clockwise from +X) about the XY origin of the coordinate system in force. G90: the
+  /// given ones replace the current point's distance and angle (about that origin); G91: they are
+  /// added to them. Errors (at the polar word): X or Y in the block (GcodeConflictingWords); the
+  /// current point at the origin, where its angle is undefined, when that angle is needed (G90 @
+  /// without ^, any G91 polar move: GcodeMissingWord); the result out of range (GcodeBadNumber).
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> polar_end_point(const Block<Capacity>& block, Point& end) const noexcept {
+    const PolarMove p = polar_move(block);
+    if (block.find('X') != nullptr || block.find('Y') != nullptr) return fail(Error::GcodeConflictingWords, p.word->column);
+    if (p.at_origin && (incremental_ || !p.has_angle)) return fail(Error::GcodeMissingWord, p.word->column);
+    const double ex = p.radius_mm * std::cos(p.angle_rad) + p.origin[0];
+    const double ey = p.radius_mm * std::sin(p.angle_rad) + p.origin[1];
+    if (!(std::fabs(ex) <= max_coordinate_mm && std::fabs(ey) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, p.word->column);
+    end[0] = ex;
+    end[1] = ey;
+    return ok();
   }
 
   /// An offset word (I J K P Q R) in mm, or 0 if absent.
@@ -780,7 +856,7 @@ class Interpreter {
       mode_ = motion_word->code_tenths;
       mode_column_ = motion_word->column;
     }
-    const bool moves = has_any(block, "XYZIJKRPQL");
+    const bool moves = has_any(block, "XYZIJKRPQL@^");
     if (!moves) {
       if (motion_word == nullptr) return motion;
       if (is_cycle_code(mode_)) return fail(Error::GcodeCannedCycle, motion_word->column);  // no X Y Z
@@ -810,10 +886,14 @@ class Interpreter {
     if (compensation_side_ != CompensationSide::Off && (mode_ == 50 || mode_ == 51 || mode_ == 52 || is_cycle_code(mode_))) {
       return fail(Error::GcodeCutterCompensation, column);  // splines and cycles cannot be compensated
     }
+    if (const Word* polar = polar_word(block);
+        polar != nullptr && (plane_ != Plane::XY || !(mode_ == 0 || mode_ == 10 || mode_ == 20 || mode_ == 30 || is_cycle_code(mode_)))) {
+      return fail(Error::GcodeUnsupportedWord, polar->column);  // polar: G17 only (LinuxCNC); here not with splines
+    }
     switch (mode_) {
       case 0:
       case 10: {
-        CURVESTEP_CHECK(only(block, "XYZ", Error::GcodeConflictingWords));
+        CURVESTEP_CHECK(only(block, "XYZ@^", Error::GcodeConflictingWords));
         CURVESTEP_TRY(motion.end, end_point(block));
         previous_cubic_ = false;
         if (motion.end == position_) return motion;
@@ -836,7 +916,7 @@ class Interpreter {
   [[nodiscard]] Result<Motion> arc(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
     constexpr std::string_view offset_letters = "IJK";  // the centre offsets along X, Y, Z
     const PlaneAxes axes = axes_of(plane_);
-    CURVESTEP_CHECK(only(block, "XYZIJKRP", Error::GcodeConflictingWords));
+    CURVESTEP_CHECK(only(block, "XYZIJKRP@^", Error::GcodeConflictingWords));
     // The offset along the normal has no meaning; CAM posts (FreeCAD's grbl post) write K0 on G17 arcs.
     if (const Word* k = block.find(offset_letters[axes.normal]); k != nullptr && k->value != 0) {
       return fail(Error::GcodeConflictingWords, k->column);
@@ -907,11 +987,13 @@ class Interpreter {
   template <std::size_t Capacity>
   [[nodiscard]] Result<Motion> canned_cycle(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
     if (plane_ != Plane::XY) return fail(Error::GcodeUnsupportedWord, column);
-    CURVESTEP_CHECK(only(block, "XYZRQPL", Error::GcodeConflictingWords));
+    CURVESTEP_CHECK(only(block, "XYZRQPL@^", Error::GcodeConflictingWords));
     const Word* x = block.find('X');
     const Word* y = block.find('Y');
     const Word* z = block.find('Z');
-    if (x == nullptr && y == nullptr && z == nullptr) return fail(Error::GcodeCannedCycle, column);
+    const Word* polar = polar_word(block);
+    if (x == nullptr && y == nullptr && z == nullptr && polar == nullptr) return fail(Error::GcodeCannedCycle, column);
+    if (polar != nullptr && (x != nullptr || y != nullptr)) return fail(Error::GcodeConflictingWords, polar->column);
     // Sticky words: this block's, else the previous cycle block's.
     const auto sticky = [&](char letter, StickyValue& kept) -> Result<bool> {
       if (const Word* w = block.find(letter)) {
@@ -962,11 +1044,11 @@ class Interpreter {
       c.r_z = cycle_sticky_.r.value * scale() + offset[2];
       c.bottom_z = cycle_sticky_.z.value * scale() + offset[2];
     }
+    if (polar != nullptr) CURVESTEP_CHECK(polar_holes(block, c));
     if (c.r_z < c.bottom_z) return fail(Error::GcodeCannedCycle, here('R'));
     c.clear_z = retract_to_initial_ && initial_z > c.r_z ? initial_z : c.r_z;
-    const double last = static_cast<double>(c.repeats - 1);
-    for (const double v : {c.first_hole[0], c.first_hole[1], c.first_hole[0] + last * c.step[0], c.first_hole[1] + last * c.step[1],
-                           c.r_z, c.bottom_z}) {
+    const CyclePoint last_hole = cycle_hole(c, c.repeats - 1);
+    for (const double v : {c.first_hole[0], c.first_hole[1], last_hole[0], last_hole[1], c.r_z, c.bottom_z}) {
       if (!(std::fabs(v) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, column);
     }
     motion.kind = MotionKind::Cycle;
@@ -975,6 +1057,29 @@ class Interpreter {
     position_ = motion.end;
     previous_cubic_ = false;
     return motion;
+  }
+
+  /// The holes of a cycle block with polar words (LinuxCNC's convert_cycle_xy): G90 places the
+  /// hole at @ ^ about the XY origin in force (a missing one from the current point; at the origin
+  /// the angle is 0, as atan2(0, 0) gives LinuxCNC); G91 adds @ to the distance and ^ to the angle
+  /// per repeat (GcodeMissingWord if it starts at the origin, where the angle is undefined).
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> polar_holes(const Block<Capacity>& block, CannedCycle& c) const noexcept {
+    const PolarMove p = polar_move(block);
+    if (incremental_ && p.at_origin) return fail(Error::GcodeMissingWord, p.word->column);
+    c.polar_origin = p.origin;
+    c.step = Point{};
+    c.polar_steps = incremental_;
+    c.step_radius_mm = incremental_ ? p.step_mm : 0.0;
+    c.step_angle_rad = incremental_ ? p.step_rad : 0.0;
+    c.first_radius_mm = p.radius_mm;
+    c.first_angle_rad = p.angle_rad;
+    c.first_hole = Point{{p.origin[0] + p.radius_mm * std::cos(p.angle_rad), p.origin[1] + p.radius_mm * std::sin(p.angle_rad), 0.0}};
+    const double reach = std::fabs(c.first_radius_mm) + static_cast<double>(c.repeats - 1) * std::fabs(c.step_radius_mm);
+    if (!(std::fabs(p.origin[0]) + reach <= max_coordinate_mm && std::fabs(p.origin[1]) + reach <= max_coordinate_mm)) {
+      return fail(Error::GcodeBadNumber, p.word->column);
+    }
+    return ok();
   }
 
   template <std::size_t Capacity>

@@ -43,7 +43,10 @@ struct Word {
   std::uint16_t column = 0;      ///< 1-based column of the letter
 };
 
-/// The letters the parser accepts (G M N F X Y Z I J K R P Q L S T H D).
+/// Whether `c` is LinuxCNC's polar distance (@) or angle (^) word.
+[[nodiscard]] constexpr bool is_polar_letter(char c) noexcept { return c == '@' || c == '^'; }
+
+/// The letters the parser accepts (G M N F X Y Z I J K R P Q L S T H D, and the polar @ ^).
 [[nodiscard]] constexpr bool is_supported_letter(char letter) noexcept {
   switch (letter) {
     case 'G': case 'M': case 'N': case 'F':
@@ -51,6 +54,7 @@ struct Word {
     case 'I': case 'J': case 'K': case 'R':
     case 'P': case 'Q': case 'L':
     case 'S': case 'T': case 'H': case 'D':
+    case '@': case '^':
       return true;
     default:
       return false;
@@ -237,7 +241,7 @@ template <std::size_t Capacity = 24>
       ++position;
       continue;
     }
-    if (!detail::is_letter(c)) return fail(Error::GcodeSyntax, detail::column_of(position));
+    if (!detail::is_letter(c) && !is_polar_letter(c)) return fail(Error::GcodeSyntax, detail::column_of(position));
     if (delimiter) return fail(Error::GcodeSyntax, detail::column_of(position));
     const char letter = detail::to_upper(c);
     const std::size_t letter_position = position;
