@@ -96,12 +96,14 @@ std::string explain(Error code, const std::string& word) {
       if (!word.empty() && (word[0] == 'A' || word[0] == 'B' || word[0] == 'C' || word[0] == 'U' || word[0] == 'V' || word[0] == 'W')) {
         return "rotary and parallel axes (A B C U V W) are not supported: this is a 3-axis (X Y Z) machine";
       }
-      if (is({"G93"})) return "inverse-time feed (G93) is not supported: use G94 (units per minute)";
       if (is({"G95"})) return "feed per revolution (G95) needs a spindle model, which this controller does not have: use G94";
       if (is({"G41", "G42", "G41.1", "G42.1"})) {
         return "cutter radius compensation works in the G17 (XY) plane only (this controller compensates mills; lathe compensation in G18 is not supported)";
       }
-      if (is({"G43.1", "G43.2"})) return "dynamic tool length offsets (G43.1/G43.2) are not supported: use G43 H with the machine file's tool table";
+      if (is({"G43.2"})) return "additional tool length offsets (G43.2) are not supported: use G43 H (the machine file's tool table) or G43.1 Z";
+      if (!word.empty() && (word[0] == 'X' || word[0] == 'Y')) {
+        return "G43.1 takes the tool length offset along Z only: X and Y tool offsets (a lathe's) do not exist on this 3-axis machine";
+      }
       if (is({"G73", "G81", "G82", "G83", "G85", "G86", "G89"})) return "canned cycles run in the G17 (XY) plane only";
       if (is({"G74", "G84"})) return "tapping cycles (G74/G84) need spindle-synchronised motion, which this controller does not have";
       if (is({"G87", "G88"})) return "back boring (G87) and manual-retract boring (G88) are not supported: use G81-G89 cycles or G0/G1";
@@ -160,6 +162,9 @@ std::string explain(Error code, const std::string& word) {
       }
       if (word.starts_with("G28") || word.starts_with("G30")) return "G28/G30 cannot be used while cutter radius compensation is on (G40 first)";
       if (word.starts_with("G53")) return "G53 (machine coordinates) cannot be used while cutter radius compensation is on (G40 first)";
+      if (word.starts_with("G43") || word.starts_with("G49")) {
+        return "the tool length offset (G43, G43.1, G49) cannot change while cutter radius compensation is on (G40 first), as in LinuxCNC";
+      }
       if (word.starts_with("G5")) return "splines (G5, G5.1, G5.2) cannot be compensated: G40 first, or let the CAM offset them";
       if (word.starts_with("G7") || word.starts_with("G8")) return "canned cycles cannot run while cutter radius compensation is on (G40 first)";
       return "this motion cannot be compensated (splines, canned cycles): G40 first";
@@ -182,6 +187,22 @@ std::string explain(Error code, const std::string& word) {
       return "too many control points in the G5.2 block";
     default: return std::string(describe(code));
   }
+}
+
+/// Why a block was refused for its feed (G93, G94), in LinuxCNC's terms.
+std::string feed_refusal_text(machine::FeedRefusal why) {
+  switch (why) {
+    case machine::FeedRefusal::InverseTimeWithoutF:
+      return "F word missing with an inverse-time move: in G93 every G1, G2, G3 needs its own F (the move takes 1/F minutes)";
+    case machine::FeedRefusal::NoFeedAfterG94:
+      return "no feed rate in force: G94 after G93 leaves none (as in LinuxCNC), give a new F before this feed move";
+    case machine::FeedRefusal::SplineInInverseTime:
+      return "splines (G5, G5.1, G5.2) cannot run in inverse-time feed mode (G93): LinuxCNC gives them no time of their own; use G94 and F";
+    case machine::FeedRefusal::CycleInInverseTime:
+      return "cannot use inverse-time feed (G93) with canned cycles, as in LinuxCNC: G94 and F first";
+    case machine::FeedRefusal::None: break;
+  }
+  return {};
 }
 
 class GcodeLoader {
@@ -217,6 +238,9 @@ class GcodeLoader {
       const auto motion = interpreter_.execute(block);
       if (!motion) {
         if (motion.error() == Error::GcodeArcRadiusMismatch) fail_radii(block, motion.where());
+        if (interpreter_.refused_feed() != machine::FeedRefusal::None) {
+          fail_message(motion.where(), feed_refusal_text(interpreter_.refused_feed()), motion.error());
+        }
         fail(motion.where(), motion.error());
       }
       if (!was_in_nurbs && interpreter_.in_nurbs_block()) {

@@ -283,7 +283,8 @@ TEST_CASE("gcode import: every G-code error code reaches the user with its word"
   const Case cases[] = {
       {"G1 X1 F100\nG1 A5\n", 2, 4, "A5", Error::GcodeUnsupportedWord},
       {"G1 X1 F100\nG2 X1 Y1 I1 E100\n", 2, 13, "E100", Error::GcodeUnsupportedWord},
-      {"G93\n", 1, 1, "G93", Error::GcodeUnsupportedWord},
+      {"G95\n", 1, 1, "G95", Error::GcodeUnsupportedWord},
+      {"G93 G1 X1\n", 1, 5, "G1", Error::GcodeMissingWord},
       {"G1 X12345678901234567.5\n", 1, 4, "X12345678901234567.5", Error::GcodeBadNumber},
       {"G1 X99999\n", 1, 4, "X99999", Error::GcodeBadNumber},
       {"G5 I1 J1 P1 X1 Y1\n", 1, 1, "G5", Error::GcodeMissingWord},

@@ -28,9 +28,8 @@ inline Motion run(Machine& machine, std::initializer_list<std::string_view> line
   return last;
 }
 
-/// Runs `lines`; all but the last must succeed; returns the last one's failure.
-inline Failure run_failing(std::initializer_list<std::string_view> lines) {
-  Machine machine;
+/// Runs `lines` on `machine`; all but the last must succeed; returns the last one's failure.
+inline Failure run_failing(Machine& machine, std::initializer_list<std::string_view> lines) {
   std::size_t i = 0;
   for (const auto line : lines) {
     INFO(line);
@@ -46,6 +45,12 @@ inline Failure run_failing(std::initializer_list<std::string_view> lines) {
   }
   FAIL("no lines");
   return {};
+}
+
+/// Runs `lines` on a new machine; all but the last must succeed; returns the last one's failure.
+inline Failure run_failing(std::initializer_list<std::string_view> lines) {
+  Machine machine;
+  return run_failing(machine, lines);
 }
 
 }  // namespace curvestep::gcode::testing

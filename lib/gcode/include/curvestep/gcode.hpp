@@ -4,4 +4,5 @@
 
 #include <curvestep/gcode/canned_cycle.hpp>
 #include <curvestep/gcode/interpreter.hpp>
+#include <curvestep/gcode/inverse_time.hpp>
 #include <curvestep/gcode/parser.hpp>

@@ -27,6 +27,15 @@
 //   Splines only in G17 (GcodeSplineNotG17) and only in X and Y (a Z word is GcodeConflictingWords).
 //   G17/G18/G19, G20/G21, G90/G91, G90.1/G91.1 are modal; F is modal (per minute, in units);
 //   M2/M30 end the program.
+//   G93 / G94          inverse-time / units-per-minute feed. In G93 every G1 G2 G3 carries its own F
+//                      and takes 1/F minutes: its feed is its length × F (inverse_time.hpp); F is
+//                      not modal and an F elsewhere is ignored; G0 is unaffected; splines and canned
+//                      cycles are refused. G94 after G93 leaves no feed in force: the next feed move
+//                      needs an F (LinuxCNC). Why a block was refused: refused_feed().
+//   G43 H / G43.1 Z / G49  tool length offset from the tool table / given directly (Z in the
+//                      program's units, replacing the offset in force; G91 does not apply; X Y
+//                      refused on this 3-axis machine; no motion word on the line) / cancelled.
+//                      None of them while cutter compensation is on (LinuxCNC).
 //   G73 G81 G82 G83 G85 G86 G89 canned cycles (G17): MotionKind::Cycle with the holes and levels
 //                      resolved (canned_cycle.hpp expands them); Z R Q P sticky through the series;
 //                      G98 (default) / G99 retract modes; G80 cancels.
@@ -60,6 +69,7 @@
 #include <curvestep/core/geometry/vec.hpp>
 #include <curvestep/core/result.hpp>
 #include <curvestep/gcode/canned_cycle.hpp>
+#include <curvestep/gcode/inverse_time.hpp>
 #include <curvestep/gcode/parser.hpp>
 
 namespace curvestep::gcode {
@@ -83,6 +93,19 @@ enum class MotionKind : std::uint8_t {
 enum class Plane : std::uint8_t { XY, ZX, YZ };
 /// Active units (G21, G20).
 enum class Units : std::uint8_t { Millimetres, Inches };
+
+/// Feed mode (G94 units per minute, G93 inverse time).
+enum class FeedMode : std::uint8_t { UnitsPerMinute, InverseTime };
+
+/// Why a block was refused for its feed, where the error code and the word do not say it
+/// (Interpreter::refused_feed()).
+enum class FeedRefusal : std::uint8_t {
+  None,                 ///< not refused for its feed
+  InverseTimeWithoutF,  ///< a G1 G2 G3 in G93 without its F (GcodeMissingWord)
+  NoFeedAfterG94,       ///< a feed move after G93 -> G94 before any new F (GcodeMissingWord)
+  SplineInInverseTime,  ///< G5, G5.1, G5.2 in G93 (GcodeUnsupportedWord)
+  CycleInInverseTime,   ///< a canned cycle in G93 (GcodeCannedCycle)
+};
 
 /// Cutter radius compensation in force (G40, G41/G41.1 left of the path, G42/G42.1 right).
 enum class CompensationSide : std::uint8_t { Off, Left, Right };
@@ -125,7 +148,7 @@ struct Motion {
   double radius_difference_mm = 0;            ///< arc: |r_end - r_start|, already within tolerance
   std::array<Point, 4> control{};             ///< Cubic: 4, Quadratic: 3 control points
   std::size_t nurbs_order = 0;                ///< Nurbs: order (degree + 1)
-  double feed_mm_per_min = 0;                 ///< modal feed, 0 if none was given
+  double feed_mm_per_min = 0;                 ///< modal feed, 0 if none was given (G93: this move's length × F)
   bool feed_given = false;                    ///< an F word has been given (so 0 is an explicit F0)
   std::uint16_t column = 0;                   ///< column of the word that commanded the motion
   bool program_end = false;                   ///< the block held M2 or M30
@@ -242,7 +265,11 @@ class Interpreter {
   [[nodiscard]] constexpr bool spindle_counter_clockwise() const noexcept { return spindle_ccw_; }
   /// G98 (return to the initial level) rather than G99 (return to R) is in force.
   [[nodiscard]] constexpr bool retract_to_initial_level() const noexcept { return retract_to_initial_; }
-  /// The tool length offset in force (G43), mm.
+  /// The feed mode in force (G93, G94).
+  [[nodiscard]] constexpr FeedMode feed_mode() const noexcept { return inverse_time_ ? FeedMode::InverseTime : FeedMode::UnitsPerMinute; }
+  /// Why the last block was refused for its feed (FeedRefusal::None if it was not).
+  [[nodiscard]] constexpr FeedRefusal refused_feed() const noexcept { return refused_feed_; }
+  /// The tool length offset in force (G43, G43.1), mm.
   [[nodiscard]] constexpr double tool_length_offset_mm() const noexcept { return tool_length_mm_; }
   /// Sets the work offset of coordinate system `index` (0 = G54 … 8 = G59.3), mm, as G10 L2 would.
   constexpr void set_work_offset(std::size_t index, const Point& offset) noexcept {
@@ -321,9 +348,9 @@ class Interpreter {
           case 200: case 210: slot = &units_word; break;
           case 900: case 910: slot = &distance_word; break;
           case 901: case 911: slot = &arc_distance_word; break;
-          case 940: slot = &feed_mode_word; break;
+          case 930: case 940: slot = &feed_mode_word; break;
           case 400: case 410: case 411: case 420: case 421: slot = &compensation_word; break;
-          case 430: case 490: slot = &tool_length_word; break;
+          case 430: case 431: case 490: slot = &tool_length_word; break;
           case 540: case 550: case 560: case 570: case 580: case 590: case 591: case 592: case 593: slot = &coordinate_word; break;
           case 610: case 611: case 640: slot = &path_word; break;
           case 980: case 990: slot = &retract_word; break;
@@ -354,6 +381,11 @@ class Interpreter {
                            group0_word->code_tenths != 301 && group0_word->code_tenths != 921 &&
                            group0_word->code_tenths != 922 && group0_word->code_tenths != 923;
     if (uses_axes && motion_word != nullptr) return fail(Error::GcodeConflictingWords, motion_word->column);
+    // G43.1 takes the axis words as its offsets: no motion word, no other code using them (LinuxCNC).
+    const bool dynamic_tool_length = tool_length_word != nullptr && tool_length_word->code_tenths == 431;
+    if (dynamic_tool_length && (uses_axes || motion_word != nullptr)) {
+      return fail(Error::GcodeConflictingWords, motion_word != nullptr ? motion_word->column : group0_word->column);
+    }
     // Polar words are for motion only (LinuxCNC): not with G10, G28, G30, G53, G92.
     if (const Word* polar = polar_word(block); polar != nullptr && (uses_axes || g53_word != nullptr)) {
       return fail(Error::GcodeConflictingWords, polar->column);
@@ -368,12 +400,25 @@ class Interpreter {
     Motion motion;
     motion.start = position_;
     motion.end = position_;
-    // ---- LinuxCNC's order of execution: feed, S, T, M6, M3-M5, M7-M9, outputs, dwell, plane, units,
-    // compensation, tool length, coordinate system, path control, distance modes, group 0, motion, stop ----
+    refused_feed_ = FeedRefusal::None;
+    // ---- LinuxCNC's order of execution: feed mode, feed, S, T, M6, M3-M5, M7-M9, outputs, dwell, plane,
+    // units, compensation, tool length, coordinate system, path control, distance modes, group 0, motion, stop ----
+    if (feed_mode_word != nullptr) {
+      const bool inverse_time = feed_mode_word->code_tenths == 930;
+      if (inverse_time_ && !inverse_time) {  // G94 after G93 (LinuxCNC's convert_feed_mode): no feed rate in force
+        feed_value_ = 0;
+        feed_given_ = false;
+        feed_needed_ = true;
+      }
+      inverse_time_ = inverse_time;
+    }
     if (const Word* f = block.find('F')) {
       if (!(f->value >= 0)) return fail(Error::GcodeBadNumber, f->column);
-      feed_value_ = f->value;
-      feed_given_ = true;
+      if (!inverse_time_) {  // in G93, F belongs to this block's G1 G2 G3 alone
+        feed_value_ = f->value;
+        feed_given_ = true;
+        feed_needed_ = false;
+      }
     }
     const auto add_event = [&motion](MachineEventKind kind, double value, bool flag, std::uint16_t column) {
       if (motion.event_count < max_block_events) motion.events[motion.event_count++] = MachineEvent{kind, value, flag, column};
@@ -441,8 +486,11 @@ class Interpreter {
     motion.compensation_side = compensation_side_;
     motion.compensation_radius_mm = compensation_radius_mm_;
     if (tool_length_word != nullptr) {
+      if (compensation_side_ != CompensationSide::Off) return fail(Error::GcodeCutterCompensation, tool_length_word->column);
       if (tool_length_word->code_tenths == 490) {
         tool_length_mm_ = 0;
+      } else if (dynamic_tool_length) {
+        CURVESTEP_CHECK(dynamic_tool_length_offset(block));
       } else {
         std::size_t tool = loaded_tool_;
         if (const Word* h = block.find('H')) {
@@ -491,7 +539,7 @@ class Interpreter {
       if (w.letter == 'Q' && path_word != nullptr && path_word->code_tenths == 640) consumed = true;
       if ((w.letter == 'L' || w.letter == 'R') && group0_word != nullptr && group0_word->code_tenths == 100) consumed = true;
       if (w.letter == 'L' && compensation_word != nullptr && compensation_word->code_tenths % 10 == 1) consumed = true;
-      if (uses_axes && (w.letter == 'X' || w.letter == 'Y' || w.letter == 'Z')) consumed = true;
+      if ((uses_axes || dynamic_tool_length) && (w.letter == 'X' || w.letter == 'Y' || w.letter == 'Z')) consumed = true;
       if (!consumed) (void)motion_block.try_push(w);
     }
     if (group0_word != nullptr) {
@@ -531,6 +579,7 @@ class Interpreter {
         plane_ = Plane::XY;
         incremental_ = false;
         spindle_on_ = false;
+        inverse_time_ = false;
         compensation_side_ = CompensationSide::Off;
         compensation_radius_mm_ = 0;
       }
@@ -548,6 +597,20 @@ class Interpreter {
     Point o = work_offsets_[coordinate_system_] + g92_offset_;
     o[2] += tool_length_mm_;
     return o;
+  }
+
+  /// G43.1 Z: the tool length offset becomes Z (program units; G91 does not apply, as in LinuxCNC's
+  /// convert_tool_length_offset); without Z it stays. X and Y (a lathe's tool offsets) are refused.
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> dynamic_tool_length_offset(const Block<Capacity>& block) noexcept {
+    for (const char letter : {'X', 'Y'}) {
+      if (const Word* w = block.find(letter)) return fail(Error::GcodeUnsupportedWord, w->column);
+    }
+    if (const Word* z = block.find('Z')) {
+      if (!(std::fabs(z->value * scale()) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, z->column);
+      tool_length_mm_ = z->value * scale();
+    }
+    return ok();
   }
 
   /// G40 / G41 / G42 / G41.1 / G42.1 (LinuxCNC semantics, G17 only).
@@ -808,12 +871,58 @@ class Interpreter {
     return false;
   }
 
+  /// The feed a feed move of motion mode mode_ needs, checked before it runs (LinuxCNC): in G93 a G1
+  /// G2 G3 needs its own F and splines and canned cycles are refused; after G93 -> G94 a feed move
+  /// needs a new F first. Failures name `column` and set refused_feed_.
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> check_feed(const Block<Capacity>& block, std::uint16_t column) noexcept {
+    const bool line_or_arc = mode_ == 10 || mode_ == 20 || mode_ == 30;
+    const bool spline = mode_ == 50 || mode_ == 51 || mode_ == 52;
+    FeedRefusal why = FeedRefusal::None;
+    Error code = Error::GcodeMissingWord;
+    if (inverse_time_) {
+      if (spline) {
+        why = FeedRefusal::SplineInInverseTime;
+        code = Error::GcodeUnsupportedWord;
+      } else if (is_cycle_code(mode_)) {
+        why = FeedRefusal::CycleInInverseTime;
+        code = Error::GcodeCannedCycle;
+      } else if (line_or_arc && block.find('F') == nullptr) {
+        why = FeedRefusal::InverseTimeWithoutF;
+      }
+    } else if (feed_needed_ && (line_or_arc || spline || is_cycle_code(mode_))) {
+      why = FeedRefusal::NoFeedAfterG94;
+    }
+    if (why == FeedRefusal::None) return ok();
+    refused_feed_ = why;
+    return fail(code, column);
+  }
+
+  /// A G1 G2 G3 in G93: the feed that makes it take 1/F minutes (F is on the block, check_feed saw to it).
+  template <std::size_t Capacity>
+  void set_inverse_time_feed(const Block<Capacity>& block, Motion& motion) const noexcept {
+    double length_mm = norm(motion.end - motion.start);
+    if (motion.kind == MotionKind::Arc) {
+      const PlaneAxes axes = axes_of(motion.plane);
+      const auto angle_of = [&](const Point& p) {
+        return std::atan2(p[axes.second] - motion.center[axes.second], p[axes.first] - motion.center[axes.first]);
+      };
+      const double radius = std::hypot(motion.start[axes.first] - motion.center[axes.first],
+                                       motion.start[axes.second] - motion.center[axes.second]);
+      const double swept = arc_swept_angle_rad(angle_of(motion.start), angle_of(motion.end), motion.direction, motion.full_turns);
+      length_mm = helix_length_mm(radius, swept, motion.end[axes.normal] - motion.start[axes.normal]);
+    }
+    motion.feed_mm_per_min = inverse_time_feed_mm_per_min(length_mm, block.find('F')->value, scale());
+    motion.feed_given = true;
+  }
+
   /// A line inside a G5.2 block: a control point, or G5.3.
   template <std::size_t Capacity>
   [[nodiscard]] Result<Motion> nurbs_line(const Block<Capacity>& block, const Word* motion_word, Motion motion) noexcept {
     if (motion_word != nullptr && motion_word->code_tenths != 53) return fail(Error::GcodeNurbsBlock, motion_word->column);
     if (motion_word != nullptr) {  // G5.3
       CURVESTEP_CHECK(only(block, "", Error::GcodeNurbsBlock));
+      CURVESTEP_CHECK(check_feed(block, motion_word->column));  // G93 or G94 may have come inside the block
       in_nurbs_ = false;
       mode_ = -1;  // G5.3 leaves no motion mode: axis words after it need a G code
       if (nurbs_count_ < nurbs_order_) return fail(Error::GcodeNurbsBlock, motion_word->column);
@@ -862,6 +971,7 @@ class Interpreter {
       if (is_cycle_code(mode_)) return fail(Error::GcodeCannedCycle, motion_word->column);  // no X Y Z
       if (mode_ == 52) {
         if (compensation_side_ != CompensationSide::Off) return fail(Error::GcodeCutterCompensation, motion_word->column);
+        CURVESTEP_CHECK(check_feed(block, motion_word->column));
         return start_nurbs(block, *motion_word, motion);
       }
       if (mode_ == 53) return fail(Error::GcodeNurbsBlock, motion_word->column);
@@ -890,6 +1000,7 @@ class Interpreter {
         polar != nullptr && (plane_ != Plane::XY || !(mode_ == 0 || mode_ == 10 || mode_ == 20 || mode_ == 30 || is_cycle_code(mode_)))) {
       return fail(Error::GcodeUnsupportedWord, polar->column);  // polar: G17 only (LinuxCNC); here not with splines
     }
+    CURVESTEP_CHECK(check_feed(block, column));
     switch (mode_) {
       case 0:
       case 10: {
@@ -899,10 +1010,15 @@ class Interpreter {
         if (motion.end == position_) return motion;
         motion.kind = mode_ == 0 ? MotionKind::Rapid : MotionKind::Line;
         position_ = motion.end;
+        if (inverse_time_ && mode_ == 10) set_inverse_time_feed(block, motion);
         return motion;
       }
       case 20:
-      case 30: return arc(block, column, motion);
+      case 30: {
+        CURVESTEP_TRY(motion, arc(block, column, motion));
+        if (inverse_time_) set_inverse_time_feed(block, motion);
+        return motion;
+      }
       case 50: return cubic(block, column, motion);
       case 51: return quadratic(block, column, motion);
       case 52: return start_nurbs(block, Word{'G', 5.2, 52, column}, motion);
@@ -1214,6 +1330,9 @@ class Interpreter {
   double previous_q_ = 0;
   double feed_value_ = 0;
   bool feed_given_ = false;
+  bool inverse_time_ = false;  ///< G93 in force
+  bool feed_needed_ = false;   ///< G94 came after G93 and no F since: a feed move needs one first
+  FeedRefusal refused_feed_ = FeedRefusal::None;
   std::int32_t mode_ = -1;
   std::uint16_t mode_column_ = 0;
   std::size_t nurbs_order_ = 3;
