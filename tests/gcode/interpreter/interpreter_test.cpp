@@ -403,7 +403,7 @@ TEST_CASE("gcode interpreter: compensation errors at the word at fault", "[gcode
       {{"G41 D1"}, Error::GcodeCutterCompensation, 5},         // tool 1 has no diameter
       {{"T3 M6", "G42"}, Error::GcodeMissingWord, 1},           // the loaded tool has none either
       {{"G41 D0", "G42 D0"}, Error::GcodeCutterCompensation, 1},  // already on
-      {{"G18 G41 D0"}, Error::GcodeUnsupportedWord, 5},         // G17 only
+      {{"G19 G41 D0"}, Error::GcodeUnsupportedWord, 5},         // G17 and G18 only (LinuxCNC)
       {{"G41 D0", "G19"}, Error::GcodeCutterCompensation, 1},   // no plane change while on
       {{"G41.1"}, Error::GcodeMissingWord, 1},
       {{"G41.1 D99999"}, Error::GcodeBadNumber, 7},             // beyond +-32767 mm
