@@ -34,6 +34,27 @@ inline GcodeOptions tool_table() {
 
 inline Job load_compensated(const std::string& text) { return parse_gcode_job(text, "comp.ngc", tool_table()); }
 
+/// A refused program: what() of its LoadError contains `where` (file:line:column: word) and `says`.
+struct Refusal {
+  const char* text;
+  const char* where;
+  const char* says;
+};
+inline void check_refusals(const std::vector<Refusal>& cases) {
+  for (const auto& c : cases) {
+    INFO(c.text);
+    std::string message;
+    try {
+      (void)load_compensated(c.text);
+    } catch (const LoadError& e) {
+      message = e.what();
+    }
+    INFO(message);
+    CHECK(message.find(c.where) != std::string::npos);
+    CHECK(message.find(c.says) != std::string::npos);
+  }
+}
+
 /// Checks the segments' ends (and arcs' centres and middles) and that each starts where the last ended.
 inline void check_path(const Job& job, const std::vector<Expected>& expected) {
   REQUIRE(job.segments.size() == expected.size());

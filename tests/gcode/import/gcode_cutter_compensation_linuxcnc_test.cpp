@@ -38,13 +38,19 @@ const std::vector<std::array<double, 2>> square{{{0, 0}}, {{0, 20}}, {{20, 20}},
 constexpr double entry_cu = -19.0 / 3.0;
 constexpr double entry_radius = 13.0 / 3.0;
 
-/// The end of each source segment (its last piece), in order.
-std::vector<MachinePoint> source_ends(const Job& job) {
+/// Each source segment of a G18 job ends (its last piece) at the expected (Z, X), in order, with Y 0.
+void check_zx_source_ends(const Job& job, const std::vector<std::array<double, 2>>& expected) {
   std::map<std::size_t, MachinePoint> ends;
   for (std::size_t j = 0; j < job.segments.size(); ++j) ends[job.source_index[j]] = job.segments[j].end();
-  std::vector<MachinePoint> out;
-  for (const auto& [index, end] : ends) out.push_back(end);
-  return out;
+  REQUIRE(ends.size() == expected.size());
+  std::size_t i = 0;
+  for (const auto& [index, end] : ends) {
+    INFO("source " << index);
+    CHECK(end[2] == Approx(expected[i][0]).margin(1e-4));
+    CHECK(end[0] == Approx(expected[i][1]).margin(1e-4));
+    CHECK(end[1] == Approx(0).margin(1e-9));
+    ++i;
+  }
 }
 
 /// Every piece of the sources [first, last] of `job`, sampled, is `expected` mm from the square, in
@@ -97,14 +103,7 @@ TEST_CASE("cutter compensation: the same square in G18, Z the first axis and X t
   const Job job = testing::load_compensated("G21 G18 G90\nG0 X-4 Z-8\nG41 D1\nG3 X0 Z0 K3 I4 F600\nG1 X20\nZ20\nX0\nZ0\nG40\nG1 X-10 Z-10\nM2\n");
   const std::vector<std::array<double, 2>> expected{{{-8, -4}}, {{-2, 0}},  {{-2, 20}}, {{0, 22}}, {{20, 22}},
                                                     {{22, 20}}, {{22, 0}}, {{20, -2}}, {{0, -2}}, {{-10, -10}}};
-  const std::vector<MachinePoint> ends = source_ends(job);
-  REQUIRE(ends.size() == expected.size());
-  for (std::size_t i = 0; i < ends.size(); ++i) {
-    INFO("source " << i);
-    CHECK(ends[i][2] == Approx(expected[i][0]).margin(1e-4));
-    CHECK(ends[i][0] == Approx(expected[i][1]).margin(1e-4));
-    CHECK(ends[i][1] == Approx(0).margin(1e-9));
-  }
+  check_zx_source_ends(job, expected);
   // The entry arc: on the circle about B (Z -19/3, X 0) of radius 13/3, through X < 0 (counter-
   // clockwise seen from +Y from T to E; the other way round it would pass X > 0).
   for (std::size_t j = 0; j < job.segments.size(); ++j) {
@@ -123,13 +122,7 @@ TEST_CASE("cutter compensation: the same square in G18, Z the first axis and X t
     // (2,0), G40 ends the last side square at (0,2).
     const Job inside = testing::load_compensated("G21 G18\nG0 X10 Z10\nG42 D1\nG1 X0 Z0 F600\nX20\nZ20\nX0\nZ0\nG40\nG1 X10 Z10\n");
     const std::vector<std::array<double, 2>> corners{{{10, 10}}, {{2, 0}}, {{2, 18}}, {{18, 18}}, {{18, 2}}, {{0, 2}}, {{10, 10}}};
-    const std::vector<MachinePoint> inside_ends = source_ends(inside);
-    REQUIRE(inside_ends.size() == corners.size());
-    for (std::size_t i = 0; i < corners.size(); ++i) {
-      INFO("source " << i);
-      CHECK(inside_ends[i][2] == Approx(corners[i][0]).margin(1e-4));
-      CHECK(inside_ends[i][0] == Approx(corners[i][1]).margin(1e-4));
-    }
+    check_zx_source_ends(inside, corners);
   }
 }
 
@@ -171,11 +164,7 @@ TEST_CASE("cutter compensation: an inside corner within 0.05 rad of a reversal w
 
 TEST_CASE("cutter compensation: LinuxCNC's gouges and impossible entry arcs are refused with file:line:column",
           "[gcode][import][compensation][errors]") {
-  const struct {
-    const char* text;
-    const char* where;
-    const char* says;
-  } cases[] = {
+  testing::check_refusals({
       // As the near-reversal above, but turning 180° - atan(0.1) = 174.3°: 0.0997 rad from a
       // reversal, beyond LinuxCNC's 0.05; the line y = 2 is 12 from C = (1,-10), the offset circle R - 2 = 8.05.
       {"G21 G17\nG0 X30 Y10\nG42 D1\nG1 X20 Y0 F600\nX0\nG2 X2 Y0 I1 J-10\n", "comp.ngc:6:1: G2", "do not meet at their inside corner"},
@@ -189,17 +178,5 @@ TEST_CASE("cutter compensation: LinuxCNC's gouges and impossible entry arcs are 
       {"G21\nG0 X-3 Y0\nG41 D1\nG3 X0 Y0 I1.5 J0 F600\n", "comp.ngc:4:1: G3", "not larger than the tool radius"},
       // The exit move stays a line (LinuxCNC's bad/ccomp-arcexit), in G18 too.
       {"G21 G18\nG0 X-10 Z0\nG41 D1\nG1 X0 Z0 F600\nZ20\nG40\nG2 X0 Z30 K5 I0\n", "comp.ngc:7:1: G2", "exit move"},
-  };
-  for (const auto& c : cases) {
-    INFO(c.text);
-    std::string message;
-    try {
-      (void)testing::load_compensated(c.text);
-    } catch (const LoadError& e) {
-      message = e.what();
-    }
-    INFO(message);
-    CHECK(message.find(c.where) != std::string::npos);
-    CHECK(message.find(c.says) != std::string::npos);
-  }
+  });
 }

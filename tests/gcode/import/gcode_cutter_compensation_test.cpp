@@ -149,11 +149,7 @@ TEST_CASE("cutter compensation: Z moves and events wait for the held move", "[gc
 }
 
 TEST_CASE("cutter compensation: what cannot be compensated is refused with file:line:column", "[gcode][import][compensation][errors]") {
-  const struct {
-    const char* text;
-    const char* where;
-    const char* says;
-  } cases[] = {
+  testing::check_refusals({
       // A concave arc (left of counter-clockwise) of radius 1.5 with a tool of radius 2.
       {"G21\nG0 X0 Y-10\nG41 D1\nG1 X0 Y0 F600\nG3 X3 Y0 I1.5 J0\n", "comp.ngc:5:1: G3", "not larger than the tool radius"},
       // Inside corner on a move 1 mm long: the offsets cross at y = 2, beyond its offset end y = 1.
@@ -177,14 +173,7 @@ TEST_CASE("cutter compensation: what cannot be compensated is refused with file:
       // The entry move does not end farther than the tool radius from the tool (a line or an arc).
       {"G21\nG41 D1\nG1 X1 Y1 F600\nX10\n", "comp.ngc:3:1: G1", "farther than the tool radius"},
       {"G21\nG41 D1\nG2 X1 Y1 I1 J0 F600\nX10\n", "comp.ngc:3:1: G2", "farther than the tool radius"},
-  };
-  for (const auto& c : cases) {
-    INFO(c.text);
-    const std::string message = message_of(c.text);
-    INFO(message);
-    CHECK(message.find(c.where) != std::string::npos);
-    CHECK(message.find(c.says) != std::string::npos);
-  }
+  });
 }
 
 TEST_CASE("cutter compensation: G41 with the loaded tool and no D", "[gcode][import][compensation]") {
