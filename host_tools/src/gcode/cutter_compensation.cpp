@@ -106,6 +106,51 @@ std::vector<P2> crossings(const PlanarMove& a, const PlanarMove& b, P2 ta, P2 tb
   return out;
 }
 
+/// How far round `arc` from its start its point `q` lies (q within 1 µm before the start counts as
+/// the start), and that 1 µm as an angle.
+struct AngleOn {
+  double at = 0, eps = 0;
+};
+AngleOn angle_on(const PlanarMove& arc, P2 q) {
+  const P2 c = xy(arc.center);
+  const double eps = length_tolerance_mm / length(q - c);
+  const double at = angle_between(xy(arc.start), q, c, arc.direction);
+  return {at > two_pi - eps ? 0.0 : at, eps};
+}
+
+/// Why the crossing `q` does not lie on both offset paths (nullopt: it does): on `a` (tangent `ta`
+/// at its end) from its start, and on `next` (tangent `tb` at its start) before its end. The arcs'
+/// sweeps (in: whole; out: cut back to q) are `a_sweep` and `next_sweep`.
+std::optional<std::string> crossing_problem(const PlanarMove& a, double& a_sweep, const PlanarMove& next, double& next_sweep, P2 q, P2 ta,
+                                            P2 tb, double radius) {
+  // Within the previous move's offset (from its current start to its end)?
+  if (!a.arc) {
+    if (dot(q - xy(a.start), ta) < -length_tolerance_mm) {
+      return "gouging: the previous move is too short for the tool radius " + mm(radius) + " to reach the inside corner with this move";
+    }
+  } else {
+    const auto [at, eps] = angle_on(a, q);
+    if (at > a_sweep + eps) {
+      return "gouging: the previous arc is too short for the tool radius " + mm(radius) + " to reach the inside corner with this move";
+    }
+    a_sweep = at + two_pi * std::floor((a_sweep + eps - at) / two_pi);
+  }
+  // Within this move's offset (from its start to its end)?
+  if (!next.arc) {
+    if (dot(q - xy(next.end), tb) > length_tolerance_mm) {
+      return "gouging: this move is too short for the tool radius " + mm(radius) + " to follow the inside corner at its start";
+    }
+  } else {
+    const auto [at, eps] = angle_on(next, q);
+    if (at > next_sweep + eps) {
+      return "gouging: this arc is too short for the tool radius " + mm(radius) + " to follow the inside corner at its start";
+    }
+    next_sweep = std::max(0.0, next_sweep - at);
+  }
+  return std::nullopt;
+}
+
+
 }  // namespace
 
 void CutterCompensation::start(Side side, double radius_mm, const MachinePoint& tool) {
@@ -186,15 +231,21 @@ std::optional<PlanarMove> CutterCompensation::corner(Offset& next) {
     return std::nullopt;
   }
   const bool outside = side_ * turning < 0 || std::fabs(turning) < tangent_tolerance;  // a reversal goes around
-  if (!outside) {
+  const bool near_reversal = dot(ta, tb) < -std::cos(reversal_tolerance_rad);
+  // LinuxCNC's "h" shape: a near-reversal onto an arc that curves away from the tool (or from such an
+  // arc onto a line) is cut at the offsets' crossing whichever way it turns.
+  const bool h_shape = near_reversal && (next.programmed.arc ? tool_outside(next.programmed) : a.programmed.arc && tool_outside(a.programmed));
+  if (!outside || h_shape) {
     const std::optional<std::string> refused = cut_inside_corner(next);
     if (!refused) return std::nullopt;
     // LinuxCNC counts a corner within TOLERANCE_CONCAVE_CORNER of a reversal as convex and goes
     // around it; so does this, where the offsets do not meet.
-    if (!(dot(ta, tb) < -std::cos(reversal_tolerance_rad))) throw CompensationError(*refused);
+    if (!outside && !near_reversal) throw CompensationError(*refused);
   }
   return corner_arc(next);
 }
+
+bool CutterCompensation::tool_outside(const PlanarMove& arc) const { return side_ * turn(arc.direction) < 0; }
 
 std::optional<std::string> CutterCompensation::cut_inside_corner(Offset& next) {
   Offset& a = *pending_;
@@ -206,47 +257,25 @@ std::optional<std::string> CutterCompensation::cut_inside_corner(Offset& next) {
     return "gouging: the offsets of the previous move and this one do not meet at their inside corner (a move too short or too "
            "curved for the tool radius " + mm(radius_) + ")";
   }
-  P2 q = found.front();
-  for (const P2& p : found) {
-    if (length(p - corner_point) < length(q - corner_point)) q = p;
+  // The crossing nearest the corner that lies on both offset moves.
+  std::vector<P2> candidates = found;
+  std::sort(candidates.begin(), candidates.end(),
+            [&corner_point](P2 p, P2 q) { return length(p - corner_point) < length(q - corner_point); });
+  std::optional<std::string> nearest_problem;
+  for (const P2& q : candidates) {
+    double a_sweep = a.sweep;
+    double next_sweep = next.sweep;
+    std::optional<std::string> problem = crossing_problem(a.path, a_sweep, next.path, next_sweep, q, ta, tb, radius_);
+    if (!problem) {
+      a.sweep = a_sweep;
+      next.sweep = next_sweep;
+      set_xy(a.path.end, q);
+      set_xy(next.path.start, q);
+      return std::nullopt;
+    }
+    if (!nearest_problem) nearest_problem = std::move(problem);
   }
-  // Within the previous move's offset (from its current start to its end)?
-  double a_sweep = a.sweep;
-  if (!a.path.arc) {
-    if (dot(q - xy(a.path.start), ta) < -length_tolerance_mm) {
-      return "gouging: the previous move is too short for the tool radius " + mm(radius_) + " to reach the inside corner with this move";
-    }
-  } else {
-    const P2 c = xy(a.path.center);
-    const double eps = length_tolerance_mm / length(q - c);
-    double at = angle_between(xy(a.path.start), q, c, a.path.direction);
-    if (at > two_pi - eps) at = 0;
-    if (at > a.sweep + eps) {
-      return "gouging: the previous arc is too short for the tool radius " + mm(radius_) + " to reach the inside corner with this move";
-    }
-    a_sweep = at + two_pi * std::floor((a.sweep + eps - at) / two_pi);
-  }
-  // Within this move's offset (from its start to its end)?
-  double next_sweep = next.sweep;
-  if (!next.path.arc) {
-    if (dot(q - xy(next.path.end), tb) > length_tolerance_mm) {
-      return "gouging: this move is too short for the tool radius " + mm(radius_) + " to follow the inside corner at its start";
-    }
-  } else {
-    const P2 c = xy(next.path.center);
-    const double eps = length_tolerance_mm / length(q - c);
-    double at = angle_between(xy(next.path.start), q, c, next.path.direction);
-    if (at > two_pi - eps) at = 0;
-    if (at > next.sweep + eps) {
-      return "gouging: this arc is too short for the tool radius " + mm(radius_) + " to follow the inside corner at its start";
-    }
-    next_sweep = std::max(0.0, next.sweep - at);
-  }
-  a.sweep = a_sweep;
-  next.sweep = next_sweep;
-  set_xy(a.path.end, q);
-  set_xy(next.path.start, q);
-  return std::nullopt;
+  return nearest_problem;
 }
 
 /// The offset's path as a move: whole turns from its sweep; an arc too short to be one is a line.

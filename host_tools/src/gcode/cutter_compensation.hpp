@@ -7,7 +7,10 @@
 // Takes the programmed moves (lines and arcs in the plane) in order and gives back the tool-centre
 // moves, with one move of look-ahead: a move's end is final only when the next one shows the corner.
 // Outside corners get an arc of the tool radius about the programmed corner; at inside corners the
-// offset moves are cut at their intersection. The first move after start() (the entry move): a line
+// offset moves are cut at their intersection (the one nearest the corner on both moves). As in
+// LinuxCNC, an inside corner within 0.05 rad of a reversal whose offsets do not meet is gone around
+// like an outside one, and a near-reversal onto an arc curving away from the tool (its "h" shape) is
+// cut at the crossing where there is one. The first move after start() (the entry move): a line
 // ends where the next move's offset begins; an arc ends square to its programmed end, on an arc
 // from the tool whose centre lies on the line from that end to the programmed centre (LinuxCNC's
 // rule). The first move after stop() (the exit move) must be a line and starts where the tool is.
@@ -81,6 +84,8 @@ class CutterCompensation {
   [[nodiscard]] Offset entry_arc(const PlanarMove& programmed) const;
   /// Cuts pending_ and `next` back to their crossing at an inside corner; why not, if they do not meet.
   [[nodiscard]] std::optional<std::string> cut_inside_corner(Offset& next);
+  /// The tool is on the outside of `arc` (away from its centre).
+  [[nodiscard]] bool tool_outside(const PlanarMove& arc) const;
   /// The arc of the tool radius about the programmed corner from pending_'s end to `next`'s start.
   [[nodiscard]] PlanarMove corner_arc(const Offset& next) const;
   /// Joins `next` to pending_ at their corner; returns the corner arc of an outside corner.

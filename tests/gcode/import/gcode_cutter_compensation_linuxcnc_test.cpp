@@ -142,6 +142,22 @@ TEST_CASE("cutter compensation: a near-reversal inside corner cut at the offsets
                    arc(11.608, 10, -0.4, 10, -0.4 + (big_r + r) * std::cos(a0 / 2), 10 + (big_r + r) * std::sin(a0 / 2)), to(30, 10)});
 }
 
+TEST_CASE("cutter compensation: LinuxCNC's h shape, a near-reversal turning the outside way onto an arc curving away",
+          "[gcode][import][compensation]") {
+  // As above but mirrored: G3 about C = (0.4, 10) leaves (0,0) in direction (10, -0.4)/R, a left
+  // turn of 180° - 0.04 rad: the outside way for G42, yet the tool (above the line, outside the arc)
+  // would swing round into the arc's side. LinuxCNC cuts it at the crossing of y = 2 with the circle
+  // of radius R + 2 behind the corner: (x - 0.4)² + 64 = (R + 2)², x = 0.4 + 8.95500 = 9.35500 (the
+  // other crossing, x = -8.555, lies beyond the line's end, before the arc's offset start).
+  const double big_r = std::sqrt(100.16);
+  const double x = 0.4 + std::sqrt((big_r + r) * (big_r + r) - 64.0);
+  CHECK(x == Approx(9.355).margin(1e-3));
+  const double a0 = std::atan2(2.0 - 10.0, x - 0.4);
+  const Job job = testing::load_compensated("G21 G17\nG0 X30 Y10\nG42 D1\nG1 X20 Y0 F600\nX0\nG3 X10.408 Y10 I0.4 J10\nG40\nG1 X30 Y10\n");
+  check_path(job, {to(30, 10), to(20, 2), to(x, 2),
+                   arc(12.408, 10, 0.4, 10, 0.4 + (big_r + r) * std::cos(a0 / 2), 10 + (big_r + r) * std::sin(a0 / 2)), to(30, 10)});
+}
+
 TEST_CASE("cutter compensation: an inside corner within 0.05 rad of a reversal whose offsets do not meet is gone around",
           "[gcode][import][compensation]") {
   // LinuxCNC's crazy-paths shape: G42 along y = 0 to the left, then G2 about C = (0.4, -10) (radius
