@@ -154,7 +154,7 @@ std::string explain(Error code, const std::string& word) {
         const std::string tool = word.size() > 1 ? "tool " + word.substr(1) : std::string("the tool D names");  // D#1: no digits
         return tool + " has no diameter in the machine file's tool table (G41.1/G42.1 D<diameter> give the diameter directly)";
       }
-      if (word.starts_with("L")) return "the tool orientation L is for lathe tools: this controller compensates mills in G17 (leave L out or give L0)";
+      if (word.starts_with("L")) return "the tool orientation L is for lathe tools: this controller compensates mill tools, in G17 and G18 (leave L out or give L0)";
       if (word.starts_with("G17") || word.starts_with("G18") || word.starts_with("G19")) {
         return "the plane cannot change while cutter radius compensation is on (G40 first)";
       }
