@@ -79,18 +79,30 @@ inline void check_path(const Job& job, const std::vector<Expected>& expected) {
   }
 }
 
+/// The distance from (u, v) to the segment from a to b.
+inline double distance_to_segment(double u, double v, const std::array<double, 2>& a, const std::array<double, 2>& b) {
+  const double du = b[0] - a[0];
+  const double dv = b[1] - a[1];
+  const double t = std::clamp(((u - a[0]) * du + (v - a[1]) * dv) / (du * du + dv * dv), 0.0, 1.0);
+  return std::hypot(u - a[0] - t * du, v - a[1] - t * dv);
+}
+
 /// The distance from (u, v) to the closed polygon through `corners` (its sides, corners included).
 inline double distance_to_polygon(double u, double v, const std::vector<std::array<double, 2>>& corners) {
   double best = 1e300;
-  for (std::size_t i = 0; i < corners.size(); ++i) {
-    const auto& a = corners[i];
-    const auto& b = corners[(i + 1) % corners.size()];
-    const double du = b[0] - a[0];
-    const double dv = b[1] - a[1];
-    const double t = std::clamp(((u - a[0]) * du + (v - a[1]) * dv) / (du * du + dv * dv), 0.0, 1.0);
-    best = std::min(best, std::hypot(u - a[0] - t * du, v - a[1] - t * dv));
-  }
+  for (std::size_t i = 0; i < corners.size(); ++i) best = std::min(best, distance_to_segment(u, v, corners[i], corners[(i + 1) % corners.size()]));
   return best;
+}
+
+/// The distance from (u, v) to the counter-clockwise arc about `center` of radius `radius` from
+/// angle `from` to angle `to` (radians; to > from).
+inline double distance_to_ccw_arc(double u, double v, const std::array<double, 2>& center, double radius, double from, double to) {
+  constexpr double two_pi = 6.283185307179586;
+  double angle = std::atan2(v - center[1], u - center[0]);
+  while (angle < from) angle += two_pi;
+  if (angle <= to) return std::fabs(std::hypot(u - center[0], v - center[1]) - radius);
+  const auto at = [&](double a) { return std::hypot(u - center[0] - radius * std::cos(a), v - center[1] - radius * std::sin(a)); };
+  return std::min(at(from), at(to));
 }
 
 }  // namespace curvestep::host::testing

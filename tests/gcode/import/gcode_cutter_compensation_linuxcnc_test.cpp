@@ -19,7 +19,9 @@ using namespace curvestep;
 using namespace curvestep::host;
 using testing::arc;
 using testing::check_path;
+using testing::distance_to_ccw_arc;
 using testing::distance_to_polygon;
+using testing::distance_to_segment;
 using testing::to;
 
 namespace {
@@ -68,6 +70,22 @@ void check_distance_from_square(const Job& job, std::size_t first, std::size_t l
     }
   }
   CHECK(sampled >= 7 * 21);
+}
+
+/// Segments [first, last] of `job`, sampled, are r from the programmed line (20,0) -> (0,0) followed
+/// by the counter-clockwise arc about `center` from (0,0) to angle 0 (the near-reversal programs).
+void check_distance_from_line_and_arc(const Job& job, std::size_t first, std::size_t last, const std::array<double, 2>& center) {
+  const double radius = std::hypot(center[0], center[1]);
+  const double from = std::atan2(-center[1], -center[0]);
+  for (std::size_t j = first; j <= last; ++j) {
+    for (int k = 0; k <= 20; ++k) {
+      const MachinePoint p = job.segments[j].point(k / 20.0);
+      INFO("segment " << j << " at " << k / 20.0 << ": (" << p[0] << ", " << p[1] << ")");
+      const double to_line = distance_to_segment(p[0], p[1], {{20, 0}}, {{0, 0}});
+      const double to_arc = distance_to_ccw_arc(p[0], p[1], center, radius, from, 0.0);
+      CHECK(std::min(to_line, to_arc) == Approx(r).margin(1e-3));
+    }
+  }
 }
 
 }  // namespace
@@ -140,6 +158,7 @@ TEST_CASE("cutter compensation: a near-reversal inside corner cut at the offsets
   const Job job = testing::load_compensated("G21 G17\nG0 X30 Y10\nG42 D1\nG1 X20 Y0 F600\nX0\nG3 X9.608 Y10 I-0.4 J10\nG40\nG1 X30 Y10\n");
   check_path(job, {to(30, 10), to(20, 2), to(x, 2),
                    arc(11.608, 10, -0.4, 10, -0.4 + (big_r + r) * std::cos(a0 / 2), 10 + (big_r + r) * std::sin(a0 / 2)), to(30, 10)});
+  check_distance_from_line_and_arc(job, 2, 3, {{-0.4, 10}});
 }
 
 TEST_CASE("cutter compensation: LinuxCNC's h shape, a near-reversal turning the outside way onto an arc curving away",
@@ -156,6 +175,7 @@ TEST_CASE("cutter compensation: LinuxCNC's h shape, a near-reversal turning the 
   const Job job = testing::load_compensated("G21 G17\nG0 X30 Y10\nG42 D1\nG1 X20 Y0 F600\nX0\nG3 X10.408 Y10 I0.4 J10\nG40\nG1 X30 Y10\n");
   check_path(job, {to(30, 10), to(20, 2), to(x, 2),
                    arc(12.408, 10, 0.4, 10, 0.4 + (big_r + r) * std::cos(a0 / 2), 10 + (big_r + r) * std::sin(a0 / 2)), to(30, 10)});
+  check_distance_from_line_and_arc(job, 2, 3, {{0.4, 10}});
 }
 
 TEST_CASE("cutter compensation: an inside corner within 0.05 rad of a reversal whose offsets do not meet is gone around",
