@@ -378,6 +378,12 @@ TEST_CASE("gcode interpreter: G40 G41 G42 G41.1 G42.1 set the compensation each 
   CHECK(motion.compensation_radius_mm == 0.0);
   run(m, {"M2"});
   CHECK(m.compensation_side() == CompensationSide::Off);  // M2 resets to G40
+  Machine g18;  // LinuxCNC compensates in G18 too (not G19)
+  g18.set_tool_diameter_mm(1, 6.0);
+  motion = run(g18, {"G18 G41 D1 G2 X10 Z0 I5 K0 F100"});
+  CHECK(motion.compensation_side == CompensationSide::Left);
+  CHECK(motion.compensation_radius_mm == 3.0);
+  CHECK(motion.plane == Plane::ZX);
 }
 
 TEST_CASE("gcode interpreter: a negative G41.1/G42.1 diameter compensates on the other side, as LinuxCNC does",
