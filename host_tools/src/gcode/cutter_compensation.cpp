@@ -18,6 +18,12 @@ constexpr double tangent_tolerance = 1e-9;
 constexpr double length_tolerance_mm = 1e-6;
 /// A corner gap or an arc shorter than this is joined directly / emitted as a line, mm.
 constexpr double tiny_mm = 1e-4;
+/// An inside corner turning to within this of a reversal, radians, whose offsets do not meet is
+/// gone around like an outside corner (LinuxCNC's TOLERANCE_CONCAVE_CORNER).
+constexpr double reversal_tolerance_rad = 0.05;
+/// An entry arc whose tool stands within this (cosine) of the offset end's tangent has no centre
+/// (LinuxCNC's TOLERANCE_EQUAL on the same cosine).
+constexpr double entry_arc_cos_tolerance = 1e-6;
 
 struct P2 {
   double x = 0, y = 0;
@@ -100,6 +106,51 @@ std::vector<P2> crossings(const PlanarMove& a, const PlanarMove& b, P2 ta, P2 tb
   return out;
 }
 
+/// How far round `arc` from its start its point `q` lies (q within 1 µm before the start counts as
+/// the start), and that 1 µm as an angle.
+struct AngleOn {
+  double at = 0, eps = 0;
+};
+AngleOn angle_on(const PlanarMove& arc, P2 q) {
+  const P2 c = xy(arc.center);
+  const double eps = length_tolerance_mm / length(q - c);
+  const double at = angle_between(xy(arc.start), q, c, arc.direction);
+  return {at > two_pi - eps ? 0.0 : at, eps};
+}
+
+/// Why the crossing `q` does not lie on both offset paths (nullopt: it does): on `a` (tangent `ta`
+/// at its end) from its start, and on `next` (tangent `tb` at its start) before its end. The arcs'
+/// sweeps (in: whole; out: cut back to q) are `a_sweep` and `next_sweep`.
+std::optional<std::string> crossing_problem(const PlanarMove& a, double& a_sweep, const PlanarMove& next, double& next_sweep, P2 q, P2 ta,
+                                            P2 tb, double radius) {
+  // Within the previous move's offset (from its current start to its end)?
+  if (!a.arc) {
+    if (dot(q - xy(a.start), ta) < -length_tolerance_mm) {
+      return "gouging: the previous move is too short for the tool radius " + mm(radius) + " to reach the inside corner with this move";
+    }
+  } else {
+    const auto [at, eps] = angle_on(a, q);
+    if (at > a_sweep + eps) {
+      return "gouging: the previous arc is too short for the tool radius " + mm(radius) + " to reach the inside corner with this move";
+    }
+    a_sweep = at + two_pi * std::floor((a_sweep + eps - at) / two_pi);
+  }
+  // Within this move's offset (from its start to its end)?
+  if (!next.arc) {
+    if (dot(q - xy(next.end), tb) > length_tolerance_mm) {
+      return "gouging: this move is too short for the tool radius " + mm(radius) + " to follow the inside corner at its start";
+    }
+  } else {
+    const auto [at, eps] = angle_on(next, q);
+    if (at > next_sweep + eps) {
+      return "gouging: this arc is too short for the tool radius " + mm(radius) + " to follow the inside corner at its start";
+    }
+    next_sweep = std::max(0.0, next_sweep - at);
+  }
+  return std::nullopt;
+}
+
+
 }  // namespace
 
 void CutterCompensation::start(Side side, double radius_mm, const MachinePoint& tool) {
@@ -134,82 +185,97 @@ CutterCompensation::Offset CutterCompensation::offset(const PlanarMove& programm
   return o;
 }
 
+CutterCompensation::Offset CutterCompensation::entry_arc(const PlanarMove& programmed) const {
+  Offset o = offset(programmed);  // its end: the programmed end's offset, square to the arc there
+  const P2 tool = xy(tool_);
+  const P2 end = xy(o.path.end);
+  // The centre lies on the line from the offset end towards the programmed centre (so the arc ends
+  // tangent to the offset arc) and is as far from the tool as from that end.
+  const P2 toward = unit(xy(programmed.center) - end);
+  const P2 chord = tool - end;
+  const double along = dot(chord, toward);
+  if (!(std::fabs(along) > entry_arc_cos_tolerance * length(chord))) {
+    throw CompensationError("the entry arc cannot reach its offset end: the tool stands on the tangent to the offset arc at its "
+                            "end (no arc from the tool ends square to the programmed end); start the compensation elsewhere");
+  }
+  set_xy(o.path.start, tool);
+  set_xy(o.path.center, end + toward * (dot(chord, chord) / (2 * along)));
+  o.sweep = angle_between(tool, end, xy(o.path.center), programmed.direction) + two_pi * static_cast<double>(programmed.full_turns);
+  return o;
+}
+
+PlanarMove CutterCompensation::corner_arc(const Offset& next) const {
+  // An arc of the tool radius about the programmed corner, turning the way the path turns
+  // (clockwise with the tool on the left).
+  PlanarMove arc;
+  arc.arc = true;
+  arc.rapid = next.programmed.rapid;
+  arc.start = next.path.start;
+  set_xy(arc.start, xy(pending_->path.end));
+  arc.end = next.path.start;
+  arc.center = next.path.start;
+  set_xy(arc.center, xy(pending_->programmed.end));
+  arc.direction = side_ > 0 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
+  arc.tag = next.programmed.tag;
+  return arc;
+}
+
 std::optional<PlanarMove> CutterCompensation::corner(Offset& next) {
+  const Offset& a = *pending_;
+  const P2 ta = tangent(a.programmed, a.programmed.end);
+  const P2 tb = tangent(next.programmed, next.programmed.start);
+  const double turning = cross(ta, tb);
+  const double gap = length(xy(next.path.start) - xy(a.path.end));
+  if ((std::fabs(turning) < tangent_tolerance && dot(ta, tb) > 0) || gap < tiny_mm) {
+    set_xy(next.path.start, xy(a.path.end));  // tangent: the offsets meet
+    return std::nullopt;
+  }
+  const bool outside = side_ * turning < 0 || std::fabs(turning) < tangent_tolerance;  // a reversal goes around
+  const bool near_reversal = dot(ta, tb) < -std::cos(reversal_tolerance_rad);
+  // LinuxCNC's "h" shape: a near-reversal onto an arc that curves away from the tool (or from such an
+  // arc onto a line) is cut at the offsets' crossing whichever way it turns.
+  const bool h_shape = near_reversal && (next.programmed.arc ? tool_outside(next.programmed) : a.programmed.arc && tool_outside(a.programmed));
+  if (!outside || h_shape) {
+    const std::optional<std::string> refused = cut_inside_corner(next);
+    if (!refused) return std::nullopt;
+    // LinuxCNC counts a corner within TOLERANCE_CONCAVE_CORNER of a reversal as convex and goes
+    // around it; so does this, where the offsets do not meet.
+    if (!outside && !near_reversal) throw CompensationError(*refused);
+  }
+  return corner_arc(next);
+}
+
+bool CutterCompensation::tool_outside(const PlanarMove& arc) const { return side_ * turn(arc.direction) < 0; }
+
+std::optional<std::string> CutterCompensation::cut_inside_corner(Offset& next) {
   Offset& a = *pending_;
   const P2 corner_point = xy(a.programmed.end);
   const P2 ta = tangent(a.programmed, a.programmed.end);
   const P2 tb = tangent(next.programmed, next.programmed.start);
-  const double turning = cross(ta, tb);
-  const P2 a_end = xy(a.path.end);
-  const P2 b_start = xy(next.path.start);
-  const double gap = length(b_start - a_end);
-  const auto join = [&] { set_xy(next.path.start, a_end); };
-  if ((std::fabs(turning) < tangent_tolerance && dot(ta, tb) > 0) || gap < tiny_mm) {
-    join();  // tangent: the offsets meet
-    return std::nullopt;
-  }
-  if (side_ * turning < 0 || (std::fabs(turning) < tangent_tolerance)) {
-    // Outside corner (or a reversal): an arc of the tool radius about the programmed corner, turning
-    // the way the path turns (clockwise with the tool on the left).
-    PlanarMove arc;
-    arc.arc = true;
-    arc.rapid = next.programmed.rapid;
-    arc.start = next.path.start;
-    set_xy(arc.start, a_end);
-    arc.end = next.path.start;
-    arc.center = next.path.start;
-    set_xy(arc.center, corner_point);
-    arc.direction = side_ > 0 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
-    arc.tag = next.programmed.tag;
-    return arc;
-  }
-  // Inside corner: cut both offsets back to the crossing nearest the programmed corner.
   const std::vector<P2> found = crossings(a.path, next.path, ta, tb);
   if (found.empty()) {
-    throw CompensationError("gouging: the offsets of the previous move and this one do not meet at their inside corner (a move too "
-                            "short or too curved for the tool radius " + mm(radius_) + ")");
+    return "gouging: the offsets of the previous move and this one do not meet at their inside corner (a move too short or too "
+           "curved for the tool radius " + mm(radius_) + ")";
   }
-  P2 q = found.front();
-  for (const P2& p : found) {
-    if (length(p - corner_point) < length(q - corner_point)) q = p;
+  // The crossing nearest the corner that lies on both offset moves.
+  std::vector<P2> candidates = found;
+  std::sort(candidates.begin(), candidates.end(),
+            [&corner_point](P2 p, P2 q) { return length(p - corner_point) < length(q - corner_point); });
+  std::optional<std::string> nearest_problem;
+  for (const P2& q : candidates) {
+    double a_sweep = a.sweep;
+    double next_sweep = next.sweep;
+    std::optional<std::string> problem = crossing_problem(a.path, a_sweep, next.path, next_sweep, q, ta, tb, radius_);
+    if (!problem) {
+      a.sweep = a_sweep;
+      next.sweep = next_sweep;
+      set_xy(a.path.end, q);
+      set_xy(next.path.start, q);
+      return std::nullopt;
+    }
+    if (!nearest_problem) nearest_problem = std::move(problem);
   }
-  // Within the previous move's offset (from its current start to its end)?
-  if (!a.path.arc) {
-    if (dot(q - xy(a.path.start), ta) < -length_tolerance_mm) {
-      throw CompensationError("gouging: the previous move is too short for the tool radius " + mm(radius_) +
-                              " to reach the inside corner with this move");
-    }
-  } else {
-    const P2 c = xy(a.path.center);
-    const double eps = length_tolerance_mm / length(q - c);
-    double at = angle_between(xy(a.path.start), q, c, a.path.direction);
-    if (at > two_pi - eps) at = 0;
-    if (at > a.sweep + eps) {
-      throw CompensationError("gouging: the previous arc is too short for the tool radius " + mm(radius_) +
-                              " to reach the inside corner with this move");
-    }
-    a.sweep = at + two_pi * std::floor((a.sweep + eps - at) / two_pi);
-  }
-  // Within this move's offset (from its start to its end)?
-  if (!next.path.arc) {
-    if (dot(q - xy(next.path.end), tb) > length_tolerance_mm) {
-      throw CompensationError("gouging: this move is too short for the tool radius " + mm(radius_) +
-                              " to follow the inside corner at its start");
-    }
-  } else {
-    const P2 c = xy(next.path.center);
-    const double eps = length_tolerance_mm / length(q - c);
-    double at = angle_between(xy(next.path.start), q, c, next.path.direction);
-    if (at > two_pi - eps) at = 0;
-    if (at > next.sweep + eps) {
-      throw CompensationError("gouging: this arc is too short for the tool radius " + mm(radius_) +
-                              " to follow the inside corner at its start");
-    }
-    next.sweep = std::max(0.0, next.sweep - at);
-  }
-  set_xy(a.path.end, q);
-  set_xy(next.path.start, q);
-  return std::nullopt;
+  return nearest_problem;
 }
 
 /// The offset's path as a move: whole turns from its sweep; an arc too short to be one is a line.
@@ -256,13 +322,15 @@ CompensatedMoves CutterCompensation::add(const PlanarMove& programmed) {
       return out;
     }
     case State::Entry: {
-      if (programmed.arc) {
-        throw CompensationError("the entry move (the first move after G41/G42) must be a straight line (G0/G1), not an arc");
-      }
       const double distance = length(xy(programmed.end) - xy(tool_));
       if (!(distance > radius_)) {
-        throw CompensationError("the entry move (the first move after G41/G42) must be longer than the tool radius " + mm(radius_) +
-                                ": it is " + mm(distance));
+        throw CompensationError("the entry move (the first move after G41/G42) must end farther than the tool radius " + mm(radius_) +
+                                " from the tool: it ends " + mm(distance) + " away");
+      }
+      if (programmed.arc) {
+        pending_ = entry_arc(programmed);
+        state_ = State::On;
+        return out;
       }
       Offset entry{programmed, programmed, 0};
       set_xy(entry.path.start, xy(tool_));

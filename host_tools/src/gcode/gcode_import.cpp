@@ -98,7 +98,7 @@ std::string explain(Error code, const std::string& word) {
       }
       if (is({"G95"})) return "feed per revolution (G95) needs a spindle model, which this controller does not have: use G94";
       if (is({"G41", "G42", "G41.1", "G42.1"})) {
-        return "cutter radius compensation works in the G17 (XY) plane only (this controller compensates mills; lathe compensation in G18 is not supported)";
+        return "cutter radius compensation works in the G17 (XY) and G18 (XZ) planes only, as in LinuxCNC (not in G19)";
       }
       if (is({"G43.2"})) return "additional tool length offsets (G43.2) are not supported: use G43 H (the machine file's tool table) or G43.1 Z";
       if (!word.empty() && (word[0] == 'X' || word[0] == 'Y')) {
@@ -156,7 +156,7 @@ std::string explain(Error code, const std::string& word) {
         const std::string tool = word.size() > 1 ? "tool " + word.substr(1) : std::string("the tool D names");  // D#1: no digits
         return tool + " has no diameter in the machine file's tool table (G41.1/G42.1 D<diameter> give the diameter directly)";
       }
-      if (word.starts_with("L")) return "the tool orientation L is for lathe tools: this controller compensates mills in G17 (leave L out or give L0)";
+      if (word.starts_with("L")) return "the tool orientation L is for lathe tools: this controller compensates mill tools, in G17 and G18 (leave L out or give L0)";
       if (word.starts_with("G17") || word.starts_with("G18") || word.starts_with("G19")) {
         return "the plane cannot change while cutter radius compensation is on (G40 first)";
       }
@@ -474,26 +474,28 @@ class GcodeLoader {
       return;
     }
     const bool planar = motion.kind == machine::MotionKind::Rapid || motion.kind == machine::MotionKind::Line ||
-                        (motion.kind == machine::MotionKind::Arc && motion.plane == machine::Plane::XY);
+                        (motion.kind == machine::MotionKind::Arc && motion.plane == compensation_plane_);
     if (!planar) {  // the interpreter refuses these while compensation is on: this is the exit move
       fail_message(motion.column, "the exit move (the first move after G40) must be a straight line (G0/G1): it goes from the "
                                   "compensated point to the programmed end", Error::GcodeCutterCompensation);
     }
-    if (motion.kind != machine::MotionKind::Arc && motion.start[0] == motion.end[0] && motion.start[1] == motion.end[1]) {
-      // Z alone: where the tool centre is, once the held move's end is known.
+    const MachinePoint start = to_plane(motion.start);
+    const MachinePoint end = to_plane(motion.end);
+    if (motion.kind != machine::MotionKind::Arc && start[0] == end[0] && start[1] == end[1]) {
+      // Along the normal axis alone (Z in G17): where the tool centre is, once the held move's end is known.
       if (compensation_.holding()) {
         held_.push_back(Held{false, {}, motion, line_number_});
       } else {
-        emit(at_xy(motion, compensation_.tool()), line_number_);
+        emit(at_plane(motion, compensation_.tool()), line_number_);
       }
       return;
     }
     PlanarMove programmed;
     programmed.arc = motion.kind == machine::MotionKind::Arc;
     programmed.rapid = motion.kind == machine::MotionKind::Rapid;
-    programmed.start = motion.start;
-    programmed.end = motion.end;
-    programmed.center = motion.center;
+    programmed.start = start;
+    programmed.end = end;
+    programmed.center = to_plane(motion.center);
     programmed.direction = motion.direction;
     programmed.full_turns = motion.full_turns;
     programmed.tag = next_tag_++;
@@ -516,7 +518,10 @@ class GcodeLoader {
     if (wanted && !on) {
       const auto side = motion.compensation_side == machine::CompensationSide::Left ? CutterCompensation::Side::Left
                                                                                     : CutterCompensation::Side::Right;
-      compensation_.start(side, motion.compensation_radius_mm, compensation_.active() ? compensation_.tool() : before);
+      // An exit move still to come is in the old plane's coordinates: the tool as a machine point.
+      const MachinePoint tool = compensation_.active() ? from_plane(compensation_.tool()) : before;
+      compensation_plane_ = interpreter_.plane();
+      compensation_.start(side, motion.compensation_radius_mm, to_plane(tool));
     }
   }
 
@@ -529,19 +534,35 @@ class GcodeLoader {
         h.event.before_segment = segment_count();
         job_.events.push_back(std::move(h.event));
       } else {
-        emit(at_xy(h.motion, finished->end), h.line);
+        emit(at_plane(h.motion, finished->end), h.line);
       }
     }
     held_.clear();
   }
 
-  /// `motion` moved to the XY of `point`.
-  static machine::Motion at_xy(machine::Motion motion, const MachinePoint& point) {
-    for (std::size_t axis = 0; axis < 2; ++axis) {
-      motion.start[axis] = point[axis];
-      motion.end[axis] = point[axis];
+  /// `motion` moved to the compensation plane's coordinates of `point` (in plane coordinates).
+  machine::Motion at_plane(machine::Motion motion, const MachinePoint& point) const {
+    const machine::PlaneAxes axes = machine::axes_of(compensation_plane_);
+    for (const std::size_t axis : {axes.first, axes.second}) {
+      motion.start[axis] = point[axis == axes.first ? 0 : 1];
+      motion.end[axis] = motion.start[axis];
     }
     return motion;
+  }
+
+  /// A machine point in the compensation plane's coordinates: [0] its first axis, [1] its second,
+  /// [2] the normal (G17: X Y Z; G18: Z X Y), as CutterCompensation works; from_plane goes back.
+  MachinePoint to_plane(const MachinePoint& p) const {
+    const machine::PlaneAxes axes = machine::axes_of(compensation_plane_);
+    return MachinePoint{{p[axes.first], p[axes.second], p[axes.normal]}};
+  }
+  MachinePoint from_plane(const MachinePoint& q) const {
+    const machine::PlaneAxes axes = machine::axes_of(compensation_plane_);
+    MachinePoint p{};
+    p[axes.first] = q[0];
+    p[axes.second] = q[1];
+    p[axes.normal] = q[2];
+    return p;
   }
 
   /// A move of the compensated path as a segment of its program line (a corner arc: the next move's).
@@ -549,10 +570,10 @@ class GcodeLoader {
     const auto info = moves_.find(move.tag);
     machine::Motion motion = info->second.motion;
     motion.kind = move.arc ? machine::MotionKind::Arc : (move.rapid ? machine::MotionKind::Rapid : machine::MotionKind::Line);
-    motion.start = move.start;
-    motion.end = move.end;
-    motion.center = move.center;
-    motion.plane = machine::Plane::XY;
+    motion.start = from_plane(move.start);
+    motion.end = from_plane(move.end);
+    motion.center = from_plane(move.center);
+    motion.plane = compensation_plane_;
     motion.direction = move.direction;
     motion.full_turns = move.full_turns;
     motion.has_pre_rapid = false;
@@ -599,6 +620,7 @@ class GcodeLoader {
         source.points = {start, end, center};
         if (motion.plane != machine::Plane::XY) {
           add_plane_arc(motion, start, end, source, pieces);
+          for (PathSegment& piece : pieces) piece.set_rapid(rapid_arc);  // a G0's corner arc under G18 compensation
           break;
         }
         const double tolerance = motion.radius_difference_mm + quantisation_radius_slack_mm;
@@ -800,6 +822,7 @@ class GcodeLoader {
   std::size_t released_sources_ = 0; ///< sources whose geometry was released
   Interpreter interpreter_;
   CutterCompensation compensation_;
+  machine::Plane compensation_plane_ = machine::Plane::XY;  ///< the plane of the compensation in force (G17 or G18)
   std::vector<Held> held_;
   std::map<std::size_t, MoveInfo> moves_;
   std::size_t next_tag_ = 0;

@@ -12,6 +12,7 @@
 
 #include <curvestep/host/gcode_import.hpp>
 
+#include "compensation_path.hpp"
 #include "load_message.hpp"
 
 using namespace curvestep;
@@ -19,48 +20,12 @@ using namespace curvestep::host;
 
 namespace {
 
-/// One expected segment: a line (or rapid) to (x, y), or an arc to (x, y) about (cx, cy) passing
-/// through (mx, my) at its middle (which fixes the direction).
-struct Expected {
-  bool arc;
-  double x, y;
-  double cx = 0, cy = 0, mx = 0, my = 0;
-};
-Expected to(double x, double y) { return {false, x, y}; }
-Expected arc(double x, double y, double cx, double cy, double mx, double my) { return {true, x, y, cx, cy, mx, my}; }
+using testing::arc;
+using testing::check_path;
+using testing::to;
+using testing::tool_table;
 
-/// Tool 1 has diameter 4 (radius 2).
-GcodeOptions tool_table() {
-  GcodeOptions options;
-  options.tool_diameter_mm[1] = 4.0;
-  return options;
-}
-
-Job load(const std::string& text) { return parse_gcode_job(text, "comp.ngc", tool_table()); }
-
-/// Checks the segments' ends (and arcs' centres and middles) and that each starts where the last ended.
-void check_path(const Job& job, const std::vector<Expected>& expected) {
-  REQUIRE(job.segments.size() == expected.size());
-  for (std::size_t i = 0; i < expected.size(); ++i) {
-    INFO("segment " << i);
-    const auto& s = job.segments[i];
-    const auto end = s.end();
-    CHECK(end[0] == Approx(expected[i].x).margin(1e-4));
-    CHECK(end[1] == Approx(expected[i].y).margin(1e-4));
-    if (i > 0) {
-      CHECK(s.start()[0] == Approx(job.segments[i - 1].end()[0]).margin(1e-4));
-      CHECK(s.start()[1] == Approx(job.segments[i - 1].end()[1]).margin(1e-4));
-    }
-    CHECK((s.kind() == SegmentKind::Arc) == expected[i].arc);
-    if (expected[i].arc && s.kind() == SegmentKind::Arc) {
-      CHECK(s.arc_center()[0] == Approx(expected[i].cx).margin(1e-4));
-      CHECK(s.arc_center()[1] == Approx(expected[i].cy).margin(1e-4));
-      const auto middle = s.point(0.5);
-      CHECK(middle[0] == Approx(expected[i].mx).margin(1e-3));
-      CHECK(middle[1] == Approx(expected[i].my).margin(1e-3));
-    }
-  }
-}
+Job load(const std::string& text) { return testing::load_compensated(text); }
 
 std::string message_of(const std::string& text) {
   try {
@@ -184,13 +149,7 @@ TEST_CASE("cutter compensation: Z moves and events wait for the held move", "[gc
 }
 
 TEST_CASE("cutter compensation: what cannot be compensated is refused with file:line:column", "[gcode][import][compensation][errors]") {
-  const struct {
-    const char* text;
-    const char* where;
-    const char* says;
-  } cases[] = {
-      // The entry move is an arc.
-      {"G21\nG41 D1\nG2 X10 Y0 I5 J0 F600\n", "comp.ngc:3:1: G2", "entry move"},
+  testing::check_refusals({
       // A concave arc (left of counter-clockwise) of radius 1.5 with a tool of radius 2.
       {"G21\nG0 X0 Y-10\nG41 D1\nG1 X0 Y0 F600\nG3 X3 Y0 I1.5 J0\n", "comp.ngc:5:1: G3", "not larger than the tool radius"},
       // Inside corner on a move 1 mm long: the offsets cross at y = 2, beyond its offset end y = 1.
@@ -198,8 +157,8 @@ TEST_CASE("cutter compensation: what cannot be compensated is refused with file:
       // G41 while on (and changing side).
       {"G21\nG41 D1\nG1 X0 Y10 F600\nG41 D1 X5\n", "comp.ngc:4:1: G41", "already on"},
       {"G21\nG41 D1\nG1 X0 Y10 F600\nG42 D1 X5\n", "comp.ngc:4:1: G42", "already on"},
-      // Not in G17.
-      {"G21\nG18 G41 D1\n", "comp.ngc:2:5: G41", "G17 (XY) plane only"},
+      // Not in G19 (LinuxCNC compensates in G17 and G18).
+      {"G21\nG19 G41 D1\n", "comp.ngc:2:5: G41", "G17 (XY) and G18 (XZ) planes only"},
       {"G21\nG41 D1\nG19\n", "comp.ngc:3:1: G19", "plane cannot change"},
       // The tool table does not give tool 3.
       {"G21\nG41 D3\n", "comp.ngc:2:5: D3", "tool 3 has no diameter"},
@@ -211,16 +170,10 @@ TEST_CASE("cutter compensation: what cannot be compensated is refused with file:
       {"G21\nG41 D1\nG1 X0 Y10 F600\nG28\n", "comp.ngc:4:1: G28", "G28/G30"},
       // The exit move is an arc.
       {"G21\nG0 X0 Y-10\nG41 D1\nG1 X0 Y0 F600\nY10\nG40\nG2 X10 Y10 I5 J0\n", "comp.ngc:7:1: G2", "exit move"},
-      // The entry move is not longer than the tool radius.
-      {"G21\nG41 D1\nG1 X1 Y1 F600\nX10\n", "comp.ngc:3:1: G1", "longer than the tool radius"},
-  };
-  for (const auto& c : cases) {
-    INFO(c.text);
-    const std::string message = message_of(c.text);
-    INFO(message);
-    CHECK(message.find(c.where) != std::string::npos);
-    CHECK(message.find(c.says) != std::string::npos);
-  }
+      // The entry move does not end farther than the tool radius from the tool (a line or an arc).
+      {"G21\nG41 D1\nG1 X1 Y1 F600\nX10\n", "comp.ngc:3:1: G1", "farther than the tool radius"},
+      {"G21\nG41 D1\nG2 X1 Y1 I1 J0 F600\nX10\n", "comp.ngc:3:1: G2", "farther than the tool radius"},
+  });
 }
 
 TEST_CASE("cutter compensation: G41 with the loaded tool and no D", "[gcode][import][compensation]") {

@@ -124,7 +124,7 @@ TEST_CASE("gcode machine words: what is not supported says why, with file:line:c
     const char* text;
     const char* says;
   } cases[] = {
-      {"G21\nG18 G41 D1 G1 X1 F100\n", "cutter radius compensation works in the G17 (XY) plane only"},
+      {"G21\nG19 G41 D1 G1 X1 F100\n", "cutter radius compensation works in the G17 (XY) and G18 (XZ) planes only"},
       {"G21\nG84 X1 Y1 Z-1 R1 F100\n", "tapping cycles"},
       {"G21\nG1 A10 F100\n", "rotary"},
       {"G21\nG95 G1 X1 F1\n", "spindle model"},

@@ -378,6 +378,12 @@ TEST_CASE("gcode interpreter: G40 G41 G42 G41.1 G42.1 set the compensation each 
   CHECK(motion.compensation_radius_mm == 0.0);
   run(m, {"M2"});
   CHECK(m.compensation_side() == CompensationSide::Off);  // M2 resets to G40
+  Machine g18;  // LinuxCNC compensates in G18 too (not G19)
+  g18.set_tool_diameter_mm(1, 6.0);
+  motion = run(g18, {"G18 G41 D1 G2 X10 Z0 I5 K0 F100"});
+  CHECK(motion.compensation_side == CompensationSide::Left);
+  CHECK(motion.compensation_radius_mm == 3.0);
+  CHECK(motion.plane == Plane::ZX);
 }
 
 TEST_CASE("gcode interpreter: a negative G41.1/G42.1 diameter compensates on the other side, as LinuxCNC does",
@@ -403,7 +409,7 @@ TEST_CASE("gcode interpreter: compensation errors at the word at fault", "[gcode
       {{"G41 D1"}, Error::GcodeCutterCompensation, 5},         // tool 1 has no diameter
       {{"T3 M6", "G42"}, Error::GcodeMissingWord, 1},           // the loaded tool has none either
       {{"G41 D0", "G42 D0"}, Error::GcodeCutterCompensation, 1},  // already on
-      {{"G18 G41 D0"}, Error::GcodeUnsupportedWord, 5},         // G17 only
+      {{"G19 G41 D0"}, Error::GcodeUnsupportedWord, 5},         // G17 and G18 only (LinuxCNC)
       {{"G41 D0", "G19"}, Error::GcodeCutterCompensation, 1},   // no plane change while on
       {{"G41.1"}, Error::GcodeMissingWord, 1},
       {{"G41.1 D99999"}, Error::GcodeBadNumber, 7},             // beyond +-32767 mm

@@ -39,7 +39,7 @@
 //   G73 G81 G82 G83 G85 G86 G89 canned cycles (G17): MotionKind::Cycle with the holes and levels
 //                      resolved (canned_cycle.hpp expands them); Z R Q P sticky through the series;
 //                      G98 (default) / G99 retract modes; G80 cancels.
-//   G40 G41 G42 G41.1 G42.1 cutter radius compensation (G17 only): the interpreter keeps producing the
+//   G40 G41 G42 G41.1 G42.1 cutter radius compensation (G17, G18): the interpreter keeps producing the
 //                      *programmed* path and tells each Motion the side and tool radius in force; the
 //                      host offsets it (host_tools/src/gcode/cutter_compensation.hpp). G41/G42 D<tool>
 //                      take the radius from the tool table (set_tool_diameter_mm; no D: the loaded
@@ -613,7 +613,7 @@ class Interpreter {
     return ok();
   }
 
-  /// G40 / G41 / G42 / G41.1 / G42.1 (LinuxCNC semantics, G17 only).
+  /// G40 / G41 / G42 / G41.1 / G42.1 (LinuxCNC semantics, G17 and G18).
   template <std::size_t Capacity>
   [[nodiscard]] Result<void> compensation(const Block<Capacity>& block, const Word& g) noexcept {
     if (g.code_tenths == 400) {
@@ -621,7 +621,7 @@ class Interpreter {
       compensation_radius_mm_ = 0;
       return ok();
     }
-    if (plane_ != Plane::XY) return fail(Error::GcodeUnsupportedWord, g.column);
+    if (plane_ == Plane::YZ) return fail(Error::GcodeUnsupportedWord, g.column);  // LinuxCNC: XY or XZ only
     if (compensation_side_ != CompensationSide::Off) return fail(Error::GcodeCutterCompensation, g.column);
     const Word* d = block.find('D');
     double radius = 0;
