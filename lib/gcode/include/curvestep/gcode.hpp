@@ -5,3 +5,4 @@
 #include <curvestep/gcode/canned_cycle.hpp>
 #include <curvestep/gcode/interpreter.hpp>
 #include <curvestep/gcode/parser.hpp>
+#include <curvestep/gcode/xy_rotation.hpp>
