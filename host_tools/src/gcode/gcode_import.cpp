@@ -161,6 +161,7 @@ std::string explain(Error code, const std::string& word) {
       }
       if (word.starts_with("G28") || word.starts_with("G30")) return "G28/G30 cannot be used while cutter radius compensation is on (G40 first)";
       if (word.starts_with("G53")) return "G53 (machine coordinates) cannot be used while cutter radius compensation is on (G40 first)";
+      if (word.starts_with("G10")) return "G10 cannot change the coordinate system in use while cutter radius compensation is on (G40 first)";
       if (word.starts_with("G5")) return "splines (G5, G5.1, G5.2) cannot be compensated: G40 first, or let the CAM offset them";
       if (word.starts_with("G7") || word.starts_with("G8")) return "canned cycles cannot run while cutter radius compensation is on (G40 first)";
       return "this motion cannot be compensated (splines, canned cycles): G40 first";

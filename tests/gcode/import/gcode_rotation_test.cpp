@@ -66,6 +66,8 @@ TEST_CASE("gcode rotation: refused cases name the word and say why", "[gcode][im
   CHECK_THAT(m, Catch::Contains("turned.ngc:2:15") && Catch::Contains("R45") && Catch::Contains("R not allowed in G10 L20"));
   m = message_of("G21 G90\nG10 L2 P1 R30\nG54 G18 G0 X0 Z0\nG02 X10 Z0 R5 F100\n");
   CHECK_THAT(m, Catch::Contains("turned.ngc:4:1") && Catch::Contains("G02") && Catch::Contains("rotated coordinate system"));
+  m = message_of("G21 G90 G41.1 D2 G1 X10 Y0 F100\nX20\nG10 L20 P1 X0\n");
+  CHECK_THAT(m, Catch::Contains("turned.ngc:3:1") && Catch::Contains("G10") && Catch::Contains("cutter radius compensation is on"));
   // The modal arc without its G word: named at its first axis word.
   m = message_of("G21 G90 G18 G0 X0 Z0\nG2 X10 Z0 R5 F100\nG10 L2 P0 R30\nX0 Z0 R5\n");
   CHECK_THAT(m, Catch::Contains("turned.ngc:4:1") && Catch::Contains("rotated coordinate system"));

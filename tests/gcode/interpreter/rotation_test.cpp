@@ -268,6 +268,13 @@ TEST_CASE("rotation: what LinuxCNC refuses, and G18 G19 arcs in a turned system"
   f = run_failing({"G21 G10 L2 P1 R30", "G54 G18 G0 X0 Y0 Z0", "G2 X10 Z0 R5 F100"});
   CHECK(f.code == Error::GcodeUnsupportedWord);
   CHECK(f.index == 1);
+  // LinuxCNC: "Cannot change the active coordinate system with cutter radius compensation on";
+  // another system may change.
+  f = run_failing({"G21 G90 G41.1 D2 G1 X10 Y0 F100", "G10 L2 P0 R30"});
+  CHECK(f.code == Error::GcodeCutterCompensation);
+  CHECK(f.index == 1);
+  Machine other;
+  CHECK(run(other, {"G21 G90 G41.1 D2 G1 X10 Y0 F100", "G10 L2 P2 R30", "G1 X20"}).end[0] == Approx(20));
   // The same arc with R0 runs; a rotated system still runs G18 lines.
   Machine m;
   CHECK(run(m, {"G21 G10 L2 P1 R0", "G54 G18 G0 X0 Y0 Z0", "G2 X10 Z0 R5 F100"}).kind == MotionKind::Arc);

@@ -685,6 +685,8 @@ class Interpreter {
         const Word* r = block.find('R');
         if (r != nullptr && l->value != 2) return fail(Error::GcodeUnsupportedWord, r->column);
         const std::size_t system = p->value == 0 ? coordinate_system_ : static_cast<std::size_t>(p->value) - 1;
+        // LinuxCNC: "Cannot change the active coordinate system with cutter radius compensation on".
+        if (system == coordinate_system_ && compensation_side_ != CompensationSide::Off) return fail(Error::GcodeCutterCompensation, g.column);
         std::array<double, 3> values{};
         std::array<bool, 3> given{};
         for (std::size_t axis = 0; axis < 3; ++axis) {
