@@ -280,3 +280,19 @@ TEST_CASE("rotation: what LinuxCNC refuses, and G18 G19 arcs in a turned system"
   CHECK(run(m, {"G21 G10 L2 P1 R0", "G54 G18 G0 X0 Y0 Z0", "G2 X10 Z0 R5 F100"}).kind == MotionKind::Arc);
   CHECK(run(m, {"G10 L2 P1 R30", "G1 X1"}).kind == MotionKind::Line);
 }
+
+TEST_CASE("rotation: XyRotation turns counter-clockwise about Z and back", "[gcode][interpreter][rotation]") {
+  const XyRotation quarter(90);
+  check_point(quarter.turned(Point{{1, 0, 7}}), 0, 1, 7);
+  check_point(quarter.turned(Point{{0, 1, 0}}), -1, 0);
+  // 30 degrees: (2, 0) -> (2 cos30, 2 sin30) = (1.7320508, 1); turned_back undoes it.
+  const XyRotation thirty(30);
+  check_point(thirty.turned(Point{{2, 0, 0}}), 1.7320508075688772, 1);
+  check_point(thirty.turned_back(thirty.turned(Point{{3, -4, 5}})), 3, -4, 5);
+  // No angle: the point itself, bit for bit.
+  const Point p{{0.1, 0.2, 0.3}};
+  CHECK(XyRotation(0).turned(p) == p);
+  CHECK(XyRotation{}.turned_back(p) == p);
+  CHECK(XyRotation(0).none());
+  CHECK_FALSE(thirty.none());
+}

@@ -20,10 +20,13 @@ class XyRotation {
   using Point = Vec<double, 3>;
 
   constexpr XyRotation() noexcept = default;
-  explicit XyRotation(double degrees) noexcept
-      : degrees_(degrees),
-        cos_(std::cos(degrees * (std::numbers::pi / 180.0))),
-        sin_(std::sin(degrees * (std::numbers::pi / 180.0))) {}
+  /// No trigonometry for 0 (the usual case: every block of an unrotated program asks).
+  explicit XyRotation(double degrees) noexcept : degrees_(degrees) {
+    if (degrees_ != 0) {
+      cos_ = std::cos(radians());
+      sin_ = std::sin(radians());
+    }
+  }
 
   [[nodiscard]] constexpr double degrees() const noexcept { return degrees_; }
   [[nodiscard]] constexpr double radians() const noexcept { return degrees_ * (std::numbers::pi / 180.0); }
