@@ -90,8 +90,7 @@ std::string explain(Error code, const std::string& word) {
         return false;
       };
       if (polar) {
-        return "polar coordinates (@ distance, ^ angle) work in the G17 (XY) plane only, as in LinuxCNC, and here with G0 G1 G2 G3 "
-               "and canned cycles (not with splines: give X and Y)";
+        return "polar coordinates (@ distance, ^ angle) work in the G17 (XY) plane only, as in LinuxCNC";
       }
       if (!word.empty() && (word[0] == 'A' || word[0] == 'B' || word[0] == 'C' || word[0] == 'U' || word[0] == 'V' || word[0] == 'W')) {
         return "rotary and parallel axes (A B C U V W) are not supported: this is a 3-axis (X Y Z) machine";
@@ -110,7 +109,9 @@ std::string explain(Error code, const std::string& word) {
       if (is({"G33", "G33.1", "G76"})) return "threading (spindle-synchronised motion) is not supported";
       if (is({"G7", "G8"})) return "lathe diameter/radius modes are not supported (this is a mill/plotter controller)";
       if (is({"G38.2", "G38.3", "G38.4", "G38.5"})) return "probing is not supported";
-      if (!word.empty() && word[0] == 'R') return "coordinate system rotation (R on G10 L2) is not supported: give R0 or leave it out";
+      if (!word.empty() && word[0] == 'R') {
+        return "R (the coordinate system's rotation) is allowed with G10 L2 only; G10 L20 takes no R (LinuxCNC: R not allowed in G10 L20)";
+      }
       if (!word.empty() && word[0] == 'M') return "unsupported M code (supported: M0 M1 M2 M30 M3 M4 M5 M6 M7 M8 M9 M48-M53 M62-M65)";
       if (!word.empty() && word[0] == 'G') return "unsupported G code (docs/gcode.md lists the supported ones)";
       return "unsupported word";
@@ -165,6 +166,7 @@ std::string explain(Error code, const std::string& word) {
       if (word.starts_with("G43") || word.starts_with("G49")) {
         return "the tool length offset (G43, G43.1, G49) cannot change while cutter radius compensation is on (G40 first), as in LinuxCNC";
       }
+      if (word.starts_with("G10")) return "G10 cannot change the coordinate system in use while cutter radius compensation is on (G40 first)";
       if (word.starts_with("G5")) return "splines (G5, G5.1, G5.2) cannot be compensated: G40 first, or let the CAM offset them";
       if (word.starts_with("G7") || word.starts_with("G8")) return "canned cycles cannot run while cutter radius compensation is on (G40 first)";
       return "this motion cannot be compensated (splines, canned cycles): G40 first";
@@ -179,6 +181,10 @@ std::string explain(Error code, const std::string& word) {
       }
       return "cannot appear with the other words of the line (or twice)";
     case Error::GcodeNurbsBlock:
+      if (polar) {
+        return "a NURBS control point (G5.2) takes X and Y, not polar words: LinuxCNC adds a control point only for X and Y together "
+               "(polar words give G5 and G5.1 their end point)";
+      }
       if (word.starts_with("G5.3")) return "G5.3 without an open G5.2 block, or with fewer control points than the order L";
       if (word.starts_with("L")) return "the order L must be an integer from 2 to 8, given on the G5.2 line";
       if (word.starts_with("P")) return "a NURBS weight P must be positive";
@@ -240,6 +246,12 @@ class GcodeLoader {
         if (motion.error() == Error::GcodeArcRadiusMismatch) fail_radii(block, motion.where());
         if (interpreter_.refused_feed() != machine::FeedRefusal::None) {
           fail_message(motion.where(), feed_refusal_text(interpreter_.refused_feed()), motion.error());
+        }
+        if (motion.error() == Error::GcodeUnsupportedWord && rotated_plane_arc(motion.where())) {
+          fail_message(motion.where(),
+                       "an arc in G18 or G19 cannot run in a rotated coordinate system (G10 L2 R): the rotation about Z tilts its "
+                       "plane off the axes, which this controller does not support (use G17 arcs, or a system without rotation)",
+                       Error::GcodeUnsupportedWord);
         }
         fail(motion.where(), motion.error());
       }
@@ -314,9 +326,13 @@ class GcodeLoader {
   }
 
   /// The system parameters LinuxCNC keeps, in the program's units: #5211-#5213 the G92 offset,
-  /// #5220 the coordinate system (1 = G54), #5221 + 20 n the offsets of system n + 1, #5400 the tool,
-  /// #5420-#5422 the position in the coordinate system in use.
+  /// #5220 the coordinate system (1 = G54), #5221 + 20 n the offsets of system n + 1 and #5230 + 20 n
+  /// its rotation (degrees), #5400 the tool, #5420-#5422 the position in the coordinate system in use.
   void write_parameters(language::ParameterStore& parameters) {
+    for (std::size_t system = 0; system < coordinate_systems; ++system) {
+      written_rotations_[system] = interpreter_.rotation_deg(system);
+      parameters.set(rotation_parameter(system), written_rotations_[system]);
+    }
     const double unit = interpreter_.scale();
     const MachinePoint position = interpreter_.program_position();
     for (std::size_t axis = 0; axis < 3; ++axis) {
@@ -331,9 +347,13 @@ class GcodeLoader {
     parameters.set(5400, static_cast<double>(interpreter_.loaded_tool()));
   }
 
-  /// A program that assigns a work-offset or G92 parameter changes that offset, as G10 L2 or G92 would.
+  /// A program that assigns a work-offset, rotation or G92 parameter changes it, as G10 L2 or G92 would.
   void read_offset_parameters(const language::ParameterStore& parameters) {
     const double unit = interpreter_.scale();
+    for (std::size_t system = 0; system < coordinate_systems; ++system) {
+      const double value = parameters.get(rotation_parameter(system));
+      if (value != written_rotations_[system]) interpreter_.set_rotation_deg(system, value);
+    }
     for (std::size_t system = 0; system <= coordinate_systems; ++system) {
       MachinePoint offset = system == coordinate_systems ? interpreter_.g92_offset() : interpreter_.work_offset(system);
       bool changed = false;
@@ -358,6 +378,8 @@ class GcodeLoader {
     const int a = static_cast<int>(axis);
     return system == coordinate_systems ? 5211 + a : 5221 + 20 * static_cast<int>(system) + a;
   }
+  /// LinuxCNC's parameter of the rotation of system `system` (0 = G54: #5230).
+  static int rotation_parameter(std::size_t system) { return 5230 + 20 * static_cast<int>(system); }
 
   /// A tool table the interpreter cannot hold (the machine loader checks the same bounds first).
   [[noreturn]] void refuse_tool(int tool) const {
@@ -365,6 +387,18 @@ class GcodeLoader {
                     "tool " + std::to_string(tool) + ": tool numbers are 0 .. " + std::to_string(Interpreter::max_tool_number) +
                         ", at most " + std::to_string(Interpreter::max_tools) + " tools",
                     Error::InvalidMachine);
+  }
+
+  /// Whether the word at `column` is that of a G18/G19 arc the interpreter refused for the rotation of its system.
+  bool rotated_plane_arc(std::size_t column) const {
+    const std::string word = word_at(line_, column);
+    if (word.empty()) return false;
+    const std::size_t digits = word.find_first_not_of('0', 1);  // "G02" is G2
+    const bool arc_code = word[0] == 'G' && digits != std::string::npos && (word.substr(digits) == "2" || word.substr(digits) == "3");
+    const bool arc_word = arc_code || std::string_view("XYZIJKRP").find(word[0]) != std::string_view::npos;
+    const std::int32_t mode = interpreter_.motion_mode();
+    return arc_word && (mode == 20 || mode == 30) && interpreter_.plane() != machine::Plane::XY &&
+           interpreter_.rotation_deg(interpreter_.coordinate_system()) != 0;
   }
 
   [[noreturn]] void fail(std::size_t column, Error code) {
@@ -829,6 +863,7 @@ class GcodeLoader {
   std::string source_;     ///< the line being executed, as written
   std::size_t feed_column_ = 0;  ///< the column of its F word, 0 if none
   std::array<std::array<double, 3>, 10> written_offsets_{};  ///< the offset parameters as last written (program units)
+  std::array<double, 9> written_rotations_{};  ///< the rotation parameters as last written (degrees)
   std::string_view line_;
   std::size_t line_number_ = 0;
 };

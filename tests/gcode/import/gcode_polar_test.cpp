@@ -10,6 +10,7 @@
 
 #include <curvestep/host/gcode_import.hpp>
 
+#include "grid_point.hpp"
 #include "load_message.hpp"
 
 using namespace curvestep;
@@ -19,15 +20,7 @@ namespace {
 
 std::string message_of(const std::string& text) { return testing::load_error_message(text, "polar.ngc"); }
 
-/// Q16.16 quantisation moves a coordinate by at most 2^-17 mm.
-constexpr double grid_tolerance = 1.0 / 131072.0;
 constexpr double sqrt3_half = 0.86602540378443864676;
-
-void check_point(const MachinePoint& p, double x, double y, double z) {
-  CHECK(p[0] == Approx(x).margin(grid_tolerance));
-  CHECK(p[1] == Approx(y).margin(grid_tolerance));
-  CHECK(p[2] == Approx(z).margin(grid_tolerance));
-}
 
 }  // namespace
 
@@ -39,10 +32,10 @@ TEST_CASE("gcode polar: a bolt circle about a G54 origin with G91 angle steps", 
       "G91 ^60\n^[30*2]\nG90 G1 Z-1\n",
       "bolt.ngc");
   REQUIRE(job.segments.size() == 4);
-  check_point(job.segments[0].end(), 55, 30, 0);
-  check_point(job.segments[1].end(), 47.5, 30 + 15 * sqrt3_half, 0);
-  check_point(job.segments[2].end(), 32.5, 30 + 15 * sqrt3_half, 0);
-  check_point(job.segments[3].end(), 32.5, 30 + 15 * sqrt3_half, -1);
+  testing::check_grid_point(job.segments[0].end(), 55, 30, 0);
+  testing::check_grid_point(job.segments[1].end(), 47.5, 30 + 15 * sqrt3_half, 0);
+  testing::check_grid_point(job.segments[2].end(), 32.5, 30 + 15 * sqrt3_half, 0);
+  testing::check_grid_point(job.segments[3].end(), 32.5, 30 + 15 * sqrt3_half, -1);
   CHECK(job.sources[1].line == 5);
   CHECK(job.sources[2].line == 6);
 }
@@ -58,6 +51,15 @@ TEST_CASE("gcode polar: errors name file:line:column, the polar word and LinuxCN
   CHECK_THAT(m, Catch::Contains("polar.ngc:2:4") && Catch::Contains("G17 (XY) plane only"));
   m = message_of("G21\nG92 @1 ^0\n");
   CHECK_THAT(m, Catch::Contains("polar.ngc:2:5") && Catch::Contains("for motion only"));
-  m = message_of("G21 G0 X1\nG5 @1 ^0 I1 J0 P1 Q0 F100\n");
-  CHECK_THAT(m, Catch::Contains("polar.ngc:2:4") && Catch::Contains("not with splines"));
+  m = message_of("G21 G0 X1\nG5.2 X2 Y0\n@1 ^90\nG5.3\n");
+  CHECK_THAT(m, Catch::Contains("polar.ngc:3:1") && Catch::Contains("@1") && Catch::Contains("takes X and Y, not polar words"));
+}
+
+TEST_CASE("gcode polar: a G5 spline ends at its polar end point", "[gcode][import][polar]") {
+  // From (10, 0) to 10 at 90 degrees, (0, 10); the cubic's controls (10, 5) and (5, 10) make it
+  // leave along +Y and arrive along -X.
+  const Job job = parse_gcode_job("G21 G90 G0 X10 Y0\nG5 @10 ^90 I0 J5 P5 Q0 F100\n", "spline.ngc");
+  REQUIRE(job.segments.size() >= 2);
+  testing::check_grid_point(job.segments.back().end(), 0, 10, 0);
+  CHECK(job.sources.back().line == 2);
 }

@@ -458,10 +458,9 @@ TEST_CASE("gcode interpreter: tool numbers are any whole number up to 99999, the
   CHECK_FALSE(m.set_tool_diameter_mm(100000, 1.0));
 }
 
-TEST_CASE("gcode interpreter: G10 L2 R (LinuxCNC's rotation of a coordinate system) is refused unless 0", "[gcode][interpreter]") {
+TEST_CASE("gcode interpreter: G10 L2 R0 is no rotation, the offset applies exactly", "[gcode][interpreter]") {
+  // Rotations themselves: rotation_test.cpp.
   Machine m;
-  CHECK(run(m, {"G10 L2 P1 X5 R0", "G54 G0 X0"}).end == pt(5, 0));  // R0: no rotation, the offset applies
-  const Failure f = run_failing({"G10 L2 P1 X1 Y2 R45"});
-  CHECK(f.code == Error::GcodeUnsupportedWord);
-  CHECK(f.index == 17);  // the R word
+  CHECK(run(m, {"G10 L2 P1 X5 R0", "G54 G0 X0"}).end == pt(5, 0));
+  CHECK(m.rotation_deg(0) == 0);
 }

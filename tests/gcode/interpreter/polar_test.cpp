@@ -160,10 +160,34 @@ TEST_CASE("polar: the reference's errors and this controller's limits, at the po
   f = run_failing({"G0 Z5", "G91 G81 @1 ^33 R1 Z-1 L5 F100"});
   CHECK(f.code == Error::GcodeMissingWord);
   CHECK(f.index == 9);
-  // This controller: no polar words with splines.
-  f = run_failing({"G0 X1", "G5 @1 ^0 I1 J0 P1 Q0 F100"});
-  CHECK(f.code == Error::GcodeUnsupportedWord);
-  CHECK(f.index == 4);
+  // LinuxCNC adds a G5.2 control point only for X and Y together: polar words are refused there.
+  f = run_failing({"G0 X1", "G5.2 @1 ^0 P1"});
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  CHECK(f.index == 6);
+  f = run_failing({"G0 X1", "G5.2 X2 Y0", "@1 ^90"});
+  CHECK(f.code == Error::GcodeNurbsBlock);
+  CHECK(f.index == 1);
+}
+
+TEST_CASE("polar: G5 and G5.1 take their end point from @ ^ (LinuxCNC's find_ends)", "[gcode][interpreter][polar]") {
+  Machine m;
+  run(m, {"G21 G90 G0 X0 Y0"});
+  // End (0, 10); I J and P Q stay offsets from the start and end: controls (0, 2) and (0, 8).
+  const Motion cubic = run(m, {"G5 @10 ^90 I0 J2 P0 Q-2 F100"});
+  REQUIRE(cubic.kind == MotionKind::Cubic);
+  check_end(cubic, 0, 10);
+  CHECK(cubic.control[1][1] == Approx(2).margin(1e-9));
+  CHECK(cubic.control[2][1] == Approx(8).margin(1e-9));
+  // G91 ^-90 turns the end (0, 10) about the origin to (10, 0); the control stays an offset.
+  const Motion quadratic = run(m, {"G91 G5.1 ^-90 I5 J0"});
+  REQUIRE(quadratic.kind == MotionKind::Quadratic);
+  check_end(quadratic, 10, 0);
+  CHECK(quadratic.control[1][0] == Approx(5).margin(1e-9));
+  CHECK(quadratic.control[1][1] == Approx(10).margin(1e-9));
+  // Polar words with X or Y on a spline: LinuxCNC's "Cannot specify X or Y words with polar coordinate".
+  Failure f = run_failing({"G0 X1", "G5.1 X2 @1 I1 J0 F100"});
+  CHECK(f.code == Error::GcodeConflictingWords);
+  CHECK(f.index == 9);
 }
 
 TEST_CASE("polar: canned-cycle holes, G90 at @ ^ and G91 turning per repeat", "[gcode][interpreter][polar][cycle]") {

@@ -6,3 +6,4 @@
 #include <curvestep/gcode/interpreter.hpp>
 #include <curvestep/gcode/inverse_time.hpp>
 #include <curvestep/gcode/parser.hpp>
+#include <curvestep/gcode/xy_rotation.hpp>

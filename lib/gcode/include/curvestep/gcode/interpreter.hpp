@@ -49,7 +49,15 @@
 //   @ ^                LinuxCNC's polar coordinates, instead of X Y (G17 only): @ the distance, ^ the
 //                      angle in degrees (counter-clockwise from +X), about the XY origin of the coordinate
 //                      system in force; G90 replaces the current point's distance/angle, G91 adds to them
-//                      (see polar_end_point). With G0 G1 G2 G3; refused with canned cycles and splines.
+//                      (see polar_end_point). With G0 G1 G2 G3, canned cycles, and G5 G5.1 (their end
+//                      point, as LinuxCNC's find_ends gives it); refused on G5.2 control points
+//                      (LinuxCNC adds one only for X and Y together).
+//   G10 L2 P R         LinuxCNC's rotation of coordinate system P about Z, R degrees counter-clockwise
+//                      (R not allowed on G10 L20). Program XY turn about the system's origin:
+//                      machine = R(program + G92) + work offset (xy_rotation.hpp); Z never turns. G91
+//                      increments, I J of arcs, I J P Q of splines, polar angles and cycle holes are
+//                      along the turned axes; G53 and the G28/G30 stored positions are machine
+//                      coordinates. G18/G19 arcs in a rotated system are refused (their plane would tilt).
 // Arcs turn in the selected plane: G17 X Y with I J (K refused), G18 Z X with K I (J refused), G19
 // Y Z with J K (I refused); the third axis makes a helix. Motion::plane says which.
 //
@@ -71,6 +79,7 @@
 #include <curvestep/gcode/canned_cycle.hpp>
 #include <curvestep/gcode/inverse_time.hpp>
 #include <curvestep/gcode/parser.hpp>
+#include <curvestep/gcode/xy_rotation.hpp>
 
 namespace curvestep::gcode {
 
@@ -237,6 +246,8 @@ class Interpreter {
   [[nodiscard]] constexpr double scale() const noexcept { return units_ == Units::Inches ? millimetres_per_inch : 1.0; }
   [[nodiscard]] constexpr bool incremental() const noexcept { return incremental_; }
   [[nodiscard]] constexpr bool arc_centers_absolute() const noexcept { return arc_absolute_; }
+  /// The motion mode in force: its G code × 10 (G2: 20, G81: 810), -1 if none.
+  [[nodiscard]] constexpr std::int32_t motion_mode() const noexcept { return mode_; }
   /// Inside a G5.2 … G5.3 block.
   [[nodiscard]] constexpr bool in_nurbs_block() const noexcept { return in_nurbs_; }
   /// M2 or M30 was executed.
@@ -252,9 +263,11 @@ class Interpreter {
   [[nodiscard]] constexpr std::size_t coordinate_system() const noexcept { return coordinate_system_; }
   /// The G92 offset in force, mm.
   [[nodiscard]] constexpr const Point& g92_offset() const noexcept { return g92_offset_; }
-  /// The current position in the coordinate system in use (work offset, G92 and tool length
+  /// The rotation about Z of coordinate system `index` (0 = G54 … 8 = G59.3), degrees (G10 L2 R).
+  [[nodiscard]] constexpr double rotation_deg(std::size_t index) const noexcept { return rotations_deg_[index]; }
+  /// The current position in the coordinate system in use (work offset, rotation, G92 and tool length
   /// removed), mm, as LinuxCNC's #5420-#5422 report it (in the program's units: divide by 25.4 in G20).
-  [[nodiscard]] constexpr Point program_position() const noexcept { return position_ - offset_in_force(); }
+  [[nodiscard]] Point program_position() const noexcept { return to_program(position_); }
   /// The tool loaded by the last M6.
   [[nodiscard]] constexpr std::size_t loaded_tool() const noexcept { return loaded_tool_; }
   /// The radii to start and end (mm, in the arc's plane) of the last centre-form arc refused with
@@ -274,6 +287,10 @@ class Interpreter {
   /// Sets the work offset of coordinate system `index` (0 = G54 … 8 = G59.3), mm, as G10 L2 would.
   constexpr void set_work_offset(std::size_t index, const Point& offset) noexcept {
     if (index < work_offsets_.size()) work_offsets_[index] = offset;
+  }
+  /// Sets the rotation of coordinate system `index` about Z, degrees, as G10 L2 R would.
+  constexpr void set_rotation_deg(std::size_t index, double degrees) noexcept {
+    if (index < rotations_deg_.size()) rotations_deg_[index] = degrees;
   }
   /// Sets the G92 offset, mm, as G92 would.
   constexpr void set_g92_offset(const Point& offset) noexcept { g92_offset_ = offset; }
@@ -613,6 +630,36 @@ class Interpreter {
     return ok();
   }
 
+  /// The rotation of the coordinate system in use (none for a G53 move).
+  [[nodiscard]] XyRotation rotation_in_force() const noexcept {
+    return machine_coordinates_ ? XyRotation{} : XyRotation(rotations_deg_[coordinate_system_]);
+  }
+
+  /// Program coordinates -> machine coordinates, as LinuxCNC's canon does: X Y of (program + G92)
+  /// turned by the system's rotation, then + work offset; Z + work offset + G92 + tool length.
+  [[nodiscard]] Point to_machine(const Point& program) const noexcept {
+    const XyRotation rotation = rotation_in_force();
+    if (rotation.none()) return program + offset_in_force();
+    Point machine = rotation.turned(program + g92_offset_) + work_offsets_[coordinate_system_];
+    machine[2] = program[2] + offset_in_force()[2];
+    return machine;
+  }
+
+  /// Machine coordinates -> program coordinates of the system in use (the inverse of to_machine).
+  [[nodiscard]] Point to_program(const Point& machine) const noexcept {
+    if (rotation_in_force().none()) return machine - offset_in_force();
+    return program_point_in(coordinate_system_, machine);
+  }
+
+  /// Machine point `machine` in the program coordinates of coordinate system `system` (LinuxCNC's
+  /// find_current_in_system): X Y turned back by that system's rotation after removing its offset,
+  /// then less G92; Z less offset, G92 and tool length.
+  [[nodiscard]] Point program_point_in(std::size_t system, const Point& machine) const noexcept {
+    Point program = XyRotation(rotations_deg_[system]).turned_back(machine - work_offsets_[system]) - g92_offset_;
+    program[2] -= tool_length_mm_;
+    return program;
+  }
+
   /// G40 / G41 / G42 / G41.1 / G42.1 (LinuxCNC semantics, G17 and G18).
   template <std::size_t Capacity>
   [[nodiscard]] Result<void> compensation(const Block<Capacity>& block, const Word& g) noexcept {
@@ -697,21 +744,25 @@ class Interpreter {
         if (l == nullptr || p == nullptr) return fail(Error::GcodeMissingWord, g.column);
         if (l->value != 2 && l->value != 20) return fail(Error::GcodeUnsupportedWord, l->column);
         if (!(p->value >= 0 && p->value <= 9) || p->value != std::floor(p->value)) return fail(Error::GcodeBadNumber, p->column);
-        // R: LinuxCNC's rotation of the system about Z (G10 L2 only); none (R0) is all this supports.
-        if (const Word* r = block.find('R'); r != nullptr && (l->value != 2 || r->value != 0)) {
-          return fail(Error::GcodeUnsupportedWord, r->column);
-        }
+        // R: LinuxCNC's rotation of the system about Z, degrees; G10 L2 only ("R not allowed in G10 L20").
+        const Word* r = block.find('R');
+        if (r != nullptr && l->value != 2) return fail(Error::GcodeUnsupportedWord, r->column);
         const std::size_t system = p->value == 0 ? coordinate_system_ : static_cast<std::size_t>(p->value) - 1;
+        // LinuxCNC: "Cannot change the active coordinate system with cutter radius compensation on".
+        if (system == coordinate_system_ && compensation_side_ != CompensationSide::Off) return fail(Error::GcodeCutterCompensation, g.column);
+        std::array<double, 3> values{};
+        std::array<bool, 3> given{};
         for (std::size_t axis = 0; axis < 3; ++axis) {
-          double v = 0;
-          CURVESTEP_TRY(const bool given, value_of(axis, v));
-          if (!given) continue;
-          if (l->value == 2) {
-            work_offsets_[system][axis] = v;
-          } else {  // L20: the current position becomes v in that system
-            work_offsets_[system][axis] = position_[axis] - v - g92_offset_[axis] - (axis == 2 ? tool_length_mm_ : 0.0);
-          }
+          CURVESTEP_TRY(given[axis], value_of(axis, values[axis]));
         }
+        if (l->value == 2) {
+          for (std::size_t axis = 0; axis < 3; ++axis) {
+            if (given[axis]) work_offsets_[system][axis] = values[axis];
+          }
+          if (r != nullptr) rotations_deg_[system] = r->value;
+          return ok();
+        }
+        set_origin_here(system, values, given);
         return ok();
       }
       case 280:
@@ -721,15 +772,17 @@ class Interpreter {
         Point target = position_;
         bool any = false;
         const Point offset = offset_in_force();
+        std::array<bool, 3> given{};
         for (std::size_t axis = 0; axis < 3; ++axis) {
           double v = 0;
-          CURVESTEP_TRY(const bool given, value_of(axis, v));
-          if (!given) continue;
+          CURVESTEP_TRY(given[axis], value_of(axis, v));
+          if (!given[axis]) continue;
           any = true;
           intermediate[axis] = incremental_ ? position_[axis] + v : v + offset[axis];
           target[axis] = home[axis];
         }
         if (!any) target = home;
+        if ((given[0] || given[1]) && !rotation_in_force().none()) CURVESTEP_CHECK(rotated_home_moves(block, home, given, intermediate, target));
         motion.start = position_;
         if (any && !(intermediate == position_)) {
           motion.has_pre_rapid = true;
@@ -750,7 +803,12 @@ class Interpreter {
           CURVESTEP_TRY(const bool given, value_of(axis, v));
           if (!given) continue;
           any = true;
-          g92_offset_[axis] = position_[axis] - v - work_offsets_[coordinate_system_][axis] - (axis == 2 ? tool_length_mm_ : 0.0);
+          const XyRotation rotation = rotation_in_force();
+          if (rotation.none()) {
+            g92_offset_[axis] = position_[axis] - v - work_offsets_[coordinate_system_][axis] - (axis == 2 ? tool_length_mm_ : 0.0);
+          } else {  // LinuxCNC adds G92 before the rotation: it is measured along the system's turned axes
+            g92_offset_[axis] = rotation.turned_back(position_ - work_offsets_[coordinate_system_])[axis] - v - (axis == 2 ? tool_length_mm_ : 0.0);
+          }
         }
         if (!any) return fail(Error::GcodeMissingWord, g.column);
         g92_saved_ = g92_offset_;
@@ -758,6 +816,58 @@ class Interpreter {
       }
       default: return ok();
     }
+  }
+
+  /// G10 L20 P<system>: the current position becomes `values` (the axes `given`) in that system, as
+  /// LinuxCNC's convert_setup does: its X Y are measured along the system's turned axes, so the new
+  /// offset is old offset + R(current) - R(wanted), both in that system's program coordinates.
+  void set_origin_here(std::size_t system, const std::array<double, 3>& values, const std::array<bool, 3>& given) noexcept {
+    const XyRotation rotation(rotations_deg_[system]);
+    if (rotation.none()) {
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        if (given[axis]) work_offsets_[system][axis] = position_[axis] - values[axis] - g92_offset_[axis] - (axis == 2 ? tool_length_mm_ : 0.0);
+      }
+      return;
+    }
+    const Point current = program_point_in(system, position_);
+    Point wanted = current;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+      if (given[axis]) wanted[axis] = values[axis];
+    }
+    const Point shift = rotation.turned(current) - rotation.turned(wanted);
+    work_offsets_[system][0] += shift[0];
+    work_offsets_[system][1] += shift[1];
+    if (given[2]) work_offsets_[system][2] = position_[2] - values[2] - g92_offset_[2] - tool_length_mm_;
+  }
+
+  /// G28/G30 with axis words in a rotated system (LinuxCNC's convert_home): the waypoint and the
+  /// stored position are taken in program coordinates, and the final point has the stored
+  /// position's program coordinate on the given axes and the waypoint's on the others. The stored
+  /// position itself is reached when X and Y are both given (or neither); with one of them, the
+  /// move keeps the other program coordinate, along the system's turned axes.
+  template <std::size_t Capacity>
+  [[nodiscard]] Result<void> rotated_home_moves(const Block<Capacity>& block, const Point& home, const std::array<bool, 3>& given,
+                                                Point& intermediate, Point& target) const noexcept {
+    const Word* x = given[0] ? block.find('X') : nullptr;
+    const Word* y = given[1] ? block.find('Y') : nullptr;
+    if (x != nullptr || y != nullptr) {
+      const Point turned = incremental_ ? position_ + rotation_in_force().turned(Point{{x != nullptr ? x->value * scale() : 0.0,
+                                                                                        y != nullptr ? y->value * scale() : 0.0, 0.0}})
+                                        : absolute_xy(x, y);
+      for (std::size_t axis = 0; axis < 2; ++axis) {
+        if (!(std::fabs(turned[axis]) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, (x != nullptr ? x : y)->column);
+        intermediate[axis] = turned[axis];
+      }
+    }
+    Point program = to_program(intermediate);
+    const Point home_program = to_program(home);
+    for (std::size_t axis = 0; axis < 2; ++axis) {
+      if (given[axis]) program[axis] = home_program[axis];
+    }
+    const Point end = to_machine(program);
+    target[0] = end[0];
+    target[1] = end[1];
+    return ok();
   }
 
   /// The block's first polar word (@ distance or ^ angle), or nullptr.
@@ -770,20 +880,45 @@ class Interpreter {
     return distance->column < angle->column ? distance : angle;
   }
 
-  /// The end point from X Y Z (absolute or incremental), range-checked; X Y may come from @ ^.
+  /// The end point from X Y Z (absolute or incremental), range-checked; X Y may come from @ ^. In a
+  /// rotated coordinate system X and Y are along its turned axes (G91: the increment turns; G90: an
+  /// axis not given keeps its program coordinate).
   template <std::size_t Capacity>
   [[nodiscard]] Result<Point> end_point(const Block<Capacity>& block) const noexcept {
     Point end = position_;
+    const XyRotation rotation = rotation_in_force();
     constexpr std::array<char, 3> axes{'X', 'Y', 'Z'};
     for (std::size_t axis = 0; axis < 3; ++axis) {
-      if (const Word* w = block.find(axes[axis])) {
+      if (const Word* w = block.find(axes[axis]); w != nullptr && (rotation.none() || axis == 2)) {
         const double v = w->value * scale() + (incremental_ ? position_[axis] : offset_in_force()[axis]);
         if (!(std::fabs(v) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, w->column);
         end[axis] = v;
       }
     }
+    const Word* x = block.find('X');
+    const Word* y = block.find('Y');
+    if (!rotation.none() && (x != nullptr || y != nullptr)) {
+      const double dx = x != nullptr ? x->value * scale() : 0.0;
+      const double dy = y != nullptr ? y->value * scale() : 0.0;
+      const Point turned = incremental_ ? position_ + rotation.turned(Point{{dx, dy, 0.0}}) : absolute_xy(x, y);
+      for (std::size_t axis = 0; axis < 2; ++axis) {
+        if (!(std::fabs(turned[axis]) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, (x != nullptr ? x : y)->column);
+        end[axis] = turned[axis];
+      }
+    }
     if (polar_word(block) != nullptr) CURVESTEP_CHECK(polar_end_point(block, end));
     return end;
+  }
+
+  /// The machine point of G90 X and/or Y: the program coordinates given, an axis not given keeping
+  /// the current point's (in a rotated system both machine X and Y change), Z the current one.
+  [[nodiscard]] Point absolute_xy(const Word* x, const Word* y) const noexcept {
+    Point program = to_program(position_);
+    if (x != nullptr) program[0] = x->value * scale();
+    if (y != nullptr) program[1] = y->value * scale();
+    Point machine = to_machine(program);
+    machine[2] = position_[2];
+    return machine;
   }
 
   /// A block's polar words applied to the current point (about the XY origin in force): the
@@ -805,7 +940,7 @@ class Interpreter {
     p.word = polar_word(block);
     const Word* distance = block.find('@');
     const Word* angle = block.find('^');
-    p.origin = offset_in_force();
+    p.origin = to_machine(Point{});
     const double x = position_[0] - p.origin[0];
     const double y = position_[1] - p.origin[1];
     p.at_origin = x == 0 && y == 0;
@@ -819,7 +954,8 @@ class Interpreter {
       p.angle_rad += p.step_rad;
     } else {
       if (distance != nullptr) p.radius_mm = p.step_mm;
-      if (angle != nullptr) p.angle_rad = p.step_rad;
+      // The angle is from the system's +X, which is turned by its rotation.
+      if (angle != nullptr) p.angle_rad = p.step_rad + rotation_in_force().radians();
     }
     return p;
   }
@@ -936,6 +1072,7 @@ class Interpreter {
       return motion;
     }
     if (const Word* l = block.find('L')) return fail(Error::GcodeNurbsBlock, l->column);
+    if (const Word* polar = polar_word(block)) return fail(Error::GcodeNurbsBlock, polar->column);  // as in start_nurbs
     CURVESTEP_CHECK(only(block, "XYP", Error::GcodeConflictingWords));
     if (block.find('X') == nullptr && block.find('Y') == nullptr) {
       if (const Word* p = block.find('P')) return fail(Error::GcodeMissingWord, p->column);
@@ -996,9 +1133,10 @@ class Interpreter {
     if (compensation_side_ != CompensationSide::Off && (mode_ == 50 || mode_ == 51 || mode_ == 52 || is_cycle_code(mode_))) {
       return fail(Error::GcodeCutterCompensation, column);  // splines and cycles cannot be compensated
     }
-    if (const Word* polar = polar_word(block);
-        polar != nullptr && (plane_ != Plane::XY || !(mode_ == 0 || mode_ == 10 || mode_ == 20 || mode_ == 30 || is_cycle_code(mode_)))) {
-      return fail(Error::GcodeUnsupportedWord, polar->column);  // polar: G17 only (LinuxCNC); here not with splines
+    if (const Word* polar = polar_word(block); polar != nullptr) {
+      // LinuxCNC adds a G5.2 control point only for X and Y together: polar words give none.
+      if (mode_ == 52) return fail(Error::GcodeNurbsBlock, polar->column);
+      if (plane_ != Plane::XY) return fail(Error::GcodeUnsupportedWord, polar->column);  // polar: G17 only (LinuxCNC)
     }
     CURVESTEP_CHECK(check_feed(block, column));
     switch (mode_) {
@@ -1041,6 +1179,9 @@ class Interpreter {
     const Word* i_word = block.find(offset_letters[axes.first]);
     const Word* j_word = block.find(offset_letters[axes.second]);
     if (r_word != nullptr && (i_word != nullptr || j_word != nullptr)) return fail(Error::GcodeConflictingWords, r_word->column);
+    // A rotated system turns a G18/G19 arc's plane off the axes (LinuxCNC draws it tilted); Motion
+    // holds arcs in the three axis planes only.
+    if (plane_ != Plane::XY && !rotation_in_force().none()) return fail(Error::GcodeUnsupportedWord, column);
     CURVESTEP_TRY(motion.end, end_point(block));
     motion.direction = mode_ == 20 ? ArcDirection::Clockwise : ArcDirection::CounterClockwise;
     motion.plane = plane_;
@@ -1075,10 +1216,12 @@ class Interpreter {
       cv = sv + dv / 2 + side * height * du / chord;
     } else {
       if (i_word == nullptr && j_word == nullptr) return fail(Error::GcodeMissingWord, column);
-      CURVESTEP_TRY(const double i, offset(block, offset_letters[axes.first]));
-      CURVESTEP_TRY(const double j, offset(block, offset_letters[axes.second]));
-      cu = arc_absolute_ ? i + offset_in_force()[axes.first] : su + i;
-      cv = arc_absolute_ ? j + offset_in_force()[axes.second] : sv + j;
+      Point ij{};  // the centre (G90.1) or its offset from the start (G91.1), program axes
+      CURVESTEP_TRY(ij[axes.first], offset(block, offset_letters[axes.first]));
+      CURVESTEP_TRY(ij[axes.second], offset(block, offset_letters[axes.second]));
+      const Point centre = arc_absolute_ ? to_machine(ij) : s + rotation_in_force().turned(ij);
+      cu = centre[axes.first];
+      cv = centre[axes.second];
     }
     const double r0 = std::sqrt((su - cu) * (su - cu) + (sv - cv) * (sv - cv));
     const double r1 = std::sqrt((eu - cu) * (eu - cu) + (ev - cv) * (ev - cv));
@@ -1149,14 +1292,21 @@ class Interpreter {
     const Point offset = offset_in_force();
     const double dx = x != nullptr ? x->value * scale() : 0.0;
     const double dy = y != nullptr ? y->value * scale() : 0.0;
+    const XyRotation rotation = rotation_in_force();
     if (incremental_) {
-      // X Y from the current point (and again per repeat), R from the current Z, Z from R.
-      c.first_hole = Point{{position_[0] + dx, position_[1] + dy, 0.0}};
-      c.step = Point{{dx, dy, 0.0}};
+      // X Y from the current point (and again per repeat, along the system's turned axes), R from
+      // the current Z, Z from R.
+      c.step = rotation.turned(Point{{dx, dy, 0.0}});
+      c.first_hole = Point{{position_[0] + c.step[0], position_[1] + c.step[1], 0.0}};
       c.r_z = initial_z + cycle_sticky_.r.value * scale();
       c.bottom_z = c.r_z + cycle_sticky_.z.value * scale();
     } else {
-      c.first_hole = Point{{x != nullptr ? dx + offset[0] : position_[0], y != nullptr ? dy + offset[1] : position_[1], 0.0}};
+      if (rotation.none() || (x == nullptr && y == nullptr)) {
+        c.first_hole = Point{{x != nullptr ? dx + offset[0] : position_[0], y != nullptr ? dy + offset[1] : position_[1], 0.0}};
+      } else {
+        const Point hole = absolute_xy(x, y);
+        c.first_hole = Point{{hole[0], hole[1], 0.0}};
+      }
       c.r_z = cycle_sticky_.r.value * scale() + offset[2];
       c.bottom_z = cycle_sticky_.z.value * scale() + offset[2];
     }
@@ -1201,7 +1351,7 @@ class Interpreter {
   template <std::size_t Capacity>
   [[nodiscard]] Result<Motion> cubic(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
     if (plane_ != Plane::XY) return fail(Error::GcodeSplineNotG17, column);
-    CURVESTEP_CHECK(only(block, "XYIJPQ", Error::GcodeConflictingWords));
+    CURVESTEP_CHECK(only(block, "XYIJPQ@^", Error::GcodeConflictingWords));
     const Word* i_word = block.find('I');
     const Word* j_word = block.find('J');
     if ((i_word == nullptr) != (j_word == nullptr)) return fail(Error::GcodeMissingWord, column);
@@ -1222,7 +1372,9 @@ class Interpreter {
     // A copy, not a reference: position_ becomes the end below, and `moves` compares with the start.
     const Point s = position_;
     const Point& e = motion.end;
-    motion.control = {s, Point{{s[0] + i, s[1] + j, s[2]}}, Point{{e[0] + p, e[1] + q, e[2]}}, e};
+    // I J and P Q are along the program's axes: a rotated system turns them with it.
+    const XyRotation rotation = rotation_in_force();
+    motion.control = {s, s + rotation.turned(Point{{i, j, 0.0}}), e + rotation.turned(Point{{p, q, 0.0}}), e};
     for (const Point& c : motion.control) {
       if (!(std::fabs(c[0]) <= max_coordinate_mm && std::fabs(c[1]) <= max_coordinate_mm)) return fail(Error::GcodeBadNumber, column);
     }
@@ -1239,14 +1391,14 @@ class Interpreter {
   template <std::size_t Capacity>
   [[nodiscard]] Result<Motion> quadratic(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
     if (plane_ != Plane::XY) return fail(Error::GcodeSplineNotG17, column);
-    CURVESTEP_CHECK(only(block, "XYIJ", Error::GcodeConflictingWords));
+    CURVESTEP_CHECK(only(block, "XYIJ@^", Error::GcodeConflictingWords));
     if (block.find('I') == nullptr && block.find('J') == nullptr) return fail(Error::GcodeMissingWord, column);
     CURVESTEP_TRY(const double i, offset(block, 'I'));
     CURVESTEP_TRY(const double j, offset(block, 'J'));
     CURVESTEP_TRY(motion.end, end_point(block));
     // A copy, not a reference: position_ becomes the end below, and `moves` compares with the start.
     const Point s = position_;
-    motion.control = {s, Point{{s[0] + i, s[1] + j, s[2]}}, motion.end, Point{}};
+    motion.control = {s, s + rotation_in_force().turned(Point{{i, j, 0.0}}), motion.end, Point{}};
     if (!(std::fabs(motion.control[1][0]) <= max_coordinate_mm && std::fabs(motion.control[1][1]) <= max_coordinate_mm)) {
       return fail(Error::GcodeBadNumber, column);
     }
@@ -1302,6 +1454,7 @@ class Interpreter {
   CycleSticky cycle_sticky_{};
   bool retract_to_initial_ = true;  ///< G98 (LinuxCNC's start-up mode); G99 returns to R
   std::array<Point, 9> work_offsets_{};  ///< G54 … G59.3
+  std::array<double, 9> rotations_deg_{};  ///< their rotations about Z (G10 L2 R), degrees
   std::size_t coordinate_system_ = 0;
   Point g92_offset_{};
   Point g92_saved_{};
