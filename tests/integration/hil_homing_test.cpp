@@ -16,9 +16,6 @@
 #include <thread>
 #include <vector>
 
-#include <curvestep/host/link/status_query.hpp>
-#include <curvestep/host/link/transport.hpp>
-
 #include "hil_support.hpp"
 #include "key_terminal.hpp"
 #include "process.hpp"
@@ -33,12 +30,6 @@ std::filesystem::path homing_machine(const std::string& seek = "10") {
   return ct::trapezoid_machine("homing_machine_" + seek, R"("homing": {"order": ["y", "x"],
     "x": {"switch": "min", "seek": )" + seek + R"(, "locate": 2, "pull_off": 1, "position": 0, "distance": 20},
     "y": {"switch": "max", "seek": )" + seek + R"(, "locate": 2, "pull_off": 1.5, "position": 100, "distance": 20}})");
-}
-
-/// The controller's StatusReport, read by a second client.
-curvestep::protocol::StatusReport status_of(const std::string& port) {
-  auto transport = curvestep::host::link::open_port(port, 115200);
-  return curvestep::host::link::read_status(*transport, curvestep::protocol::SenderSettings{100, 10, 3000});
 }
 
 /// The seek and locate close points `home` printed for `axis` ("x"), mm.
@@ -74,7 +65,7 @@ TEST_CASE("hil homing: the axes end at their home positions and the switches clo
                           &output) == 0);
   INFO(errors << output);
   check_homed_lines(output);
-  const auto status = status_of(port);
+  const auto status = ct::controller_status(port);
   CHECK(status.position == curvestep::protocol::WirePoint{0, 100 * 65536, 0});
   CHECK(status.limit_switches == 0);  // pulled off both switches
 }
@@ -102,7 +93,7 @@ TEST_CASE("hil homing: the console's h homes the axes as home does", "[integrati
   CHECK_THAT(output, Catch::Contains("jog X+1: at x 2 y 0 z 0 mm") && Catch::Contains("homed: at x 0 y 100 z 0 mm") &&
                          Catch::Contains("<Idle|MPos:0,100,0|"));
   check_homed_lines(output);
-  const auto status = status_of(port);
+  const auto status = ct::controller_status(port);
   CHECK(status.position == curvestep::protocol::WirePoint{0, 100 * 65536, 0});
   CHECK(status.limit_switches == 0);
 }
@@ -125,7 +116,7 @@ TEST_CASE("hil homing: SIGINT during home aborts the seek through the protocol, 
   CHECK_THAT(errors, Catch::Contains("homing x aborted by the operator: the controller stopped at once and stands at x -"));
   CHECK(ct::wait_for_log(device, "idle at tick", log_at_signal));
   CHECK(device.stderr_text().find("LinkTimeout") == std::string::npos);
-  const auto status = status_of(port);
+  const auto status = ct::controller_status(port);
   CHECK(status.state == curvestep::protocol::MachineState::Idle);
   CHECK(status.position[0] < 0);           // it had moved toward the switch ...
   CHECK(status.position[0] > -20 * 65536);  // ... and stopped long before the seek's end
