@@ -44,11 +44,7 @@ int run_console(const ConsoleCommandOptions& o) {
   if (!session.console().reads_keys()) {
     throw std::runtime_error("no keys to read: standard input is no terminal (use --keys to read it anyway)");
   }
-  session.console().set_interrupt_aborts(true);
-  link::StreamOptions options;
-  options.link.link_timeout_ms = o.link.link_timeout_ms;
-  options.warn = [](const std::string& text) { std::cerr << "curvestep console: warning: " << text << "\n"; };
-  session.attach(options);
+  const link::StreamOptions options = session.abortable_moves(o.link.link_timeout_ms);
   std::cout << "curvestep console -> " << o.link.port << "\n  " << link::ConsoleKeyDecoder::key_help() << std::endl;
   try {
     ControllerMoves moves(*transport, machine_file, machine, options);

@@ -56,10 +56,7 @@ int run_home(const HomeCommandOptions& o) {
   for (const auto& note : notes) std::cerr << "curvestep home: note: " << note << "\n";
   auto transport = link::open_port(o.link.port, o.link.baud);
   OperatorSession session("curvestep home", o.keys);
-  session.console().set_interrupt_aborts(true);
-  link::StreamOptions options;
-  options.link.link_timeout_ms = o.link.link_timeout_ms;
-  session.attach(options);
+  const link::StreamOptions options = session.abortable_moves(o.link.link_timeout_ms);
   std::cout << "curvestep home -> " << o.link.port << std::endl;
   try {
     ControllerMoves moves(*transport, machine_file, machine, options);

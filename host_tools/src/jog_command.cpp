@@ -67,11 +67,7 @@ int run_jog(const JogCommandOptions& o) {
   const MachineLimits machine = step_rate_aware(machine_file.limits, &notes);
   auto transport = link::open_port(o.link.port, o.link.baud);
   OperatorSession session("curvestep jog", o.keys);
-  session.console().set_interrupt_aborts(true);
-  link::StreamOptions options;
-  options.link.link_timeout_ms = o.link.link_timeout_ms;
-  options.warn = [](const std::string& text) { std::cerr << "curvestep jog: warning: " << text << "\n"; };
-  session.attach(options);
+  const link::StreamOptions options = session.abortable_moves(o.link.link_timeout_ms);
   std::optional<ControllerMoves> moves;
   try {
     moves.emplace(*transport, machine_file, machine, options);
