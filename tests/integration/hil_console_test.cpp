@@ -2,13 +2,16 @@
 // HIL: `curvestep console --keys` against the real `curvestep device --fast` on a pseudo-terminal,
 // fed a key script through a pipe: two right arrows at the 1 mm start step move x by exactly 2 mm
 // (Q16.16) and `?` prints that position; every jog key and letter moves its axis by the step; a jog
-// that would leave the travel is refused and nothing moves. (Homing from the console: hil_homing_test.cpp.)
+// that would leave the travel is refused and nothing moves. On a real-time device and a terminal,
+// Esc aborts a running jog and the session goes on; Ctrl-C aborts one and ends the session (6). (Homing from the console: hil_homing_test.cpp.)
 #include <catch2/catch.hpp>
 
 #include <array>
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <string>
+#include <thread>
 
 #include "hil_support.hpp"
 #include "key_terminal.hpp"
@@ -75,4 +78,41 @@ TEST_CASE("hil console: without a terminal and without --keys it refuses to star
   std::string errors;
   CHECK(ct::run_program({"console", "--port", port, "--machine", ct::travel_machine().string()}, errors, "console_no_keys", 60s) == 1);
   CHECK_THAT(errors, Catch::Contains("standard input is no terminal (use --keys"));
+}
+
+TEST_CASE("hil console: Esc aborts a running jog and the session goes on, Ctrl-C aborts one and ends it with 6",
+          "[integration][hil][console]") {
+  // Real time (no --fast): a 10 mm jog at 0.5 mm/s takes 20 s, long enough to be stopped mid-way.
+  ct::Process device({"device"}, "device_console_abort.stderr");
+  const std::string port = device.first_line();
+  const ct::KeyTerminal terminal;
+  ct::Process console({"console", "--port", port, "--machine", ct::travel_machine().string(), "--feed", "0.5"},
+                      "console_abort.stderr", terminal.slave());
+  terminal.type("t\x1b[C");  // step 10 mm, X+10
+  REQUIRE(ct::wait_for_log(device, "running at tick"));
+  std::this_thread::sleep_for(300ms);
+  std::size_t log_mark = device.stderr_text().size();
+  terminal.type("\x1b");
+  REQUIRE(ct::wait_for_log(device, "idle at tick", log_mark));
+  const auto stopped = ct::controller_position(port);
+  CHECK(stopped[0] > 0);
+  CHECK(stopped[0] < 10 * mm);
+  // Still there: the next jog starts from where the first one stopped; Ctrl-C (SIGINT) aborts it.
+  log_mark = device.stderr_text().size();
+  terminal.type("\x1b[C");
+  REQUIRE(ct::wait_for_log(device, "running at tick", log_mark));
+  std::this_thread::sleep_for(300ms);
+  log_mark = device.stderr_text().size();
+  REQUIRE(::kill(console.pid(), SIGINT) == 0);
+  const int status = console.wait(30s);
+  const std::string output = console.rest_of_stdout();
+  INFO(output << console.stderr_text() << device.stderr_text());
+  CHECK(status == 6);
+  CHECK_THAT(output, Catch::Contains("jog X+10 aborted: the controller stopped at once at x "));
+  CHECK(ct::wait_for_log(device, "idle at tick", log_mark));
+  CHECK(device.stderr_text().find("LinkTimeout") == std::string::npos);
+  const auto end = ct::controller_position(port);
+  CHECK(end[0] > stopped[0]);
+  CHECK(end[0] < stopped[0] + 10 * mm);
+  CHECK((terminal.local_mode() & ICANON) != 0);  // the terminal's mode restored
 }
