@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/host/link/streamer.hpp>

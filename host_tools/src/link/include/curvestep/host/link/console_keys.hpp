@@ -11,6 +11,7 @@
 // the Esc key.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>

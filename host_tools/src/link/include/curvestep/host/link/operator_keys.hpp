@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
-// OperatorConsole: the operator's keys and signals while a job runs (`curvestep stream`, `gpio`, `jog`).
+// OperatorConsole: the operator's keys and signals while a job runs (`curvestep stream`, `gpio`,
+// `jog`, `home`), and the terminal and signals of the idle `curvestep console` (read_bytes,
+// poll_signals: it decodes its own keys, console_keys.hpp).
 //
 // Keys, as grbl senders use them: `!` feed hold, `~` resume, Ctrl-X or Esc abort, `?` status line;
 // feed override `]` / `[` ±10 %, `}` / `{` ±1 %, `=` 100 %; rapid override `(` 25 %, `*` 50 %, `)`
