@@ -3,8 +3,8 @@
 // hand-chosen positions) on a pseudo-terminal: after homing, the controller's position is the
 // machine file's home position exactly, and both approaches stopped within one step (1/80 mm) of
 // where the switches were placed; a switch that never closes is an error naming it. The console's
-// `h` homes the same way. SIGINT during `home` aborts the running move through the protocol: the
-// real-time device stops at once and stands idle (no link timeout), the command exits with 6.
+// `h` homes the same way. SIGINT or SIGTERM during `home` aborts the running move through the
+// protocol: the real-time device stops at once and stands idle (no link timeout), exit status 6.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -98,8 +98,10 @@ TEST_CASE("hil homing: the console's h homes the axes as home does", "[integrati
   CHECK(status.limit_switches == 0);
 }
 
-TEST_CASE("hil homing: SIGINT during home aborts the seek through the protocol, the device stands idle, exit 6",
+TEST_CASE("hil homing: SIGINT or SIGTERM during home aborts the seek through the protocol, the device stands idle, exit 6",
           "[integration][hil][homing]") {
+  const int signal_number = GENERATE(SIGINT, SIGTERM);
+  INFO("signal " << signal_number);
   // Real time (no --fast) and a slow seek: 20 mm at 2 mm/s toward a switch that never closes (-30).
   const auto machine = homing_machine("2");
   ct::Process device({"device", "--machine", machine.string(), "--switch", "x-:-30"}, "device_homing_sigint.stderr");
@@ -108,7 +110,7 @@ TEST_CASE("hil homing: SIGINT during home aborts the seek through the protocol, 
   REQUIRE(ct::wait_for_log(device, "running at tick"));
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
   const std::size_t log_at_signal = device.stderr_text().size();
-  REQUIRE(::kill(home.pid(), SIGINT) == 0);
+  REQUIRE(::kill(home.pid(), signal_number) == 0);
   const int exit_status = home.wait(std::chrono::seconds(30));
   const std::string errors = home.stderr_text();
   INFO(errors << device.stderr_text());
