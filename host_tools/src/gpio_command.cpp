@@ -50,6 +50,7 @@
 #include "gpio_command_output.hpp"
 #include "gpio_wiring.hpp"
 #include "job_pipeline_options.hpp"
+#include "link_options.hpp"
 #include "operator_session.hpp"
 #include "rate_option.hpp"
 
@@ -293,9 +294,8 @@ void add_gpio_command(CLI::App& app) {
   gpio->add_option("--chip", options->chip, "GPIO chip (gpiochip0, /dev/gpiochip0 or 0), overriding the machine file's gpio.chip");
   gpio->add_flag("--dry-run", options->dry_run,
                  "Drive no lines: run the firmware as fast as possible and count the steps it would take");
-  gpio->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
-  gpio->add_flag("--keys", options->keys,
-                 "Read the operator keys from standard input even when it is no terminal (a pipe)");
+  add_link_timeout_option(*gpio, options->link_timeout_ms);
+  add_keys_option(*gpio, options->keys, "! hold, ~ resume, Ctrl-X or Esc abort, ? status, ] [ } { = ( * ) overrides");
   add_start_override_options(*gpio, options->start_override);
   add_job_pipeline_options(gpio, options->pipeline);
   gpio->footer(

@@ -3,26 +3,25 @@
 // the named axes (several at once: one straight line), from where the controller stands (its
 // StatusReport), planned with the machine file's limits (step-rate aware, as every job), checked
 // against its travel (soft limits) before anything moves, and sent as a one-segment job through
-// the normal link (stream_job). Ctrl-C, Esc or Ctrl-X abort it (Abort), SIGTERM too.
+// the normal link (ControllerMoves::jog). Ctrl-C, Esc or Ctrl-X abort it (Abort), SIGTERM too.
 #include <array>
+#include <cctype>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <curvestep/host/csv.hpp>
-#include <curvestep/host/job.hpp>
 #include <curvestep/host/job_pipeline.hpp>
-#include <curvestep/host/link/status_query.hpp>
 #include <curvestep/host/link/streamer.hpp>
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/load_error.hpp>
-#include <curvestep/host/swept_extent.hpp>
 
 #include "command_registry.hpp"
-#include "jog_move.hpp"
+#include "controller_moves.hpp"
+#include "link_options.hpp"
 #include "machine_for_link.hpp"
 #include "operator_session.hpp"
 
@@ -32,10 +31,8 @@ namespace {
 struct JogCommandOptions {
   std::vector<std::string> moves;  ///< X+10, y-2.5, ...
   std::string machine;
-  std::string port;
-  int baud = 115200;
+  ControllerLinkOptions link;
   double feed_mm_per_s = 0;  ///< 0: the machine file's feed
-  unsigned link_timeout_ms = 3000;
   bool keys = false;
 };
 
@@ -68,46 +65,34 @@ int run_jog(const JogCommandOptions& o) {
   const MachineFile machine_file = load_machine_for_link(o.machine);
   std::vector<std::string> notes;
   const MachineLimits machine = step_rate_aware(machine_file.limits, &notes);
-  auto transport = link::open_port(o.port, o.baud);
-  link::StreamOptions options;
-  options.travel = machine_file.travel;
-  options.link.link_timeout_ms = o.link_timeout_ms;
-  options.warn = [](const std::string& text) { std::cerr << "curvestep jog: warning: " << text << "\n"; };
-  std::array<double, 3> start{};
+  auto transport = link::open_port(o.link.port, o.link.baud);
+  OperatorSession session("curvestep jog", o.keys);
+  const link::StreamOptions options = session.abortable_moves(o.link.link_timeout_ms);
+  std::optional<ControllerMoves> moves;
   try {
-    const protocol::StatusReport status = link::read_status(*transport, options.link);
-    for (std::size_t a = 0; a < 3; ++a) start[a] = static_cast<double>(status.position[a]) / 65536.0;
+    moves.emplace(*transport, machine_file, machine, options);
   } catch (const std::runtime_error& e) {  // LinkError, TransportError
     std::cerr << "curvestep jog: " << e.what() << "\n";
     return exit_device_error;
   }
-  const Job job = jog_job(start, distance, o.feed_mm_per_s);
+  const std::array<double, 3> start = moves->position_mm();
+  for (const auto& note : notes) std::cerr << "curvestep jog: note: " << note << "\n";
+  link::StreamResult result;
   try {
-    check_travel(job, machine_file.travel, machine_file.name);
+    result = moves->jog(distance, o.feed_mm_per_s);
   } catch (const LoadError& e) {
     std::cerr << "curvestep jog: refused, nothing moved: " << e.what() << "\n";
     return exit_outside_travel;
-  }
-  for (const auto& note : notes) std::cerr << "curvestep jog: note: " << note << "\n";
-  OperatorSession session("curvestep jog", o.keys);
-  session.console().set_interrupt_aborts(true);
-  session.attach(options);
-  link::StreamResult result;
-  try {
-    result = link::stream_job(*transport, job, machine, options);
-  } catch (const std::runtime_error& e) {  // StreamError, TransportError
+  } catch (const std::runtime_error& e) {  // StreamError, LinkError, TransportError
     session.end_line();
     std::cerr << "curvestep jog: " << e.what() << "\n";
     return exit_device_error;
   }
   session.end_line();
-  std::cout << "curvestep jog -> " << o.port << "\n  from:                ";
-  for (std::size_t a = 0; a < 3; ++a) std::cout << (a == 0 ? "" : " ") << "xyz"[a] << " " << format_number(start[a]);
-  std::cout << " mm\n  to:                  ";
-  for (std::size_t a = 0; a < 3; ++a) {
-    std::cout << (a == 0 ? "" : " ") << "xyz"[a] << " " << format_number(result.final_position_q16[a] / 65536.0);
-  }
-  std::cout << " mm (the controller's position)\n" << format_operator_summary(result, machine.rate_hz);
+  std::cout << "curvestep jog -> " << o.link.port << "\n  from:                " << format_position(start) << " mm\n  to:                  ";
+  std::array<double, 3> end{};
+  for (std::size_t a = 0; a < 3; ++a) end[a] = result.final_position_q16[a] / 65536.0;
+  std::cout << format_position(end) << " mm (the controller's position)\n" << format_operator_summary(result, machine.rate_hz);
   session.warn_tick_overruns(result, machine.rate_hz);
   if (result.aborted) {
     std::cerr << "curvestep jog: aborted by the operator\n";
@@ -121,11 +106,9 @@ void add_jog_command(CLI::App& app) {
   auto* jog = app.add_subcommand("jog", "Move axes by a distance from where the controller stands (X+10 Y-5)");
   jog->add_option("moves", options->moves, "Axis, sign and mm: X+10 Y-2.5 Z+1 (several axes move together)")->required();
   jog->add_option("--machine,-m", options->machine, "Machine file (.json): limits and travel")->required()->check(CLI::ExistingFile);
-  jog->add_option("--port,-p", options->port, "Serial port or pseudo-terminal of the controller")->required();
-  jog->add_option("--baud", options->baud, "Baud rate (real ports)");
+  add_controller_link_options(*jog, options->link);
   jog->add_option("--feed", options->feed_mm_per_s, "Feed in mm/s (default: the machine file's feed)")->check(CLI::PositiveNumber);
-  jog->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
-  jog->add_flag("--keys", options->keys, "Read Esc / Ctrl-X from standard input even when it is no terminal");
+  add_keys_option(*jog, options->keys, "Esc / Ctrl-X abort, ? status");
   jog->footer(
       "Ctrl-C, Esc or Ctrl-X abort the jog (the controller stops at once), as does SIGTERM.\n"
       "Exit status: 0 done; 3 the move would leave the machine's travel (nothing moved); 4 the controller or link\n"

@@ -22,6 +22,15 @@ void OperatorSession::attach(link::StreamOptions& options) {
   options.progress = [this](const link::StreamProgress& p) { draw(p); };
 }
 
+link::StreamOptions OperatorSession::abortable_moves(unsigned link_timeout_ms) {
+  console_.set_interrupt_aborts(true);
+  link::StreamOptions options;
+  options.link.link_timeout_ms = link_timeout_ms;
+  options.warn = [command = command_](const std::string& text) { std::cerr << command << ": warning: " << text << "\n"; };
+  attach(options);
+  return options;
+}
+
 link::OperatorCommand OperatorSession::next_command() {
   const link::OperatorCommand command = console_.poll();
   if (command != link::OperatorCommand::Status) return command;

@@ -26,6 +26,9 @@ class OperatorSession {
   OperatorSession(std::string command, bool keys_from_stdin);
   /// Sets options.operator_command and options.progress (the line with the state, the status on `?`).
   void attach(link::StreamOptions& options);
+  /// Options for moves the operator stops at once (`jog`, `home`, `console`: nothing to resume, so
+  /// Ctrl-C aborts instead of holding): attached, the link timeout set, warnings on stderr.
+  [[nodiscard]] link::StreamOptions abortable_moves(unsigned link_timeout_ms);
   /// The keys and signals (ask() is the hook for a program pause that waits for the operator).
   [[nodiscard]] link::OperatorConsole& console() noexcept { return console_; }
   /// Ends the progress line (before other output).

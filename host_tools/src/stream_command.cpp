@@ -24,6 +24,7 @@
 
 #include "command_registry.hpp"
 #include "job_pipeline_options.hpp"
+#include "link_options.hpp"
 #include "machine_for_link.hpp"
 #include "operator_session.hpp"
 
@@ -49,10 +50,8 @@ void set_pause_handling(link::StreamOptions& options, bool at_once, link::Operat
 struct StreamCommandOptions {
   std::string job;
   std::string machine;
-  std::string port;
-  int baud = 115200;
+  ControllerLinkOptions link;
   std::string capture;
-  unsigned link_timeout_ms = 3000;
   unsigned retransmit_timeout_ms = 100;
   std::size_t lookahead = SimulationOptions::max_lookahead;  ///< planning window for a controller without a planner
   bool resume_pauses = false;  ///< --resume-pauses: go on at once after M0/M1, M6 and pen changes
@@ -87,10 +86,10 @@ int run_stream(const StreamCommandOptions& o) {
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
   for (const auto& note : prepared.notes) std::cerr << "curvestep stream: note: " << note << "\n";
-  auto transport = link::open_port(o.port, o.baud);
+  auto transport = link::open_port(o.link.port, o.link.baud);
   link::StreamOptions options;
   options.travel = machine_file.travel;
-  options.link.link_timeout_ms = o.link_timeout_ms;
+  options.link.link_timeout_ms = o.link.link_timeout_ms;
   options.link.retransmit_timeout_ms = o.retransmit_timeout_ms;
   options.lookahead = o.lookahead;
   options.feed_override = o.start_override.value();
@@ -138,7 +137,7 @@ int run_stream(const StreamCommandOptions& o) {
     capture.close();
     if (!capture) throw std::runtime_error("error writing " + o.capture);
   }
-  std::cout << "curvestep stream " << o.job << " -> " << o.port << "\n"
+  std::cout << "curvestep stream " << o.job << " -> " << o.link.port << "\n"
             << "  setpoints received:  " << result.setpoints_received << "\n"
             << "  ticks standing:      " << result.standing_ticks << " (held or starved, not reported)\n"
             << "  setpoints duplicated: " << result.duplicate_setpoints << "\n"
@@ -170,15 +169,13 @@ void add_stream_command(CLI::App& app) {
   stream->add_option("--machine,-m", options->machine, "Machine file (.json), sent to the controller at connect")
       ->required()
       ->check(CLI::ExistingFile);
-  stream->add_option("--port,-p", options->port, "Serial port or pseudo-terminal (/dev/ttyUSB0, /dev/pts/3)")->required();
-  stream->add_option("--baud", options->baud, "Baud rate (real ports)");
+  add_controller_link_options(*stream, options->link);
   stream->add_option("--capture", options->capture, "Write the controller's setpoints as CSV (t,x,y,z,v,index), as curvestep sim -o");
   auto* lookahead_option = stream->add_option("--lookahead", options->lookahead,
                      "Look-ahead window (segments) to plan with here for a controller without a planner, which replays "
                      "the planned pieces (as curvestep sim --lookahead); a controller with a planner uses its own")
       ->check(CLI::Range(std::size_t{1}, SimulationOptions::max_lookahead));
   add_job_pipeline_options(stream, options->pipeline);
-  stream->add_option("--link-timeout-ms", options->link_timeout_ms, "Give up after this long without a word from the controller");
   stream
       ->add_option("--retransmit-timeout-ms", options->retransmit_timeout_ms,
                    "Resend unacknowledged frames after this silence; 10 timeouts in a row without progress end the "
@@ -186,9 +183,7 @@ void add_stream_command(CLI::App& app) {
       ->check(CLI::Range(1u, 60000u));
   stream->add_flag("--resume-pauses", options->resume_pauses,
                    "Go on at once after program pauses (M0/M1), tool changes (M6) and pen changes (scripts, tests)");
-  stream->add_flag("--keys", options->keys,
-                   "Read the operator keys from standard input even when it is no terminal (a pipe): ! hold, ~ resume, "
-                   "Ctrl-X or Esc abort, ? status, ] [ } { = ( * ) overrides");
+  add_keys_option(*stream, options->keys, "! hold, ~ resume, Ctrl-X or Esc abort, ? status, ] [ } { = ( * ) overrides");
   add_start_override_options(*stream, options->start_override);
   stream->footer(
       std::string("While a job runs: ! feed hold, ~ resume, Ctrl-X or Esc abort, ? status line (keys from a terminal on stdin, or --keys);\n") +

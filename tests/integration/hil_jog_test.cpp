@@ -15,9 +15,7 @@
 #include <thread>
 #include <unistd.h>
 
-#include <curvestep/host/link/status_query.hpp>
-#include <curvestep/host/link/transport.hpp>
-
+#include "hil_support.hpp"
 #include "process.hpp"
 
 namespace ct = curvestep::test;
@@ -25,30 +23,8 @@ using namespace std::chrono_literals;
 
 namespace {
 
-/// A machine with soft limits: x -50 .. 100, y -50 .. 100, z -10 .. 10 mm.
-std::filesystem::path travel_machine() {
-  const auto path = ct::scratch_dir() / "jog_machine.json";
-  std::ofstream(path) << R"({
-  "version": 1, "v_max": 200, "a_max": 2000, "j_max": 50000, "feed": 50, "rapid": 150,
-  "tolerance": 0.01, "rate_hz": 1000, "junction_deviation": 0.02, "max_step_rate": 100000, "profile": "scurve",
-  "axes": {
-    "x": {"steps_per_mm": 80, "v_max": 200, "a_max": 2000, "travel": [-50, 100]},
-    "y": {"steps_per_mm": 80, "v_max": 200, "a_max": 2000, "travel": [-50, 100]},
-    "z": {"steps_per_mm": 400, "v_max": 20, "a_max": 500, "travel": [-10, 10]}
-  }
-})";
-  return path;
-}
-
-/// The controller's commanded position, raw Q16.16, read over the protocol (a StatusReport).
-std::array<std::int32_t, 3> position_of(const std::string& port) {
-  auto transport = curvestep::host::link::open_port(port, 115200);
-  const auto report = curvestep::host::link::read_status(*transport, curvestep::protocol::SenderSettings{100, 10, 3000});
-  return {report.position[0], report.position[1], report.position[2]};
-}
-
 int jog(const std::string& port, const std::vector<std::string>& moves, std::string& errors, std::string* output = nullptr) {
-  std::vector<std::string> arguments{"jog", "--port", port, "--machine", travel_machine().string()};
+  std::vector<std::string> arguments{"jog", "--port", port, "--machine", ct::travel_machine().string()};
   arguments.insert(arguments.end(), moves.begin(), moves.end());
   return ct::run_program(arguments, errors, "jog", std::chrono::seconds(60), output);
 }
@@ -62,11 +38,11 @@ TEST_CASE("hil jog: the controller ends at its start plus the jog exactly, sever
   std::string output;
   REQUIRE(jog(port, {"X+3.25"}, errors, &output) == 0);
   INFO(errors << output);
-  const auto start = position_of(port);
+  const auto start = ct::controller_position(port);
   CHECK(start == std::array<std::int32_t, 3>{3 * 65536 + 65536 / 4, 0, 0});  // from 0: the first jog
   REQUIRE(jog(port, {"X+10", "y-2.5", "Z+0.125", "--feed", "20"}, errors, &output) == 0);
   INFO(errors << output);
-  const auto end = position_of(port);
+  const auto end = ct::controller_position(port);
   CHECK(end[0] == start[0] + 10 * 65536);
   CHECK(end[1] == start[1] - 5 * 65536 / 2);
   CHECK(end[2] == start[2] + 65536 / 8);
@@ -78,12 +54,12 @@ TEST_CASE("hil jog: a jog leaving the travel is refused before anything moves", 
   const std::string port = device.first_line();
   std::string errors;
   REQUIRE(jog(port, {"X+90"}, errors) == 0);
-  const auto before = position_of(port);
+  const auto before = ct::controller_position(port);
   const std::size_t log_before = device.stderr_text().size();
   CHECK(jog(port, {"X+20", "Y+1"}, errors) == 3);  // x would reach 110, beyond 100
   CHECK_THAT(errors, Catch::Contains("refused, nothing moved") && Catch::Contains("x = 110 mm, 10 mm beyond") &&
                          Catch::Contains("travel"));
-  CHECK(position_of(port) == before);
+  CHECK(ct::controller_position(port) == before);
   CHECK(device.stderr_text().find("running", log_before) == std::string::npos);
   CHECK(jog(port, {"Q+1"}, errors) == 1);
   CHECK_THAT(errors, Catch::Contains("\"Q+1\" is no move"));
@@ -98,7 +74,7 @@ TEST_CASE("hil jog: Esc on the jog's terminal aborts the move through the protoc
   REQUIRE(::unlockpt(master) == 0);
   const int slave = ::open(::ptsname(master), O_RDWR | O_NOCTTY);
   REQUIRE(slave >= 0);
-  ct::Process jogging({"jog", "--port", port, "--machine", travel_machine().string(), "X+90", "--feed", "0.5"}, "jog_abort.stderr",
+  ct::Process jogging({"jog", "--port", port, "--machine", ct::travel_machine().string(), "X+90", "--feed", "0.5"}, "jog_abort.stderr",
                       slave);
   for (int i = 0; i < 500 && device.stderr_text().find("running") == std::string::npos; ++i) std::this_thread::sleep_for(20ms);
   REQUIRE(device.stderr_text().find("running") != std::string::npos);
@@ -109,7 +85,7 @@ TEST_CASE("hil jog: Esc on the jog's terminal aborts the move through the protoc
   INFO(jogging.stderr_text() << output);
   CHECK(status == 6);
   CHECK_THAT(output, Catch::Contains("aborted:             by the operator"));
-  const auto stopped = position_of(port);
+  const auto stopped = ct::controller_position(port);
   CHECK(stopped[0] > 0);
   CHECK(stopped[0] < 90 * 65536);
   ::close(slave);

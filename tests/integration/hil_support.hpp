@@ -16,6 +16,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <curvestep/host/link/status_query.hpp>
+#include <curvestep/host/link/transport.hpp>
+
 #include "process.hpp"
 
 namespace curvestep::test {
@@ -37,6 +40,33 @@ inline std::filesystem::path wire_exact_machine() {
   }
 })";
   return path;
+}
+
+/// A machine with soft limits (jogs, the console): x -50 .. 100, y -50 .. 100, z -10 .. 10 mm.
+inline std::filesystem::path travel_machine() {
+  const auto path = scratch_dir() / "travel_machine.json";
+  std::ofstream(path) << R"({
+  "version": 1, "v_max": 200, "a_max": 2000, "j_max": 50000, "feed": 50, "rapid": 150,
+  "tolerance": 0.01, "rate_hz": 1000, "junction_deviation": 0.02, "max_step_rate": 100000, "profile": "scurve",
+  "axes": {
+    "x": {"steps_per_mm": 80, "v_max": 200, "a_max": 2000, "travel": [-50, 100]},
+    "y": {"steps_per_mm": 80, "v_max": 200, "a_max": 2000, "travel": [-50, 100]},
+    "z": {"steps_per_mm": 400, "v_max": 20, "a_max": 500, "travel": [-10, 10]}
+  }
+})";
+  return path;
+}
+
+/// The controller's StatusReport, read over the protocol by a second client (a new session).
+inline protocol::StatusReport controller_status(const std::string& port) {
+  auto transport = host::link::open_port(port, 115200);
+  return host::link::read_status(*transport, protocol::SenderSettings{100, 10, 3000});
+}
+
+/// The controller's commanded position, raw Q16.16 (controller_status).
+inline std::array<std::int32_t, 3> controller_position(const std::string& port) {
+  const protocol::StatusReport report = controller_status(port);
+  return {report.position[0], report.position[1], report.position[2]};
 }
 
 /// 80 steps/mm on x and y, a trapezoid profile at a = 1000 mm/s^2 (feed 50 mm/s, 1000 Hz), so a

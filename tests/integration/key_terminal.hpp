@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// HIL helpers for operator tests: a pseudo-terminal to type keys into a streamer's stdin, and a
-// wait for a line in the device's log.
+// HIL helpers for operator tests: a pseudo-terminal to type keys into a streamer's stdin, a pipe
+// of keys for a command run with --keys, and a wait for a line in the device's log.
 #pragma once
 
 #include <chrono>
@@ -46,6 +46,27 @@ class KeyTerminal {
  private:
   int master_ = -1;
   int slave_ = -1;
+};
+
+/// Keys for a command's standard input through a pipe (not a terminal: the command needs --keys):
+/// the whole script is written at once and the pipe closed, so the command reads its end.
+class KeyPipe {
+ public:
+  explicit KeyPipe(const std::string& keys) {
+    int ends[2];
+    REQUIRE(::pipe(ends) == 0);
+    REQUIRE(::write(ends[1], keys.data(), keys.size()) == static_cast<ssize_t>(keys.size()));
+    ::close(ends[1]);
+    read_end_ = ends[0];
+  }
+  ~KeyPipe() { ::close(read_end_); }
+  KeyPipe(const KeyPipe&) = delete;
+  KeyPipe& operator=(const KeyPipe&) = delete;
+  /// The end to give the command as its standard input.
+  [[nodiscard]] int read_end() const { return read_end_; }
+
+ private:
+  int read_end_ = -1;
 };
 
 /// Waits up to 20 s for `text` in the device's log (its state changes: "running at tick", "holding at tick").

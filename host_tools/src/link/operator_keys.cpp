@@ -95,21 +95,8 @@ void OperatorConsole::write_line(std::string_view text) const {
 }
 
 OperatorCommand OperatorConsole::poll() {
-  if (terminate_received.load() && !terminate_seen_) {
-    terminate_seen_ = true;
-    return OperatorCommand::Abort;
-  }
-  const int interrupts = interrupts_received.load();
-  if (interrupts > signals_seen_) {
-    signals_seen_ = interrupts;
-    if (question_open_ || interrupt_aborts_) {  // a second Ctrl-C before the answer
-      question_open_ = false;
-      return OperatorCommand::Abort;
-    }
-    ask(reads_keys() ? "Feed hold (Ctrl-C). Resume: ~, r or Enter; abort: Ctrl-X, Esc, a or Ctrl-C again."
-                     : "Feed hold (Ctrl-C). Abort: Ctrl-C again or SIGTERM (keys are not read: stdin is no terminal, see --keys).");
-    return OperatorCommand::Hold;
-  }
+  const OperatorCommand signalled_command = poll_signals();
+  if (signalled_command != OperatorCommand::None) return signalled_command;
   if (pending_.empty()) read_keys();
   if (pending_.empty()) return OperatorCommand::None;
   const OperatorCommand next = pending_.front();
@@ -117,17 +104,44 @@ OperatorCommand OperatorConsole::poll() {
   return next;
 }
 
-void OperatorConsole::read_keys() {
-  if (input_fd_ < 0) return;
+OperatorCommand OperatorConsole::poll_signals() {
+  if (terminate_received.load() && !terminate_seen_) {
+    terminate_seen_ = true;
+    return OperatorCommand::Abort;
+  }
+  const int interrupts = interrupts_received.load();
+  if (interrupts <= signals_seen_) return OperatorCommand::None;
+  signals_seen_ = interrupts;
+  if (question_open_ || interrupt_aborts_) {  // a second Ctrl-C before the answer
+    question_open_ = false;
+    return OperatorCommand::Abort;
+  }
+  ask(reads_keys() ? "Feed hold (Ctrl-C). Resume: ~, r or Enter; abort: Ctrl-X, Esc, a or Ctrl-C again."
+                   : "Feed hold (Ctrl-C). Abort: Ctrl-C again or SIGTERM (keys are not read: stdin is no terminal, see --keys).");
+  return OperatorCommand::Hold;
+}
+
+std::string OperatorConsole::read_bytes() {
+  char bytes[256];
+  return std::string(bytes, read_available(bytes, sizeof bytes));
+}
+
+std::size_t OperatorConsole::read_available(char* bytes, std::size_t capacity) {
+  if (input_fd_ < 0) return 0;
   pollfd p{input_fd_, POLLIN, 0};
-  if (::poll(&p, 1, 0) <= 0) return;
-  char bytes[64];
-  const ssize_t count = ::read(input_fd_, bytes, sizeof bytes);
+  if (::poll(&p, 1, 0) <= 0) return 0;
+  const ssize_t count = ::read(input_fd_, bytes, capacity);
   if (count == 0 || (count < 0 && errno != EAGAIN && errno != EINTR)) {
     input_fd_ = -1;  // end of input: no more keys
-    return;
+    return 0;
   }
-  for (std::size_t k = 0; count > 0 && k < static_cast<std::size_t>(count); ++k) take_key(bytes, static_cast<std::size_t>(count), k);
+  return count < 0 ? 0 : static_cast<std::size_t>(count);
+}
+
+void OperatorConsole::read_keys() {
+  char bytes[64];
+  const std::size_t count = read_available(bytes, sizeof bytes);
+  for (std::size_t k = 0; k < count; ++k) take_key(bytes, count, k);
 }
 
 void OperatorConsole::take_key(const char* bytes, std::size_t count, std::size_t& k) {

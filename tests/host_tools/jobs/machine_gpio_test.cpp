@@ -19,20 +19,8 @@ using namespace curvestep::host;
 
 namespace {
 
-/// A valid machine file (lines 1..8) followed by `extra` members of the root object.
-std::string machine_with(const std::string& extra) {
-  return "{\n"
-         "  \"version\": 1,\n"
-         "  \"v_max\": 200, \"a_max\": 2000, \"j_max\": 50000,\n"
-         "  \"feed\": 50, \"tolerance\": 0.01, \"rate_hz\": 1000,\n"
-         "  \"max_step_rate\": 40000, \"rapid\": 150, \"profile\": \"trapezoid\",\n"
-         "  \"axes\": {\"x\": {\"steps_per_mm\": 80}, \"y\": {\"steps_per_mm\": 80}}" +
-         std::string(extra.empty() ? "" : ",\n  " + extra) + "\n}\n";
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-LoadError error_of(const std::string& text) { return testing::machine_error_of(text, "gpio_machine.json"); }
+/// A valid machine file (lines 1..6) followed by `extra` members of the root object (from line 7).
+std::string machine_with(const std::string& extra) { return testing::machine_text(extra); }
 
 }  // namespace
 
@@ -77,13 +65,7 @@ TEST_CASE("machine gpio: limit switch input lines per axis and their level", "[h
 }
 
 TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools][jobs][gpio]") {
-  struct Case {
-    std::string gpio;
-    std::size_t line;
-    std::string field;
-    std::string cause;
-  };
-  const Case cases[] = {
+  const testing::BadSection cases[] = {
       {R"("gpio": {"x": {"step": "A", "dir": "B"}})", 7, "\"gpio\".\"chip\"", "missing required key"},
       {R"("gpio": {"chip": "", "x": {"step": "A", "dir": "B"}})", 7, "\"gpio\".\"chip\"", "must not be empty"},
       {R"("gpio": {"chip": 0, "x": {"step": "A", "dir": "B"}})", 7, "\"gpio\".\"chip\"", "expected a string, got a number"},
@@ -119,17 +101,7 @@ TEST_CASE("machine gpio: bad sections name the file, line and key", "[host_tools
       {R"("gpio": "gpiochip0")", 7, "\"gpio\"", "expected an object"},
       {R"("gpoi": {"chip": "c"})", 7, "\"gpoi\"", "unknown key"},
   };
-  for (const auto& c : cases) {
-    const LoadError e = error_of(machine_with(c.gpio));
-    const std::string what = e.what();
-    INFO(what);
-    CHECK(e.code() == Error::InvalidMachine);
-    CHECK(e.location().file == "gpio_machine.json");
-    CHECK(e.location().line == c.line);
-    CHECK(e.location().field == c.field);
-    CHECK(what.rfind("gpio_machine.json:" + std::to_string(c.line) + ": " + c.field + ": ", 0) == 0);
-    CHECK(contains(what, c.cause));
-  }
+  testing::check_bad_sections(cases, "gpio_machine.json");
 }
 
 TEST_CASE("machine gpio: the machine outputs' lines map onto GpioWiring, and load_machine_wiring reads only gpio and pen",

@@ -15,18 +15,11 @@ using namespace curvestep::host;
 
 namespace {
 
-/// A valid machine file (lines 1..8; x travels -10 .. 290 mm) followed by `extra` root members.
-std::string machine_with(const std::string& extra) {
-  return "{\n"
-         "  \"version\": 1,\n"
-         "  \"v_max\": 200, \"a_max\": 2000, \"j_max\": 50000,\n"
-         "  \"feed\": 50, \"tolerance\": 0.01, \"rate_hz\": 1000,\n"
-         "  \"max_step_rate\": 40000, \"rapid\": 150, \"profile\": \"trapezoid\",\n"
-         "  \"axes\": {\"x\": {\"steps_per_mm\": 80, \"travel\": [-10, 290]}, \"y\": {\"steps_per_mm\": 80}, \"z\": {\"steps_per_mm\": 400}}" +
-         std::string(extra.empty() ? "" : ",\n  " + extra) + "\n}\n";
-}
+/// The axes of these tests: x travels -10 .. 290 mm (the default seek distance's base).
+const std::string homing_axes = R"({"x": {"steps_per_mm": 80, "travel": [-10, 290]}, "y": {"steps_per_mm": 80}, "z": {"steps_per_mm": 400}})";
 
-LoadError error_of(const std::string& text) { return testing::machine_error_of(text, "homing_machine.json"); }
+/// A valid machine file (lines 1..6) followed by `extra` root members (from line 7).
+std::string machine_with(const std::string& extra) { return testing::machine_text(extra, homing_axes); }
 
 }  // namespace
 
@@ -58,35 +51,23 @@ TEST_CASE("machine homing: the section maps onto HomingCycle, z first by default
 }
 
 TEST_CASE("machine homing: bad sections name the file, line and key", "[host_tools][jobs][homing]") {
-  struct Case {
-    std::string homing;
-    std::string field;
-    std::string cause;
-  };
   const std::string x = R"("x": {"switch": "min", "seek": 20, "locate": 2, "pull_off": 1})";
-  const Case cases[] = {
-      {R"("homing": {"x": {"switch": "left", "seek": 20, "locate": 2, "pull_off": 1}})", "\"homing\".\"x\".\"switch\"",
+  const testing::BadSection cases[] = {
+      {R"("homing": {"x": {"switch": "left", "seek": 20, "locate": 2, "pull_off": 1}})", 7, "\"homing\".\"x\".\"switch\"",
        "expected \"min\" or \"max\""},
-      {R"("homing": {"x": {"switch": "min", "locate": 2, "pull_off": 1}})", "\"homing\".\"x\".\"seek\"", "missing required key"},
-      {R"("homing": {"x": {"switch": "min", "seek": 0, "locate": 2, "pull_off": 1}})", "\"homing\".\"x\".\"seek\"", "positive"},
-      {R"("homing": {"x": {"switch": "min", "seek": 2, "locate": 20, "pull_off": 1}})", "\"homing\".\"x\".\"locate\"",
+      {R"("homing": {"x": {"switch": "min", "locate": 2, "pull_off": 1}})", 7, "\"homing\".\"x\".\"seek\"", "missing required key"},
+      {R"("homing": {"x": {"switch": "min", "seek": 0, "locate": 2, "pull_off": 1}})", 7, "\"homing\".\"x\".\"seek\"", "positive"},
+      {R"("homing": {"x": {"switch": "min", "seek": 2, "locate": 20, "pull_off": 1}})", 7, "\"homing\".\"x\".\"locate\"",
        "is above \"seek\""},
-      {R"("homing": {"x": {"switch": "min", "seek": 20, "locate": 2, "pull_off": -1}})", "\"homing\".\"x\".\"pull_off\"", "positive"},
-      {R"("homing": {"y": {"switch": "min", "seek": 20, "locate": 2, "pull_off": 1}})", "\"homing\".\"y\"",
+      {R"("homing": {"x": {"switch": "min", "seek": 20, "locate": 2, "pull_off": -1}})", 7, "\"homing\".\"x\".\"pull_off\"", "positive"},
+      {R"("homing": {"y": {"switch": "min", "seek": 20, "locate": 2, "pull_off": 1}})", 7, "\"homing\".\"y\"",
        "no \"distance\" (the longest seek, mm) and no \"axes\".\"y\".\"travel\""},
-      {R"("homing": {"x": {"switch": "min", "seek": 20, "locate": 2, "pull_off": 1, "speed": 3}})", "\"homing\".\"x\".\"speed\"",
+      {R"("homing": {"x": {"switch": "min", "seek": 20, "locate": 2, "pull_off": 1, "speed": 3}})", 7, "\"homing\".\"x\".\"speed\"",
        "unknown key"},
-      {R"("homing": {"order": ["x", "x"], )" + x + "}", "\"homing\".\"order\"[1]", "listed twice"},
-      {R"("homing": {"order": ["z"], )" + x + "}", "\"homing\".\"order\"[0]", "\"z\" is no axis of the \"homing\" section"},
-      {R"("homing": {"order": [], )" + x + "}", "\"homing\".\"order\"", ""},
-      {R"("homing": {})", "\"homing\"", "homes no axis"},
+      {R"("homing": {"order": ["x", "x"], )" + x + "}", 7, "\"homing\".\"order\"[1]", "listed twice"},
+      {R"("homing": {"order": ["z"], )" + x + "}", 7, "\"homing\".\"order\"[0]", "\"z\" is no axis of the \"homing\" section"},
+      {R"("homing": {"order": [], )" + x + "}", 7, "\"homing\".\"order\"", ""},
+      {R"("homing": {})", 7, "\"homing\"", "homes no axis"},
   };
-  for (const auto& c : cases) {
-    const LoadError e = error_of(machine_with(c.homing));
-    const std::string what = e.what();
-    INFO(what);
-    CHECK(e.code() == Error::InvalidMachine);
-    CHECK(e.location().field == c.field);
-    CHECK(what.find(c.cause) != std::string::npos);
-  }
+  testing::check_bad_sections(cases, "homing_machine.json", homing_axes);
 }

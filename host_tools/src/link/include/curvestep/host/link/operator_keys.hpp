@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
-// OperatorConsole: the operator's keys and signals while a job runs (`curvestep stream`, `gpio`, `jog`).
+// OperatorConsole: the operator's keys and signals while a job runs (`curvestep stream`, `gpio`,
+// `jog`, `home`), and the terminal and signals of the idle `curvestep console` (read_bytes,
+// poll_signals: it decodes its own keys, console_keys.hpp).
 //
 // Keys, as grbl senders use them: `!` feed hold, `~` resume, Ctrl-X or Esc abort, `?` status line;
 // feed override `]` / `[` ±10 %, `}` / `{` ±1 %, `=` 100 %; rapid override `(` 25 %, `*` 50 %, `)`
@@ -44,13 +46,23 @@ class OperatorConsole {
   void ask(std::string_view question);
   /// Ctrl-C (SIGINT) aborts at once instead of holding and asking (a jog: nothing to resume).
   void set_interrupt_aborts(bool aborts) noexcept { interrupt_aborts_ = aborts; }
-  /// True if keys are read (a terminal, or keys_from_stdin).
+  /// True if keys are read (a terminal, or keys_from_stdin) and the input has not ended.
   [[nodiscard]] bool reads_keys() const noexcept { return input_fd_ >= 0; }
+  /// The bytes typed since the last call, not decoded (an idle session decodes its own keys:
+  /// console_keys.hpp); empty if none or no keys are read. Never blocks; the end of the input
+  /// makes reads_keys() false.
+  [[nodiscard]] std::string read_bytes();
+  /// The signals alone (what poll() would answer for them, keys left unread): Abort for SIGTERM,
+  /// Hold or Abort for SIGINT as poll() does, None if none arrived since.
+  [[nodiscard]] OperatorCommand poll_signals();
+  /// True once a SIGINT or SIGTERM was taken (poll, poll_signals): the operator wants the program to stop.
+  [[nodiscard]] bool signalled() const noexcept { return signals_seen_ > 0 || terminate_seen_; }
   /// The keys, one line, for a command's help and start-up note.
   [[nodiscard]] static std::string_view key_help() noexcept;
 
  private:
   void read_keys();
+  std::size_t read_available(char* bytes, std::size_t capacity);
   void take_key(const char* bytes, std::size_t count, std::size_t& k);
   void write_line(std::string_view text) const;
 
