@@ -38,7 +38,7 @@ struct PlanarMove {
   std::size_t tag = 0;                              ///< the caller's; a corner arc carries the next move's
 };
 
-/// A move the compensation cannot follow (gouge, arc entry or exit move ...); what() says why.
+/// A move the compensation cannot follow (gouge, arc exit move ...); what() says why.
 class CompensationError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

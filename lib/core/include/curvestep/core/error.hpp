@@ -81,7 +81,7 @@ enum class Error : std::uint8_t {
   GcodeConflictingWords = 147,  ///< words that cannot appear together
   GcodeNurbsBlock = 148,        ///< G5.2/G5.3 block malformed
   GcodeCannedCycle = 149,       ///< canned cycle words inconsistent (R below Z, Q or P missing, spindle stopped)
-  GcodeCutterCompensation = 150, ///< cutter radius compensation impossible (gouge, arc entry or exit move, tool without diameter, already on)
+  GcodeCutterCompensation = 150, ///< cutter radius compensation impossible (gouge, arc exit move, entry the tool cannot start, tool without diameter, already on)
 
   // --- firmware (170-199) ---
   InvalidState = 170,      ///< command not allowed in the current machine state

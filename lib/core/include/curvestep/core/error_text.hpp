@@ -148,7 +148,7 @@ namespace curvestep {
     case Error::GcodeConflictingWords: return "words that cannot appear together";
     case Error::GcodeNurbsBlock: return "G5.2/G5.3 block malformed";
     case Error::GcodeCannedCycle: return "canned cycle words inconsistent (R below Z, Q or P missing, spindle stopped)";
-    case Error::GcodeCutterCompensation: return "cutter radius compensation impossible (gouge, arc entry or exit move, tool without diameter, already on)";
+    case Error::GcodeCutterCompensation: return "cutter radius compensation impossible (gouge, arc exit move, entry the tool cannot start, tool without diameter, already on)";
     case Error::InvalidState: return "command not allowed in the current machine state";
     case Error::QueueUnderrun: return "the queue ran out of segments (or planned pieces) while moving";
     case Error::HardFault: return "the controller faulted and reported it";
