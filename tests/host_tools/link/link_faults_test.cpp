@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The link after the handshake under faults (issue 19 items 4, 5, 6), against a firmware App in
 // this process (in_process_device.hpp) behind Transport wrappers that damage or interrupt it:
-//   * 20 % duplicated bytes both ways: the upload ends with a clear error within the link
-//     timeout instead of running for ever, and the device stops;
+//   * 20 % duplicated bytes both ways: the upload ends with a clear error instead of running for
+//     ever, no stretch without progress longer than the link timeout, and the device stops;
 //   * a host that vanishes mid-job leaves a held device with a LinkTimeout report in the line;
 //     the next session's first job runs;
 //   * a device frozen for 1.5 s (its clock jumps, as after SIGSTOP/SIGCONT) with a 30 s link
