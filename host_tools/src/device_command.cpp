@@ -59,15 +59,34 @@ boards::host::SimulatedSwitch parse_switch(const std::string& text) {
   return s;
 }
 
-/// The simulated switches of --switch, in steps of the --machine file's axes.
-boards::host::SwitchThresholds simulated_switches(const DeviceCommandOptions& o) {
-  if (o.machine.empty()) throw std::runtime_error("--switch needs --machine (the axes' steps_per_mm place the switches)");
-  const MachineFile machine = load_machine_file(o.machine);
+/// The simulated switches of --switch, in steps of `machine`'s axes.
+boards::host::SwitchThresholds simulated_switches(const DeviceCommandOptions& o, const MachineFile& machine) {
   std::vector<boards::host::SimulatedSwitch> switches;
   for (const auto& text : o.switches) switches.push_back(parse_switch(text));
   std::array<double, 3> steps_per_mm{};
   for (std::size_t a = 0; a < 3; ++a) steps_per_mm[a] = machine.limits.axes[a].steps_per_mm;
   return boards::host::switch_thresholds(switches.data(), switches.size(), steps_per_mm);
+}
+
+/// What the --machine file gives the device, read once: with --switch the whole file (its axes'
+/// steps_per_mm place the switches; its wiring serves --gpio), else for --gpio only its wiring
+/// (the limits come from the host).
+struct DeviceMachine {
+  MachineWiring wiring;
+  std::optional<boards::host::SwitchThresholds> switches;
+};
+
+DeviceMachine load_device_machine(const DeviceCommandOptions& o) {
+  DeviceMachine device;
+  if (!o.switches.empty()) {
+    if (o.machine.empty()) throw std::runtime_error("--switch needs --machine (the axes' steps_per_mm place the switches)");
+    const MachineFile machine = load_machine_file(o.machine);
+    device.wiring = MachineWiring{machine.gpio, machine.pen};
+    device.switches = simulated_switches(o, machine);
+  } else if (o.gpio && !o.machine.empty()) {
+    device.wiring = load_machine_wiring(o.machine);
+  }
+  return device;
 }
 
 template <class Output>
@@ -85,13 +104,13 @@ int run_device_command(const DeviceCommandOptions& o) {
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   std::signal(SIGPIPE, SIG_IGN);
-  const std::optional<boards::host::SwitchThresholds> switches =
-      o.switches.empty() ? std::nullopt : std::optional(simulated_switches(o));  // refused before the port opens
+  const DeviceMachine machine = load_device_machine(o);  // refused before the port opens
+  const std::optional<boards::host::SwitchThresholds>& switches = machine.switches;
   std::unique_ptr<boards::host::GpiodStepOutput> gpio;
   std::unique_ptr<boards::host::GpiodMachineOutputs> outputs;  // spindle, coolant, digital outputs, servo pen
   if (o.gpio) {
     if (o.machine.empty()) throw std::runtime_error("--gpio needs --machine with a \"gpio\" section");
-    const MachineWiring wiring = load_machine_wiring(o.machine);
+    const MachineWiring& wiring = machine.wiring;
     if (!wiring.gpio) throw std::runtime_error(o.machine + ": no \"gpio\" section (chip and line names) for --gpio");
     gpio = std::make_unique<boards::host::GpiodStepOutput>(step_lines(*wiring.gpio), boards::host::SystemClock::step_timer_hz);
     const auto lines = output_lines(*wiring.gpio, wiring.pen);

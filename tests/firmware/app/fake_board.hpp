@@ -373,13 +373,21 @@ inline void check_same_stream(const Setpoints& got, const Setpoints& expected) {
   CHECK(mismatches == 0);
 }
 
+/// Sends nothing between ticks (stream_job's default).
+struct NothingBetweenTicks {
+  template <class AppType, class HostType>
+  void operator()(AppType& /*app*/, HostType& /*host*/) const {}
+};
+
 /// Streams `job` to the App while it runs, one submission attempt per tick, until the App is idle
-/// again (the test fails, with the App's state, if it is not within `max_ticks`).
-template <class AppType>
+/// again (the test fails, with the App's state, if it is not within `max_ticks`). Before each tick
+/// `between_ticks(app, host)` may send commands (the App takes them before that tick).
+template <class AppType, class BetweenTicks = NothingBetweenTicks>
 void stream_job(Host<AppType>& host, AppType& app, FakeBoard& board, const std::vector<protocol::QueueSegment>& job,
-                int max_ticks = 200000) {
+                int max_ticks = 200000, BetweenTicks between_ticks = {}) {
   JobUpload upload(job);
   for (int t = 0; t < max_ticks; ++t) {
+    between_ticks(app, host);
     REQUIRE(upload.step(host.sender(), t));
     app.on_tick();
     ++board.clock_ms;

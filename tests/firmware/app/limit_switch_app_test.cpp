@@ -9,6 +9,7 @@
 #include <curvestep/firmware/app.hpp>
 
 #include "fake_board.hpp"
+#include "line_job_rig.hpp"
 
 using namespace curvestep;
 using namespace curvestep::firmware;
@@ -24,32 +25,8 @@ struct SwitchBoard : FakeBoard {
 };
 static_assert(Board<SwitchBoard>);
 
-/// The App on a SwitchBoard, connected and configured, a 40 mm line along +x queued; `seek`
-/// armed first if given.
-struct SwitchRig {
-  explicit SwitchRig(int seek = -1) : app(board, AppSettings{}), host(board, app) {
-    REQUIRE(host.connect());
-    REQUIRE(host.send(Message(machine(50))));
-    host.pump(5);
-    if (seek >= 0) REQUIRE(host.send(Message(SeekSwitch{static_cast<std::uint8_t>(seek)})));
-    QueueSegment s = line(p(0, 0), p(40, 0));
-    s.end_of_job = true;
-    REQUIRE(host.send(Message(s)));
-    REQUIRE(host.send(Message(Start{})));
-    host.pump(5);
-    REQUIRE(app.moving());
-  }
-  void ticks(int count) {
-    for (int k = 0; k < count; ++k) {
-      app.on_tick();
-      ++board.clock_ms;
-      host.pump();
-    }
-  }
-  SwitchBoard board;
-  App<SwitchBoard> app;
-  Host<App<SwitchBoard>> host;
-};
+/// The App on a SwitchBoard moving along a 40 mm line along +x.
+using SwitchRig = LineJobRig<SwitchBoard>;
 
 }  // namespace
 
@@ -79,7 +56,7 @@ TEST_CASE("firmware: a switch on the side x moves away from does not stop the jo
 
 TEST_CASE("firmware: a seek ends the job where its switch closes, no fault, and SetPosition renames the spot",
           "[firmware][app][limits][homing]") {
-  SwitchRig rig(1);  // seek x max
+  SwitchRig rig({}, Message(SeekSwitch{1}));  // seek x max
   rig.ticks(50);
   const int stops_before = rig.board.fault_stops;
   rig.board.closed = 0b10;

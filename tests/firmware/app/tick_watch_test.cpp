@@ -10,6 +10,7 @@
 #include <curvestep/firmware/tick_watch.hpp>
 
 #include "fake_board.hpp"
+#include "line_job_rig.hpp"
 
 using namespace curvestep;
 using namespace curvestep::firmware;
@@ -34,32 +35,15 @@ static_assert(Board<TimedBoard>);
 
 constexpr std::uint32_t period = 1000;  // 1 MHz clock, 1 kHz control rate (machine())
 
-/// The App on a TimedBoard with `settings`, connected, configured and moving along a 40 mm line
-/// (50 mm/s: about 800 ticks).
-struct TimedRig {
-  explicit TimedRig(AppSettings settings) : app(board, settings), host(board, app) {
-    REQUIRE(host.connect());
-    REQUIRE(host.send(Message(machine(50))));
-    host.pump(5);
-    QueueSegment s = line(p(0, 0), p(40, 0));
-    s.end_of_job = true;
-    REQUIRE(host.send(Message(s)));
-    REQUIRE(host.send(Message(Start{})));
-    host.pump(5);
-    REQUIRE(app.moving());
-    REQUIRE(host.received.errors.empty());
-  }
+/// The App on a TimedBoard with `settings`, moving along a 40 mm line along +x (about 800 ticks).
+struct TimedRig : LineJobRig<TimedBoard> {
+  explicit TimedRig(AppSettings settings) : LineJobRig(settings) {}
   /// One tick starting at cycle `start` and lasting `cost` cycles, then a link exchange.
   void tick_at(std::uint32_t start, std::uint32_t cost) {
     board.cycles = start;
     board.tick_cost = cost;
-    app.on_tick();
-    ++board.clock_ms;
-    host.pump();
+    tick();
   }
-  TimedBoard board;
-  App<TimedBoard> app;
-  Host<App<TimedBoard>> host;
 };
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/simulator.hpp>
 
+#include "device_app_run.hpp"
 #include "fake_board.hpp"  // tests/firmware/app
 #include "wire_job.hpp"
 
@@ -25,11 +26,14 @@ using namespace curvestep;
 using namespace curvestep::firmware;
 using namespace curvestep::protocol;
 using namespace curvestep::firmware::testing;
+using curvestep::sim_testing::check_refused_in_one_line;
+using curvestep::sim_testing::DeviceApp;
+using curvestep::sim_testing::DeviceHost;
+using curvestep::sim_testing::mismatches;
+using curvestep::sim_testing::stream_to_device_app;
 using curvestep::sim_testing::to_host_job;
 
 namespace {
-
-using DeviceApp = App<FakeBoard, Q16_16, 32, 16>;  // `curvestep device`'s App: look-ahead 16
 
 MachineConfiguration machine() { return curvestep::firmware::testing::machine(100); }
 
@@ -53,17 +57,10 @@ std::map<std::uint32_t, WirePoint> simulated(const std::vector<QueueSegment>& wi
 /// controller has stood `standing` ticks; returns the streamed setpoints by index.
 std::map<std::uint32_t, WirePoint> streamed_with_hold(const std::vector<QueueSegment>& job, std::uint64_t hold_tick,
                                                       std::uint64_t standing) {
-  FakeBoard board;
-  DeviceApp app(board);
-  Host<DeviceApp> host(board, app);
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(machine())));
-  JobUpload upload(job);
   bool held_sent = false;
   bool resumed = false;
   std::uint64_t stood = 0;
-  for (int t = 0; t < 400000; ++t) {
-    REQUIRE(upload.step(host.sender(), t));
+  const auto hold_and_resume = [&](DeviceApp& app, DeviceHost& host) {
     if (!held_sent && app.moving() && app.controller().tick() == hold_tick) {
       REQUIRE(app.controller().state() == ControllerState::Running);
       REQUIRE(host.send(Message(FeedHold{})));
@@ -78,17 +75,10 @@ std::map<std::uint32_t, WirePoint> streamed_with_hold(const std::vector<QueueSeg
       }
       ++stood;
     }
-    app.on_tick();
-    ++board.clock_ms;
-    host.pump();
-    if (resumed && upload.all_sent() && !app.moving() && app.state() == MachineState::Idle && host.sender().idle()) break;
-  }
+  };
+  auto setpoints = stream_to_device_app(job, machine(), hold_and_resume);
   REQUIRE(resumed);
-  for (const auto& e : host.received.errors) UNSCOPED_INFO("error " << static_cast<int>(e.code) << " index " << e.index << " sequence " << int(e.sequence));
-  REQUIRE(host.received.errors.empty());
-  std::map<std::uint32_t, WirePoint> out;
-  for (const auto& [index, point] : host.setpoints()) out[index] = point;
-  return out;
+  return setpoints;
 }
 
 }  // namespace
@@ -104,12 +94,7 @@ TEST_CASE("sim feed hold: simulate with a hold at tick H standing R ticks equals
       const auto device = streamed_with_hold(job, hold_tick, standing);
       const auto sim = simulated(job, {{hold_tick, standing}});
       // Every streamed setpoint is the simulation's at the same index ...
-      std::size_t mismatches = 0;
-      for (const auto& [index, point] : device) {
-        const auto found = sim.find(index);
-        if (found == sim.end() || found->second != point) ++mismatches;
-      }
-      CHECK(mismatches == 0);
+      CHECK(mismatches(device, sim) == 0);
       // ... and the simulation's others are exactly the R standing ticks, all at one point.
       std::vector<std::uint32_t> extra;
       for (const auto& [index, point] : sim) {
@@ -133,14 +118,7 @@ TEST_CASE("sim feed hold: a hold after the job's end or out of order is refused 
   const auto job = zigzag();
   const auto length = static_cast<std::uint64_t>(simulated(job, {}).size());
   const auto refused = [&](const std::vector<host::FeedHoldEvent>& holds, const std::string& part) {
-    try {
-      (void)simulated(job, holds);
-      FAIL("accepted");
-    } catch (const std::runtime_error& e) {
-      const std::string what = e.what();
-      CHECK_THAT(what, Catch::Contains(part));
-      CHECK(what.find('\n') == std::string::npos);
-    }
+    check_refused_in_one_line([&] { (void)simulated(job, holds); }, part);
   };
   refused({{length + 5, 0}}, "before the hold at setpoint " + std::to_string(length + 5));
   refused({{500, 0}, {400, 0}}, "in time order");

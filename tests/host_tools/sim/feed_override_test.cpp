@@ -20,6 +20,7 @@
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/simulator.hpp>
 
+#include "device_app_run.hpp"
 #include "fake_board.hpp"  // tests/firmware/app
 #include "wire_job.hpp"
 
@@ -27,11 +28,14 @@ using namespace curvestep;
 using namespace curvestep::firmware;
 using namespace curvestep::protocol;
 using namespace curvestep::firmware::testing;
+using curvestep::sim_testing::check_refused_in_one_line;
+using curvestep::sim_testing::DeviceApp;
+using curvestep::sim_testing::DeviceHost;
+using curvestep::sim_testing::mismatches;
+using curvestep::sim_testing::stream_to_device_app;
 using curvestep::sim_testing::to_host_job;
 
 namespace {
-
-using DeviceApp = App<FakeBoard, Q16_16, 32, 16>;  // `curvestep device`'s App: look-ahead 16
 
 MachineConfiguration machine() { return curvestep::firmware::testing::machine(60); }  // v_max 100: room for 150 %
 
@@ -64,15 +68,9 @@ struct DeviceRun {
 /// Streams the job to the App, sending each override when the App's controller is at `at_tick`
 /// (before Start for tick 0); the replay events come from the App's StatusReports.
 DeviceRun streamed_with_overrides(const std::vector<QueueSegment>& job, const std::vector<host::FeedOverrideEvent>& overrides) {
-  FakeBoard board;
-  DeviceApp app(board);
-  Host<DeviceApp> host(board, app);
-  REQUIRE(host.connect());
-  REQUIRE(host.send(Message(machine())));
-  JobUpload upload(job);
   std::size_t next = 0;
   DeviceRun run;
-  auto send_due = [&] {
+  const auto send_due = [&](DeviceApp& app, DeviceHost& host) {
     while (next < overrides.size() && (overrides[next].tick == 0 ? !app.moving() : app.moving() && app.controller().tick() == overrides[next].tick)) {
       const std::size_t statuses = host.received.status.size();
       REQUIRE(host.send(Message(protocol::FeedOverride{overrides[next].value.feed_percent, overrides[next].value.rapid_percent})));
@@ -83,17 +81,8 @@ DeviceRun streamed_with_overrides(const std::vector<QueueSegment>& job, const st
       ++next;
     }
   };
-  for (int t = 0; t < 400000; ++t) {
-    send_due();
-    REQUIRE(upload.step(host.sender(), t));
-    app.on_tick();
-    ++board.clock_ms;
-    host.pump();
-    if (next == overrides.size() && upload.all_sent() && !app.moving() && app.state() == MachineState::Idle && host.sender().idle()) break;
-  }
+  run.setpoints = stream_to_device_app(job, machine(), send_due);
   REQUIRE(next == overrides.size());
-  REQUIRE(host.received.errors.empty());
-  for (const auto& [index, point] : host.setpoints()) run.setpoints[index] = point;
   return run;
 }
 
@@ -114,12 +103,7 @@ TEST_CASE("sim override: simulate with the overrides at the indices the App repo
   }
   const auto sim = simulated(job, device.reported);
   REQUIRE(device.setpoints.size() == sim.size());
-  std::size_t mismatches = 0;
-  for (const auto& [index, point] : device.setpoints) {
-    const auto found = sim.find(index);
-    if (found == sim.end() || found->second != point) ++mismatches;
-  }
-  CHECK(mismatches == 0);
+  CHECK(mismatches(device.setpoints, sim) == 0);
   // The overrides matter: the stream differs from the plain job's, and ends at the same point.
   CHECK(sim.size() != plain.size());
   std::size_t changed = 0;
@@ -177,14 +161,7 @@ TEST_CASE("sim override: an override after the job's end, out of order or out of
   const auto job = zigzag();
   const auto length = static_cast<std::uint64_t>(simulated(job, {}).size());
   const auto refused = [&](const std::vector<host::FeedOverrideEvent>& overrides, const std::string& part) {
-    try {
-      (void)simulated(job, overrides);
-      FAIL("accepted");
-    } catch (const std::runtime_error& e) {
-      const std::string what = e.what();
-      CHECK_THAT(what, Catch::Contains(part));
-      CHECK(what.find('\n') == std::string::npos);
-    }
+    check_refused_in_one_line([&] { (void)simulated(job, overrides); }, part);
   };
   refused({{length + 5, {50, 100}}}, "before the override at setpoint " + std::to_string(length + 5));
   refused({{500, {50, 100}}, {400, {60, 100}}}, "in time order");

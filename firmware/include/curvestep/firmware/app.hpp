@@ -262,10 +262,11 @@ class App {
       }
       const std::uint8_t closed = read_limit_switches(board_);
       const std::uint8_t hit = hard_limit_hit(closed, position_, wire, axis_count_);
-      if (seek_closed(closed, seek_switch_) || hit != no_limit_switch) {
+      const bool sought_switch_closed = seek_closed(closed, seek_switch_);
+      if (sought_switch_closed || hit != no_limit_switch) {
         position_ = wire;  // the board has this setpoint's edges: the machine stops there
         setpoint_index_ = static_cast<std::uint32_t>(job_tick);
-        if (seek_closed(closed, seek_switch_)) return stop_at_switch();
+        if (sought_switch_closed) return stop_at_switch();
         return raise_fault(fail(Error::HardLimit, hit));
       }
     }

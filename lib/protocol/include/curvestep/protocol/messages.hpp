@@ -961,54 +961,63 @@ template <>
   return m;
 }
 
-/// Any one message: a type tag and a union of the message structs (no RTTI, no heap).
+namespace detail {
+
+/// A union of `T, Rest...` built by recursion: `head` holds a T, `rest` any of the others. Each
+/// constructor starts the lifetime of exactly one member, so no inactive member is ever assigned
+/// (that would be undefined for members with default member initializers).
+template <class... Ts>
+union MessageUnion;
+
+template <>
+union MessageUnion<> {};
+
+template <class T, class... Rest>
+union MessageUnion<T, Rest...> {
+  /// Holds a default T.
+  constexpr MessageUnion() noexcept : head{} {}
+  /// Holds `m`.
+  constexpr explicit MessageUnion(const T& m) noexcept : head(m) {}
+  /// Holds `m`, one of Rest.
+  template <class U>
+    requires(std::is_same_v<U, Rest> || ...)
+  constexpr explicit MessageUnion(const U& m) noexcept : rest(m) {}
+
+  /// The held U (the caller knows which member is active).
+  template <class U>
+  [[nodiscard]] constexpr const U& get() const noexcept {
+    if constexpr (std::is_same_v<U, T>) {
+      return head;
+    } else {
+      return rest.template get<U>();
+    }
+  }
+
+  T head;
+  MessageUnion<Rest...> rest;
+};
+
+/// The union of the message structs of a MessageSet.
+template <class Set>
+struct MessageUnionOf;
+template <class... Ts>
+struct MessageUnionOf<MessageSet<Ts...>> {
+  using type = MessageUnion<Ts...>;
+};
+
+}  // namespace detail
+
+/// Any one message of AllMessages: a type tag and a union of the message structs (no RTTI, no
+/// heap). The list of types is AllMessages's alone: a message added there is held, got and
+/// visited here without another line.
 class Message {
  public:
   /// A Hello with default fields.
-  constexpr Message() noexcept = default;
-  /// Holds a Hello.
-  constexpr Message(const Hello& m) noexcept : type_(MessageType::Hello), body_(m) {}  // NOLINT
-  /// Holds a Capabilities.
-  constexpr Message(const Capabilities& m) noexcept : type_(MessageType::Capabilities), body_(m) {}  // NOLINT
-  /// Holds an Ack.
-  constexpr Message(const Ack& m) noexcept : type_(MessageType::Ack), body_(m) {}  // NOLINT
-  /// Holds a Nak.
-  constexpr Message(const Nak& m) noexcept : type_(MessageType::Nak), body_(m) {}  // NOLINT
-  /// Holds a MachineConfiguration.
-  constexpr Message(const MachineConfiguration& m) noexcept  // NOLINT
-      : type_(MessageType::MachineConfiguration), body_(m) {}
-  /// Holds a QueueSegment.
-  constexpr Message(const QueueSegment& m) noexcept : type_(MessageType::QueueSegment), body_(m) {}  // NOLINT
-  /// Holds a Start.
-  constexpr Message(const Start&) noexcept : type_(MessageType::Start) {}  // NOLINT
-  /// Holds a FeedHold.
-  constexpr Message(const FeedHold&) noexcept : type_(MessageType::FeedHold) {}  // NOLINT
-  /// Holds a Resume.
-  constexpr Message(const Resume&) noexcept : type_(MessageType::Resume) {}  // NOLINT
-  /// Holds an Abort.
-  constexpr Message(const Abort&) noexcept : type_(MessageType::Abort) {}  // NOLINT
-  /// Holds a StatusRequest.
-  constexpr Message(const StatusRequest&) noexcept : type_(MessageType::StatusRequest) {}  // NOLINT
-  /// Holds a QueuePiece.
-  constexpr Message(const QueuePiece& m) noexcept : type_(MessageType::QueuePiece), body_(m) {}  // NOLINT
-  /// Holds a StatusReport.
-  constexpr Message(const StatusReport& m) noexcept : type_(MessageType::StatusReport), body_(m) {}  // NOLINT
-  /// Holds a SetpointBatch.
-  constexpr Message(const SetpointBatch& m) noexcept : type_(MessageType::SetpointBatch), body_(m) {}  // NOLINT
-  /// Holds an ErrorReport.
-  constexpr Message(const ErrorReport& m) noexcept : type_(MessageType::ErrorReport), body_(m) {}  // NOLINT
-  /// Holds a QueueEvent.
-  constexpr Message(const QueueEvent& m) noexcept : type_(MessageType::QueueEvent), body_(m) {}  // NOLINT
-  /// Holds a PauseReport.
-  constexpr Message(const PauseReport& m) noexcept : type_(MessageType::PauseReport), body_(m) {}  // NOLINT
-  /// Holds a SeekSwitch.
-  constexpr Message(const SeekSwitch& m) noexcept : type_(MessageType::SeekSwitch), body_(m) {}  // NOLINT
-  /// Holds a SetPosition.
-  constexpr Message(const SetPosition& m) noexcept : type_(MessageType::SetPosition), body_(m) {}  // NOLINT
-  /// Holds a SwitchReport.
-  constexpr Message(const SwitchReport& m) noexcept : type_(MessageType::SwitchReport), body_(m) {}  // NOLINT
-  /// Holds a FeedOverride.
-  constexpr Message(const FeedOverride& m) noexcept : type_(MessageType::FeedOverride), body_(m) {}  // NOLINT
+  constexpr Message() noexcept : type_(MessageType::Hello), body_(Hello{}) {}
+  /// Holds `m` (any message struct of AllMessages).
+  template <class T>
+    requires(AllMessages::contains<T>)
+  constexpr Message(const T& m) noexcept : type_(T::type), body_(m) {}  // NOLINT: a message converts to a Message
 
   /// Which message this is.
   [[nodiscard]] constexpr MessageType type() const noexcept { return type_; }
@@ -1019,75 +1028,15 @@ class Message {
   }
   /// The held T; asking for another type is a contract violation.
   template <class T>
+    requires(AllMessages::contains<T>)
   [[nodiscard]] constexpr const T& get() const noexcept {
     CURVESTEP_EXPECTS(type_ == T::type);
-    if constexpr (std::is_same_v<T, Hello>) return body_.hello;
-    else if constexpr (std::is_same_v<T, Capabilities>) return body_.capabilities;
-    else if constexpr (std::is_same_v<T, Ack>) return body_.ack;
-    else if constexpr (std::is_same_v<T, Nak>) return body_.nak;
-    else if constexpr (std::is_same_v<T, MachineConfiguration>) return body_.machine_configuration;
-    else if constexpr (std::is_same_v<T, QueueSegment>) return body_.queue_segment;
-    else if constexpr (std::is_same_v<T, QueuePiece>) return body_.queue_piece;
-    else if constexpr (std::is_same_v<T, StatusReport>) return body_.status_report;
-    else if constexpr (std::is_same_v<T, SetpointBatch>) return body_.setpoint_batch;
-    else if constexpr (std::is_same_v<T, ErrorReport>) return body_.error_report;
-    else if constexpr (std::is_same_v<T, QueueEvent>) return body_.queue_event;
-    else if constexpr (std::is_same_v<T, PauseReport>) return body_.pause_report;
-    else if constexpr (std::is_same_v<T, SeekSwitch>) return body_.seek_switch;
-    else if constexpr (std::is_same_v<T, SetPosition>) return body_.set_position;
-    else if constexpr (std::is_same_v<T, SwitchReport>) return body_.switch_report;
-    else if constexpr (std::is_same_v<T, FeedOverride>) return body_.feed_override;
-    else return empty<T>();
+    return body_.template get<T>();
   }
 
  private:
-  template <class T>
-  [[nodiscard]] static constexpr const T& empty() noexcept {
-    static_assert(std::is_empty_v<T>, "not a message type");
-    return instance<T>;
-  }
-  template <class T>
-  static constexpr T instance{};
-
-  // Each constructor starts the lifetime of exactly one member, so no inactive member is ever
-  // assigned (that would be undefined for members with default member initializers).
-  union Body {
-    constexpr Body() noexcept : hello{} {}
-    constexpr explicit Body(const Hello& m) noexcept : hello(m) {}
-    constexpr explicit Body(const Capabilities& m) noexcept : capabilities(m) {}
-    constexpr explicit Body(const Ack& m) noexcept : ack(m) {}
-    constexpr explicit Body(const Nak& m) noexcept : nak(m) {}
-    constexpr explicit Body(const MachineConfiguration& m) noexcept : machine_configuration(m) {}
-    constexpr explicit Body(const QueueSegment& m) noexcept : queue_segment(m) {}
-    constexpr explicit Body(const QueuePiece& m) noexcept : queue_piece(m) {}
-    constexpr explicit Body(const StatusReport& m) noexcept : status_report(m) {}
-    constexpr explicit Body(const SetpointBatch& m) noexcept : setpoint_batch(m) {}
-    constexpr explicit Body(const ErrorReport& m) noexcept : error_report(m) {}
-    constexpr explicit Body(const QueueEvent& m) noexcept : queue_event(m) {}
-    constexpr explicit Body(const PauseReport& m) noexcept : pause_report(m) {}
-    constexpr explicit Body(const SeekSwitch& m) noexcept : seek_switch(m) {}
-    constexpr explicit Body(const SetPosition& m) noexcept : set_position(m) {}
-    constexpr explicit Body(const SwitchReport& m) noexcept : switch_report(m) {}
-    constexpr explicit Body(const FeedOverride& m) noexcept : feed_override(m) {}
-    Hello hello;
-    Capabilities capabilities;
-    Ack ack;
-    Nak nak;
-    MachineConfiguration machine_configuration;
-    QueueSegment queue_segment;
-    QueuePiece queue_piece;
-    StatusReport status_report;
-    SetpointBatch setpoint_batch;
-    ErrorReport error_report;
-    QueueEvent queue_event;
-    PauseReport pause_report;
-    SeekSwitch seek_switch;
-    SetPosition set_position;
-    SwitchReport switch_report;
-    FeedOverride feed_override;
-  };
-  MessageType type_ = MessageType::Hello;
-  Body body_;
+  MessageType type_;
+  detail::MessageUnionOf<AllMessages>::type body_;
 };
 
 static_assert(std::is_trivially_copyable_v<Message>, "Message is copied as bytes into queues");
