@@ -55,7 +55,7 @@ namespace curvestep::host::link {
 /// Where an upload is.
 struct StreamProgress {
   std::size_t sent = 0;                ///< queue messages submitted (segments or pieces, see unit)
-  std::size_t total = 0;               ///< queue messages of the job
+  std::size_t total = 0;               ///< queue messages of the job; pieces: 0 until the last one is planned
   const char* unit = "segments";       ///< what sent and total count: "segments", or "pieces" for a controller without a planner
   std::size_t setpoints_received = 0;  ///< setpoints captured so far
   double elapsed_s = 0;                ///< since connect
@@ -83,6 +83,12 @@ struct StreamOptions {
   /// The look-ahead window the job is planned with here (plan_pieces) for a controller without a
   /// planner (Capabilities::lookahead 0); unused for one that plans. 1..max_lookahead.
   std::size_t lookahead = SimulationOptions::max_lookahead;
+  /// A controller without a planner: the pieces sent cover at most this much motion (seconds of
+  /// setpoints) past its last known setpoint once it runs, plus the piece being sent (at most 256
+  /// ticks, or one rest). That bounds how late an operator's hold or override acts: they change the
+  /// plan after what was sent. Before it starts, the credit alone decides (its start rule wants a
+  /// full queue).
+  double piece_lead_s = 0.5;
   /// With it: the window extended by distance (SimulationOptions::lookahead_distance_mm; 0 = off).
   /// `curvestep stream` without --lookahead uses lookahead_distance_for(machine), as `curvestep sim` does.
   double lookahead_distance_mm = 0;
