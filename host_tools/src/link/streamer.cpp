@@ -124,6 +124,7 @@ class Upload {
       pending_command_ = OperatorCommand::None;
       return;
     }
+    hold_asked_ = false;  // a hold not yet applied is simply dropped
     if (!holding_ || aborting_) {
       pending_command_ = OperatorCommand::None;
       return;
@@ -183,27 +184,35 @@ class Upload {
   /// (submit_host_hold) so the controller waits at their end. Before the plan has begun it waits;
   /// once the job's last piece is sent nothing can brake any more (warn).
   void hold_here() {
-    if (aborting_ || holding_) {
-      pending_command_ = OperatorCommand::None;
-      return;
-    }
+    pending_command_ = OperatorCommand::None;
+    if (!aborting_ && !holding_) hold_asked_ = true;  // the other keys stay free meanwhile (Abort)
+    apply_asked_hold();
+  }
+
+  /// The operator's hold, as soon as the planner can brake: not before the first piece, nor while
+  /// it still brakes from a hold just resumed.
+  void apply_asked_hold() {
+    if (!hold_asked_ || aborting_) return;
     if (planner_->done()) {
       warn("the whole rest of the job is already sent to this controller (it has no planner): it cannot be held now; abort with Ctrl-X or Esc");
-      pending_command_ = OperatorCommand::None;
+      hold_asked_ = false;
       return;
     }
-    if (!started_ || !planner_->can_hold()) return;  // later: before the first piece, or still braking from a hold just resumed
+    if (!started_ || !planner_->can_hold()) return;  // later
     holds_.push_back(StreamHold{planner_->hold(), std::nullopt});
+    plan_changed_ = true;
     resumed_.push_back(false);
     holding_ = true;
     hold_sent_ = false;
-    pending_command_ = OperatorCommand::None;
+    hold_asked_ = false;
   }
 
   /// FeedHold once the planner stands and its braking pieces are all submitted: the controller
   /// then stands at their end without faulting until Resume (docs/protocol.md, "FeedHold").
   void submit_host_hold() {
-    if (!piece_mode_ || !holding_ || hold_sent_ || next_piece_ || !planner_->held()) return;
+    if (!piece_mode_) return;
+    apply_asked_hold();
+    if (!holding_ || hold_sent_ || next_piece_ || !planner_->held()) return;
     if (!link_.can_submit(protocol::MessageType::FeedHold)) return;
     submit_operator_message(protocol::Message(protocol::FeedHold{}));
     hold_sent_ = true;
@@ -217,6 +226,7 @@ class Upload {
       return;
     }
     record_override(StreamOverride{planner_->set_override(next), next});
+    plan_changed_ = true;
     requested_override_ = next;
   }
 
@@ -258,7 +268,9 @@ class Upload {
   }
 
   /// A controller without a planner: the job is planned here (PiecePlanner, the simulator's Q16.16
-  /// controller with options_.lookahead), piece by piece as they are sent.
+  /// controller with options_.lookahead), piece by piece as they are sent. It is first planned
+  /// through once, keeping nothing but the count: what the planner refuses or the wire cannot
+  /// carry is refused before the machine moves (the executor cannot brake on a broken stream).
   void plan_here(std::size_t axes) {
     SimulationOptions planning;
     planning.lookahead = options_.lookahead;
@@ -267,8 +279,10 @@ class Upload {
       planning.overrides.push_back({0, requested_override_});
       overrides_.push_back({0, requested_override_});
     }
-    planner_ = std::make_unique<PiecePlanner>(job_, machine_, planning);
+    PiecePlanner check(job_, machine_, planning);
     axes_ = axes;
+    while (const std::optional<PlannedPiece> piece = check.next_piece()) (void)wire_piece(*piece, planned_total_++);
+    planner_ = std::make_unique<PiecePlanner>(job_, machine_, planning);
     piece_mode_ = true;
   }
 
@@ -281,12 +295,17 @@ class Upload {
     if (planner_->done() || !within_piece_lead()) return false;
     const std::optional<PlannedPiece> planned = planner_->next_piece();
     if (!planned) return false;
-    try {
-      next_piece_ = to_wire(*planned, axes_);
-    } catch (const std::runtime_error& e) {
-      throw std::runtime_error(job_.name + ": piece " + std::to_string(next_ + 1) + ", " + e.what());
-    }
+    next_piece_ = wire_piece(*planned, next_);
     return true;
+  }
+
+  /// Piece `k` (0-based) for the wire; std::runtime_error naming the job and the piece if it cannot go.
+  [[nodiscard]] protocol::QueuePiece wire_piece(const PlannedPiece& piece, std::size_t k) const {
+    try {
+      return to_wire(piece, axes_);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(job_.name + ": piece " + std::to_string(k + 1) + ", " + e.what());
+    }
   }
 
   /// True while the pieces sent cover less than options_.piece_lead_s of motion past the
@@ -340,12 +359,14 @@ class Upload {
   [[nodiscard]] bool all_units_sent() const {
     return piece_mode_ ? planner_->done() && !next_piece_ : next_ == wire_job_.segments.size();
   }
-  /// The job's units (segments, or pieces for a controller without a planner); pieces: 0 until the last one is planned.
+  /// The job's units (segments, or pieces for a controller without a planner); pieces after a hold
+  /// or override changed the plan: 0 until its last one is planned.
   [[nodiscard]] std::size_t known_units() const {
     if (!piece_mode_) return wire_job_.segments.size();
+    if (!plan_changed_) return planned_total_;
     return planner_->done() ? next_ + (next_piece_ ? 1 : 0) : 0;
   }
-  /// The job file's segment index of unit k (a piece's: while it is unacknowledged, or the last acknowledged).
+  /// The job file's segment index of unit k (a piece's: unacknowledged or among the last 256 acknowledged).
   [[nodiscard]] std::size_t file_segment(std::size_t k) const {
     if (piece_mode_) {
       const bool kept = k >= piece_segments_base_ && k - piece_segments_base_ < piece_segments_.size();
@@ -384,7 +405,8 @@ class Upload {
   void settle_acknowledged() {
     while (submitted_.size() > link_.in_flight()) {
       if (submitted_.front() < event_marker) acknowledged_units_ = submitted_.front() + 1;  // a unit, not a marker
-      while (!piece_segments_.empty() && piece_segments_base_ + 1 < acknowledged_units_) {  // keep the last acknowledged
+      // Keep the pieces a report may still name: up to 256 frames back (the sequence numbers' range).
+      while (!piece_segments_.empty() && piece_segments_base_ + 256 < acknowledged_units_) {
         piece_segments_.pop_front();
         ++piece_segments_base_;
       }
@@ -629,7 +651,7 @@ class Upload {
       }
     }
     if (final_call) p.eta_s = 0;
-    p.state = aborting_ ? "Aborting" : holding_ ? "Hold" : "Running";
+    p.state = aborting_ ? "Aborting" : holding_ || hold_asked_ ? "Hold" : "Running";
     p.have_status = have_status_;
     if (have_status_) {
       p.setpoint_index = last_status_.setpoint_index;
@@ -702,11 +724,14 @@ class Upload {
   std::unique_ptr<PiecePlanner> planner_;          // piece mode: plans the job as its pieces go out
   std::size_t axes_ = 3;                           // piece mode: the controller's axes (QueuePiece::axis_count)
   std::optional<protocol::QueuePiece> next_piece_;  // piece mode: planned, waiting for credit
-  std::deque<std::uint32_t> piece_segments_;       // piece mode: job segment of the last acknowledged piece and those after it
+  std::deque<std::uint32_t> piece_segments_;       // piece mode: job segment of the last 256 acknowledged pieces and those after
   std::size_t piece_segments_base_ = 0;            // the unit index of piece_segments_.front()
   std::uint64_t planned_ticks_ = 0;                // piece mode: setpoints the pieces sent cover
   std::uint32_t last_piece_segment_ = 0;           // piece mode: the job segment of the last piece sent
   bool hold_sent_ = false;                         // piece mode: FeedHold sent for the hold in progress
+  std::size_t planned_total_ = 0;                  // piece mode: the job's pieces as planned before it started
+  bool plan_changed_ = false;                      // piece mode: a hold or override changed that plan
+  bool hold_asked_ = false;                        // piece mode: the operator's hold, waiting until the planner can brake
   SetpointCapture capture_;  // the setpoint stream, to options_.setpoint_sink or kept
   std::map<std::uint8_t, std::size_t> sequence_to_unit_{{0, configuration_marker}};
   protocol::StatusReport last_status_{};
