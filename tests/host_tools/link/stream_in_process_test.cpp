@@ -301,3 +301,39 @@ TEST_CASE("stream in process: an executor held, resumed and overridden by the op
   // delivered. (Before it starts, the device takes a full queue, 16 pieces of up to 256 ticks.)
   CHECK(result.holds[0].tick <= 6000 + 500 + 262 + 200);
 }
+
+TEST_CASE("stream in process: a hold or override key once an executor has the whole rest of the job is answered with a warning and changes nothing",
+          "[host_tools][stream][pieces][hold]") {
+  const auto machine = host::load_machine(examples / "machine.json");
+  // The longest line whose pieces the executor's queue (16) takes all before it starts: its
+  // setpoints come in several batches, so the keys are read while it runs.
+  host::Job job;
+  job.name = "line";
+  for (const double length : {20.0, 10.0, 5.0, 2.0, 1.0, 0.5}) {
+    const auto line = PathSegment::make_line(MachinePoint{0, 0, 0}, MachinePoint{length, 0, 0});
+    REQUIRE(line.has_value());
+    job.segments = {line.value()};
+    if (host::plan_pieces(job, machine).size() <= 16) break;
+  }
+  REQUIRE(host::plan_pieces(job, machine).size() <= 16);
+  INFO("line of " << job.segments[0].end()[0] << " mm");
+  hl::testing::InProcessDevice<ExecutorApp> device;
+  std::vector<host::SetpointRecord> captured;
+  int step = 0;
+  hl::StreamOptions options;
+  options.setpoint_sink = [&captured](const host::SetpointRecord& r) { captured.push_back(r); };
+  options.operator_command = [&]() {
+    if (captured.empty() || step >= 2) return hl::OperatorCommand::None;
+    return ++step == 1 ? hl::OperatorCommand::Hold : hl::OperatorCommand::FeedPlus10;
+  };
+  std::vector<std::string> warnings;
+  options.warn = [&warnings](const std::string& text) { warnings.push_back(text); };
+  const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+  REQUIRE(step == 2);
+  REQUIRE(warnings.size() == 2);
+  CHECK(warnings[0].find("cannot be held now") != std::string::npos);
+  CHECK(warnings[1].find("the override cannot change it now") != std::string::npos);
+  CHECK(result.holds.empty());
+  CHECK(result.overrides.empty());
+  require_same_setpoints(captured, host::simulate(job, machine).setpoints);
+}
