@@ -11,6 +11,14 @@
 #include <curvestep/host/link/tick_timing_text.hpp>
 
 namespace curvestep::host {
+namespace {
+
+/// "40/400", or "120/?" while the total is not known (pieces after a hold or override changed the plan).
+std::string sent_of_total(const link::StreamProgress& p) {
+  return std::to_string(p.sent) + "/" + (p.total > 0 ? std::to_string(p.total) : std::string("?"));
+}
+
+}  // namespace
 
 OperatorSession::OperatorSession(std::string command, bool keys_from_stdin)
     : command_(std::move(command)), console_(keys_from_stdin), terminal_(isatty(STDERR_FILENO) != 0) {
@@ -43,7 +51,7 @@ link::OperatorCommand OperatorSession::next_command() {
     if (last_.tick_overruns != 0) line << "|Overruns:" << last_.tick_overruns;
   }
   line << "|Ov:" << last_.override_percent.feed_percent << "," << last_.override_percent.rapid_percent;
-  line << "|" << last_.unit << ":" << last_.sent << "/" << last_.total << ">";
+  line << "|" << last_.unit << ":" << sent_of_total(last_) << ">";
   end_line();
   std::cerr << line.str() << "\n" << std::flush;
   return link::OperatorCommand::None;
@@ -53,7 +61,7 @@ void OperatorSession::draw(const link::StreamProgress& p) {
   last_ = p;
   if (!terminal_) return;
   std::cerr << "\r  " << p.state << "  feed " << p.override_percent.feed_percent << "% rapid " << p.override_percent.rapid_percent
-            << "%  " << p.unit << " " << p.sent << "/" << p.total << "  setpoints " << p.setpoints_received
+            << "%  " << p.unit << " " << sent_of_total(p) << "  setpoints " << p.setpoints_received
             << "  elapsed " << format_seconds(p.elapsed_s) << "  ETA " << format_seconds(p.eta_s);
   if (p.tick_overruns != 0) std::cerr << "  tick overruns " << p.tick_overruns;
   std::cerr << "   " << std::flush;

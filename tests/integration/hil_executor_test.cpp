@@ -17,19 +17,6 @@ namespace ct = curvestep::test;
 
 namespace {
 
-/// `curvestep sim JOB --machine MACHINE [extra...] -o CSV`, its setpoints.
-std::vector<ct::RawSetpoint> simulate_with(const std::filesystem::path& job, const std::filesystem::path& machine,
-                                           const std::vector<std::string>& extra, const std::string& tag) {
-  const auto csv = ct::scratch_dir() / ("sim_" + tag + ".csv");
-  std::vector<std::string> arguments{"sim", job.string(), "--machine", machine.string(), "-o", csv.string()};
-  arguments.insert(arguments.end(), extra.begin(), extra.end());
-  std::string errors;
-  const int status = ct::run_program(arguments, errors, "sim");
-  INFO(errors);
-  REQUIRE((status == 0 || status == 3));
-  return ct::read_raw_setpoints(csv);
-}
-
 /// `curvestep stream` to `port` with capture; exit status, stdout in `output`, stderr in `errors`.
 int stream_to(const std::filesystem::path& job, const std::filesystem::path& machine, const std::string& port,
               const std::filesystem::path& capture, const std::vector<std::string>& extra, std::string& output,
@@ -64,7 +51,7 @@ TEST_CASE("hil: every example job streamed to curvestep device --executor gives 
     if (path.extension() != ".json" || path.filename() == "machine.json") continue;
     INFO("job " << path.filename().string());
     // The example file itself: the host plans it as curvestep sim does, nothing is rounded for the wire.
-    const auto expected = simulate_with(path, machine, {}, "executor_" + path.stem().string());
+    const auto expected = ct::simulate_with(path, machine, {}, "executor_" + path.stem().string());
     const auto capture = ct::scratch_dir() / ("executor_" + path.stem().string() + ".csv");
     std::string output;
     std::string errors;
@@ -86,8 +73,8 @@ TEST_CASE("hil: every example job streamed to curvestep device --executor gives 
 TEST_CASE("hil: curvestep stream --lookahead N to an executor gives curvestep sim --lookahead N", "[integration][hil][pieces]") {
   const auto machine = ct::wire_exact_machine();
   const auto job = short_lines_job();
-  const auto narrow = simulate_with(job, machine, {"--lookahead", "1"}, "executor_lines_1");
-  REQUIRE(ct::first_difference(narrow, simulate_with(job, machine, {}, "executor_lines_16")) != -1);  // the window matters
+  const auto narrow = ct::simulate_with(job, machine, {"--lookahead", "1"}, "executor_lines_1");
+  REQUIRE(ct::first_difference(narrow, ct::simulate_with(job, machine, {}, "executor_lines_16")) != -1);  // the window matters
   ct::Process device({"device", "--fast", "--executor"}, "executor_lookahead.stderr");
   const std::string port = device.first_line();
   const auto capture = ct::scratch_dir() / "executor_lines_1.csv";

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -168,6 +169,40 @@ inline std::vector<RawSetpoint> simulate(const std::filesystem::path& job, const
   INFO(errors);
   REQUIRE((status == 0 || status == 3));
   return read_raw_setpoints(csv);
+}
+
+/// `curvestep sim JOB --machine MACHINE [extra...] -o CSV` (exit status 0, or 3: limits exceeded):
+/// its setpoints; `tag` names the scratch files.
+inline std::vector<RawSetpoint> simulate_with(const std::filesystem::path& job, const std::filesystem::path& machine,
+                                              const std::vector<std::string>& extra, const std::string& tag) {
+  const auto csv = scratch_dir() / ("sim_" + tag + ".csv");
+  std::vector<std::string> arguments{"sim", job.string(), "--machine", machine.string(), "-o", csv.string()};
+  arguments.insert(arguments.end(), extra.begin(), extra.end());
+  std::string errors;
+  const int status = run_program(arguments, errors, "sim_" + tag);
+  INFO(errors);
+  REQUIRE((status == 0 || status == 3));
+  return read_raw_setpoints(csv);
+}
+
+/// `curvestep stream JOB --machine MACHINE --port PORT --capture CAPTURE`'s arguments.
+inline std::vector<std::string> stream_arguments(const std::filesystem::path& job, const std::filesystem::path& machine,
+                                                 const std::string& port, const std::filesystem::path& capture) {
+  return {"stream", job.string(), "--machine", machine.string(), "--port", port, "--capture", capture.string()};
+}
+
+/// The events of the streamer's replay line "curvestep sim --override-at EVENTS gives" ("0:150:100,1.2:100:100").
+inline std::string override_replay(const std::string& output) {
+  std::smatch found;
+  REQUIRE(std::regex_search(output, found, std::regex("curvestep sim (--override-at [0-9.e:,-]+) gives")));
+  return found[1].str().substr(std::string("--override-at ").size());
+}
+
+/// T and R of the streamer's replay line "curvestep sim --hold-at T:R gives" (its first hold), as printed.
+inline std::array<std::string, 2> hold_replay(const std::string& output) {
+  std::smatch found;
+  REQUIRE(std::regex_search(output, found, std::regex("curvestep sim --hold-at ([0-9.e-]+):([0-9.e-]+) gives")));
+  return {found[1].str(), found[2].str()};
 }
 
 /// The setpoints captured in `csv` are `expected`, every one, bit for bit; returns them.

@@ -3,11 +3,13 @@
 
 #include <curvestep/host/link/setpoint_capture.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <deque>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include <curvestep/host/link/host_link.hpp>
 #include <curvestep/host/link/tick_timing_text.hpp>
 #include <curvestep/host/link/wire.hpp>
+#include <curvestep/host/piece_planner.hpp>
 #include <curvestep/protocol/messages.hpp>
 
 namespace curvestep::host::link {
@@ -49,7 +52,9 @@ class Upload {
         for (const auto& note : wire_job_.notes) warn(note);
         if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
       }
-      if (units() == 0) throw StreamError(Error::NothingQueued, job_.name + ": the job has no moves: nothing to stream");
+      if (piece_mode_ ? job_.segments.empty() : wire_job_.segments.empty()) {
+        throw StreamError(Error::NothingQueued, job_.name + ": the job has no moves: nothing to stream");
+      }
       events_ = to_wire_events(job_, machine_.rate_hz, piece_mode_);
       check_event_room(link_.capabilities().queue_capacity);
       link_.submit(protocol::Message(wire_machine.configuration));
@@ -61,6 +66,7 @@ class Upload {
         take_operator_command();
         if (!aborting_) {
           submit_units();
+          submit_host_hold();
           submit_start();
           serve_pause();
         }
@@ -97,8 +103,8 @@ class Upload {
   /// setpoint before the hold: the controller reports at once when a hold stops a moving machine
   /// (docs/protocol.md), and the StatusRequest's answer covers a hold before the job moved.
   void hold() {
-    if (piece_mode_ || aborting_ || holding_) {
-      if (piece_mode_) warn("this controller has no planner and cannot feed-hold: abort with Ctrl-X or Esc");
+    if (piece_mode_) return hold_here();
+    if (aborting_ || holding_) {
       pending_command_ = OperatorCommand::None;
       return;
     }
@@ -118,12 +124,15 @@ class Upload {
       pending_command_ = OperatorCommand::None;
       return;
     }
+    hold_asked_ = false;  // a hold not yet applied is simply dropped
     if (!holding_ || aborting_) {
       pending_command_ = OperatorCommand::None;
       return;
     }
-    if (!link_.can_submit(protocol::MessageType::Resume)) return;  // later
-    submit_operator_message(protocol::Message(protocol::Resume{}));
+    const bool tell_controller = !piece_mode_ || hold_sent_;  // a hold planned here waits there only after FeedHold
+    if (tell_controller && !link_.can_submit(protocol::MessageType::Resume)) return;  // later
+    if (tell_controller) submit_operator_message(protocol::Message(protocol::Resume{}));
+    if (piece_mode_) planner_->resume();  // the pieces after the hold follow the Resume
     holding_ = false;
     resumed_.back() = true;
     pending_command_ = OperatorCommand::None;
@@ -132,8 +141,7 @@ class Upload {
   /// The operator's override key: FeedOverride with the new values (no credit), once the link has room.
   void change_override() {
     const OperatorCommand command = pending_command_;
-    if (piece_mode_ || aborting_) {
-      if (piece_mode_) warn("this controller has no planner: the job was planned here with the start override (--feed-override); it cannot change now");
+    if (aborting_) {
       pending_command_ = OperatorCommand::None;
       return;
     }
@@ -142,6 +150,7 @@ class Upload {
       pending_command_ = OperatorCommand::None;
       return;
     }
+    if (piece_mode_) return override_here(next);
     if (!link_.can_submit(protocol::MessageType::FeedOverride)) return;  // later
     submit_override(next);
     pending_command_ = OperatorCommand::None;
@@ -156,12 +165,69 @@ class Upload {
   void note_override(const protocol::StatusReport& status) {
     const StreamOverride seen{status.override_index, FeedOverride{status.feed_override_percent, status.rapid_override_percent}};
     if (seen.tick == last_override_.tick && seen.value == last_override_.value) return;
-    if (!overrides_.empty() && overrides_.back().tick == seen.tick) {
-      overrides_.back() = seen;  // set again before the same setpoint: the last one counts
-    } else {
-      overrides_.push_back(seen);
-    }
+    record_override(seen);
     last_override_ = seen;
+  }
+
+  void record_override(const StreamOverride& taken) {
+    if (!overrides_.empty() && overrides_.back().tick == taken.tick) {
+      overrides_.back() = taken;  // set again before the same setpoint: the last one counts
+    } else {
+      overrides_.push_back(taken);
+    }
+  }
+
+  // --- the operator on a controller without a planner: the host's plan holds and overrides --------
+
+  /// A feed hold planned here: the planner brakes before the setpoint it has planned up to (what
+  /// was sent runs as planned); its braking pieces go out as credit allows, then FeedHold
+  /// (submit_host_hold) so the controller waits at their end. Before the plan has begun it waits;
+  /// once the job's last piece is sent nothing can brake any more (warn).
+  void hold_here() {
+    pending_command_ = OperatorCommand::None;
+    if (!aborting_ && !holding_) hold_asked_ = true;  // the other keys stay free meanwhile (Abort)
+    apply_asked_hold();
+  }
+
+  /// The operator's hold, as soon as the planner can brake: not before the first piece, nor while
+  /// it still brakes from a hold just resumed.
+  void apply_asked_hold() {
+    if (!hold_asked_ || aborting_) return;
+    if (planner_->done()) {
+      warn("the whole rest of the job is already sent to this controller (it has no planner): it cannot be held now; abort with Ctrl-X or Esc");
+      hold_asked_ = false;
+      return;
+    }
+    if (!started_ || !planner_->can_hold()) return;  // later
+    holds_.push_back(StreamHold{planner_->hold(), std::nullopt});
+    plan_changed_ = true;
+    resumed_.push_back(false);
+    holding_ = true;
+    hold_sent_ = false;
+    hold_asked_ = false;
+  }
+
+  /// FeedHold once the planner stands and its braking pieces are all submitted: the controller
+  /// then stands at their end without faulting until Resume (docs/protocol.md, "FeedHold").
+  void submit_host_hold() {
+    if (!piece_mode_) return;
+    apply_asked_hold();
+    if (!holding_ || hold_sent_ || next_piece_ || !planner_->held()) return;
+    if (!link_.can_submit(protocol::MessageType::FeedHold)) return;
+    submit_operator_message(protocol::Message(protocol::FeedHold{}));
+    hold_sent_ = true;
+  }
+
+  /// An override planned here, before the setpoint the planner has planned up to.
+  void override_here(FeedOverride next) {
+    pending_command_ = OperatorCommand::None;
+    if (planner_->done()) {
+      warn("the whole rest of the job is already sent to this controller (it has no planner): the override cannot change it now");
+      return;
+    }
+    record_override(StreamOverride{planner_->set_override(next), next});
+    plan_changed_ = true;
+    requested_override_ = next;
   }
 
   /// Abort, then a StatusRequest for where the machine stopped; nothing more is queued.
@@ -201,8 +267,10 @@ class Upload {
     if (options_.warn) options_.warn(text);
   }
 
-  /// A controller without a planner: the job is planned here (plan_pieces, the simulator's
-  /// Q16.16 controller with options_.lookahead) and sent as pieces.
+  /// A controller without a planner: the job is planned here (PiecePlanner, the simulator's Q16.16
+  /// controller with options_.lookahead), piece by piece as they are sent. It is first planned
+  /// through once, keeping nothing but the count: what the planner refuses or the wire cannot
+  /// carry is refused before the machine moves (the executor cannot brake on a broken stream).
   void plan_here(std::size_t axes) {
     SimulationOptions planning;
     planning.lookahead = options_.lookahead;
@@ -211,17 +279,43 @@ class Upload {
       planning.overrides.push_back({0, requested_override_});
       overrides_.push_back({0, requested_override_});
     }
-    const std::vector<PlannedPiece> planned = plan_pieces(job_, machine_, planning);
-    pieces_.reserve(planned.size());
-    for (const PlannedPiece& piece : planned) {
-      try {
-        pieces_.push_back(to_wire(piece, axes));
-      } catch (const std::runtime_error& e) {
-        throw std::runtime_error(job_.name + ": piece " + std::to_string(pieces_.size() + 1) + " of " +
-                                 std::to_string(planned.size()) + ", " + e.what());
-      }
-    }
+    PiecePlanner check(job_, machine_, planning);
+    axes_ = axes;
+    while (const std::optional<PlannedPiece> piece = check.next_piece()) (void)wire_piece(*piece, planned_total_++);
+    planner_ = std::make_unique<PiecePlanner>(job_, machine_, planning);
     piece_mode_ = true;
+  }
+
+  /// Piece mode: plans the next piece into next_piece_ unless one waits there, the planner has none
+  /// now (held, done) or the pieces sent reach options_.piece_lead_s ahead of the controller.
+  /// Segment mode: true while segments are left. True if a unit is ready to go.
+  bool prepare_unit() {
+    if (!piece_mode_) return next_ < wire_job_.segments.size();
+    if (next_piece_) return true;
+    if (planner_->done() || !within_piece_lead()) return false;
+    const std::optional<PlannedPiece> planned = planner_->next_piece();
+    if (!planned) return false;
+    next_piece_ = wire_piece(*planned, next_);
+    return true;
+  }
+
+  /// Piece `k` (0-based) for the wire; std::runtime_error naming the job and the piece if it cannot go.
+  [[nodiscard]] protocol::QueuePiece wire_piece(const PlannedPiece& piece, std::size_t k) const {
+    try {
+      return to_wire(piece, axes_);
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(job_.name + ": piece " + std::to_string(k + 1) + ", " + e.what());
+    }
+  }
+
+  /// True while the pieces sent cover less than options_.piece_lead_s of motion past the
+  /// controller's last known setpoint. Before it moves the credit alone decides: it starts with a
+  /// full queue (firmware/app.hpp, the start rule).
+  [[nodiscard]] bool within_piece_lead() const {
+    if (!seen_running_ && capture_.empty()) return true;  // not moving yet
+    const std::uint64_t known = std::max<std::uint64_t>(have_status_ ? last_status_.setpoint_index : 0, capture_.last_index());
+    const auto lead = static_cast<std::uint64_t>(std::ceil(options_.piece_lead_s * rate_hz_));
+    return planned_ticks_ <= known + lead;
   }
 
   /// The machine events at one joint that this controller cannot take before the segment after
@@ -261,19 +355,34 @@ class Upload {
     }
   }
 
-  /// What the job is sent as: queue segments, or planned pieces for a controller without a planner.
-  [[nodiscard]] std::size_t units() const { return piece_mode_ ? pieces_.size() : wire_job_.segments.size(); }
-  [[nodiscard]] protocol::Message unit(std::size_t k) const {
-    return piece_mode_ ? protocol::Message(pieces_[k]) : protocol::Message(wire_job_.segments[k]);
+  /// True once every unit of the job was submitted.
+  [[nodiscard]] bool all_units_sent() const {
+    return piece_mode_ ? planner_->done() && !next_piece_ : next_ == wire_job_.segments.size();
   }
-  /// The job file's segment index of unit k.
+  /// The job's units (segments, or pieces for a controller without a planner); pieces after a hold
+  /// or override changed the plan: 0 until its last one is planned.
+  [[nodiscard]] std::size_t known_units() const {
+    if (!piece_mode_) return wire_job_.segments.size();
+    if (!plan_changed_) return planned_total_;
+    return planner_->done() ? next_ + (next_piece_ ? 1 : 0) : 0;
+  }
+  /// The job file's segment index of unit k (a piece's: unacknowledged or among the last 256 acknowledged).
   [[nodiscard]] std::size_t file_segment(std::size_t k) const {
-    if (piece_mode_) return pieces_[k].segment;
+    if (piece_mode_) {
+      const bool kept = k >= piece_segments_base_ && k - piece_segments_base_ < piece_segments_.size();
+      return kept ? piece_segments_[k - piece_segments_base_] : 0;
+    }
     return job_.source_index.empty() ? k : job_.source_index[k];
   }
-  /// "piece 12 of 340" (1-based) in piece mode, "" otherwise.
+  /// The job file's segments (the last one's index + 1).
+  [[nodiscard]] std::size_t file_segment_count() const {
+    return job_.source_index.empty() ? job_.segments.size() : job_.source_index.back() + 1;
+  }
+  /// "piece 12" (1-based; "piece 12 of 340" once the last is planned) in piece mode, "" otherwise.
   [[nodiscard]] std::string piece_text(std::size_t k) const {
-    return piece_mode_ ? "piece " + std::to_string(k + 1) + " of " + std::to_string(pieces_.size()) : "";
+    if (!piece_mode_) return "";
+    const std::size_t total = known_units();
+    return "piece " + std::to_string(k + 1) + (total > 0 ? " of " + std::to_string(total) : "");
   }
 
   /// Where the job stopped: the last segment the controller acknowledged, the last setpoint received.
@@ -285,7 +394,7 @@ class Upload {
     } else {
       const std::size_t last = acknowledged_units_ - 1;
       text += "segment " + std::to_string(file_segment(last)) + " of " + job_.name + " (" +
-              (piece_mode_ ? piece_text(last) : std::to_string(acknowledged_units_) + " of " + std::to_string(units())) +
+              (piece_mode_ ? piece_text(last) : std::to_string(acknowledged_units_) + " of " + std::to_string(known_units())) +
               " acknowledged)";
     }
     if (capture_.empty()) return text + ", no setpoint received";
@@ -296,6 +405,11 @@ class Upload {
   void settle_acknowledged() {
     while (submitted_.size() > link_.in_flight()) {
       if (submitted_.front() < event_marker) acknowledged_units_ = submitted_.front() + 1;  // a unit, not a marker
+      // Keep the pieces a report may still name: up to 256 frames back (the sequence numbers' range).
+      while (!piece_segments_.empty() && piece_segments_base_ + 256 < acknowledged_units_) {
+        piece_segments_.pop_front();
+        ++piece_segments_base_;
+      }
       if (submitted_.front() == start_marker) {
         start_acknowledged_ = true;
         mark_stream_progress();
@@ -350,8 +464,16 @@ class Upload {
 
   void submit_units() {
     const auto type = piece_mode_ ? protocol::MessageType::QueuePiece : protocol::MessageType::QueueSegment;
-    while (next_ < units() && submit_events_before(next_) && link_.can_submit(type)) {
-      link_.submit(unit(next_));
+    while (prepare_unit() && submit_events_before_next() && link_.can_submit(type)) {
+      if (piece_mode_) {
+        link_.submit(protocol::Message(*next_piece_));
+        planned_ticks_ += next_piece_->ticks;
+        piece_segments_.push_back(next_piece_->segment);
+        last_piece_segment_ = next_piece_->segment;
+        next_piece_.reset();
+      } else {
+        link_.submit(protocol::Message(wire_job_.segments[next_]));
+      }
       submitted_.push_back(next_);
       sequence_to_unit_[sequence_] = next_;
       ++sequence_;
@@ -359,11 +481,12 @@ class Upload {
     }
   }
 
-  /// Submits the machine events due before unit k (those keyed to its segment number or an
+  /// Submits the machine events due before the next unit (those keyed to its segment number or an
   /// earlier one; all that are left before the last unit); false while one waits for credit.
-  bool submit_events_before(std::size_t k) {
-    const std::size_t label = piece_mode_ ? pieces_[k].segment : k;
-    while (next_event_ < events_.size() && (events_[next_event_].segment <= label || k + 1 == units())) {
+  bool submit_events_before_next() {
+    const std::size_t label = piece_mode_ ? next_piece_->segment : next_;
+    const bool last = piece_mode_ ? next_piece_->end_of_job : next_ + 1 == wire_job_.segments.size();
+    while (next_event_ < events_.size() && (events_[next_event_].segment <= label || last)) {
       if (!link_.can_submit(protocol::MessageType::QueueEvent)) return false;
       link_.submit(protocol::Message(events_[next_event_]));
       submitted_.push_back(event_marker);
@@ -478,7 +601,7 @@ class Upload {
   }
 
   [[nodiscard]] bool finished() {
-    if (!started_ || next_ < units() || !link_.idle() || !have_status_ || !seen_running_) return false;
+    if (!started_ || !all_units_sent() || !link_.idle() || !have_status_ || !seen_running_) return false;
     if (last_status_.state != protocol::MachineState::Idle || last_status_.queue_depth != 0) {
       idle_seen_ = false;
       return false;
@@ -511,18 +634,24 @@ class Upload {
     last_progress_ms_ = now;
     StreamProgress p;
     p.sent = next_;
-    p.total = units();
+    p.total = known_units();
     p.unit = piece_mode_ ? "pieces" : "segments";
     p.setpoints_received = capture_.received();
     p.elapsed_s = now / 1000.0;
     if (started_ && next_ > 0 && have_status_) {
-      // Units done = sent - still queued; the rest take as long, per unit, as those did.
-      const double done = static_cast<double>(next_) - last_status_.queue_depth;
       const double running_s = (now - start_ms_) / 1000.0;
-      if (done > 0) p.eta_s = running_s / done * (static_cast<double>(p.total) - done);
+      if (p.total > 0) {
+        // Units done = sent - still queued; the rest take as long, per unit, as those did.
+        const double done = static_cast<double>(next_) - last_status_.queue_depth;
+        if (done > 0) p.eta_s = running_s / done * (static_cast<double>(p.total) - done);
+      } else {
+        // Pieces still being planned: by the job segments planned so far (at most the piece lead ahead).
+        const double done = static_cast<double>(last_piece_segment_ + 1) / static_cast<double>(file_segment_count());
+        if (done > 0 && done < 1) p.eta_s = running_s / done * (1 - done);
+      }
     }
     if (final_call) p.eta_s = 0;
-    p.state = aborting_ ? "Aborting" : holding_ ? "Hold" : "Running";
+    p.state = aborting_ ? "Aborting" : holding_ || hold_asked_ ? "Hold" : "Running";
     p.have_status = have_status_;
     if (have_status_) {
       p.setpoint_index = last_status_.setpoint_index;
@@ -554,7 +683,8 @@ class Upload {
     result.overrides = overrides_;
     for (std::size_t k = 0; k < result.holds.size(); ++k) {
       const std::uint64_t until = k + 1 < holds_.size() ? holds_[k + 1].tick : std::uint64_t{0xffffffff};
-      if (resumed_[k]) result.holds[k].standing_ticks = standing_between(holds_[k].tick, until);
+      // A hold planned here stands between its pieces: the executor does not tick while it waits.
+      if (resumed_[k]) result.holds[k].standing_ticks = piece_mode_ ? 0 : standing_between(holds_[k].tick, until);
     }
     result.aborted = aborting_;
     result.switch_closed = switch_closed_;
@@ -590,8 +720,18 @@ class Upload {
   bool pause_told_ = false;     // options_.paused was called for it
   bool pause_resume_asked_ = false;  // the operator's Resume came for it
   std::string pause_text_;
-  std::vector<protocol::QueuePiece> pieces_;  // piece mode: the pieces planned here
-  bool piece_mode_ = false;                   // the controller has no planner (Capabilities::lookahead 0)
+  bool piece_mode_ = false;                        // the controller has no planner (Capabilities::lookahead 0)
+  std::unique_ptr<PiecePlanner> planner_;          // piece mode: plans the job as its pieces go out
+  std::size_t axes_ = 3;                           // piece mode: the controller's axes (QueuePiece::axis_count)
+  std::optional<protocol::QueuePiece> next_piece_;  // piece mode: planned, waiting for credit
+  std::deque<std::uint32_t> piece_segments_;       // piece mode: job segment of the last 256 acknowledged pieces and those after
+  std::size_t piece_segments_base_ = 0;            // the unit index of piece_segments_.front()
+  std::uint64_t planned_ticks_ = 0;                // piece mode: setpoints the pieces sent cover
+  std::uint32_t last_piece_segment_ = 0;           // piece mode: the job segment of the last piece sent
+  bool hold_sent_ = false;                         // piece mode: FeedHold sent for the hold in progress
+  std::size_t planned_total_ = 0;                  // piece mode: the job's pieces as planned before it started
+  bool plan_changed_ = false;                      // piece mode: a hold or override changed that plan
+  bool hold_asked_ = false;                        // piece mode: the operator's hold, waiting until the planner can brake
   SetpointCapture capture_;  // the setpoint stream, to options_.setpoint_sink or kept
   std::map<std::uint8_t, std::size_t> sequence_to_unit_{{0, configuration_marker}};
   protocol::StatusReport last_status_{};

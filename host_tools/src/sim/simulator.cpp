@@ -13,169 +13,28 @@
 
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
-#include <curvestep/core/motion/piece_recorder.hpp>
 #include <curvestep/core/motion/step_generator.hpp>
 #include <curvestep/host/csv.hpp>
-#include <curvestep/host/joint_stops.hpp>
+#include <curvestep/host/piece_planner.hpp>
 #include <curvestep/host/position_differences.hpp>
 
+#include "lockstep_run.hpp"
+
 namespace curvestep::host {
-namespace {
 
-constexpr std::size_t max_lookahead = SimulationOptions::max_lookahead;
-constexpr std::size_t max_distance_window = SimulationOptions::max_distance_window;
-/// Room for the largest window behind the segment in progress, and for cusp splits.
-constexpr std::size_t queue_capacity = max_distance_window + 16;
+using detail::check_request;
+using detail::ExactController;
+using detail::FixedController;
+using detail::LockstepRun;
 
-std::string failure_text(const Job& job, const Failure& f) {
-  std::ostringstream s;
-  s << job.name << ": ";
-  if (f.index != no_index) s << "segment " << f.index << ": ";
-  s << describe(f.code) << " (" << error_name(f.code) << ")";
-  return s.str();
-}
+namespace detail {
 
-/// Runs one or more MotionControllers in lockstep over the same job: the same queue filling
-/// (cusp splits wait for room), the same start, one setpoint of each per step. The first
-/// controller decides when the queue is full; the others must take every segment it takes.
-/// simulate() runs a double and a Q16.16 controller (two output scalars, one plan), plan_pieces()
-/// the Q16.16 one alone.
-template <class... Controllers>
-class LockstepRun {
- public:
-  LockstepRun(const Job& job, const MachineLimits& machine, const SimulationOptions& options, std::vector<FeedHoldEvent> holds = {})
-      : job_(job), entries_(joint_stops(job, machine.rate_hz)), holds_(std::move(holds)), overrides_(options.overrides) {
-    std::apply([&](auto&... c) { (check(c.configure(machine), "machine"), ...); }, controllers_);
-    std::apply([&](auto&... c) { (check(c.set_lookahead(options.lookahead), "lookahead"), ...); }, controllers_);
-    std::apply([&](auto&... c) { (check(c.set_lookahead_distance(options.lookahead_distance_mm), "lookahead distance"), ...); },
-               controllers_);
-  }
-
-  /// Fills the queues, starts, and calls on_tick with each step's setpoints (a tuple, one per
-  /// controller) until the first controller has finished the job.
-  template <class OnTick>
-  void run(OnTick&& on_tick) {
-    if (job_.segments.empty()) return;  // a program without moves (modes, S, M words only): no setpoints
-    fill();
-    apply_override();  // one at tick 0 is set before the start, as a device takes it while idle
-    std::apply([&](auto&... c) { (check(c.start(), no_index), ...); }, controllers_);
-    while (!lead().finished()) {
-      fill();
-      apply_feed_hold();
-      apply_override();
-      // A braced list evaluates left to right: the controllers tick in their order.
-      on_tick(std::apply([&](auto&... c) { return std::tuple{next_of(c)...}; }, controllers_));
-    }
-  }
-
-  /// The first controller (it decides when the queue is full and when the job is over).
-  [[nodiscard]] const auto& lead() const { return std::get<0>(controllers_); }
-
-  /// Throws if a feed hold or an override was asked for at a tick the job never reached (after its end).
-  void check_holds_done() const {
-    if (next_override_ < overrides_.size()) {
-      throw std::runtime_error(job_.name + ": --override-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
-                               ", before the override at setpoint " + std::to_string(overrides_[next_override_].tick));
-    }
-    if (next_hold_ < holds_.size()) {
-      throw std::runtime_error(job_.name + ": --hold-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
-                               ", before the hold at setpoint " + std::to_string(holds_[next_hold_].tick));
-    }
-  }
-
- private:
-  /// Between two ticks, as the firmware takes FeedHold and Resume: hold() before the hold's tick,
-  /// resume() once the controller has stood its standing ticks.
-  void apply_feed_hold() {
-    const bool held = lead().state() == ControllerState::Held;
-    if (held && standing_ == holds_[next_hold_ - 1].standing_ticks) {
-      std::apply([&](auto&... c) { (check(c.resume(), no_index), ...); }, controllers_);
-      standing_ = 0;
-    } else if (held) {
-      ++standing_;
-    }
-    if (next_hold_ < holds_.size() && lead().tick() == holds_[next_hold_].tick) {
-      if (lead().state() != ControllerState::Running) {
-        throw std::runtime_error(job_.name + ": --hold-at: the controller is not moving at setpoint " +
-                                 std::to_string(holds_[next_hold_].tick) + " (still braking or standing from the hold before)");
-      }
-      std::apply([](auto&... c) { (c.hold(), ...); }, controllers_);
-      ++next_hold_;
-    }
-  }
-
-  /// Between two ticks, as the firmware takes FeedOverride: set_override() before the override's tick.
-  void apply_override() {
-    while (next_override_ < overrides_.size() && lead().tick() == overrides_[next_override_].tick) {
-      const FeedOverride value = overrides_[next_override_].value;
-      std::apply([&](auto&... c) { (check(c.set_override(value), "--override-at"), ...); }, controllers_);
-      ++next_override_;
-    }
-  }
-
-  void fill() {
-    auto& head = std::get<0>(controllers_);
-    while (next_ < job_.segments.size() && !queue_full()) {
-      const auto index = static_cast<std::uint32_t>(job_.source_index.empty() ? next_ : job_.source_index[next_]);
-      auto pushed = head.try_push(job_.segments[next_], index, entries_[next_]);
-      if (!pushed && pushed.error() == Error::QueueFull) return;  // a cusp split needs more room: later
-      check(pushed, index);
-      std::apply([&](auto&, auto&... others) { (check(others.try_push(job_.segments[next_], index, entries_[next_]), index), ...); }, controllers_);
-      ++next_;
-    }
-    if (next_ == job_.segments.size()) {
-      const std::uint32_t final_rest = entries_.back().rest_ticks;  // the dwells after the last move
-      std::apply([final_rest](auto&... c) { (c.end_of_job(final_rest), ...); }, controllers_);
-    }
-  }
-
-  [[nodiscard]] bool queue_full() const {
-    return std::apply([](const auto&... c) { return (c.queue_full() || ...); }, controllers_);
-  }
-
-  template <class Controller>
-  auto next_of(Controller& controller) {
-    auto setpoint = controller.next_setpoint();
-    if (!setpoint) throw std::runtime_error(failure_text(job_, setpoint.failure()));
-    return setpoint.value();
-  }
-
-  void check(const Result<void>& r, std::size_t index) const {
-    if (!r) {
-      Failure f = r.failure();
-      if (f.index == no_index) f.index = static_cast<std::uint16_t>(index > no_index ? no_index : index);
-      throw std::runtime_error(failure_text(job_, f));
-    }
-  }
-  void check(const Result<void>& r, const char* what) const {
-    if (!r) throw std::runtime_error(job_.name + ": " + what + ": " + std::string(describe(r.error())));
-  }
-
-  const Job& job_;
-  std::vector<JointStop> entries_;  ///< per segment: an exact stop and rest before it (job events); then the end's
-  std::size_t next_ = 0;
-  std::tuple<Controllers...> controllers_;
-  std::vector<FeedHoldEvent> holds_;  // in tick order
-  std::size_t next_hold_ = 0;         // the next hold to apply
-  std::uint64_t standing_ = 0;        // ticks stood in the current hold
-  std::vector<FeedOverrideEvent> overrides_;  // in tick order
-  std::size_t next_override_ = 0;             // the next override to set
-};
-
-// The controllers' largest window is the distance window's; set_lookahead() keeps the count window
-// at options.lookahead (<= max_lookahead), which alone decides the setpoints without a distance.
-using ExactController = MotionController<double, queue_capacity, max_distance_window>;
-using FixedController = MotionController<Q16_16, queue_capacity, max_distance_window>;
-
-/// Refuses what neither simulate() nor plan_pieces() can run: an invalid machine, a look-ahead
-/// window outside 1..max_lookahead. A job without segments runs and makes no setpoints (LinuxCNC
-/// runs a program without moves too).
 void check_request(const MachineLimits& machine, const SimulationOptions& options) {
   if (auto valid = machine.validate(); !valid) {
     throw std::runtime_error("machine: " + std::string(describe(valid.error())));
   }
-  if (options.lookahead < 1 || options.lookahead > max_lookahead) {
-    throw std::runtime_error("lookahead: must be between 1 and " + std::to_string(max_lookahead) + " segments, not " +
+  if (options.lookahead < 1 || options.lookahead > SimulationOptions::max_lookahead) {
+    throw std::runtime_error("lookahead: must be between 1 and " + std::to_string(SimulationOptions::max_lookahead) + " segments, not " +
                              std::to_string(options.lookahead));
   }
   for (std::size_t k = 1; k < options.overrides.size(); ++k) {
@@ -198,6 +57,10 @@ void check_request(const MachineLimits& machine, const SimulationOptions& option
     }
   }
 }
+
+}  // namespace detail
+
+namespace {
 
 /// A path length for progress: arcs exactly (helix: √((r·sweep)² + Δz²)), curves by the chords of
 /// 16 samples (a slight underestimate). Only the fraction shown to the user depends on it.
@@ -316,13 +179,9 @@ double lookahead_distance_for(const MachineLimits& machine) {
 }
 
 std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
-  check_request(machine, options);
-  LockstepRun<FixedController> run(job, machine, options);
+  PiecePlanner planner(job, machine, options);
   std::vector<PlannedPiece> pieces;
-  PieceRecorder recorder;
-  const auto keep = [&pieces](const PlannedPiece& piece) { pieces.push_back(piece); };
-  run.run([&](const auto& setpoints) { recorder.record(run.lead(), std::get<0>(setpoints), keep); });
-  recorder.finish(keep);
+  while (auto piece = planner.next_piece()) pieces.push_back(*piece);
   return pieces;
 }
 

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// App<FakeBoard, Q16_16, 16, 0> (no planner): capabilities, refused commands, credit, piece replay, start rule, stalls.
+// App<FakeBoard, Q16_16, 16, 0> (no planner): capabilities, refused commands, credit, piece replay, start rule, stalls,
+// a hold the host planned.
 #include <catch2/catch.hpp>
 
 #include <array>
@@ -141,7 +142,7 @@ TEST_CASE("executor app: Hello is answered with Capabilities of queue 16 and loo
   CHECK(rig.app.state() == MachineState::Idle);
 }
 
-TEST_CASE("executor app: QueueSegment is an unknown message and FeedHold is not supported",
+TEST_CASE("executor app: QueueSegment is an unknown message and FeedHold without a job changes nothing",
           "[firmware][app][executor]") {
   ExecutorRig rig;
   rig.connect_and_configure();
@@ -153,8 +154,7 @@ TEST_CASE("executor app: QueueSegment is an unknown message and FeedHold is not 
   CHECK(rig.app.state() == MachineState::Idle);
 
   rig.send(Message(FeedHold{}));
-  REQUIRE(rig.host.received.errors.size() == 2);
-  CHECK(rig.host.received.errors[1].code == Error::NotSupported);
+  CHECK(rig.host.received.errors.size() == 1);  // taken, as by a planner's App (docs/protocol.md, state table)
   CHECK(rig.app.state() == MachineState::Idle);  // unchanged
   CHECK_FALSE(rig.app.moving());
 }
@@ -169,22 +169,46 @@ TEST_CASE("executor app: FeedOverride is not supported (the host plans the overr
   CHECK(rig.app.state() == MachineState::Idle);
 }
 
-TEST_CASE("executor app: FeedHold while running is refused and the job runs on unchanged", "[firmware][app][executor]") {
-  ExecutorRig rig;
+TEST_CASE("executor app: after FeedHold the App runs the queued pieces and stands where they end, past the stall timeout, until Resume",
+          "[firmware][app][executor]") {
+  // The host planned the braking into the pieces before FeedHold (here: a staircase that simply
+  // ends at staircase(15)); without FeedHold the same dry queue is a QueueUnderrun fault after
+  // 20 ms (the stall test below).
+  AppSettings settings;
+  settings.stall_timeout_ms = 20;
+  ExecutorRig rig(settings);
   rig.connect_and_configure();
-  for (std::uint32_t k = 0; k < 5; ++k) REQUIRE(rig.host.send(Message(exact(k / 8.0, 0, 0, k == 4, k))));
+  queue_staircase(rig, 0, 15);  // a full queue, no end of job
   rig.send(Message(Start{}));
-  rig.host.run_ticks(2);
+  rig.host.run_ticks(4);
   REQUIRE(rig.app.moving());
-  REQUIRE(rig.app.state() == MachineState::Running);
+  const std::size_t reports = rig.host.received.status.size();
   rig.send(Message(FeedHold{}));
-  REQUIRE(rig.host.received.errors.size() == 1);
-  CHECK(rig.host.received.errors[0].code == Error::NotSupported);
-  CHECK(rig.app.state() == MachineState::Running);  // unchanged: no plan to brake along
+  CHECK(rig.host.received.errors.empty());
+  CHECK(rig.app.state() == MachineState::Holding);
+  REQUIRE(rig.host.received.status.size() == reports + 1);  // at once, as a planner's App
+  CHECK(rig.host.received.status.back().state == MachineState::Holding);
+
+  rig.host.run_ticks(12 + 50);  // the 12 pieces left, then 50 ms standing: more than the stall timeout
+  CHECK(rig.host.received.errors.empty());
+  CHECK(rig.app.state() == MachineState::Holding);
   CHECK(rig.app.moving());
+  CHECK(rig.app.statistics().stalled_ticks == 0);  // standing in a hold is no stall
+  CHECK(rig.app.position() == staircase(15));
+  CHECK(rig.board.steps == std::array<std::int64_t, 3>{15, 0, 0});
+  rig.host.pump(3);
+  require_each_setpoint(rig.host.setpoints(), staircase_stream(16));  // the short batch is not held back
+
+  rig.send(Message(Resume{}));
+  CHECK(rig.app.state() == MachineState::Running);
+  for (std::uint32_t k = 16; k <= 18; ++k) REQUIRE(rig.host.send(Message(exact(k / 8.0, 0, 0, k == 18, k))));
   rig.run_to_idle();
-  require_each_setpoint(rig.host.setpoints(), staircase_stream(5));
-  CHECK(rig.host.received.errors.size() == 1);
+  CHECK(rig.host.received.errors.empty());
+  // The indices go on without a gap: a held executor does not tick (sim --hold-at T:0).
+  require_each_setpoint(rig.host.setpoints(), staircase_stream(19));
+  CHECK(rig.board.steps == std::array<std::int64_t, 3>{18, 0, 0});
+  CHECK(rig.board.fault_stops == 0);
+  CHECK(rig.app.state() == MachineState::Idle);
 }
 
 TEST_CASE("executor app: the credit counts one per piece", "[firmware][app][executor]") {

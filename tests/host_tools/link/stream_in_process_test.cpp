@@ -13,6 +13,7 @@
 #include <catch2/catch.hpp>
 
 #include <curvestep/firmware/app.hpp>
+#include <curvestep/host/csv.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/link/streamer.hpp>
 #include <curvestep/host/link/wire.hpp>
@@ -233,4 +234,106 @@ TEST_CASE("stream in process: the start override reaches a planning App and is p
     replay.lookahead = host::SimulationOptions::max_lookahead;
     require_same_setpoints(result.setpoints, host::simulate(job, machine, replay).setpoints);
   }
+}
+
+TEST_CASE("stream in process: an executor held, resumed and overridden by the operator streams sim --hold-at T:0 --override-at bit for bit",
+          "[host_tools][stream][pieces][hold][override]") {
+  // The host plans the braking and the override into the pieces; the App stands at the end of the
+  // braking (after FeedHold) without a stall fault until Resume, and does not tick meanwhile.
+  auto machine = host::load_machine(examples / "machine.json");
+  for (auto& axis : machine.axes) axis.steps_per_mm = 4;  // as above: within the fake board's step batch
+  const auto job = host::load_job(examples / "helix.json");
+  const auto unheld = host::simulate(job, machine).setpoints;
+  REQUIRE(unheld.size() > 10000);
+  firmware::AppSettings settings;
+  settings.stall_timeout_ms = 50;  // standing in the hold is longer: it must not count as a stall
+  hl::testing::InProcessDevice<ExecutorApp> device(settings);
+  std::vector<host::SetpointRecord> captured;
+  int step = 0;
+  int polls_standing = 0;
+  hl::StreamOptions options;
+  options.setpoint_sink = [&captured](const host::SetpointRecord& r) { captured.push_back(r); };
+  options.operator_command = [&]() {
+    const std::size_t received = captured.size();
+    switch (step) {
+      case 0:
+        if (received < 6000) return hl::OperatorCommand::None;  // past the first queue's worth (see the end)
+        step = 1;
+        return hl::OperatorCommand::Hold;
+      case 1: {
+        const bool standing = device.app().state() == protocol::MachineState::Holding && device.app().controller().queued() == 0;
+        if (!standing || ++polls_standing < 30) return hl::OperatorCommand::None;
+        step = 2;
+        return hl::OperatorCommand::Resume;
+      }
+      case 2:
+        if (received < 12000) return hl::OperatorCommand::None;
+        step = 3;
+        return hl::OperatorCommand::FeedMinus10;
+      default: return hl::OperatorCommand::None;
+    }
+  };
+  std::vector<std::string> warnings;
+  options.warn = [&warnings](const std::string& text) { warnings.push_back(text); };
+  const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+  CHECK(warnings.empty());
+  CHECK(step == 3);
+  CHECK(polls_standing >= 30);  // it stood, longer than the stall timeout in wall-clock time
+  REQUIRE(result.holds.size() == 1);
+  CHECK(result.holds[0].tick > 0);
+  REQUIRE(result.holds[0].standing_ticks.has_value());
+  CHECK(*result.holds[0].standing_ticks == 0);
+  REQUIRE(result.overrides.size() == 1);
+  CHECK(result.overrides[0].value == FeedOverride{90, 100});
+  CHECK(result.overrides[0].tick > result.holds[0].tick);
+  CHECK(result.standing_ticks == 0);  // no index skipped
+  CHECK(device.app().statistics().stalled_ticks == 0);
+  host::SimulationOptions replay;
+  replay.holds.push_back({result.holds[0].tick, 0});
+  replay.overrides.push_back({result.overrides[0].tick, result.overrides[0].value});
+  const auto expected = host::simulate(job, machine, replay).setpoints;
+  CHECK(expected.size() != unheld.size());  // the hold and the override changed the motion
+  require_same_setpoints(captured, expected);
+  CHECK(hl::hold_at_option(result.holds, 1000) == "--hold-at " + host::format_number(static_cast<double>(result.holds[0].tick) / 1000.0) + ":0");
+  // The in-flight bound (StreamOptions::piece_lead_s): once the device runs, the hold acts at most
+  // 500 ticks plus one piece (256) and an exact run (6) after the last setpoint the host knew of
+  // when the operator asked: setpoint 5999, or up to ~200 more the device had made and not yet
+  // delivered. (Before it starts, the device takes a full queue, 16 pieces of up to 256 ticks.)
+  CHECK(result.holds[0].tick <= 6000 + 500 + 262 + 200);
+}
+
+TEST_CASE("stream in process: a hold or override key once an executor has the whole rest of the job is answered with a warning and changes nothing",
+          "[host_tools][stream][pieces][hold]") {
+  const auto machine = host::load_machine(examples / "machine.json");
+  // The longest line whose pieces the executor's queue (16) takes all before it starts: its
+  // setpoints come in several batches, so the keys are read while it runs.
+  host::Job job;
+  job.name = "line";
+  for (const double length : {20.0, 10.0, 5.0, 2.0, 1.0, 0.5}) {
+    const auto line = PathSegment::make_line(MachinePoint{0, 0, 0}, MachinePoint{length, 0, 0});
+    REQUIRE(line.has_value());
+    job.segments = {line.value()};
+    if (host::plan_pieces(job, machine).size() <= 16) break;
+  }
+  REQUIRE(host::plan_pieces(job, machine).size() <= 16);
+  INFO("line of " << job.segments[0].end()[0] << " mm");
+  hl::testing::InProcessDevice<ExecutorApp> device;
+  std::vector<host::SetpointRecord> captured;
+  int step = 0;
+  hl::StreamOptions options;
+  options.setpoint_sink = [&captured](const host::SetpointRecord& r) { captured.push_back(r); };
+  options.operator_command = [&]() {
+    if (captured.empty() || step >= 2) return hl::OperatorCommand::None;
+    return ++step == 1 ? hl::OperatorCommand::Hold : hl::OperatorCommand::FeedPlus10;
+  };
+  std::vector<std::string> warnings;
+  options.warn = [&warnings](const std::string& text) { warnings.push_back(text); };
+  const hl::StreamResult result = hl::stream_job(device, job, machine, options);
+  REQUIRE(step == 2);
+  REQUIRE(warnings.size() == 2);
+  CHECK(warnings[0].find("cannot be held now") != std::string::npos);
+  CHECK(warnings[1].find("the override cannot change it now") != std::string::npos);
+  CHECK(result.holds.empty());
+  CHECK(result.overrides.empty());
+  require_same_setpoints(captured, host::simulate(job, machine).setpoints);
 }

@@ -50,7 +50,9 @@
 //   FeedHold / Resume    -> MotionController::hold / resume (braking along the path); a StatusReport
 //                           at once (Holding, the setpoint index the hold acted after) and another
 //                           once the machine stands; Resume while still braking continues
-//                           from the stop.
+//                           from the stop. Without a planner the host brakes in the pieces it
+//                           sends before FeedHold: the App holds, runs them, and stands where the
+//                           queue runs dry (no stall, no underrun) until Resume (host_hold).
 //   Abort                -> stop at once: controller aborted and flushed, board.fault_stop(); the
 //                           next job must start where the machine stopped (StatusReport position).
 //   FeedOverride         -> MotionController::set_override (feed_override_command.hpp); a StatusReport
@@ -222,6 +224,10 @@ class App {
   /// The work of on_tick(), untimed.
   void run_tick() noexcept {
     if (!ready_to_tick()) {
+      if (stands_in_host_hold()) {
+        stalled_ = false;  // waiting for Resume, not for the host's pieces
+        return;
+      }
       if (!stalled_) stalled_since_ms_ = board_.now_ms();
       stalled_ = true;
       ++statistics_.stalled_ticks;
@@ -455,7 +461,7 @@ class App {
         if constexpr (plans_on_board) {
           return feed_hold();
         } else {
-          return report(fail(Error::NotSupported));  // no plan to brake along
+          return host_hold();  // the host braked in its pieces
         }
       case MessageType::Resume:
         if (!frame.payload.empty()) return report(fail(Error::BadPayload, 0));
@@ -763,6 +769,26 @@ class App {
     send_status();  // names the tick the hold acted at: the host replays it (sim --hold-at)
   }
 
+  /// FeedHold without a planner: the host planned the braking into the pieces it sent before
+  /// (docs/protocol.md, "FeedHold"). The App holds (Holding) and runs what is queued; once the queue
+  /// runs dry at their end it stands, neither a stall nor an underrun (stands_in_host_hold), until
+  /// Resume. Held before the start as with a planner.
+  void host_hold() noexcept {
+    if (phase_ != Phase::Running) return;
+    phase_ = Phase::Holding;
+    if (moving_) send_status();
+  }
+
+  /// Without a planner: held by the host (host_hold) with the queue run dry, at the end of the
+  /// braking pieces. The machine stands there; ticks make no setpoint and count no stall.
+  [[nodiscard]] bool stands_in_host_hold() const noexcept {
+    if constexpr (plans_on_board) {
+      return false;
+    } else {
+      return phase_ == Phase::Holding && moving_ && !paused_ && !controller_.can_step();
+    }
+  }
+
   [[nodiscard]] Result<void> resume() noexcept {
     if (paused_) {  // the operator is done: on from the pause
       paused_ = false;
@@ -775,6 +801,10 @@ class App {
       return ok();
     }
     if (phase_ != Phase::Holding) return fail(Error::InvalidState);
+    if constexpr (!plans_on_board) {
+      phase_ = Phase::Running;  // the host's pieces after the hold follow
+      return ok();
+    }
     if (controller_.state() == ControllerState::Starved) {
       phase_ = Phase::Running;  // continues under the start rule
       apply_start_rule();
@@ -997,7 +1027,7 @@ class App {
   void send_setpoints() noexcept {
     // Stopped, stalled or paused (a paused interpolator must not hold back what it already produced).
     const bool stopped = !moving_ || stalled_ || paused_ || controller_.state() == ControllerState::Held ||
-                         controller_.state() == ControllerState::Starved;
+                         controller_.state() == ControllerState::Starved || stands_in_host_hold();
     stream_.submit(stopped, axis_count_, statistics_.setpoint_go_backs);
   }
 

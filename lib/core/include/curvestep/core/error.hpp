@@ -89,7 +89,7 @@ enum class Error : std::uint8_t {
   HardFault = 172,         ///< the controller faulted and reported it
   ConfigurationMissing = 173, ///< motion requested before machine configuration
   OutsideTravel = 174,     ///< a segment leaves the configured travel range of an axis (index = axis)
-  NotSupported = 175,      ///< this controller cannot do that (a feed hold or an override without an on-board planner, a machine event on an image built without them)
+  NotSupported = 175,      ///< this controller cannot do that (FeedOverride without an on-board planner, a machine event on an image built without them)
   TickDeadlineMissed = 176, ///< a control tick started more than the tolerated periods late: its step edges came too late (index = periods late)
   HardLimit = 177,         ///< a limit switch closed while its axis moved toward it: stopped at once (index = switch: 2 x axis, + 1 for max)
 };

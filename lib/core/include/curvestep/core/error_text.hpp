@@ -154,7 +154,7 @@ namespace curvestep {
     case Error::HardFault: return "the controller faulted and reported it";
     case Error::ConfigurationMissing: return "motion requested before machine configuration";
     case Error::OutsideTravel: return "a segment leaves the configured travel range of an axis (index = axis)";
-    case Error::NotSupported: return "this controller cannot do that (a feed hold or an override without an on-board planner, a machine event on an image built without them)";
+    case Error::NotSupported: return "this controller cannot do that (FeedOverride without an on-board planner, a machine event on an image built without them)";
     case Error::TickDeadlineMissed: return "a control tick started more than the tolerated periods late: its step edges came too late (index = periods late)";
     case Error::HardLimit: return "a limit switch closed while its axis moved toward it: stopped at once (index = switch: 2 x axis, + 1 for max)";
   }

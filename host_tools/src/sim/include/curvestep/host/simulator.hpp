@@ -114,7 +114,8 @@ using SetpointSink = std::function<void(const SetpointRecord&)>;
 /// options.lookahead as its window (the other options are not used). Replaying them
 /// (PieceExecutor<Q16_16>) gives simulate()'s raw_q16 setpoints bit for bit: their ticks add up
 /// to its setpoint count, the last piece has end_of_job, and each piece's segment is the job
-/// file's segment index (SetpointRecord::segment). Throws what simulate() throws.
+/// file's segment index (SetpointRecord::segment). Throws what simulate() throws. It is
+/// PiecePlanner::next_piece() until none is left (piece_planner.hpp: the same pieces on demand).
 [[nodiscard]] std::vector<PlannedPiece> plan_pieces(const Job& job, const MachineLimits& machine,
                                                     const SimulationOptions& options = {});
 

@@ -6,7 +6,9 @@
 // controller's setpoints bit for bit. Consecutive exact ticks of one segment are merged into
 // exact runs of up to max_exact_run ticks, and the ticks of a rest at a joint (the controller's
 // resting()) into rest pieces of up to max_rest_ticks. The sink is called with each finished piece, in order;
-// the last one (finish) carries end_of_job.
+// the last one (finish) carries end_of_job. A recorder that plans on demand (PiecePlanner, host
+// tools) may change the controller's course between two setpoints (a feed hold): revise() then
+// forgets a chunk the controller no longer follows, and flush() hands over the braking's last piece.
 #pragma once
 
 #include <cstddef>
@@ -61,6 +63,29 @@ class PieceRecorder {
       covered_ = true;
       covered_until_ = setpoint.tick + chunk.ticks;
     }
+  }
+
+  /// Between two setpoints, after something changed the controller's plan (a hold() that abandoned
+  /// the chunk it had begun at its last setpoint, MotionController::begin_stop): forgets that
+  /// chunk's piece, which was not handed over yet and none of whose setpoints were made. Nothing
+  /// otherwise (a chunk it still follows, as after a hold it defers, stays).
+  template <class Controller>
+  void revise(const Controller& controller) {
+    const bool chunk_not_begun = pending_ && is_chunk(last_) && covered_ && covered_until_ + 1 == controller.tick() + last_.ticks;
+    if (chunk_not_begun && !controller.chunk_begins_at_last_setpoint()) {
+      pending_ = false;
+      covered_ = false;
+    }
+  }
+
+  /// Hands over the piece recorded last now (not marked end_of_job): the controller stands and the
+  /// setpoints so far must reach the executor before more are planned (a feed hold planned on the
+  /// host). The next setpoint begins a new piece. Nothing if none is pending.
+  template <class Sink>
+  void flush(Sink&& sink) {
+    if (!pending_) return;
+    sink(static_cast<const PlannedPiece&>(last_));
+    pending_ = false;
   }
 
   /// The job ended: hands over the last piece, marked end_of_job. Nothing if nothing was recorded.

@@ -7,9 +7,11 @@
 // flagged end_of_job. The controller arms on Start and begins moving by itself once its
 // look-ahead window is full or the job's end has arrived (firmware/app.hpp, "the start rule"),
 // so its plan equals `curvestep sim`'s. A controller without a planner (Capabilities::lookahead 0)
-// gets the job planned here instead (plan_pieces with StreamOptions::lookahead) as QueuePieces,
-// one credit each like a segment, the last one flagged end_of_job: its setpoints are those of
-// `curvestep sim --lookahead N`. The job is over when a StatusReport says Idle after the controller
+// gets the job planned here instead (PiecePlanner with StreamOptions::lookahead: once through before
+// anything is sent, to refuse what cannot be planned or sent and to count the pieces, then piece by
+// piece as they are sent, at most StreamOptions::piece_lead_s of motion ahead of the controller) as
+// QueuePieces, one credit each like a segment, the last one flagged end_of_job: its setpoints are
+// those of `curvestep sim --lookahead N`. The job is over when a StatusReport says Idle after the controller
 // reported Running, every segment was sent and acknowledged, and every setpoint up to the
 // reported index has arrived (the controller's setpoint stream is reliable since protocol
 // version 2, so none may be missing); a Fault state or an ErrorReport ends it with the
@@ -20,16 +22,20 @@
 // once a StatusRequest, whose answer (the controller takes both between the same two ticks) names
 // the last setpoint before the hold: the hold acts before setpoint index + 1 (StreamHold::tick).
 // Resume sends Resume; Abort sends Abort (nothing more is queued), then a StatusRequest, and the
-// upload ends with StreamResult::aborted once the controller reports it stopped. A controller
-// without a planner cannot hold (warn). `curvestep sim --hold-at T:R` with T = tick / rate and R =
-// the ticks it stood / rate gives the held job's setpoints bit for bit (hold_at_option()).
+// upload ends with StreamResult::aborted once the controller reports it stopped. `curvestep sim
+// --hold-at T:R` with T = tick / rate and R = the ticks it stood / rate gives the held job's
+// setpoints bit for bit (hold_at_option()). A controller without a planner: Hold holds the host's
+// planner before the setpoint it has planned up to (StreamHold::tick, known here exactly), sends
+// the braking pieces and then FeedHold (the controller stands at their end); Resume sends Resume
+// and resumes the planner. The controller does not tick while it stands: R = 0.
 // Feed and rapid override: StreamOptions::feed_override is sent (FeedOverride) before the first
 // segment; the override commands send FeedOverride as the operator asks. The controller answers
 // each with a StatusReport naming the setpoint it was set before (override_index): a new
 // (values, index) there is a StreamOverride, and `curvestep sim --override-at T:F:R` with
 // T = index / rate replays them bit for bit (override_at_option()). A controller without a
-// planner gets the job planned here with the start override (plan_pieces: the same replay); the
-// override cannot change while it runs (warn).
+// planner gets the job planned here with the start override, and each later one is set on the
+// host's planner before the setpoint it has planned up to (no FeedOverride is sent): the same
+// replay. Once the job's last piece is sent, a hold or override cannot act any more (warn).
 #pragma once
 
 #include <cstddef>
@@ -55,7 +61,7 @@ namespace curvestep::host::link {
 /// Where an upload is.
 struct StreamProgress {
   std::size_t sent = 0;                ///< queue messages submitted (segments or pieces, see unit)
-  std::size_t total = 0;               ///< queue messages of the job
+  std::size_t total = 0;               ///< queue messages of the job; pieces after a hold or override changed the plan: 0 until its last one is planned
   const char* unit = "segments";       ///< what sent and total count: "segments", or "pieces" for a controller without a planner
   std::size_t setpoints_received = 0;  ///< setpoints captured so far
   double elapsed_s = 0;                ///< since connect
@@ -83,6 +89,12 @@ struct StreamOptions {
   /// The look-ahead window the job is planned with here (plan_pieces) for a controller without a
   /// planner (Capabilities::lookahead 0); unused for one that plans. 1..max_lookahead.
   std::size_t lookahead = SimulationOptions::max_lookahead;
+  /// A controller without a planner: the pieces sent cover at most this much motion (seconds of
+  /// setpoints) past its last known setpoint once it runs, plus the piece being sent (at most 256
+  /// ticks, or one rest). That bounds how late an operator's hold or override acts: they change the
+  /// plan after what was sent. Before it starts, the credit alone decides (its start rule wants a
+  /// full queue).
+  double piece_lead_s = 0.5;
   /// With it: the window extended by distance (SimulationOptions::lookahead_distance_mm; 0 = off).
   /// `curvestep stream` without --lookahead uses lookahead_distance_for(machine), as `curvestep sim` does.
   double lookahead_distance_mm = 0;
