@@ -3,6 +3,7 @@
 #include <curvestep/host/streamed_job.hpp>
 
 #include <condition_variable>
+#include <malloc.h>
 #include <deque>
 #include <exception>
 #include <mutex>
@@ -91,6 +92,10 @@ class ThreadedSegments final : public SegmentSource {
 
 StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
                                   const JobPipelineOptions& options) {
+  // glibc raises its mmap threshold when large blocks are freed (this pass's), after which the
+  // second pass's growing vectors come from the heap and fragment it: 137 instead of 101 MB for
+  // 10 MB of G-code. The default threshold, fixed, keeps both passes' peaks the whole job's.
+  ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   StreamedJobPlan plan;
   std::vector<std::size_t> source_index;
   Job probe;  // one segment at a time for check_travel, without sources (they come at the load's end)
@@ -119,6 +124,7 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
     check_travel(first, machine_file.travel, machine_file.name);
   }
   std::vector<SourceSegment>().swap(outline.sources);  // named the errors above; the second pass's load has its own
+  ::malloc_trim(0);  // what this pass's load freed, back to the system before the second one
   return plan;
 }
 
