@@ -271,7 +271,8 @@ void add_sim_command(CLI::App& app) {
                   "its stream bit for bit. Without it: 16 segments, extended to cover twice the braking distance "
                   "from v_max (up to 256 segments) (docs/motion.md, \"Look-ahead and determinism\")");
   sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v,index; index = the setpoint's tick from the start)");
-  sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary)");
+  sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary). It holds the smoothed job in "
+                  "memory; without it sim reads the job file twice and holds none of its path (docs/robustness.md, \"Memory of a run\")");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
   sim->add_option("--hold-at", options->holds,
                   "Feed hold at T seconds (before setpoint T x rate), resume R seconds after the machine stands (default 0); "
