@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 #include <curvestep/host/job_file.hpp>
@@ -22,6 +23,7 @@
 #include <curvestep/host/report.hpp>
 #include <curvestep/host/simulator.hpp>
 #include <curvestep/host/smoothing/path_smoothing.hpp>
+#include <curvestep/host/streamed_job.hpp>
 
 #include "command_registry.hpp"
 #include "job_pipeline_options.hpp"
@@ -162,7 +164,17 @@ int run_sim(const SimOptions& o) {
     file_limits.rate_hz = o.rate_hz;
     if (auto valid = file_limits.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
-  const PreparedJob prepared = prepare_job(o.job, machine_file, file_limits, o.pipeline);
+  // Without --report the job is read twice and never held (streamed_job.hpp): memory independent
+  // of its length. The report needs it whole.
+  const bool streamed = o.report.empty() && !o.pipeline.optimize && is_streamed(o.job, machine_file);
+  StreamedJobPlan plan;
+  if (streamed) {
+    plan = plan_streamed_job(o.job, machine_file, file_limits, o.pipeline);
+  } else {
+    plan.prepared = prepare_job(o.job, machine_file, file_limits, o.pipeline);
+    plan.segments = plan.prepared.job.segments.size();
+  }
+  const PreparedJob& prepared = plan.prepared;
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
   const smoothing::SmoothingReport& smoothing_report = prepared.smoothing;
@@ -179,7 +191,7 @@ int run_sim(const SimOptions& o) {
   // The setpoints go to the CSV as they are made and are kept nowhere; the HTML report runs the
   // simulation again for its plots (write_html_report_streamed).
   SimulationResult result;
-  link::SimulatedEventTimeline timeline(link::to_wire_events(job, machine.rate_hz, true));
+  link::SimulatedEventTimeline timeline(link::to_wire_events(job, plan.segments, machine.rate_hz, true));
   std::uint64_t last_index = 0;
   const auto run = [&](const SetpointSink& sink) {
     const SetpointSink both = [&](const SetpointRecord& r) {
@@ -187,7 +199,12 @@ int run_sim(const SimOptions& o) {
       timeline.on_setpoint(r);
       last_index = r.index;
     };
-    result.summary = simulate_stream(job, machine, options, both);
+    if (streamed) {
+      StreamedJob pulled{&job, plan.segments, plan.approximate_length_mm, stream_segments(o.job, machine_file, file_limits, o.pipeline)};
+      result.summary = simulate_stream(std::move(pulled), machine, options, both);
+    } else {
+      result.summary = simulate_stream(job, machine, options, both);
+    }
     timeline.finish(last_index);
   };
   if (o.output.empty()) {
@@ -254,7 +271,8 @@ void add_sim_command(CLI::App& app) {
                   "its stream bit for bit. Without it: 16 segments, extended to cover twice the braking distance "
                   "from v_max (up to 256 segments) (docs/motion.md, \"Look-ahead and determinism\")");
   sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v,index; index = the setpoint's tick from the start)");
-  sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary)");
+  sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary). It holds the smoothed job in "
+                  "memory; without it sim reads the job file twice and holds none of its path (docs/robustness.md, \"Memory of a run\")");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
   sim->add_option("--hold-at", options->holds,
                   "Feed hold at T seconds (before setpoint T x rate), resume R seconds after the machine stands (default 0); "

@@ -33,20 +33,20 @@ std::uint32_t dwell_ticks(double seconds, double rate_hz) {
   return static_cast<std::uint32_t>(ticks);
 }
 
-std::vector<JointStop> joint_stops(const Job& job, double rate_hz) {
-  std::vector<JointStop> stops(job.segments.size() + 1);  // the last: after the last move
+std::vector<JointStop> joint_stops(const std::vector<JobEvent>& events, std::size_t segments, const std::string& name, double rate_hz) {
+  std::vector<JointStop> stops(segments + 1);  // the last: after the last move
   std::vector<std::size_t> machine_events(stops.size(), 0);
-  for (const JobEvent& event : job.events) {
+  for (const JobEvent& event : events) {
     if (event.kind == JobEventKind::Dwell || event.kind == JobEventKind::Message) continue;
-    const std::size_t joint = std::min(event.before_segment, job.segments.size());
+    const std::size_t joint = std::min(event.before_segment, segments);
     if (++machine_events[joint] > max_events_passed_at_speed) stops[joint].stop = true;
   }
-  for (const JobEvent& event : job.events) {
+  for (const JobEvent& event : events) {
     if (!needs_rest(event.kind)) continue;
-    JointStop& stop = stops[std::min(event.before_segment, job.segments.size())];
+    JointStop& stop = stops[std::min(event.before_segment, segments)];
     stop.stop = true;
     if (event.kind != JobEventKind::Dwell) continue;
-    const std::string where = job.name + (event.line > 0 ? ":" + std::to_string(event.line) : std::string{}) + ": ";
+    const std::string where = name + (event.line > 0 ? ":" + std::to_string(event.line) : std::string{}) + ": ";
     try {
       const std::uint64_t total = std::uint64_t{stop.rest_ticks} + dwell_ticks(event.value, rate_hz);
       if (total > std::numeric_limits<std::uint32_t>::max()) throw std::invalid_argument("the dwells here add up to more than 2^32 - 1 ticks");
@@ -56,6 +56,10 @@ std::vector<JointStop> joint_stops(const Job& job, double rate_hz) {
     }
   }
   return stops;
+}
+
+std::vector<JointStop> joint_stops(const Job& job, double rate_hz) {
+  return joint_stops(job.events, job.segments.size(), job.name, rate_hz);
 }
 
 }  // namespace curvestep::host

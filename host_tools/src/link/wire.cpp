@@ -231,6 +231,10 @@ std::uint32_t wire_value(const Job& job, const JobEvent& event) {
 }  // namespace
 
 std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels) {
+  return to_wire_events(job, job.segments.size(), rate_hz, file_labels);
+}
+
+std::vector<protocol::QueueEvent> to_wire_events(const Job& job, std::size_t segments, double rate_hz, bool file_labels) {
   std::vector<protocol::QueueEvent> out;
   std::size_t joint = ~std::size_t{0};
   std::uint64_t rested = 0;  // the dwell ticks at this joint so far
@@ -252,7 +256,7 @@ std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz,
     e.after_rest_ticks = static_cast<std::uint32_t>(rested);
     const auto label_of = [&](std::size_t k) { return file_labels && !job.source_index.empty() ? job.source_index[k] : k; };
     // After the last move: the label after the last segment's (the rest at the job's end carries it).
-    const std::size_t label = joint < job.segments.size() ? label_of(joint) : (job.segments.empty() ? 0 : label_of(job.segments.size() - 1) + 1);
+    const std::size_t label = joint < segments ? label_of(joint) : (segments == 0 ? 0 : label_of(segments - 1) + 1);
     e.segment = static_cast<std::uint32_t>(label);
     out.push_back(e);
   }

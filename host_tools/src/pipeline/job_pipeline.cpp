@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/pen_moves.hpp>
@@ -71,19 +72,27 @@ JobFileOptions job_file_options(const JobPipelineOptions& options) {
 
 namespace {
 
-PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions& file_options, const MachineLimits& machine,
-                    double machine_blend_tolerance_mm, const JobPipelineOptions& options, const std::optional<PenModel>& pen) {
+/// The streamed load: the file hands each segment to smoothing as it is read, and smoothing hands
+/// each smoothed segment to `downstream` (empty: into the job).
+PreparedJob load_streamed(const std::filesystem::path& job_file, const JobFileOptions& file_options, const MachineLimits& machine,
+                          double machine_blend_tolerance_mm, const JobPipelineOptions& options,
+                          smoothing::SmoothingStream::SegmentHandler downstream) {
   PreparedJob prepared;
   const double tolerance_mm = smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm);
-  if (!(pen && is_svg(job_file))) {  // streamed: the load hands each segment to smoothing as it is read
-    std::vector<std::string> rate_notes;
-    prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &rate_notes);
-    smoothing::SmoothingStream stream(smoothing::options_for(prepared.machine, tolerance_mm));
-    Job rest = load_job_file(job_file, file_options, &prepared.notes, stream);
-    prepared.job = stream.finish(std::move(rest), &prepared.smoothing);
-    prepared.notes.insert(prepared.notes.end(), rate_notes.begin(), rate_notes.end());
-    return prepared;
-  }
+  std::vector<std::string> rate_notes;
+  prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &rate_notes);
+  smoothing::SmoothingStream stream(smoothing::options_for(prepared.machine, tolerance_mm), std::move(downstream));
+  Job rest = load_job_file(job_file, file_options, &prepared.notes, stream);
+  prepared.job = stream.finish(std::move(rest), &prepared.smoothing);
+  prepared.notes.insert(prepared.notes.end(), rate_notes.begin(), rate_notes.end());
+  return prepared;
+}
+
+PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions& file_options, const MachineLimits& machine,
+                    double machine_blend_tolerance_mm, const JobPipelineOptions& options, const std::optional<PenModel>& pen) {
+  if (!(pen && is_svg(job_file))) return load_streamed(job_file, file_options, machine, machine_blend_tolerance_mm, options, {});
+  PreparedJob prepared;
+  const double tolerance_mm = smoothing::tolerance_in_force(machine_blend_tolerance_mm, options.blend_tolerance_mm);
   Job programmed = load_job_file(job_file, file_options, &prepared.notes);
   {  // plotter art: the pen moves become part of the motion
     PenMovesReport report;
@@ -121,11 +130,31 @@ GcodeOptions gcode_options(const MachineFile& machine_file) {
   return gcode;
 }
 
-PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
-                        const JobPipelineOptions& options) {
+namespace {
+
+JobFileOptions file_options_for(const JobPipelineOptions& options, const MachineFile& machine_file) {
   JobFileOptions file_options = job_file_options(options);
   file_options.gcode = gcode_options(machine_file);
-  PreparedJob prepared = prepare(job_file, file_options, machine, machine_file.blend_tolerance_mm, options, machine_file.pen);
+  return file_options;
+}
+
+}  // namespace
+
+bool is_streamed(const std::filesystem::path& job_file, const MachineFile& machine_file) {
+  return !(machine_file.pen && is_svg(job_file));
+}
+
+PreparedJob prepare_job_streamed(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
+                                 const JobPipelineOptions& options, smoothing::SmoothingStream::SegmentHandler downstream) {
+  if (!is_streamed(job_file, machine_file)) throw std::logic_error("prepare_job_streamed: an SVG drawing with a pen is not streamed");
+  return load_streamed(job_file, file_options_for(options, machine_file), machine, machine_file.blend_tolerance_mm, options,
+                       std::move(downstream));
+}
+
+PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
+                        const JobPipelineOptions& options) {
+  PreparedJob prepared =
+      prepare(job_file, file_options_for(options, machine_file), machine, machine_file.blend_tolerance_mm, options, machine_file.pen);
   check_travel(prepared.job, machine_file.travel, machine_file.name);
   return prepared;
 }

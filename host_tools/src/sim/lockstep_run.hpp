@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,7 @@
 #include <curvestep/core/error_text.hpp>
 #include <curvestep/core/motion/motion_controller.hpp>
 #include <curvestep/host/joint_stops.hpp>
+#include <curvestep/host/segment_source.hpp>
 #include <curvestep/host/simulator.hpp>
 
 namespace curvestep::host::detail {
@@ -35,13 +37,14 @@ using FixedController = MotionController<Q16_16, queue_capacity, SimulationOptio
 void check_request(const MachineLimits& machine, const SimulationOptions& options);
 
 /// "job: segment 3: <description> (<name>)".
-inline std::string failure_text(const Job& job, const Failure& f) {
+inline std::string failure_text(const std::string& job_name, const Failure& f) {
   std::ostringstream s;
-  s << job.name << ": ";
+  s << job_name << ": ";
   if (f.index != no_index) s << "segment " << f.index << ": ";
   s << describe(f.code) << " (" << error_name(f.code) << ")";
   return s.str();
 }
+inline std::string failure_text(const Job& job, const Failure& f) { return failure_text(job.name, f); }
 
 /// Runs one or more MotionControllers in lockstep over the same job: the same queue filling
 /// (cusp splits wait for room), the same start, one setpoint of each per step. The first
@@ -53,7 +56,15 @@ template <class... Controllers>
 class LockstepRun {
  public:
   LockstepRun(const Job& job, const MachineLimits& machine, const SimulationOptions& options, std::vector<FeedHoldEvent> holds = {})
-      : job_(job), entries_(joint_stops(job, machine.rate_hz)), holds_(std::move(holds)), overrides_(options.overrides) {
+      : LockstepRun(job.name, job.segments.size(), joint_stops(job, machine.rate_hz), std::make_unique<JobSegments>(job), machine, options,
+                    std::move(holds)) {}
+
+  /// A job of `segments` segments pulled from `source` as the queues take them (a streamed job),
+  /// with its joint stops `entries` (joint_stops: one per segment and one for the end).
+  LockstepRun(std::string name, std::size_t segments, std::vector<JointStop> entries, std::unique_ptr<SegmentSource> source,
+              const MachineLimits& machine, const SimulationOptions& options, std::vector<FeedHoldEvent> holds = {})
+      : name_(std::move(name)), segments_(segments), source_(std::move(source)), entries_(std::move(entries)), holds_(std::move(holds)),
+        overrides_(options.overrides) {
     std::apply([&](auto&... c) { (check(c.configure(machine), "machine"), ...); }, controllers_);
     std::apply([&](auto&... c) { (check(c.set_lookahead(options.lookahead), "lookahead"), ...); }, controllers_);
     std::apply([&](auto&... c) { (check(c.set_lookahead_distance(options.lookahead_distance_mm), "lookahead distance"), ...); },
@@ -74,7 +85,7 @@ class LockstepRun {
   /// Fills the queues and starts (an override at tick 0 is set before, as a device takes it while
   /// idle). False for a job without segments (modes, S, M words only): it makes no setpoints.
   bool begin() {
-    if (job_.segments.empty()) return false;
+    if (segments_ == 0) return false;
     fill();
     apply_override();
     std::apply([&](auto&... c) { (check(c.start(), no_index), ...); }, controllers_);
@@ -109,11 +120,11 @@ class LockstepRun {
   /// Throws if a feed hold or an override was asked for at a tick the job never reached (after its end).
   void check_holds_done() const {
     if (next_override_ < overrides_.size()) {
-      throw std::runtime_error(job_.name + ": --override-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
+      throw std::runtime_error(name_ + ": --override-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
                                ", before the override at setpoint " + std::to_string(overrides_[next_override_].tick));
     }
     if (next_hold_ < holds_.size()) {
-      throw std::runtime_error(job_.name + ": --hold-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
+      throw std::runtime_error(name_ + ": --hold-at: the job ended at setpoint " + std::to_string(lead().tick() - 1) +
                                ", before the hold at setpoint " + std::to_string(holds_[next_hold_].tick));
     }
   }
@@ -131,7 +142,7 @@ class LockstepRun {
     }
     if (next_hold_ < holds_.size() && lead().tick() == holds_[next_hold_].tick) {
       if (lead().state() != ControllerState::Running) {
-        throw std::runtime_error(job_.name + ": --hold-at: the controller is not moving at setpoint " +
+        throw std::runtime_error(name_ + ": --hold-at: the controller is not moving at setpoint " +
                                  std::to_string(holds_[next_hold_].tick) + " (still braking or standing from the hold before)");
       }
       std::apply([](auto&... c) { (c.hold(), ...); }, controllers_);
@@ -150,15 +161,19 @@ class LockstepRun {
 
   void fill() {
     auto& head = std::get<0>(controllers_);
-    while (next_ < job_.segments.size() && !queue_full()) {
-      const auto index = static_cast<std::uint32_t>(job_.source_index.empty() ? next_ : job_.source_index[next_]);
-      auto pushed = head.try_push(job_.segments[next_], index, entries_[next_]);
-      if (!pushed && pushed.error() == Error::QueueFull) return;  // a cusp split needs more room: later
+    while (next_ < segments_ && !queue_full()) {
+      if (current_ == nullptr && (current_ = source_->next(current_source_)) == nullptr) {
+        throw std::runtime_error(name_ + ": the job ended after " + std::to_string(next_) + " of its " + std::to_string(segments_) + " segments");
+      }
+      const auto index = static_cast<std::uint32_t>(current_source_);
+      auto pushed = head.try_push(*current_, index, entries_[next_]);
+      if (!pushed && pushed.error() == Error::QueueFull) return;  // a cusp split needs more room: later (current_ is kept)
       check(pushed, index);
-      std::apply([&](auto&, auto&... others) { (check(others.try_push(job_.segments[next_], index, entries_[next_]), index), ...); }, controllers_);
+      std::apply([&](auto&, auto&... others) { (check(others.try_push(*current_, index, entries_[next_]), index), ...); }, controllers_);
+      current_ = nullptr;
       ++next_;
     }
-    if (next_ == job_.segments.size()) {
+    if (next_ == segments_) {
       const std::uint32_t final_rest = entries_.back().rest_ticks;  // the dwells after the last move
       std::apply([final_rest](auto&... c) { (c.end_of_job(final_rest), ...); }, controllers_);
     }
@@ -171,7 +186,7 @@ class LockstepRun {
   template <class Controller>
   auto next_of(Controller& controller) {
     auto setpoint = controller.next_setpoint();
-    if (!setpoint) throw std::runtime_error(failure_text(job_, setpoint.failure()));
+    if (!setpoint) throw std::runtime_error(failure_text(name_, setpoint.failure()));
     return setpoint.value();
   }
 
@@ -179,14 +194,18 @@ class LockstepRun {
     if (!r) {
       Failure f = r.failure();
       if (f.index == no_index) f.index = static_cast<std::uint16_t>(index > no_index ? no_index : index);
-      throw std::runtime_error(failure_text(job_, f));
+      throw std::runtime_error(failure_text(name_, f));
     }
   }
   void check(const Result<void>& r, const char* what) const {
-    if (!r) throw std::runtime_error(job_.name + ": " + what + ": " + std::string(describe(r.error())));
+    if (!r) throw std::runtime_error(name_ + ": " + what + ": " + std::string(describe(r.error())));
   }
 
-  const Job& job_;
+  std::string name_;                       ///< the job's, for messages
+  std::size_t segments_ = 0;               ///< in the job
+  std::unique_ptr<SegmentSource> source_;  ///< where they come from
+  const PathSegment* current_ = nullptr;   ///< pulled from source_, not taken by the queues yet
+  std::size_t current_source_ = 0;         ///< its Job::source_index entry
   std::vector<JointStop> entries_;  ///< per segment: an exact stop and rest before it (job events); then the end's
   std::size_t next_ = 0;
   std::tuple<Controllers...> controllers_;

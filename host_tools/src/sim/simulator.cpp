@@ -60,29 +60,32 @@ void check_request(const MachineLimits& machine, const SimulationOptions& option
 
 }  // namespace detail
 
+double approximate_length(const PathSegment& segment) {
+  if (segment.kind() == SegmentKind::Arc) {
+    const double along = segment.arc_radius() * segment.arc_sweep_rad();
+    const double rise = segment.end()[2] - segment.start()[2];
+    return std::sqrt(along * along + rise * rise);
+  }
+  constexpr int samples = 16;
+  double total = 0;
+  MachinePoint previous = segment.start();
+  for (int k = 1; k <= samples; ++k) {
+    const MachinePoint next = segment.point(static_cast<double>(k) / samples);
+    double d2 = 0;
+    for (std::size_t axis = 0; axis < motion_axes; ++axis) d2 += (next[axis] - previous[axis]) * (next[axis] - previous[axis]);
+    total += std::sqrt(d2);
+    previous = next;
+  }
+  return total;
+}
+
 namespace {
 
-/// A path length for progress: arcs exactly (helix: √((r·sweep)² + Δz²)), curves by the chords of
-/// 16 samples (a slight underestimate). Only the fraction shown to the user depends on it.
-double approximate_length(const Job& job) {
+/// The path's length for progress (approximate_length of each segment). Only the fraction shown
+/// to the user depends on it.
+double path_length(const Job& job) {
   double total = 0;
-  for (const PathSegment& segment : job.segments) {
-    if (segment.kind() == SegmentKind::Arc) {
-      const double along = segment.arc_radius() * segment.arc_sweep_rad();
-      const double rise = segment.end()[2] - segment.start()[2];
-      total += std::sqrt(along * along + rise * rise);
-      continue;
-    }
-    constexpr int samples = 16;
-    MachinePoint previous = segment.start();
-    for (int k = 1; k <= samples; ++k) {
-      const MachinePoint next = segment.point(static_cast<double>(k) / samples);
-      double d2 = 0;
-      for (std::size_t axis = 0; axis < motion_axes; ++axis) d2 += (next[axis] - previous[axis]) * (next[axis] - previous[axis]);
-      total += std::sqrt(d2);
-      previous = next;
-    }
-  }
+  for (const PathSegment& segment : job.segments) total += approximate_length(segment);
   return total;
 }
 
@@ -96,20 +99,19 @@ void note_violation(SimulationSummary& s, const char* what, double measured, dou
 
 }  // namespace
 
-SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, const SimulationOptions& options,
-                                  const SetpointSink& sink) {
-  check_request(machine, options);
+namespace {
+
+/// The run's setpoints to `sink` and their summary. `total_length`: the path's approximate length
+/// (progress only).
+SimulationSummary summarize(LockstepRun<ExactController, FixedController>& run, const MachineLimits& machine,
+                            const SimulationOptions& options, double total_length, const SetpointSink& sink) {
   SimulationSummary s;
-  LockstepRun<ExactController, FixedController> run(job, machine, options, options.holds);
   const double dt = 1.0 / machine.rate_hz;
   // Peaks from the exact (double) positions, one setpoint apart, as they come (position_differences.hpp,
   // the implementation the report's motion profile uses too): memory independent of the job's length.
   RunningDifferences differences;
   std::array<double, motion_axes> peak_axis_speed{};
   std::size_t reported = 0;
-  // Progress is the distance travelled over the path's length (segments queued over the total
-  // would say "done" at once for a job that fits the queue).
-  const double total_length = options.progress ? approximate_length(job) : 0.0;
   run.run([&](const auto& setpoints) {
     const auto& [exact, fixed] = setpoints;
     SetpointRecord r;
@@ -165,6 +167,26 @@ SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, 
     unchecked[axis] = 0;
   }
   return s;
+}
+
+}  // namespace
+
+SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, const SimulationOptions& options,
+                                  const SetpointSink& sink) {
+  check_request(machine, options);
+  LockstepRun<ExactController, FixedController> run(job, machine, options, options.holds);
+  // Progress is the distance travelled over the path's length (segments queued over the total
+  // would say "done" at once for a job that fits the queue).
+  return summarize(run, machine, options, options.progress ? path_length(job) : 0.0, sink);
+}
+
+SimulationSummary simulate_stream(StreamedJob job, const MachineLimits& machine, const SimulationOptions& options,
+                                  const SetpointSink& sink) {
+  check_request(machine, options);
+  LockstepRun<ExactController, FixedController> run(job.outline->name, job.segments,
+                                                    joint_stops(job.outline->events, job.segments, job.outline->name, machine.rate_hz),
+                                                    std::move(job.source), machine, options, options.holds);
+  return summarize(run, machine, options, job.approximate_length_mm, sink);
 }
 
 SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {

@@ -50,8 +50,8 @@ bool smoothing_on(const SmoothingOptions& options) { return options.tolerance_mm
 
 }  // namespace
 
-SmoothingStream::SmoothingStream(const SmoothingOptions& options)
-    : options_(options), cos_max_run_deflection_(std::cos(options.fit_max_deflection_deg * pi / 180)) {
+SmoothingStream::SmoothingStream(const SmoothingOptions& options, SegmentHandler downstream)
+    : options_(options), cos_max_run_deflection_(std::cos(options.fit_max_deflection_deg * pi / 180)), downstream_(std::move(downstream)) {
   figures_.tolerance_mm = options.tolerance_mm;
 }
 
@@ -76,9 +76,8 @@ double SmoothingStream::joint_tolerance(const PathSegment& segment, std::optiona
 
 void SmoothingStream::segment(const PathSegment& segment, std::size_t source, std::optional<double> blend_tolerance_mm) {
   if (!smoothing_on(options_)) {  // the job as programmed
-    out_.segments.push_back(segment);
-    out_.source_index.push_back(source);
-    if (blend_tolerance_mm) out_.blend_tolerance_mm.push_back(*blend_tolerance_mm);
+    emit(segment, source);
+    if (blend_tolerance_mm && !downstream_) out_.blend_tolerance_mm.push_back(*blend_tolerance_mm);
     ++pushed_;
     return;
   }
@@ -222,30 +221,36 @@ void SmoothingStream::decide_corner(Item& a, Item& b) {
 void SmoothingStream::write_item(const Item& item, const Item* next) {
   const std::size_t number = items_made_ - items_.size();
   const auto [first, last] = events_at_item_.equal_range(number);
-  for (auto e = first; e != last; ++e) out_.events[e->second].before_segment = out_.segments.size();
+  for (auto e = first; e != last; ++e) out_.events[e->second].before_segment = written_;
   events_at_item_.erase(first, last);
   if (item.start_u == 0 && item.end_u == 1) {
-    out_.segments.push_back(item.segment);
-    out_.source_index.push_back(item.source);
+    emit(item.segment, item.source);
   } else if (item.start_u < item.end_u && item.start_point != item.end_point) {
     auto piece = piece_between(item.segment, item.start_u, item.end_u, item.start_point, item.end_point);
     if (piece) {
-      out_.segments.push_back(*piece);
-      out_.source_index.push_back(item.source);
+      emit(*piece, item.source);
     } else if (item.start_point != item.end_point) {
       // A piece that cannot be cut stays a straight connection between the cut points.
       auto line = PathSegment::make_line(item.start_point, item.end_point);
       if (line) {
         line.value().set_feed_mm_per_s(item.segment.feed_mm_per_s());
-        out_.segments.push_back(line.value());
-        out_.source_index.push_back(item.source);
+        emit(line.value(), item.source);
       }
     }
   }
   if (next != nullptr && front_blend_) {
-    out_.segments.push_back(front_blend_->curve);
-    out_.source_index.push_back(next->source);
+    emit(front_blend_->curve, next->source);
   }
+}
+
+void SmoothingStream::emit(const PathSegment& segment, std::size_t source) {
+  ++written_;
+  if (downstream_) {
+    downstream_(segment, source);
+    return;
+  }
+  out_.segments.push_back(segment);
+  out_.source_index.push_back(source);
 }
 
 Job SmoothingStream::finish(Job rest, SmoothingReport* report) {
@@ -254,12 +259,12 @@ Job SmoothingStream::finish(Job rest, SmoothingReport* report) {
     make_items(true);
     write_items(true);
     // Events after the last segment (or past the job's end) stay after it.
-    for (const auto& [index, position] : events_at_segment_) out_.events[position].before_segment = out_.segments.size();
-    for (const auto& [item, position] : events_at_item_) out_.events[position].before_segment = out_.segments.size();
+    for (const auto& [index, position] : events_at_segment_) out_.events[position].before_segment = written_;
+    for (const auto& [item, position] : events_at_item_) out_.events[position].before_segment = written_;
     events_at_segment_.clear();
     events_at_item_.clear();
   }
-  figures_.segments_after = out_.segments.size();
+  figures_.segments_after = written_;
   if (report != nullptr) *report = figures_;
   out_.version = rest.version;
   out_.name = std::move(rest.name);

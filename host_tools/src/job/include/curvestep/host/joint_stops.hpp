@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <curvestep/core/motion/joint_stop.hpp>
@@ -35,5 +36,8 @@ inline constexpr std::size_t max_events_passed_at_speed = 16;
 /// after the last move (the rest at its end point, MotionController::end_of_job). Throws
 /// std::runtime_error naming the job file and line of a dwell dwell_ticks refuses.
 [[nodiscard]] std::vector<JointStop> joint_stops(const Job& job, double rate_hz);
+/// The same for a job of `segments` segments known by its events and `name` only (a streamed job).
+[[nodiscard]] std::vector<JointStop> joint_stops(const std::vector<JobEvent>& events, std::size_t segments, const std::string& name,
+                                                 double rate_hz);
 
 }  // namespace curvestep::host

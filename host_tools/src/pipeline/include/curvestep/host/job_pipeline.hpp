@@ -19,6 +19,7 @@
 #include <curvestep/host/job_file.hpp>
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/smoothing/path_smoothing.hpp>
+#include <curvestep/host/smoothing/smoothing_stream.hpp>
 
 namespace curvestep::host {
 
@@ -75,6 +76,18 @@ inline constexpr double step_rate_share = 0.99;
 /// limits, possibly with a rate override.
 [[nodiscard]] PreparedJob prepare_job(const std::filesystem::path& job_file, const MachineFile& machine_file,
                                       const MachineLimits& machine, const JobPipelineOptions& options);
+
+/// True if prepare_job reads `job_file` into smoothing as a stream: anything but an SVG drawing on
+/// a machine with a pen (whose pen moves are added to the whole drawing).
+[[nodiscard]] bool is_streamed(const std::filesystem::path& job_file, const MachineFile& machine_file);
+
+/// prepare_job with the whole machine file for a streamed job (is_streamed, else std::logic_error),
+/// whose smoothed segments go to `downstream` as they are decided instead of into the job (its
+/// segments and source_index stay empty) and are not checked against the travel (the caller's
+/// part: streamed_job.hpp). The same load and smoothing, so the same segments and errors.
+[[nodiscard]] PreparedJob prepare_job_streamed(const std::filesystem::path& job_file, const MachineFile& machine_file,
+                                               const MachineLimits& machine, const JobPipelineOptions& options,
+                                               smoothing::SmoothingStream::SegmentHandler downstream);
 
 /// What a machine file tells the G-code importer: tool lengths and diameters, G28/G30 positions.
 [[nodiscard]] GcodeOptions gcode_options(const MachineFile& machine_file);

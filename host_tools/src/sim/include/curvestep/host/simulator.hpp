@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/segment_source.hpp>
 
 namespace curvestep::host {
 
@@ -103,6 +105,24 @@ using SetpointSink = std::function<void(const SetpointRecord&)>;
 /// Throws what simulate() throws.
 [[nodiscard]] SimulationSummary simulate_stream(const Job& job, const MachineLimits& machine, const SimulationOptions& options,
                                                 const SetpointSink& sink);
+
+/// A smoothed job whose segments are pulled from `source` as the run needs them instead of held
+/// (streamed_job.hpp: a G-code program read once more while it runs).
+struct StreamedJob {
+  const Job* outline = nullptr;        ///< its name, events and source_index; no segments
+  std::size_t segments = 0;            ///< how many `source` gives
+  double approximate_length_mm = 0;    ///< the sum of approximate_length(segment), for progress
+  std::unique_ptr<SegmentSource> source;
+};
+
+/// simulate_stream of a streamed job: the setpoints and summary of the same job held whole, bit
+/// for bit, in memory independent of its length. Also throws what `source` throws.
+[[nodiscard]] SimulationSummary simulate_stream(StreamedJob job, const MachineLimits& machine, const SimulationOptions& options,
+                                                const SetpointSink& sink);
+
+/// A segment's path length for progress: arcs exactly (helix: √((r·sweep)² + Δz²)), curves by the
+/// chords of 16 samples (a slight underestimate).
+[[nodiscard]] double approximate_length(const PathSegment& segment);
 
 /// Runs the job on the machine and keeps every setpoint (simulate_stream into a vector). Throws std::runtime_error with a one-line cause if the controller
 /// rejects a segment (naming the job file and segment) or faults, or if options.lookahead is

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -22,7 +23,13 @@ namespace curvestep::host::smoothing {
 
 class SmoothingStream final : public JobSink {
  public:
-  explicit SmoothingStream(const SmoothingOptions& options);
+  /// Receives each smoothed segment and its Job::source_index entry as soon as it is decided.
+  using SegmentHandler = std::function<void(const PathSegment& segment, std::size_t source)>;
+
+  /// `downstream` (may be empty): where the smoothed segments go instead of the job finish()
+  /// returns (whose segments and source_index then stay empty; its events are kept and numbered
+  /// as always, in the smoothed segments' order).
+  explicit SmoothingStream(const SmoothingOptions& options, SegmentHandler downstream = {});
 
   /// An event of the programmed job; its before_segment is renumbered to the smoothed job's. It
   /// must come before the segment it precedes.
@@ -74,11 +81,15 @@ class SmoothingStream final : public JobSink {
   void write_items(bool at_end);
   void decide_corner(Item& a, Item& b);
   void write_item(const Item& item, const Item* next);
+  /// The next smoothed segment: to downstream_, or into out_.
+  void emit(const PathSegment& segment, std::size_t source);
 
   SmoothingOptions options_;
   double cos_max_run_deflection_ = 1;
   SmoothingReport figures_;
   Job out_;
+  SegmentHandler downstream_;
+  std::size_t written_ = 0;  ///< smoothed segments emitted so far
   std::size_t pushed_ = 0;
   std::optional<PathSegment> previous_;
   std::deque<Pending> pending_;

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// A job simulated without holding it (`curvestep sim` without --report, issue 19): the file is
+// read twice through the streamed load and smoothing of prepare_job_streamed (job_pipeline.hpp).
+// The first pass keeps no segment and finds everything a run needs before its first setpoint:
+// every load, range and travel error (no job starts that is refused later), the smoothing report,
+// the events, the segment count and the path's length; the second reads the file again in a
+// thread while the run pulls the segments through a bounded queue (StreamedJob, simulator.hpp).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <curvestep/host/job.hpp>
+#include <curvestep/host/job_pipeline.hpp>
+#include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/segment_source.hpp>
+
+namespace curvestep::host {
+
+/// What the first pass over a streamed job found.
+struct StreamedJobPlan {
+  /// The prepared job without its segments and sources (the second pass's load has them): name,
+  /// version, events (few: they are kept) and source_index (8 bytes per smoothed segment, the
+  /// labels of the event timeline, link::to_wire_events).
+  PreparedJob prepared;
+  std::size_t segments = 0;          ///< smoothed segments
+  double approximate_length_mm = 0;  ///< approximate_length summed over them (progress)
+};
+
+/// Pass 1: prepare_job(job_file, machine_file, machine, options) keeping no segment, with the
+/// travel check of every smoothed segment (check_travel). Throws what prepare_job throws, the
+/// same errors. The job must be is_streamed.
+[[nodiscard]] StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const MachineFile& machine_file,
+                                                const MachineLimits& machine, const JobPipelineOptions& options);
+
+/// Pass 2: the smoothed segments of the same load, read again in a thread (at most
+/// streamed_segments_queued ahead of the run). The thread's errors (the first pass's, as the code
+/// is the same) are thrown by next(); destroying the source stops the thread.
+[[nodiscard]] std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_file, const MachineFile& machine_file,
+                                                             const MachineLimits& machine, const JobPipelineOptions& options);
+
+/// How many smoothed segments the reading thread may be ahead of the run (about 0.5 KB each).
+inline constexpr std::size_t streamed_segments_queued = 256;
+
+}  // namespace curvestep::host

@@ -1,0 +1,136 @@
+// SPDX-License-Identifier: MIT
+// A job simulated without holding it: the two passes of streamed_job.hpp.
+#include <curvestep/host/streamed_job.hpp>
+
+#include <condition_variable>
+#include <malloc.h>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <utility>
+
+#include <curvestep/host/simulator.hpp>
+#include <curvestep/host/swept_extent.hpp>
+
+namespace curvestep::host {
+namespace {
+
+/// The second pass: prepare_job_streamed in a thread, its smoothed segments through a bounded queue.
+class ThreadedSegments final : public SegmentSource {
+ public:
+  ThreadedSegments(std::filesystem::path job_file, MachineFile machine_file, MachineLimits machine, JobPipelineOptions options) {
+    reader_ = std::thread([this, job_file = std::move(job_file), machine_file = std::move(machine_file), machine, options = std::move(options)] {
+      try {
+        (void)prepare_job_streamed(job_file, machine_file, machine, options,
+                                   [this](const PathSegment& segment, std::size_t source) { push(segment, source); });
+      } catch (const Cancelled&) {
+        // the run ended first (it failed, or was abandoned)
+      } catch (...) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        error_ = std::current_exception();
+      }
+      {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        done_ = true;
+      }
+      changed_.notify_all();
+    });
+  }
+
+  ThreadedSegments(const ThreadedSegments&) = delete;
+  ThreadedSegments& operator=(const ThreadedSegments&) = delete;
+
+  ~ThreadedSegments() override {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      cancelled_ = true;
+    }
+    changed_.notify_all();
+    reader_.join();
+  }
+
+  const PathSegment* next(std::size_t& source) override {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [this] { return !queue_.empty() || done_; });
+    if (queue_.empty()) {
+      if (error_) std::rethrow_exception(error_);
+      return nullptr;
+    }
+    current_.emplace(std::move(queue_.front()));
+    queue_.pop_front();
+    lock.unlock();
+    changed_.notify_all();
+    source = current_->second;
+    return &current_->first;
+  }
+
+ private:
+  struct Cancelled {};  ///< thrown through the load to end the thread
+
+  void push(const PathSegment& segment, std::size_t source) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [this] { return queue_.size() < streamed_segments_queued || cancelled_; });
+    if (cancelled_) throw Cancelled{};
+    queue_.emplace_back(segment, source);
+    lock.unlock();
+    changed_.notify_all();
+  }
+
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::deque<std::pair<PathSegment, std::size_t>> queue_;  // guarded by mutex_, as the three below
+  bool done_ = false;
+  bool cancelled_ = false;
+  std::exception_ptr error_;
+  std::optional<std::pair<PathSegment, std::size_t>> current_;  ///< the segment next() returned (the run's thread only)
+  std::thread reader_;  ///< last: started once the rest is made
+};
+
+}  // namespace
+
+StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
+                                  const JobPipelineOptions& options) {
+  // glibc raises its mmap threshold when large blocks are freed (this pass's), after which the
+  // second pass's growing vectors come from the heap and fragment it: 137 instead of 101 MB for
+  // 10 MB of G-code. The default threshold, fixed, keeps both passes' peaks the whole job's.
+  ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
+  StreamedJobPlan plan;
+  std::vector<std::size_t> source_index;
+  Job probe;  // one segment at a time for check_travel, without sources (they come at the load's end)
+  probe.segments.resize(1);
+  std::optional<std::pair<PathSegment, std::size_t>> outside;  // the first smoothed segment past the travel
+  plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
+    source_index.push_back(source);
+    ++plan.segments;
+    plan.approximate_length_mm += approximate_length(segment);
+    if (outside) return;
+    probe.segments[0] = segment;
+    try {
+      check_travel(probe, machine_file.travel, machine_file.name);
+    } catch (const LoadError&) {
+      outside.emplace(segment, source);
+    }
+  });
+  Job& outline = plan.prepared.job;
+  outline.source_index = std::move(source_index);
+  if (outside) {  // check_travel of the whole job names this one first: its message, with the file's line
+    Job first;
+    first.name = outline.name;
+    first.segments.push_back(outside->first);
+    first.source_index.push_back(outside->second);
+    first.sources = outline.sources;
+    check_travel(first, machine_file.travel, machine_file.name);
+  }
+  std::vector<SourceSegment>().swap(outline.sources);  // named the errors above; the second pass's load has its own
+  ::malloc_trim(0);  // what this pass's load freed, back to the system before the second one
+  return plan;
+}
+
+std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_file, const MachineFile& machine_file,
+                                               const MachineLimits& machine, const JobPipelineOptions& options) {
+  return std::make_unique<ThreadedSegments>(job_file, machine_file, machine, options);
+}
+
+}  // namespace curvestep::host
