@@ -463,6 +463,18 @@ class MotionController {
                           (v1 < v0 && speed_change_distance(v1, v0, limits) > remaining * (1 + 1e-9) + 1e-12);
     auto profile = too_fast ? VelocityProfile::slow_down(remaining, v0, v1, limits) : VelocityProfile::plan(remaining, v0, v1, limits);
     if (!profile) return fail(profile.error(), front().job_index);
+    if (too_fast && v0 <= limits.speed_cap_mm_per_s) {
+      // Slowing down "as far as it goes" must not pass the next joint faster than its cap (a corner,
+      // or the window's end at rest): where v1 is out of reach only because a stop is shorter than a
+      // partial slow-down (highest_reachable_slower), end slower than v1 instead.
+      const double joint_cap = window_size() == 0 ? 0.0 : junction_into(1, override_);
+      if (profile.value().exit_speed() > joint_cap) {
+        const double slower = highest_reachable_slower(v0, std::fmin(v1, joint_cap), remaining * (1 + 1e-9) + 1e-12, limits);
+        if (slower >= 0) {
+          if (auto stop_first = VelocityProfile::plan(remaining, v0, slower, limits)) profile = stop_first;
+        }
+      }
+    }
     profile_ = profile.value();
     return ok();
   }

@@ -83,6 +83,17 @@ template <class LowSide>
   return detail::bisect(v0, cap, [&](double v) { return speed_change_distance(v0, v, limits) <= distance; }).low;
 }
 
+/// The largest speed <= v1 that a slow-down from v0 (acceleration 0 at both ends) reaches within
+/// `distance`, or -1 if not even a stop fits. D(v, v0) is not monotone in v: it rises from a stop
+/// to a peak and falls again towards v0 (a small speed change is short, a stop is long, a change of
+/// about two thirds of v0 is longest), so when v1 is out of reach a lower speed, down to a stop,
+/// may still be reachable: the largest such one.
+[[nodiscard]] inline double highest_reachable_slower(double v0, double v1, double distance, const ProfileLimits& limits) noexcept {
+  if (speed_change_distance(0, v0, limits) > distance) return -1;
+  if (speed_change_distance(v1, v0, limits) <= distance) return v1;
+  return detail::bisect(0, v1, [&](double v) { return speed_change_distance(v, v0, limits) <= distance; }).low;
+}
+
 /// The speed profile of one segment: up to 7 phases of constant jerk.
 class VelocityProfile {
  public:
