@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <functional>
 #include <string>
 
@@ -49,27 +50,55 @@ std::string_view kind_name(SegmentKind kind) {
 
 SweptBox swept_box(const PathSegment& segment) { return segment_bounds(segment); }
 
+namespace {
+
+/// The first axis along which `box` leaves `travel`, and whether below it.
+struct TravelBreach {
+  std::size_t axis = 0;
+  bool below = false;
+};
+std::optional<TravelBreach> first_breach(const SweptBox& box, const MachineTravel& travel) {
+  for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+    if (!travel[axis]) continue;
+    if (box.low[axis] < travel[axis]->low_mm) return TravelBreach{axis, true};
+    if (box.high[axis] > travel[axis]->high_mm) return TravelBreach{axis, false};
+  }
+  return std::nullopt;
+}
+
+void check_travel(const PathSegment& segment, const MachineTravel& travel, const std::string& machine_file,
+                  const std::function<SourceLocation()>& where) {
+  constexpr const char* names[] = {"x", "y", "z"};
+  const SweptBox box = swept_box(segment);
+  const std::optional<TravelBreach> breach = first_breach(box, travel);
+  if (!breach) return;
+  const std::size_t axis = breach->axis;
+  const AxisTravel& range = *travel[axis];
+  const double reached = breach->below ? box.low[axis] : box.high[axis];
+  const double beyond = breach->below ? range.low_mm - reached : reached - range.high_mm;
+  throw LoadError(where(),
+                  "the " + std::string(kind_name(segment.kind())) + " reaches " + names[axis] + " = " + format_number(reached) +
+                      " mm, " + format_number(beyond) + " mm " + (breach->below ? "below" : "beyond") + " the machine's travel " +
+                      format_number(range.low_mm) + " .. " + format_number(range.high_mm) + " mm (\"axes\".\"" + names[axis] +
+                      "\".\"travel\" in " + machine_file + ")",
+                  Error::OutsideTravel);
+}
+
+}  // namespace
 
 void check_travel(const Job& job, const MachineTravel& travel, const std::string& machine_file) {
-  constexpr const char* names[] = {"x", "y", "z"};
   for (std::size_t k = 0; k < job.segments.size(); ++k) {
-    const SweptBox box = swept_box(job.segments[k]);
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      if (!travel[axis]) continue;
-      const AxisTravel& range = *travel[axis];
-      const bool below = box.low[axis] < range.low_mm;
-      const bool above = box.high[axis] > range.high_mm;
-      if (!below && !above) continue;
-      const double reached = below ? box.low[axis] : box.high[axis];
-      const double beyond = below ? range.low_mm - reached : reached - range.high_mm;
-      throw LoadError(piece_location(job, k),
-                      "the " + std::string(kind_name(job.segments[k].kind())) + " reaches " + names[axis] + " = " +
-                          format_number(reached) + " mm, " + format_number(beyond) + " mm " + (below ? "below" : "beyond") +
-                          " the machine's travel " + format_number(range.low_mm) + " .. " + format_number(range.high_mm) +
-                          " mm (\"axes\".\"" + names[axis] + "\".\"travel\" in " + machine_file + ")",
-                      Error::OutsideTravel);
-    }
+    check_travel(job.segments[k], travel, machine_file, [&] { return piece_location(job, k); });
   }
+}
+
+void check_travel(const PathSegment& segment, const Job& job, std::size_t source, const MachineTravel& travel,
+                  const std::string& machine_file) {
+  check_travel(segment, travel, machine_file, [&] { return source_location(job, source); });
+}
+
+bool within_travel(const PathSegment& segment, const MachineTravel& travel) {
+  return !first_breach(swept_box(segment), travel).has_value();
 }
 
 namespace {

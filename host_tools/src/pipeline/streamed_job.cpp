@@ -98,31 +98,19 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   StreamedJobPlan plan;
   std::vector<std::size_t> source_index;
-  Job probe;  // one segment at a time for check_travel, without sources (they come at the load's end)
-  probe.segments.resize(1);
-  std::optional<std::pair<PathSegment, std::size_t>> outside;  // the first smoothed segment past the travel
+  // The first smoothed segment past the travel: its message needs the file's lines, which the load
+  // hands over at its end.
+  std::optional<std::pair<PathSegment, std::size_t>> outside;
   plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
     source_index.push_back(source);
     ++plan.segments;
     plan.approximate_length_mm += approximate_length(segment);
-    if (outside) return;
-    probe.segments[0] = segment;
-    try {
-      check_travel(probe, machine_file.travel, machine_file.name);
-    } catch (const LoadError&) {
-      outside.emplace(segment, source);
-    }
+    if (!outside && !within_travel(segment, machine_file.travel)) outside.emplace(segment, source);
   });
   Job& outline = plan.prepared.job;
   outline.source_index = std::move(source_index);
-  if (outside) {  // check_travel of the whole job names this one first: its message, with the file's line
-    Job first;
-    first.name = outline.name;
-    first.segments.push_back(outside->first);
-    first.source_index.push_back(outside->second);
-    first.sources = outline.sources;
-    check_travel(first, machine_file.travel, machine_file.name);
-  }
+  // check_travel of the whole job names this one first: its message, with the file's line.
+  if (outside) check_travel(outside->first, outline, outside->second, machine_file.travel, machine_file.name);
   std::vector<SourceSegment>().swap(outline.sources);  // named the errors above; the second pass's load has its own
   ::malloc_trim(0);  // what this pass's load freed, back to the system before the second one
   return plan;

@@ -44,7 +44,6 @@ inline std::string failure_text(const std::string& job_name, const Failure& f) {
   s << describe(f.code) << " (" << error_name(f.code) << ")";
   return s.str();
 }
-inline std::string failure_text(const Job& job, const Failure& f) { return failure_text(job.name, f); }
 
 /// Runs one or more MotionControllers in lockstep over the same job: the same queue filling
 /// (cusp splits wait for room), the same start, one setpoint of each per step. The first

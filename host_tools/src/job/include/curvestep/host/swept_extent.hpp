@@ -32,5 +32,10 @@ void check_swept_extent(const PathSegment& segment, const Job& job, std::size_t 
 /// before anything moves, arcs by their extremes, curves by their control hull).
 /// `machine_file` names the travel's file in the message.
 void check_travel(const Job& job, const MachineTravel& travel, const std::string& machine_file);
+/// The same check for one segment of `job` that comes from its file segment `source` (a streamed load).
+void check_travel(const PathSegment& segment, const Job& job, std::size_t source, const MachineTravel& travel,
+                  const std::string& machine_file);
+/// True if `segment`'s swept box stays inside `travel` (what check_travel checks, without a message).
+[[nodiscard]] bool within_travel(const PathSegment& segment, const MachineTravel& travel);
 
 }  // namespace curvestep::host

@@ -149,7 +149,9 @@ class VelocityProfile {
     if (v1 > top) v1 = top;
     double vp = top;
     if (speed_change_distance(v1, v0, limits) > length_mm) {
-      // v1 out of reach: the lowest speed reachable within L (D(v, v0) falls as v rises).
+      // v1 out of reach: the lowest speed reachable within L above v1 (D(v, v0) falls as v rises from
+      // its peak near v0 / 3 to v0; below the peak a lower speed may be reachable too: the controller
+      // looks there when it must, highest_reachable_slower).
       v1 = detail::bisect(v1, v0, [&](double v) { return speed_change_distance(v, v0, limits) > length_mm; }).high;
       vp = v1;
     } else {
