@@ -304,7 +304,7 @@ class GcodeLoader {
   std::size_t segment_count() const noexcept { return handed_over_ + job_.segments.size(); }
 
   /// A streamed load: the segments and events made so far go to the sink, checked as load_job_file
-  /// checks every segment, and the sources they came from keep only what messages need.
+  /// checks every segment (their sources are SourceLines: only what messages need).
   void hand_over() {
     if (sink_ == nullptr) return;
     std::size_t e = 0;
@@ -316,8 +316,6 @@ class GcodeLoader {
       sink_->segment(job_.segments[j], source, job_.blend_tolerance_mm[j]);
     }
     for (; e < job_.events.size(); ++e) sink_->event(std::move(job_.events[e]));
-    for (std::size_t s = released_sources_; s < job_.sources.size(); ++s) release_geometry(job_.sources[s]);
-    released_sources_ = job_.sources.size();
     handed_over_ += job_.segments.size();
     job_.segments.clear();
     job_.source_index.clear();
@@ -494,8 +492,8 @@ class GcodeLoader {
   /// once). Pages reserved and never written take no memory.
   void reserve_per_line(std::ptrdiff_t lines) {
     const auto count = static_cast<std::size_t>(lines);
+    if (sink_ != nullptr) return;  // a streamed load keeps only SourceLines, which grow by doubling: 8 bytes each
     job_.sources.reserve(count);
-    if (sink_ != nullptr) return;  // a streamed load keeps only the sources
     job_.segments.reserve(count);
     job_.source_index.reserve(count);
     job_.blend_tolerance_mm.reserve(count);
@@ -676,7 +674,7 @@ class GcodeLoader {
       case machine::MotionKind::None: return;
     }
     if (source.breaks.empty()) source.breaks = {0.0, 1.0};
-    const std::size_t index = job_.sources.size();
+    const std::size_t index = source_count(job_);
     source.first_piece = segment_count();
     for (auto& piece : pieces) {
       piece.set_feed_mm_per_s(source.type == SegmentType::Rapid ? 0.0 : source.feed_mm_per_s);
@@ -685,7 +683,13 @@ class GcodeLoader {
       job_.blend_tolerance_mm.push_back(motion.path_tolerance_mm);  // G64 P / G61 at the joint into it
     }
     if (source.type == SegmentType::Rapid) source.feed_mm_per_s = 0;
-    job_.sources.push_back(std::move(source));
+    if (sink_ != nullptr) {
+      // A streamed load: 8 bytes a segment instead of 136.
+      static_assert(language::default_max_program_lines <= 0xFFFF'FFFFu, "a line number fits a SourceLine");
+      job_.source_lines.push_back(SourceLine{static_cast<std::uint32_t>(source.line), source.type});
+    } else {
+      job_.sources.push_back(std::move(source));
+    }
   }
 
   /// An arc in G18 or G19: rational quadratic pieces of at most a quarter turn, exact circles (the
@@ -853,7 +857,6 @@ class GcodeLoader {
   Job job_;
   JobSink* sink_ = nullptr;          ///< a streamed load's receiver (nullptr: the whole job is kept)
   std::size_t handed_over_ = 0;      ///< segments handed to the sink
-  std::size_t released_sources_ = 0; ///< sources whose geometry was released
   Interpreter interpreter_;
   CutterCompensation compensation_;
   machine::Plane compensation_plane_ = machine::Plane::XY;  ///< the plane of the compensation in force (G17 or G18)

@@ -482,9 +482,19 @@ SourceLocation source_location(const Job& job, std::size_t source) {
   location.segment = source;
   if (source < job.sources.size()) {
     location.line = job.sources[source].line;
-    location.segment_type = std::string(segment_type_name(job.sources[source].type));
+  } else if (source < job.source_lines.size()) {
+    location.line = job.source_lines[source].line;
   }
+  if (const auto type = source_type(job, source)) location.segment_type = std::string(segment_type_name(*type));
   return location;
+}
+
+std::size_t source_count(const Job& job) noexcept { return job.sources.empty() ? job.source_lines.size() : job.sources.size(); }
+
+std::optional<SegmentType> source_type(const Job& job, std::size_t source) noexcept {
+  if (source < job.sources.size()) return job.sources[source].type;
+  if (source < job.source_lines.size()) return job.source_lines[source].type;
+  return std::nullopt;
 }
 
 SourceLocation piece_location(const Job& job, std::size_t piece) {
@@ -492,13 +502,6 @@ SourceLocation piece_location(const Job& job, std::size_t piece) {
   SourceLocation location;
   location.file = job.name;
   return location;
-}
-
-void release_geometry(SourceSegment& source) {
-  std::vector<MachinePoint>().swap(source.points);
-  std::vector<double>().swap(source.weights);
-  std::vector<double>().swap(source.knots);
-  std::vector<double>().swap(source.breaks);
 }
 
 Job parse_job(std::string_view text, std::string name) { return JobParser(text, std::move(name)).parse(); }

@@ -17,6 +17,7 @@ Job feed_job(Job job, JobSink& sink) {
   rest.version = job.version;
   rest.name = std::move(job.name);
   rest.sources = std::move(job.sources);
+  rest.source_lines = std::move(job.source_lines);
   return rest;
 }
 

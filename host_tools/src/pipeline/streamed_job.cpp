@@ -111,7 +111,7 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   outline.source_index = std::move(source_index);
   // check_travel of the whole job names this one first: its message, with the file's line.
   if (outside) check_travel(outside->first, outline, outside->second, machine_file.travel, machine_file.name);
-  std::vector<SourceSegment>().swap(outline.sources);  // named the errors above; the second pass's load has its own
+  std::vector<SourceLine>().swap(outline.source_lines);  // named the errors above; the second pass's load has its own
   ::malloc_trim(0);  // what this pass's load freed, back to the system before the second one
   return plan;
 }

@@ -215,7 +215,7 @@ void write_report(std::ostream& out, const ReportInput& input, const SetpointRep
       << "svg{display:block;margin:8px 0}\n"
       << "</style>\n</head>\n<body>\n";
   out << "<h1>curvestep report: " << escape(title) << "</h1>\n";
-  out << "<p class=\"note\">" << job.sources.size() << " job segments, " << job.segments.size() << " path segments; setpoints in "
+  out << "<p class=\"note\">" << source_count(job) << " job segments, " << job.segments.size() << " path segments; setpoints in "
       << (input.fixed_point ? "Q16.16" : "double") << " at " << figure(machine.rate_hz) << " Hz; "
       << (machine.jerk_limited ? "S-curve" : "trapezoidal") << " profiles.</p>\n";
 

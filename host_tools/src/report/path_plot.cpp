@@ -34,7 +34,7 @@ constexpr const char* rapid_colour = "#888888";
 constexpr std::size_t speed_buckets = 32;
 
 bool is_rapid_source(const Job& job, std::size_t source) {
-  return source < job.sources.size() && job.sources[source].type == SegmentType::Rapid;
+  return source_type(job, source) == SegmentType::Rapid;
 }
 
 /// Strokes from the flattened segments, one per PathSegment, coloured by file segment.

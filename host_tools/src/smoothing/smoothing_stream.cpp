@@ -269,6 +269,7 @@ Job SmoothingStream::finish(Job rest, SmoothingReport* report) {
   out_.version = rest.version;
   out_.name = std::move(rest.name);
   out_.sources = std::move(rest.sources);
+  out_.source_lines = std::move(rest.source_lines);
   return std::move(out_);
 }
 

@@ -112,12 +112,15 @@ TEST_CASE("streamed load: a G-code program read as a stream is the job the whole
     CHECK(streamed.job.events[k].before_segment == whole.events[k].before_segment);
     CHECK(streamed.job.events[k].line == whole.events[k].line);
   }
-  REQUIRE(streamed.job.sources.size() == whole.sources.size());
+  CHECK(streamed.job.sources.empty());  // a streamed load keeps each source's line and type only
+  REQUIRE(streamed.job.source_lines.size() == whole.sources.size());
   for (std::size_t k = 0; k < whole.sources.size(); ++k) {
-    CHECK(streamed.job.sources[k].line == whole.sources[k].line);
-    CHECK(streamed.job.sources[k].type == whole.sources[k].type);
-    CHECK(streamed.job.sources[k].points.empty());  // released once its segments were handed over
+    CHECK(streamed.job.source_lines[k].line == whole.sources[k].line);
+    CHECK(streamed.job.source_lines[k].type == whole.sources[k].type);
+    CHECK(source_location(streamed.job, k).line == whole.sources[k].line);
+    CHECK(source_type(streamed.job, k) == whole.sources[k].type);
   }
+  CHECK(source_count(streamed.job) == whole.sources.size());
   SimulationOptions options;  // as `curvestep sim` runs it
   options.lookahead_distance_mm = lookahead_distance_for(streamed.machine);
   const SimulationResult streamed_run = simulate(streamed.job, streamed.machine, options);

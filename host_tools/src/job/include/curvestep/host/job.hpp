@@ -68,6 +68,13 @@ enum class JobEventKind : std::uint8_t {
   Message,        ///< an operator message: G-code (MSG,...), (DEBUG,...) or (PRINT,...); text = the message
 };
 
+/// What a streamed G-code load keeps of a file segment once its pieces are handed on: the line and
+/// type its messages name (8 bytes instead of a SourceSegment's 136; docs/robustness.md).
+struct SourceLine {
+  std::uint32_t line = 0;  ///< line of the segment in the file (0 if unknown)
+  SegmentType type = SegmentType::Line;
+};
+
 /// A non-motion event of a job, in program order between segments.
 struct JobEvent {
   JobEventKind kind = JobEventKind::Dwell;
@@ -85,6 +92,9 @@ struct Job {
   std::vector<PathSegment> segments;      ///< the path, connected end to start
   std::vector<std::size_t> source_index;  ///< for each PathSegment, the file's segment index
   std::vector<SourceSegment> sources;     ///< the file's segments, in file order
+  /// Instead of `sources` after a streamed G-code load: each file segment's line and type only
+  /// (sources then stays empty). source_location, source_count and source_type read either.
+  std::vector<SourceLine> source_lines;
   std::vector<JobEvent> events;           ///< non-motion events, ordered by before_segment then program order
   /// Path-control tolerance per junction (G64 P), mm: blend_tolerance_mm[k] applies to the corner
   /// between segments[k-1] and segments[k]; empty = the machine file's tolerance everywhere,
@@ -126,9 +136,10 @@ class JobSink {
 /// The same for the file's segment `source` of `job`.
 [[nodiscard]] SourceLocation source_location(const Job& job, std::size_t source);
 
-/// `source` without its geometry (points, weights, knots, breaks; memory of a streamed load): the
-/// line, type, degree and feed stay.
-void release_geometry(SourceSegment& source);
+/// The number of file segments of `job` (sources or source_lines).
+[[nodiscard]] std::size_t source_count(const Job& job) noexcept;
+/// The type of the file's segment `source`, nullopt past the end.
+[[nodiscard]] std::optional<SegmentType> source_type(const Job& job, std::size_t source) noexcept;
 
 /// Reads a whole text file; std::runtime_error naming the file if it cannot be read.
 [[nodiscard]] std::string read_text_file(const std::filesystem::path& path);
