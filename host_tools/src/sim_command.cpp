@@ -191,7 +191,8 @@ int run_sim(const SimOptions& o) {
   // The setpoints go to the CSV as they are made and are kept nowhere; the HTML report runs the
   // simulation again for its plots (write_html_report_streamed).
   SimulationResult result;
-  link::SimulatedEventTimeline timeline(link::to_wire_events(job, plan.segments, machine.rate_hz, true));
+  link::SimulatedEventTimeline timeline(streamed ? link::to_wire_events(job, machine.rate_hz, prepared.event_labels)
+                                                 : link::to_wire_events(job, machine.rate_hz, true));
   std::uint64_t last_index = 0;
   const auto run = [&](const SetpointSink& sink) {
     const SetpointSink both = [&](const SetpointRecord& r) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 
@@ -33,17 +34,24 @@ std::uint32_t dwell_ticks(double seconds, double rate_hz) {
   return static_cast<std::uint32_t>(ticks);
 }
 
-std::vector<JointStop> joint_stops(const std::vector<JobEvent>& events, std::size_t segments, const std::string& name, double rate_hz) {
-  std::vector<JointStop> stops(segments + 1);  // the last: after the last move
-  std::vector<std::size_t> machine_events(stops.size(), 0);
+JointStop JointStops::operator[](std::size_t joint) const {
+  const auto found = stops_.find(std::min(joint, segments_));
+  return found == stops_.end() ? JointStop{} : found->second;
+}
+
+JointStop& JointStops::edit(std::size_t joint) { return stops_[std::min(joint, segments_)]; }
+
+JointStops joint_stops(const std::vector<JobEvent>& events, std::size_t segments, const std::string& name, double rate_hz) {
+  JointStops stops(segments);
+  std::map<std::size_t, std::size_t> machine_events;  // per joint with events
   for (const JobEvent& event : events) {
     if (event.kind == JobEventKind::Dwell || event.kind == JobEventKind::Message) continue;
     const std::size_t joint = std::min(event.before_segment, segments);
-    if (++machine_events[joint] > max_events_passed_at_speed) stops[joint].stop = true;
+    if (++machine_events[joint] > max_events_passed_at_speed) stops.edit(joint).stop = true;
   }
   for (const JobEvent& event : events) {
     if (!needs_rest(event.kind)) continue;
-    JointStop& stop = stops[std::min(event.before_segment, segments)];
+    JointStop& stop = stops.edit(event.before_segment);
     stop.stop = true;
     if (event.kind != JobEventKind::Dwell) continue;
     const std::string where = name + (event.line > 0 ? ":" + std::to_string(event.line) : std::string{}) + ": ";
@@ -58,7 +66,7 @@ std::vector<JointStop> joint_stops(const std::vector<JobEvent>& events, std::siz
   return stops;
 }
 
-std::vector<JointStop> joint_stops(const Job& job, double rate_hz) {
+JointStops joint_stops(const Job& job, double rate_hz) {
   return joint_stops(job.events, job.segments.size(), job.name, rate_hz);
 }
 

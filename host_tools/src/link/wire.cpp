@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -97,7 +98,7 @@ WireMachine to_wire(const MachineLimits& m, std::size_t axis_count) {
 WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz) {
   WireJob out;
   out.segments.reserve(job.segments.size());
-  const std::vector<JointStop> entries = joint_stops(job, rate_hz);
+  const JointStops entries = joint_stops(job, rate_hz);
   for (std::size_t i = 0; i < job.segments.size(); ++i) {
     const PathSegment& s = job.segments[i];
     const std::size_t file_index = job.source_index.empty() ? i : job.source_index[i];
@@ -107,7 +108,7 @@ WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz) {
     q.rapid = s.rapid();
     q.stop_before = entries[i].stop;
     q.rest_ticks = entries[i].rest_ticks;
-    if (i + 1 == job.segments.size()) q.end_rest_ticks = entries.back().rest_ticks;  // dwells after the last move
+    if (i + 1 == job.segments.size()) q.end_rest_ticks = entries.at_end().rest_ticks;  // dwells after the last move
     bool exact = true;
     const auto coordinate = [&](double value) {
       try {
@@ -230,11 +231,12 @@ std::uint32_t wire_value(const Job& job, const JobEvent& event) {
 
 }  // namespace
 
-std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels) {
-  return to_wire_events(job, job.segments.size(), rate_hz, file_labels);
-}
+namespace {
 
-std::vector<protocol::QueueEvent> to_wire_events(const Job& job, std::size_t segments, double rate_hz, bool file_labels) {
+/// The events of `job`; `label_of(k)` labels the joint into segment k (past
+/// the last, the job's end).
+template <class LabelOf>
+std::vector<protocol::QueueEvent> wire_events(const Job& job, double rate_hz, const LabelOf& label_of) {
   std::vector<protocol::QueueEvent> out;
   std::size_t joint = ~std::size_t{0};
   std::uint64_t rested = 0;  // the dwell ticks at this joint so far
@@ -254,13 +256,27 @@ std::vector<protocol::QueueEvent> to_wire_events(const Job& job, std::size_t seg
     e.flag = event.flag;
     e.value = wire_value(job, event);
     e.after_rest_ticks = static_cast<std::uint32_t>(rested);
-    const auto label_of = [&](std::size_t k) { return file_labels && !job.source_index.empty() ? job.source_index[k] : k; };
-    // After the last move: the label after the last segment's (the rest at the job's end carries it).
-    const std::size_t label = joint < segments ? label_of(joint) : (segments == 0 ? 0 : label_of(segments - 1) + 1);
-    e.segment = static_cast<std::uint32_t>(label);
+    e.segment = static_cast<std::uint32_t>(label_of(joint));
     out.push_back(e);
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels) {
+  const std::size_t segments = job.segments.size();
+  const auto label_into = [&](std::size_t k) { return file_labels && !job.source_index.empty() ? job.source_index[k] : k; };
+  // After the last move: the label after the last segment's (the rest at the job's end carries it).
+  return wire_events(job, rate_hz, [&](std::size_t k) { return k < segments ? label_into(k) : (segments == 0 ? 0 : label_into(segments - 1) + 1); });
+}
+
+std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, const std::map<std::size_t, std::size_t>& labels) {
+  return wire_events(job, rate_hz, [&](std::size_t k) {
+    const auto found = labels.find(k);
+    if (found == labels.end()) throw std::logic_error("to_wire_events: no label for the joint into segment " + std::to_string(k));
+    return found->second;
+  });
 }
 
 std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {

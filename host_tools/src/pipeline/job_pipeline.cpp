@@ -84,6 +84,7 @@ PreparedJob load_streamed(const std::filesystem::path& job_file, const JobFileOp
   smoothing::SmoothingStream stream(smoothing::options_for(prepared.machine, tolerance_mm), std::move(downstream));
   Job rest = load_job_file(job_file, file_options, &prepared.notes, stream);
   prepared.job = stream.finish(std::move(rest), &prepared.smoothing);
+  prepared.event_labels = stream.event_labels();
   prepared.notes.insert(prepared.notes.end(), rate_notes.begin(), rate_notes.end());
   return prepared;
 }

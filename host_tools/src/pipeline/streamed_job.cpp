@@ -97,18 +97,15 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   // 10 MB of G-code. The default threshold, fixed, keeps both passes' peaks the whole job's.
   ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   StreamedJobPlan plan;
-  std::vector<std::size_t> source_index;
   // The first smoothed segment past the travel: its message needs the file's lines, which the load
   // hands over at its end.
   std::optional<std::pair<PathSegment, std::size_t>> outside;
   plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
-    source_index.push_back(source);
     ++plan.segments;
     plan.approximate_length_mm += approximate_length(segment);
     if (!outside && !within_travel(segment, machine_file.travel)) outside.emplace(segment, source);
   });
   Job& outline = plan.prepared.job;
-  outline.source_index = std::move(source_index);
   // check_travel of the whole job names this one first: its message, with the file's line.
   if (outside) check_travel(outside->first, outline, outside->second, machine_file.travel, machine_file.name);
   std::vector<SourceLine>().swap(outline.source_lines);  // named the errors above; the second pass's load has its own

@@ -59,8 +59,8 @@ class LockstepRun {
                     std::move(holds)) {}
 
   /// A job of `segments` segments pulled from `source` as the queues take them (a streamed job),
-  /// with its joint stops `entries` (joint_stops: one per segment and one for the end).
-  LockstepRun(std::string name, std::size_t segments, std::vector<JointStop> entries, std::unique_ptr<SegmentSource> source,
+  /// with its joint stops `entries` (joint_stops).
+  LockstepRun(std::string name, std::size_t segments, JointStops entries, std::unique_ptr<SegmentSource> source,
               const MachineLimits& machine, const SimulationOptions& options, std::vector<FeedHoldEvent> holds = {})
       : name_(std::move(name)), segments_(segments), source_(std::move(source)), entries_(std::move(entries)), holds_(std::move(holds)),
         overrides_(options.overrides) {
@@ -173,7 +173,7 @@ class LockstepRun {
       ++next_;
     }
     if (next_ == segments_) {
-      const std::uint32_t final_rest = entries_.back().rest_ticks;  // the dwells after the last move
+      const std::uint32_t final_rest = entries_.at_end().rest_ticks;  // the dwells after the last move
       std::apply([final_rest](auto&... c) { (c.end_of_job(final_rest), ...); }, controllers_);
     }
   }
@@ -205,7 +205,7 @@ class LockstepRun {
   std::unique_ptr<SegmentSource> source_;  ///< where they come from
   const PathSegment* current_ = nullptr;   ///< pulled from source_, not taken by the queues yet
   std::size_t current_source_ = 0;         ///< its Job::source_index entry
-  std::vector<JointStop> entries_;  ///< per segment: an exact stop and rest before it (job events); then the end's
+  JointStops entries_;  ///< the joints with job events: an exact stop and rest before a segment; the end's
   std::size_t next_ = 0;
   std::tuple<Controllers...> controllers_;
   std::vector<FeedHoldEvent> holds_;  // in tick order

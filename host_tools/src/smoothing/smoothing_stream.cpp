@@ -59,6 +59,8 @@ void SmoothingStream::event(JobEvent event) {
   if (smoothing_on(options_)) {
     if (event.before_segment < pushed_) throw std::logic_error("SmoothingStream: an event came after the segment it precedes");
     events_at_segment_.emplace(event.before_segment, out_.events.size());
+  } else {
+    event_at(event.before_segment);  // the job as programmed: the numbers stay
   }
   out_.events.push_back(std::move(event));
 }
@@ -221,7 +223,10 @@ void SmoothingStream::decide_corner(Item& a, Item& b) {
 void SmoothingStream::write_item(const Item& item, const Item* next) {
   const std::size_t number = items_made_ - items_.size();
   const auto [first, last] = events_at_item_.equal_range(number);
-  for (auto e = first; e != last; ++e) out_.events[e->second].before_segment = written_;
+  for (auto e = first; e != last; ++e) {
+    out_.events[e->second].before_segment = written_;
+    event_at(written_);
+  }
   events_at_item_.erase(first, last);
   if (item.start_u == 0 && item.end_u == 1) {
     emit(item.segment, item.source);
@@ -244,6 +249,8 @@ void SmoothingStream::write_item(const Item& item, const Item* next) {
 }
 
 void SmoothingStream::emit(const PathSegment& segment, std::size_t source) {
+  if (unlabelled_joints_.erase(written_) != 0) event_labels_[written_] = source;
+  last_source_ = source;
   ++written_;
   if (downstream_) {
     downstream_(segment, source);
@@ -261,9 +268,13 @@ Job SmoothingStream::finish(Job rest, SmoothingReport* report) {
     // Events after the last segment (or past the job's end) stay after it.
     for (const auto& [index, position] : events_at_segment_) out_.events[position].before_segment = written_;
     for (const auto& [item, position] : events_at_item_) out_.events[position].before_segment = written_;
+    if (!events_at_segment_.empty() || !events_at_item_.empty()) event_at(written_);
     events_at_segment_.clear();
     events_at_item_.clear();
   }
+  // Joints at or past the end: the label after the last segment's.
+  for (const std::size_t joint : unlabelled_joints_) event_labels_[joint] = written_ == 0 ? 0 : last_source_ + 1;
+  unlabelled_joints_.clear();
   figures_.segments_after = written_;
   if (report != nullptr) *report = figures_;
   out_.version = rest.version;

@@ -59,29 +59,35 @@ Run collect(const std::function<SimulationSummary(const SetpointSink&)>& simulat
   return run;
 }
 
-void check_same_as_whole(const std::filesystem::path& file) {
+void check_same_as_whole(const std::filesystem::path& file, const JobPipelineOptions& options = {}) {
   INFO(file.string());
   const MachineFile machine_file = load_machine_file(source_dir / "examples/jobs/machine.json");
-  const PreparedJob whole = prepare_job(file, machine_file, machine_file.limits, JobPipelineOptions{});
+  const PreparedJob whole = prepare_job(file, machine_file, machine_file.limits, options);
   const Run expected = collect([&](const SetpointSink& sink) { return simulate_stream(whole.job, whole.machine, sim_options(whole.machine), sink); },
                                whole.machine);
 
   REQUIRE(is_streamed(file, machine_file));
-  StreamedJobPlan plan = plan_streamed_job(file, machine_file, machine_file.limits, JobPipelineOptions{});
+  StreamedJobPlan plan = plan_streamed_job(file, machine_file, machine_file.limits, options);
   CHECK(plan.segments == whole.job.segments.size());
   CHECK(plan.prepared.job.segments.empty());
-  CHECK(plan.prepared.job.source_index == whole.job.source_index);
+  CHECK(plan.prepared.job.source_index.empty());  // nothing per segment is kept
   REQUIRE(plan.prepared.job.events.size() == whole.job.events.size());
+  const std::vector<std::size_t>& source_index = whole.job.source_index;
   for (std::size_t k = 0; k < whole.job.events.size(); ++k) {
-    CHECK(plan.prepared.job.events[k].before_segment == whole.job.events[k].before_segment);
+    const std::size_t joint = whole.job.events[k].before_segment;
+    CHECK(plan.prepared.job.events[k].before_segment == joint);
     CHECK(plan.prepared.job.events[k].text == whole.job.events[k].text);
+    // The event timeline's label: the file segment after the joint, after the end the last one's + 1.
+    const std::size_t label = joint < source_index.size() ? source_index[joint] : (source_index.empty() ? 0 : source_index.back() + 1);
+    REQUIRE(plan.prepared.event_labels.count(joint) == 1);
+    CHECK(plan.prepared.event_labels.at(joint) == label);
   }
   CHECK(plan.prepared.smoothing.segments_after == whole.smoothing.segments_after);
   CHECK(plan.prepared.notes == whole.notes);
   const Run streamed = collect(
       [&](const SetpointSink& sink) {
         StreamedJob job{&plan.prepared.job, plan.segments, plan.approximate_length_mm,
-                        stream_segments(file, machine_file, machine_file.limits, JobPipelineOptions{})};
+                        stream_segments(file, machine_file, machine_file.limits, options)};
         return simulate_stream(std::move(job), plan.prepared.machine, sim_options(plan.prepared.machine), sink);
       },
       plan.prepared.machine);
@@ -104,6 +110,14 @@ TEST_CASE("streamed sim: every example G-code program simulates bit for bit as t
     ++programs;
   }
   CHECK(programs >= 10);
+}
+
+TEST_CASE("streamed sim: programs with events simulate bit for bit as the job held whole with smoothing off", "[host_tools][pipeline][streamed]") {
+  JobPipelineOptions off;
+  off.blend_tolerance_mm = 0;  // the job as programmed: the stream numbers nothing
+  for (const char* name : {"cam/freecad_style_profile.ngc", "cam/fusion_style_drill.nc", "cam/carbide_create_style.nc", "cnc_pocket.ngc"}) {
+    check_same_as_whole(source_dir / "examples/gcode" / name, off);
+  }
 }
 
 TEST_CASE("streamed sim: JSON jobs simulate bit for bit as the job held whole", "[host_tools][pipeline][streamed]") {

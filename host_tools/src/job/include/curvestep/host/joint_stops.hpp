@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,15 +30,34 @@ namespace curvestep::host {
 /// "Credit"), and at an exact stop waiting changes nothing, so it moves as `sim` plans.
 inline constexpr std::size_t max_events_passed_at_speed = 16;
 
-/// One JointStop per segment of `job` (the entry into Job::segments[k]) from its events at the
-/// control rate `rate_hz`: a stop where needs_rest() or where more than max_events_passed_at_speed
-/// machine events are, plus the dwells' ticks (each dwell rounded
-/// by dwell_ticks, then added); and one more for the job's end, whose rest_ticks are the dwells
-/// after the last move (the rest at its end point, MotionController::end_of_job). Throws
+/// The JointStop of each joint of a job of `segments` segments: the entry into each segment, and one
+/// more for the job's end. Held only where the job has events (the rest are passed at speed), so a
+/// streamed job's millions of segments cost nothing here.
+class JointStops {
+ public:
+  explicit JointStops(std::size_t segments = 0) : segments_(segments) {}
+  /// The joint into segment `joint`, or the job's end for joint >= the segment count; {} where
+  /// nothing happens.
+  [[nodiscard]] JointStop operator[](std::size_t joint) const;
+  /// The job's end: its rest_ticks are the dwells after the last move.
+  [[nodiscard]] JointStop at_end() const { return (*this)[segments_]; }
+  /// Segments + 1: one per segment and the end.
+  [[nodiscard]] std::size_t size() const noexcept { return segments_ + 1; }
+  /// The stop at `joint` (past the last segment: the end), made {} if there was none.
+  [[nodiscard]] JointStop& edit(std::size_t joint);
+
+ private:
+  std::size_t segments_;
+  std::map<std::size_t, JointStop> stops_;
+};
+
+/// The joint stops of `job` from its events at the control rate `rate_hz`: a stop where needs_rest()
+/// or where more than max_events_passed_at_speed machine events are, plus the dwells' ticks (each
+/// dwell rounded by dwell_ticks, then added); at the job's end the rest_ticks are the dwells after
+/// the last move (the rest at its end point, MotionController::end_of_job). Throws
 /// std::runtime_error naming the job file and line of a dwell dwell_ticks refuses.
-[[nodiscard]] std::vector<JointStop> joint_stops(const Job& job, double rate_hz);
+[[nodiscard]] JointStops joint_stops(const Job& job, double rate_hz);
 /// The same for a job of `segments` segments known by its events and `name` only (a streamed job).
-[[nodiscard]] std::vector<JointStop> joint_stops(const std::vector<JobEvent>& events, std::size_t segments, const std::string& name,
-                                                 double rate_hz);
+[[nodiscard]] JointStops joint_stops(const std::vector<JobEvent>& events, std::size_t segments, const std::string& name, double rate_hz);
 
 }  // namespace curvestep::host

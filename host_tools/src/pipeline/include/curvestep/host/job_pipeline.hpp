@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,6 +53,9 @@ struct PreparedJob {
   MachineLimits machine;                   ///< the machine file's limits, step-rate aware unless strict
   smoothing::SmoothingReport smoothing;    ///< what smoothing did
   std::vector<std::string> notes;          ///< lines worth telling the user (import notes, lowered axis speeds)
+  /// The event timeline's labels (SmoothingStream::event_labels), for a job whose source_index is
+  /// not held (prepare_job_streamed); a pen drawing's stay empty.
+  std::map<std::size_t, std::size_t> event_labels;
 };
 
 /// Share of max_step_rate an axis may use when its speed is lowered to fit it (the setpoints'

@@ -22,9 +22,9 @@ namespace curvestep::host {
 
 /// What the first pass over a streamed job found.
 struct StreamedJobPlan {
-  /// The prepared job without its segments and sources (the second pass's load has them): name,
-  /// version, events (few: they are kept) and source_index (8 bytes per smoothed segment, the
-  /// labels of the event timeline, link::to_wire_events).
+  /// The prepared job without its segments, source_index and sources (the second pass's load has
+  /// them): name, version, events (few: they are kept) and the event timeline's labels
+  /// (PreparedJob::event_labels, one per joint with events). Nothing per segment.
   PreparedJob prepared;
   std::size_t segments = 0;          ///< smoothed segments
   double approximate_length_mm = 0;  ///< approximate_length summed over them (progress)

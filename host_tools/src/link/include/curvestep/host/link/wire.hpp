@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -55,9 +56,9 @@ struct WireJob {
 /// speeds round to whole rev/min; output and tool numbers must be whole and >= 0 (else
 /// std::runtime_error naming the job file and line).
 [[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels);
-/// The same for a job of `segments` segments whose PathSegments are not held (a streamed job: its
-/// events, name and source_index only).
-[[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, std::size_t segments, double rate_hz, bool file_labels);
+/// The same, with file labels, for a job whose PathSegments and source_index are not held (a
+/// streamed job: its events and name, and `labels`, PreparedJob::event_labels).
+[[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, const std::map<std::size_t, std::size_t>& labels);
 
 /// A planned piece (plan_pieces) as a QueuePiece for a controller with `axis_count` axes (2 or
 /// 3), for a controller without a planner. Coordinates travel as binary64, exactly. Throws

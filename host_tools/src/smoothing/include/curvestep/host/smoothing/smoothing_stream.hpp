@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include <curvestep/host/job.hpp>
@@ -40,6 +41,11 @@ class SmoothingStream final : public JobSink {
   /// segments, their source indices and the events. With tolerance 0 the job as pushed, blend
   /// tolerances included. `report` (optional) receives the figures. Call once.
   [[nodiscard]] Job finish(Job rest, SmoothingReport* report = nullptr);
+  /// After finish(): for each joint of the smoothed job that has events (JobEvent::before_segment),
+  /// the file segment index of the smoothed segment after it (Job::source_index[joint]), or, past
+  /// the last segment, the last one's + 1 (0 for a job without segments): the labels of the event
+  /// timeline (link::to_wire_events), known without holding source_index.
+  [[nodiscard]] const std::map<std::size_t, std::size_t>& event_labels() const noexcept { return event_labels_; }
 
   /// One piece of the path between smoothing steps.
   struct Item {
@@ -101,6 +107,12 @@ class SmoothingStream final : public JobSink {
   /// (values: positions in out_.events).
   std::multimap<std::size_t, std::size_t> events_at_segment_;
   std::multimap<std::size_t, std::size_t> events_at_item_;
+  /// Joints of the smoothed job whose events are numbered but whose segment is not emitted yet.
+  std::set<std::size_t> unlabelled_joints_;
+  std::map<std::size_t, std::size_t> event_labels_;  ///< event_labels()
+  std::size_t last_source_ = 0;                      ///< of the last segment emitted
+  /// An event of the smoothed job is at `joint`: its label comes with the segment emitted there.
+  void event_at(std::size_t joint) { unlabelled_joints_.insert(joint); }
 };
 
 }  // namespace curvestep::host::smoothing
