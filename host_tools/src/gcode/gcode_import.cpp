@@ -213,7 +213,8 @@ std::string feed_refusal_text(machine::FeedRefusal why) {
 
 class GcodeLoader {
  public:
-  GcodeLoader(std::string name, const GcodeOptions& options, JobSink* sink = nullptr) : sink_(sink) {
+  GcodeLoader(std::string name, const GcodeOptions& options, JobSink* sink = nullptr)
+      : sink_(sink), keep_source_lines_(options.keep_source_lines) {
     job_.name = std::move(name);
     for (const auto& [tool, length] : options.tool_length_mm) {
       if (tool < 0 || !interpreter_.set_tool_length_mm(static_cast<std::size_t>(tool), length)) refuse_tool(tool);
@@ -316,6 +317,10 @@ class GcodeLoader {
       sink_->segment(job_.segments[j], source, job_.blend_tolerance_mm[j]);
     }
     for (; e < job_.events.size(); ++e) sink_->event(std::move(job_.events[e]));
+    if (!keep_source_lines_) {  // checked above: no message needs them any more
+      job_.source_lines_from += job_.source_lines.size();
+      job_.source_lines.clear();
+    }
     handed_over_ += job_.segments.size();
     job_.segments.clear();
     job_.source_index.clear();
@@ -857,6 +862,7 @@ class GcodeLoader {
   Job job_;
   JobSink* sink_ = nullptr;          ///< a streamed load's receiver (nullptr: the whole job is kept)
   std::size_t handed_over_ = 0;      ///< segments handed to the sink
+  bool keep_source_lines_ = true;    ///< GcodeOptions::keep_source_lines
   Interpreter interpreter_;
   CutterCompensation compensation_;
   machine::Plane compensation_plane_ = machine::Plane::XY;  ///< the plane of the compensation in force (G17 or G18)

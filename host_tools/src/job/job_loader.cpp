@@ -482,18 +482,22 @@ SourceLocation source_location(const Job& job, std::size_t source) {
   location.segment = source;
   if (source < job.sources.size()) {
     location.line = job.sources[source].line;
-  } else if (source < job.source_lines.size()) {
-    location.line = job.source_lines[source].line;
+  } else if (source >= job.source_lines_from && source - job.source_lines_from < job.source_lines.size()) {
+    location.line = job.source_lines[source - job.source_lines_from].line;
   }
   if (const auto type = source_type(job, source)) location.segment_type = std::string(segment_type_name(*type));
   return location;
 }
 
-std::size_t source_count(const Job& job) noexcept { return job.sources.empty() ? job.source_lines.size() : job.sources.size(); }
+std::size_t source_count(const Job& job) noexcept {
+  return job.sources.empty() ? job.source_lines_from + job.source_lines.size() : job.sources.size();
+}
 
 std::optional<SegmentType> source_type(const Job& job, std::size_t source) noexcept {
   if (source < job.sources.size()) return job.sources[source].type;
-  if (source < job.source_lines.size()) return job.source_lines[source].type;
+  if (source >= job.source_lines_from && source - job.source_lines_from < job.source_lines.size()) {
+    return job.source_lines[source - job.source_lines_from].type;
+  }
   return std::nullopt;
 }
 

@@ -148,7 +148,9 @@ bool is_streamed(const std::filesystem::path& job_file, const MachineFile& machi
 PreparedJob prepare_job_streamed(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
                                  const JobPipelineOptions& options, smoothing::SmoothingStream::SegmentHandler downstream) {
   if (!is_streamed(job_file, machine_file)) throw std::logic_error("prepare_job_streamed: an SVG drawing with a pen is not streamed");
-  return load_streamed(job_file, file_options_for(options, machine_file), machine, machine_file.blend_tolerance_mm, options,
+  JobFileOptions file_options = file_options_for(options, machine_file);
+  file_options.gcode.keep_source_lines = false;  // the downstream keeps nothing per segment either
+  return load_streamed(job_file, file_options, machine, machine_file.blend_tolerance_mm, options,
                        std::move(downstream));
 }
 

@@ -8,6 +8,7 @@
 #include <exception>
 #include <mutex>
 #include <optional>
+#include <stdexcept>
 #include <thread>
 #include <utility>
 
@@ -97,18 +98,18 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   // 10 MB of G-code. The default threshold, fixed, keeps both passes' peaks the whole job's.
   ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   StreamedJobPlan plan;
-  // The first smoothed segment past the travel: its message needs the file's lines, which the load
-  // hands over at its end.
-  std::optional<std::pair<PathSegment, std::size_t>> outside;
-  plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
+  bool outside = false;  // a smoothed segment leaves the travel
+  plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t) {
     ++plan.segments;
     plan.approximate_length_mm += approximate_length(segment);
-    if (!outside && !within_travel(segment, machine_file.travel)) outside.emplace(segment, source);
+    outside = outside || !within_travel(segment, machine_file.travel);
   });
-  Job& outline = plan.prepared.job;
-  // check_travel of the whole job names this one first: its message, with the file's line.
-  if (outside) check_travel(outside->first, outline, outside->second, machine_file.travel, machine_file.name);
-  std::vector<SourceLine>().swap(outline.source_lines);  // named the errors above; the second pass's load has its own
+  if (outside) {
+    // Its message names the file's line, which the streamed load does not keep: the whole job's
+    // check_travel (a third read, holding the job, on this error only) throws it.
+    (void)prepare_job(job_file, machine_file, machine, options);
+    throw std::logic_error(job_file.string() + ": a smoothed segment leaves the travel, but the whole job's travel check passed");
+  }
   ::malloc_trim(0);  // what this pass's load freed, back to the system before the second one
   return plan;
 }

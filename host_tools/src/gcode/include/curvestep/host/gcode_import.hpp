@@ -27,6 +27,11 @@ struct GcodeOptions {
   /// Where G28 and G30 go, machine coordinates, mm (machine 0 by default, as G28.1/G30.1 set them).
   MachinePoint g28_position{};
   MachinePoint g30_position{};
+  /// A streamed load (with a JobSink) keeps each file segment's line and type for messages
+  /// (Job::source_lines, 8 bytes each). false: it forgets them once the line's segments are handed
+  /// on, so its memory does not grow with the program (`curvestep sim`, which gets the whole job's
+  /// message for a later error by loading it again, streamed_job.hpp).
+  bool keep_source_lines = true;
 };
 
 /// Loads a G-code program. Throws LoadError (file:line:column, the word at fault as field, an

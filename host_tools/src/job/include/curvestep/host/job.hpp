@@ -95,6 +95,9 @@ struct Job {
   /// Instead of `sources` after a streamed G-code load: each file segment's line and type only
   /// (sources then stays empty). source_location, source_count and source_type read either.
   std::vector<SourceLine> source_lines;
+  /// The file segment index of source_lines.front(): a load that forgets them as it goes
+  /// (GcodeOptions::keep_source_lines false) keeps none once a line's segments are handed on.
+  std::size_t source_lines_from = 0;
   std::vector<JobEvent> events;           ///< non-motion events, ordered by before_segment then program order
   /// Path-control tolerance per junction (G64 P), mm: blend_tolerance_mm[k] applies to the corner
   /// between segments[k-1] and segments[k]; empty = the machine file's tolerance everywhere,

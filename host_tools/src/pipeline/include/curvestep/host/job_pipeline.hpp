@@ -88,7 +88,9 @@ inline constexpr double step_rate_share = 0.99;
 /// prepare_job with the whole machine file for a streamed job (is_streamed, else std::logic_error),
 /// whose smoothed segments go to `downstream` as they are decided instead of into the job (its
 /// segments and source_index stay empty) and are not checked against the travel (the caller's
-/// part: streamed_job.hpp). The same load and smoothing, so the same segments and errors.
+/// part: streamed_job.hpp). The same load and smoothing, so the same segments and errors. A
+/// G-code load keeps no line per file segment (GcodeOptions::keep_source_lines false): a message
+/// naming the line of a smoothed segment needs the job loaded again (prepare_job).
 [[nodiscard]] PreparedJob prepare_job_streamed(const std::filesystem::path& job_file, const MachineFile& machine_file,
                                                const MachineLimits& machine, const JobPipelineOptions& options,
                                                smoothing::SmoothingStream::SegmentHandler downstream);
