@@ -4,6 +4,7 @@
 // simulation's setpoints are drawn as they come (memory independent of the job's length).
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include <curvestep/host/job.hpp>
@@ -11,6 +12,7 @@
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/report.hpp>
 #include <curvestep/host/job_pipeline.hpp>
+#include <curvestep/host/streamed_job.hpp>
 #include <curvestep/host/simulator.hpp>
 
 #include "command_registry.hpp"
@@ -36,9 +38,17 @@ void run_plot(const PlotOptions& o) {
   } else {
     // With a machine: the path the machine runs (the job pipeline of sim, stream and gpio).
     const MachineFile machine_file = load_machine_file(o.machine);
-    const PreparedJob prepared = prepare_job(o.job, machine_file, machine_file.limits, o.pipeline);
-    const Job& job = prepared.job;
-    const MachineLimits& machine = prepared.machine;
+    // A streamed job is not held: each of the two passes below reads the file again, as sim does.
+    const bool streamed = !o.pipeline.optimize && is_streamed(o.job, machine_file);
+    StreamedJobPlan plan;
+    if (streamed) {
+      plan = plan_streamed_job(o.job, machine_file, machine_file.limits, o.pipeline);
+    } else {
+      plan.prepared = prepare_job(o.job, machine_file, machine_file.limits, o.pipeline);
+      plan.segments = plan.prepared.job.segments.size();
+    }
+    const Job& job = plan.prepared.job;
+    const MachineLimits& machine = plan.prepared.machine;
     plot.title = job.name;
     // The setpoints are drawn as they are made, twice over (extent, then strokes): none is kept.
     const auto progress = make_terminal_progress();
@@ -49,10 +59,20 @@ void run_plot(const PlotOptions& o) {
       if (progress) progress((pass + fraction) / 2);
     };
     const SetpointReplay replay = [&](const SetpointSink& sink) {
-      (void)simulate_stream(job, machine, options, sink);
+      if (streamed) {
+        (void)simulate_streamed_job(plan, o.job, machine_file, machine_file.limits, o.pipeline, options, sink);
+      } else {
+        (void)simulate_stream(job, machine, options, sink);
+      }
       ++pass;
     };
-    write_path_plot_streamed(o.output, job, replay, plot);
+    if (streamed) {
+      if (plan.segments == 0) throw std::invalid_argument(job.name + ": the job has no segments");
+      write_path_plot_streamed(o.output, PlottedJob{job.name, [&plan](std::size_t source) { return plan.rapid_source(source); }}, replay,
+                               plot);
+    } else {
+      write_path_plot_streamed(o.output, job, replay, plot);
+    }
     finish_terminal_progress();
   }
   std::cout << "  wrote " << o.output << "\n";

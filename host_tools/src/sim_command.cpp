@@ -164,9 +164,9 @@ int run_sim(const SimOptions& o) {
     file_limits.rate_hz = o.rate_hz;
     if (auto valid = file_limits.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
-  // Without --report the job is read twice and never held (streamed_job.hpp): memory independent
-  // of its length. The report needs it whole.
-  const bool streamed = o.report.empty() && !o.pipeline.optimize && is_streamed(o.job, machine_file);
+  // The job is read twice (a third time for --report) and never held (streamed_job.hpp): memory
+  // independent of its length. A pen drawing (or --optimize) is prepared whole.
+  const bool streamed = !o.pipeline.optimize && is_streamed(o.job, machine_file);
   StreamedJobPlan plan;
   if (streamed) {
     plan = plan_streamed_job(o.job, machine_file, file_limits, o.pipeline);
@@ -190,6 +190,11 @@ int run_sim(const SimOptions& o) {
   options.progress = make_terminal_progress();  // a bar with ETA on a terminal, quiet otherwise
   // The setpoints go to the CSV as they are made and are kept nowhere; the HTML report runs the
   // simulation again for its plots (write_html_report_streamed).
+  // One simulation of the job: pulled from a new read of the file when streamed.
+  const auto simulate_job = [&](const SimulationOptions& with, const SetpointSink& sink) {
+    if (!streamed) return simulate_stream(job, machine, with, sink);
+    return simulate_streamed_job(plan, o.job, machine_file, file_limits, o.pipeline, with, sink);
+  };
   SimulationResult result;
   link::SimulatedEventTimeline timeline(streamed ? link::to_wire_events(job, machine.rate_hz, prepared.event_labels)
                                                  : link::to_wire_events(job, machine.rate_hz, true));
@@ -200,12 +205,7 @@ int run_sim(const SimOptions& o) {
       timeline.on_setpoint(r);
       last_index = r.index;
     };
-    if (streamed) {
-      StreamedJob pulled{&job, plan.segments, plan.approximate_length_mm, stream_segments(o.job, machine_file, file_limits, o.pipeline)};
-      result.summary = simulate_stream(std::move(pulled), machine, options, both);
-    } else {
-      result.summary = simulate_stream(job, machine, options, both);
-    }
+    result.summary = simulate_job(options, both);
     timeline.finish(last_index);
   };
   if (o.output.empty()) {
@@ -231,11 +231,13 @@ int run_sim(const SimOptions& o) {
     report.fixed_point = !o.double_precision;
     report.title = o.job;
     report.extra_rows = smoothing::smoothing_rows(smoothing_report);
+    if (streamed) {
+      report.path_segments = plan.segments;
+      report.rapid_source = [&plan](std::size_t source) { return plan.rapid_source(source); };
+    }
     SimulationOptions replay_options = options;
     replay_options.progress = nullptr;
-    write_html_report_streamed(o.report, report, [&](const SetpointSink& sink) {
-      (void)simulate_stream(job, machine, replay_options, sink);
-    });
+    write_html_report_streamed(o.report, report, [&](const SetpointSink& sink) { (void)simulate_job(replay_options, sink); });
   }
   std::cout << "curvestep sim " << o.job << " (" << (o.double_precision ? "double" : "Q16.16");
   if (replay_window) std::cout << ", look-ahead " << options.lookahead;
@@ -272,8 +274,8 @@ void add_sim_command(CLI::App& app) {
                   "its stream bit for bit. Without it: 16 segments, extended to cover twice the braking distance "
                   "from v_max (up to 256 segments) (docs/motion.md, \"Look-ahead and determinism\")");
   sim->add_option("-o,--output", options->output, "Write the setpoints as CSV (t,x,y,z,v,index; index = the setpoint's tick from the start)");
-  sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary). It holds the smoothed job in "
-                  "memory; without it sim reads the job file twice and holds none of its path (docs/robustness.md, \"Memory of a run\")");
+  sim->add_option("--report", options->report, "Write a self-contained HTML report (path, speed/acceleration/jerk, summary). Like the rest of sim it holds "
+                  "none of the job's path: it reads the job file again for each pass (docs/robustness.md, \"Memory of a run\")");
   sim->add_flag("--double", options->double_precision, "Write double-precision setpoints instead of Q16.16");
   sim->add_option("--hold-at", options->holds,
                   "Feed hold at T seconds (before setpoint T x rate), resume R seconds after the machine stands (default 0); "

@@ -18,6 +18,7 @@ Job feed_job(Job job, JobSink& sink) {
   rest.name = std::move(job.name);
   rest.sources = std::move(job.sources);
   rest.source_lines = std::move(job.source_lines);
+  rest.source_lines_from = job.source_lines_from;
   return rest;
 }
 

@@ -2,6 +2,7 @@
 // A job simulated without holding it: the two passes of streamed_job.hpp.
 #include <curvestep/host/streamed_job.hpp>
 
+#include <algorithm>
 #include <condition_variable>
 #include <malloc.h>
 #include <deque>
@@ -99,10 +100,18 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   StreamedJobPlan plan;
   bool outside = false;  // a smoothed segment leaves the travel
-  plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t) {
+  plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
     ++plan.segments;
     plan.approximate_length_mm += approximate_length(segment);
     outside = outside || !within_travel(segment, machine_file.travel);
+    if (segment.rapid()) {
+      auto& ranges = plan.rapid_sources;
+      if (!ranges.empty() && source <= ranges.back().second + 1) {
+        ranges.back().second = std::max(ranges.back().second, source);
+      } else {
+        ranges.emplace_back(source, source);
+      }
+    }
   });
   if (outside) {
     // Its message names the file's line, which the streamed load does not keep: the whole job's
@@ -114,9 +123,23 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   return plan;
 }
 
+bool StreamedJobPlan::rapid_source(std::size_t source) const noexcept {
+  // The first range ending at or after `source`.
+  const auto found = std::lower_bound(rapid_sources.begin(), rapid_sources.end(), source,
+                                      [](const std::pair<std::size_t, std::size_t>& range, std::size_t s) { return range.second < s; });
+  return found != rapid_sources.end() && found->first <= source;
+}
+
 std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_file, const MachineFile& machine_file,
                                                const MachineLimits& machine, const JobPipelineOptions& options) {
   return std::make_unique<ThreadedSegments>(job_file, machine_file, machine, options);
+}
+
+SimulationSummary simulate_streamed_job(const StreamedJobPlan& plan, const std::filesystem::path& job_file, const MachineFile& machine_file,
+                                        const MachineLimits& machine, const JobPipelineOptions& options, const SimulationOptions& simulation,
+                                        const SetpointSink& sink) {
+  StreamedJob pulled{&plan.prepared.job, plan.segments, plan.approximate_length_mm, stream_segments(job_file, machine_file, machine, options)};
+  return simulate_stream(std::move(pulled), plan.prepared.machine, simulation, sink);
 }
 
 }  // namespace curvestep::host

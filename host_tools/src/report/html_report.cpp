@@ -215,7 +215,8 @@ void write_report(std::ostream& out, const ReportInput& input, const SetpointRep
       << "svg{display:block;margin:8px 0}\n"
       << "</style>\n</head>\n<body>\n";
   out << "<h1>curvestep report: " << escape(title) << "</h1>\n";
-  out << "<p class=\"note\">" << source_count(job) << " job segments, " << job.segments.size() << " path segments; setpoints in "
+  const std::size_t path_segments = input.rapid_source ? input.path_segments : job.segments.size();
+  out << "<p class=\"note\">" << source_count(job) << " job segments, " << path_segments << " path segments; setpoints in "
       << (input.fixed_point ? "Q16.16" : "double") << " at " << figure(machine.rate_hz) << " Hz; "
       << (machine.jerk_limited ? "S-curve" : "trapezoidal") << " profiles.</p>\n";
 
@@ -256,7 +257,11 @@ void write_report(std::ostream& out, const ReportInput& input, const SetpointRep
   plot.standalone = false;
   plot.width_px = 800;
   plot.max_height_px = 560;
-  write_path_plot_streamed(out, job, replay, plot);
+  if (input.rapid_source) {
+    write_path_plot_streamed(out, PlottedJob{job.name, input.rapid_source}, replay, plot);
+  } else {
+    write_path_plot_streamed(out, job, replay, plot);
+  }
 
   out << "<h2>Motion over time</h2>\n";
   const Chart charts[] = {

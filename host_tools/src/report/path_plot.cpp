@@ -150,21 +150,21 @@ struct SetpointSurvey {
   std::size_t count = 0;
 };
 
-SetpointSurvey survey(const Job& job, const SetpointReplay& replay) {
+SetpointSurvey survey(const PlottedJob& job, const SetpointReplay& replay) {
   SetpointSurvey s;
   replay([&](const SetpointRecord& r) {
     const Point2 p{r.position_mm[0], r.position_mm[1]};
     if (s.count++ == 0) s.first = p;
     s.last = p;
     s.extent.add(p);
-    if (!is_rapid_source(job, r.segment)) s.peak_speed = std::max(s.peak_speed, r.speed_mm_per_s);
+    if (!job.rapid_source(r.segment)) s.peak_speed = std::max(s.peak_speed, r.speed_mm_per_s);
   });
   return s;
 }
 
 /// The second pass: runs of equal speed colour (rapids apart) drawn as they come, each run joined
 /// to the previous one's last setpoint.
-void write_strokes_by_speed(std::ostream& out, const Frame& frame, const Job& job, const SetpointReplay& replay, double peak_speed) {
+void write_strokes_by_speed(std::ostream& out, const Frame& frame, const PlottedJob& job, const SetpointReplay& replay, double peak_speed) {
   auto bucket_of = [&](const SetpointRecord& r) -> std::size_t {
     if (!(peak_speed > 0)) return 0;
     const double f = std::clamp(r.speed_mm_per_s / peak_speed, 0.0, 1.0);
@@ -175,7 +175,7 @@ void write_strokes_by_speed(std::ostream& out, const Frame& frame, const Job& jo
   std::size_t current_bucket = 0;
   Point2 previous{};
   replay([&](const SetpointRecord& r) {
-    const bool rapid = is_rapid_source(job, r.segment);
+    const bool rapid = job.rapid_source(r.segment);
     const std::size_t bucket = rapid ? speed_buckets : bucket_of(r);
     const Point2 p{r.position_mm[0], r.position_mm[1]};
     if (!drawing || bucket != current_bucket) {
@@ -193,11 +193,11 @@ void write_strokes_by_speed(std::ostream& out, const Frame& frame, const Job& jo
   if (drawing) writer.end();
 }
 
-void write_header(std::ostream& out, const Frame& frame, const Job& job, const PathPlotOptions& options, bool by_speed) {
+void write_header(std::ostream& out, const Frame& frame, const std::string& job_name, const PathPlotOptions& options, bool by_speed) {
   if (options.standalone) out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"path-plot\" width=\"" << pixel(frame.width) << "\" height=\""
       << pixel(frame.height) << "\" viewBox=\"0 0 " << pixel(frame.width) << " " << pixel(frame.height) << "\" font-family=\"sans-serif\">\n";
-  out << "<title>" << escape(options.title.empty() ? job.name : options.title) << "</title>\n";
+  out << "<title>" << escape(options.title.empty() ? job_name : options.title) << "</title>\n";
   if (by_speed) {
     out << "<defs><linearGradient id=\"speed-scale\" x1=\"0\" x2=\"1\" y1=\"0\" y2=\"0\">";
     for (int i = 0; i <= 8; ++i) {
@@ -251,7 +251,7 @@ void write_plot_by_segment(std::ostream& out, const Job& job, const PathPlotOpti
     for (const auto& p : s.points) extent.add(p);
   }
   const Frame frame(extent, options);
-  write_header(out, frame, job, options, false);
+  write_header(out, frame, job.name, options, false);
   PolylineWriter writer(out, frame);
   for (const auto& s : strokes) {
     if (s.points.empty()) continue;
@@ -262,17 +262,25 @@ void write_plot_by_segment(std::ostream& out, const Job& job, const PathPlotOpti
   write_footer(out, frame, strokes.front().points.front(), strokes.back().points.back(), false, 0);
 }
 
-/// The plot of a simulation: the setpoints are replayed twice (survey, then strokes).
+/// The plot of a simulation whose survey `s` found setpoints: they are replayed again for the strokes.
+void write_plot_by_speed(std::ostream& out, const PlottedJob& job, const SetpointReplay& replay, const PathPlotOptions& options,
+                         const SetpointSurvey& s) {
+  const Frame frame(s.extent, options);
+  write_header(out, frame, job.name, options, true);
+  write_strokes_by_speed(out, frame, job, replay, s.peak_speed);
+  write_footer(out, frame, s.first, s.last, true, s.peak_speed);
+}
+
+/// The plot of a simulation: the setpoints are replayed twice (survey, then strokes); without
+/// setpoints, the plot by segment.
 void write_plot_by_speed(std::ostream& out, const Job& job, const SetpointReplay& replay, const PathPlotOptions& options) {
-  const SetpointSurvey s = survey(job, replay);
+  const PlottedJob subject = plotted(job);
+  const SetpointSurvey s = survey(subject, replay);
   if (s.count == 0) {
     write_plot_by_segment(out, job, options);
     return;
   }
-  const Frame frame(s.extent, options);
-  write_header(out, frame, job, options, true);
-  write_strokes_by_speed(out, frame, job, replay, s.peak_speed);
-  write_footer(out, frame, s.first, s.last, true, s.peak_speed);
+  write_plot_by_speed(out, subject, replay, options, s);
 }
 
 void write_file(const std::string& file, const std::function<void(std::ostream&)>& write) {
@@ -305,6 +313,20 @@ void write_path_plot(std::ostream& out, const Job& job, const std::vector<Setpoi
 void write_path_plot_streamed(std::ostream& out, const Job& job, const SetpointReplay& replay, const PathPlotOptions& options) {
   if (job.segments.empty()) throw std::invalid_argument(job.name + ": the job has no segments");
   write_plot_by_speed(out, job, replay, options);
+}
+
+PlottedJob plotted(const Job& job) {
+  return PlottedJob{job.name, [&job](std::size_t source) { return is_rapid_source(job, source); }};
+}
+
+void write_path_plot_streamed(std::ostream& out, const PlottedJob& job, const SetpointReplay& replay, const PathPlotOptions& options) {
+  const SetpointSurvey s = survey(job, replay);
+  if (s.count == 0) throw std::invalid_argument(job.name + ": the simulation made no setpoints to plot");
+  write_plot_by_speed(out, job, replay, options, s);
+}
+
+void write_path_plot_streamed(const std::string& file, const PlottedJob& job, const SetpointReplay& replay, const PathPlotOptions& options) {
+  write_file(file, [&](std::ostream& out) { write_path_plot_streamed(out, job, replay, options); });
 }
 
 void write_path_plot(const std::string& file, const Job& job, const std::vector<SetpointRecord>* setpoints,

@@ -281,6 +281,7 @@ Job SmoothingStream::finish(Job rest, SmoothingReport* report) {
   out_.name = std::move(rest.name);
   out_.sources = std::move(rest.sources);
   out_.source_lines = std::move(rest.source_lines);
+  out_.source_lines_from = rest.source_lines_from;
   return std::move(out_);
 }
 

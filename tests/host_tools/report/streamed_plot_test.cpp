@@ -57,3 +57,40 @@ TEST_CASE("report: the streamed HTML report is the one the full-memory report wr
   CHECK(count(html, "<polyline") == count(expected, "<polyline"));
   CHECK(html == expected);
 }
+
+namespace {
+
+/// Runs `curvestep <command> <job> --machine <example machine> <extra> <output_option> FILE` and
+/// returns what it wrote to FILE.
+std::string written_by(const std::string& command, const std::string& job, const std::string& extra, const std::string& output_option,
+                       const std::string& name) {
+  const std::string output = scratch(name);
+  const Run r = run_curvestep(command + " " + job + " --machine " + source("examples/jobs/machine.json") + " " + extra + " " +
+                              output_option + " " + output);
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  const std::string text = read_file(output);
+  std::remove(output.c_str());
+  return text;
+}
+
+}  // namespace
+
+// A G-code job is not held by plot and sim --report: each pass reads the file again, and rapids are
+// known by the ranges of file segments the first pass found. --optimize (a no-op on G-code) takes
+// the path that holds the job whole: the drawings must be the same, rapids included.
+TEST_CASE("plot and report: a G-code job read again for each pass draws what the job held whole draws", "[host_tools][report][plot]") {
+  for (const char* program : {"examples/gcode/cam/fusion_style_drill.nc", "examples/gcode/cnc_pocket.ngc"}) {
+    INFO(program);
+    const std::string job = source(program);
+    const std::string streamed_svg = written_by("plot", job, "", "-o", "streamed.svg");
+    const std::string whole_svg = written_by("plot", job, "--optimize", "-o", "whole.svg");
+    CHECK(count(whole_svg, "stroke-dasharray") > 0);  // rapids drawn dashed
+    CHECK(count(streamed_svg, "stroke-dasharray") == count(whole_svg, "stroke-dasharray"));
+    CHECK(streamed_svg == whole_svg);
+    const std::string streamed_html = written_by("sim", job, "", "--report", "streamed.html");
+    const std::string whole_html = written_by("sim", job, "--optimize", "--report", "whole.html");
+    CHECK(count(streamed_html, "<polyline") == count(whole_html, "<polyline"));
+    CHECK(streamed_html == whole_html);
+  }
+}

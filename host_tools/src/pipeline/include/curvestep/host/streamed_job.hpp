@@ -11,12 +11,14 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/segment_source.hpp>
+#include <curvestep/host/simulator.hpp>
 
 namespace curvestep::host {
 
@@ -28,6 +30,11 @@ struct StreamedJobPlan {
   PreparedJob prepared;
   std::size_t segments = 0;          ///< smoothed segments
   double approximate_length_mm = 0;  ///< approximate_length summed over them (progress)
+  /// The file segments whose smoothed segments are rapids, as ranges [first, last] (one per run of
+  /// consecutive rapids: a plot draws them apart).
+  std::vector<std::pair<std::size_t, std::size_t>> rapid_sources;
+  /// True if file segment `source` is a rapid.
+  [[nodiscard]] bool rapid_source(std::size_t source) const noexcept;
 };
 
 /// Pass 1: prepare_job(job_file, machine_file, machine, options) keeping no segment, with the
@@ -41,6 +48,13 @@ struct StreamedJobPlan {
 /// is the same) are thrown by next(); destroying the source stops the thread.
 [[nodiscard]] std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_file, const MachineFile& machine_file,
                                                              const MachineLimits& machine, const JobPipelineOptions& options);
+
+/// simulate_stream of the job `plan` describes (plan_streamed_job of the same arguments), its
+/// segments pulled from a new read of the file (stream_segments): each call reads the file again.
+[[nodiscard]] SimulationSummary simulate_streamed_job(const StreamedJobPlan& plan, const std::filesystem::path& job_file,
+                                                      const MachineFile& machine_file, const MachineLimits& machine,
+                                                      const JobPipelineOptions& options, const SimulationOptions& simulation,
+                                                      const SetpointSink& sink);
 
 /// How many smoothed segments the reading thread may be ahead of the run (about 0.5 KB each).
 inline constexpr std::size_t streamed_segments_queued = 256;

@@ -56,6 +56,18 @@ using SetpointReplay = std::function<void(const SetpointSink&)>;
 void write_path_plot_streamed(std::ostream& out, const Job& job, const SetpointReplay& replay, const PathPlotOptions& options);
 void write_path_plot_streamed(const std::string& file, const Job& job, const SetpointReplay& replay, const PathPlotOptions& options);
 
+/// What the plot of a simulation needs of its job besides the setpoints, for a job not held (a
+/// streamed job, streamed_job.hpp): its name and which of its file segments are rapids.
+struct PlottedJob {
+  std::string name;
+  std::function<bool(std::size_t source)> rapid_source;  ///< drawn grey and dashed, left out of the peak speed
+};
+/// A job held whole as a PlottedJob (its sources say which are rapids); `job` must outlive it.
+[[nodiscard]] PlottedJob plotted(const Job& job);
+/// write_path_plot_streamed of a job not held; std::invalid_argument if the replay has no setpoints.
+void write_path_plot_streamed(std::ostream& out, const PlottedJob& job, const SetpointReplay& replay, const PathPlotOptions& options);
+void write_path_plot_streamed(const std::string& file, const PlottedJob& job, const SetpointReplay& replay, const PathPlotOptions& options);
+
 /// Speed, acceleration and jerk over time, from a simulation's setpoints.
 struct MotionProfile {
   std::vector<double> time_s;         ///< one entry per setpoint
@@ -78,6 +90,10 @@ struct ReportInput {
   std::string title;                          ///< e.g. the job file's name
   /// Further summary rows (name, value, limit), e.g. path smoothing's figures.
   std::vector<std::array<std::string, 3>> extra_rows;
+  /// For a job that holds no PathSegments (a streamed job, streamed_job.hpp): their count, and
+  /// which file segments are rapids. Empty rapid_source: the job is held whole.
+  std::size_t path_segments = 0;
+  std::function<bool(std::size_t source)> rapid_source;
 };
 
 /// One self-contained HTML page (no external resources): summary figures, warnings, the path plot
