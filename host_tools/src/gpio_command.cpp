@@ -91,9 +91,6 @@ Plan check_before_moving(const Job& job, const MachineLimits& machine, int& stat
   auto [device_job, device_machine] = link::as_device_sees(job, machine);
   // The file's own max_step_rate is what the drivers can take (it also travels on the wire as binary64).
   device_machine.max_step_rate_hz = machine.max_step_rate_hz;
-  const SimulationResult sim = simulate(device_job, device_machine);
-  Plan plan;
-  plan.summary = sim.summary;
   const auto config = StepConfig::create(device_machine, boards::host::HostBoard<boards::host::CountingStepOutput>::step_timing());
   if (!config) {
     if (config.error() == Error::InvalidRate) {
@@ -103,31 +100,37 @@ Plan check_before_moving(const Job& job, const MachineLimits& machine, int& stat
     }
     throw std::runtime_error("machine: the host board cannot step with it: " + std::string(describe(config.error())));
   }
-  // setpoints[0] is where the machine starts: the firmware's first setpoint declares the position
-  // (StepGenerator::reset, no edges); every later one moves the steps from there.
-  std::vector<Setpoint<Q16_16>> setpoints;
-  setpoints.reserve(sim.setpoints.size());
-  for (const auto& r : sim.setpoints) {
+  // The setpoints are measured as the simulation makes them and kept nowhere. The first is where
+  // the machine starts: the firmware's first setpoint declares the position (StepGenerator::reset,
+  // no edges); every later one moves the steps from there.
+  StepRateMeter<Q16_16> meter(config.value());
+  Result<void> measured = ok();
+  std::optional<Setpoint<Q16_16>> first;
+  Setpoint<Q16_16> last;
+  Plan plan;
+  plan.summary = simulate_stream(device_job, device_machine, SimulationOptions{}, [&](const SetpointRecord& r) {
     Setpoint<Q16_16> s;
     for (std::size_t a = 0; a < motion_axes; ++a) s.position[a] = Q16_16::from_raw(r.raw_q16[a]);
-    setpoints.push_back(s);
-  }
-  const auto measured = measure_step_rate(std::span<const Setpoint<Q16_16>>(setpoints), config.value());
+    if (!first) first = s;
+    last = s;
+    if (measured) measured = meter.add(s);
+  });
   if (!measured) throw std::runtime_error(job.name + ": " + std::string(describe(measured.error())));
-  plan.peak_steps_per_s = measured.value().peak_steps_per_s;
+  const StepRateReport& report = meter.report();
+  plan.peak_steps_per_s = report.peak_steps_per_s;
   for (std::size_t a = 0; a < motion_axes; ++a) {
     const auto steps_at = [&](const Setpoint<Q16_16>& s) {
       const auto fine = fine_step_position(s.position[a], config.value().scale(a));
       return fine ? steps_of_fine_position(fine.value()) : 0;
     };
-    plan.moved_steps[a] = steps_at(setpoints.back()) - steps_at(setpoints.front());
+    plan.moved_steps[a] = first ? steps_at(last) - steps_at(*first) : 0;
   }
   // The driver limit: peak axis speed × steps/mm against max_step_rate (the speed from the
   // simulator's finite differences and from the per-tick step measure, whichever is larger).
   std::array<double, motion_axes> peak_speed{};
   for (std::size_t a = 0; a < motion_axes; ++a) {
     const double steps_per_mm = device_machine.axes[a].steps_per_mm;
-    const double needed = std::fmax(sim.summary.peak_step_rate_hz[a], plan.peak_steps_per_s[a]);
+    const double needed = std::fmax(plan.summary.peak_step_rate_hz[a], plan.peak_steps_per_s[a]);
     peak_speed[a] = steps_per_mm > 0 ? needed / steps_per_mm : 0.0;
   }
   std::ostringstream refusal;
@@ -137,12 +140,10 @@ Plan check_before_moving(const Job& job, const MachineLimits& machine, int& stat
             << " steps/s, more than max_step_rate " << device_machine.max_step_rate_hz
             << ": nothing moved (lower v_max, the axis's v_max or rapid)";
   }
-  if (refusal.str().empty()) {
-    if (const auto ticks = check_step_rate(std::span<const Setpoint<Q16_16>>(setpoints), config.value()); !ticks) {
-      refusal << "axis " << axis_names[ticks.where() < motion_axes ? ticks.where() : 0] << ": setpoint "
-              << measured.value().first_violation_setpoint << " asks one tick for more steps than the step timing allows ("
-              << describe(ticks.error()) << "): nothing moved";
-    }
+  if (refusal.str().empty() && report.violations != 0) {
+    refusal << "axis " << axis_names[report.first_violation_axis < motion_axes ? report.first_violation_axis : 0] << ": setpoint "
+            << report.first_violation_setpoint << " asks one tick for more steps than the step timing allows ("
+            << describe(Error::StepRateTooHigh) << "): nothing moved";
   }
   if (!refusal.str().empty()) {
     std::cerr << "curvestep gpio: " << refusal.str() << "\n";
@@ -171,6 +172,7 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
   };
   // Keys and signals act through the protocol (FeedHold, Resume, Abort), as with `curvestep stream`.
   options.feed_override = o.start_override.value();
+  options.setpoint_sink = [](const SetpointRecord&) {};  // counted (setpoints_received), kept nowhere
   OperatorSession session("curvestep gpio", o.keys);
   session.attach(options);
   link::StreamResult result;
@@ -192,7 +194,7 @@ int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimit
   if (*warnings > 5) std::cerr << "curvestep gpio: warning: " << *warnings - 5 << " more values rounded for the wire\n";
 
   std::cout << "curvestep gpio " << o.job << " -> " << where << "\n"
-            << "  setpoints:           " << result.setpoints.size() << " at " << machine.rate_hz << " Hz (planned "
+            << "  setpoints:           " << result.setpoints_received << " at " << machine.rate_hz << " Hz (planned "
             << plan.summary.setpoints << ")\n"
             << "  duration:            " << plan.summary.duration_s << " s planned, " << wall_s << " s wall clock\n"
             << "  distance:            " << plan.summary.distance_mm << " mm\n"

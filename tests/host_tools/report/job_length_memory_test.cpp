@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Memory of a run (issue 19, item 7). `curvestep sim`, `sim --report` and
-// `curvestep plot` hand each setpoint on as it is made and keep none. The same ten lines are run at two lengths,
+// Memory of a run (issue 19, item 7). `curvestep sim`, `sim --report`, `curvestep plot` and
+// `curvestep gpio` hand each setpoint on as it is made and keep none. The same ten lines are run at two lengths,
 // 15 000 and 150 000 setpoints; the largest resident size of the child process (getrusage through
 // wait4) may grow by at most 4 MiB. A program that kept its setpoints (64-byte records, and 16 bytes
 // more per point for the plot's strokes) would grow by more than 8 MiB. A G-code program is read
@@ -166,7 +166,7 @@ TEST_CASE("memory: sim of a G-code program 200 000 lines longer costs at most 30
   std::remove(long_program.c_str());
 }
 
-TEST_CASE("memory: sim, its report and plot use the same memory for a job ten times longer", "[host_tools][report][memory]") {
+TEST_CASE("memory: sim, its report, plot and gpio use the same memory for a job ten times longer", "[host_tools][report][memory]") {
   const std::string machine = source("examples/jobs/machine.json");
   const std::string short_job = write_zigzag_job("short.json", 30);  // 15 000 setpoints
   const std::string long_job = write_zigzag_job("long.json", 300);   // 150 000 setpoints
@@ -188,6 +188,13 @@ TEST_CASE("memory: sim, its report and plot use the same memory for a job ten ti
   const long report_long = peak_resident_kib({"sim", long_job, "--machine", machine, "--report", html});
   INFO("sim --report: " << report_short << " KiB for 15 000 setpoints, " << report_long << " KiB for 150 000");
   CHECK(report_long <= report_short + margin_kib);
+
+  // gpio measures the step rate of the setpoints as the simulation makes them, and counts those the
+  // controller streams back (--dry-run: the firmware runs as fast as it can, no line is driven).
+  const long gpio_short = peak_resident_kib({"gpio", short_job, "--machine", machine, "--dry-run"});
+  const long gpio_long = peak_resident_kib({"gpio", long_job, "--machine", machine, "--dry-run"});
+  INFO("gpio --dry-run: " << gpio_short << " KiB for 15 000 setpoints, " << gpio_long << " KiB for 150 000");
+  CHECK(gpio_long <= gpio_short + margin_kib);
 
   std::remove(html.c_str());
   std::remove(short_job.c_str());

@@ -297,34 +297,56 @@ template <Scalar S>
 }
 }  // namespace detail
 
+/// measure_step_rate fed one setpoint at a time, for setpoints that are not held (a simulation
+/// streamed through, host_tools' gpio command): add() each in order, the first being where the
+/// machine starts; report() is measure_step_rate's for the setpoints added so far.
+template <Scalar S>
+class StepRateMeter {
+ public:
+  explicit constexpr StepRateMeter(const StepConfig& config) noexcept
+      : config_(config), ticks_per_s_(static_cast<double>(config.timer_hz()) / static_cast<double>(config.period_ticks())) {}
+
+  /// The next setpoint. Fails only on StepCountOverflow / NotFinite (index = axis).
+  [[nodiscard]] constexpr Result<void> add(const Setpoint<S>& setpoint) noexcept {
+    CURVESTEP_TRY(const auto next, detail::fine_positions(setpoint, config_));
+    if (added_++ > 0) {
+      for (std::size_t axis = 0; axis < motion_axes; ++axis) {
+        const detail::AxisMove move{previous_[axis], next[axis], steps_of_fine_position(previous_[axis]),
+                                    steps_of_fine_position(next[axis])};
+        if (move.steps() > report_.peak_steps_per_tick[axis]) report_.peak_steps_per_tick[axis] = move.steps();
+        const double rate = static_cast<double>(move.fine_distance()) / 65536.0 * ticks_per_s_;
+        if (rate > report_.peak_steps_per_s[axis]) report_.peak_steps_per_s[axis] = rate;
+        if (!move.fits(config_)) {
+          if (report_.violations == 0) {
+            report_.first_violation_setpoint = added_ - 1;
+            report_.first_violation_axis = axis;
+          }
+          ++report_.violations;
+        }
+      }
+    }
+    previous_ = next;
+    return ok();
+  }
+
+  [[nodiscard]] constexpr const StepRateReport& report() const noexcept { return report_; }
+
+ private:
+  StepConfig config_;
+  double ticks_per_s_;
+  StepRateReport report_{};
+  std::array<std::int64_t, motion_axes> previous_{};
+  std::size_t added_ = 0;
+};
+
 /// Measures a job's setpoints (one per tick; setpoints[0] is where the machine starts) against
 /// the per-tick rule of the generator. Fails only on StepCountOverflow / NotFinite (index = axis).
 template <Scalar S>
 [[nodiscard]] constexpr Result<StepRateReport> measure_step_rate(std::span<const Setpoint<S>> setpoints,
                                                                  const StepConfig& config) noexcept {
-  StepRateReport report;
-  if (setpoints.empty()) return report;
-  CURVESTEP_TRY(auto previous, detail::fine_positions(setpoints[0], config));
-  const double ticks_per_s = static_cast<double>(config.timer_hz()) / static_cast<double>(config.period_ticks());
-  for (std::size_t index = 1; index < setpoints.size(); ++index) {
-    CURVESTEP_TRY(const auto next, detail::fine_positions(setpoints[index], config));
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      const detail::AxisMove move{previous[axis], next[axis], steps_of_fine_position(previous[axis]),
-                                  steps_of_fine_position(next[axis])};
-      if (move.steps() > report.peak_steps_per_tick[axis]) report.peak_steps_per_tick[axis] = move.steps();
-      const double rate = static_cast<double>(move.fine_distance()) / 65536.0 * ticks_per_s;
-      if (rate > report.peak_steps_per_s[axis]) report.peak_steps_per_s[axis] = rate;
-      if (!move.fits(config)) {
-        if (report.violations == 0) {
-          report.first_violation_setpoint = index;
-          report.first_violation_axis = axis;
-        }
-        ++report.violations;
-      }
-    }
-    previous = next;
-  }
-  return report;
+  StepRateMeter<S> meter(config);
+  for (const Setpoint<S>& setpoint : setpoints) CURVESTEP_CHECK(meter.add(setpoint));
+  return meter.report();
 }
 
 /// Rejects, before it runs, a job whose setpoints (one per tick; setpoints[0] is the start) ask
