@@ -225,9 +225,8 @@ class GcodeLoader {
     }
   }
 
-  Job load(std::string_view text) {
-    language::ProgramReader reader(text, job_.name);
-    reserve_per_line(std::count(text.begin(), text.end(), '\n') + 1);
+  Job load(language::ProgramReader reader) {
+    reserve_per_line(reader.line_count());
     std::size_t nurbs_line = 0;
     std::size_t nurbs_column = 0;
     write_parameters(reader.parameters());
@@ -495,8 +494,7 @@ class GcodeLoader {
   /// Room for a segment per program line: the job's vectors then never move their contents while
   /// they grow (a doubling vector of 472-byte PathSegments held up to 2.5 times its segments at
   /// once). Pages reserved and never written take no memory.
-  void reserve_per_line(std::ptrdiff_t lines) {
-    const auto count = static_cast<std::size_t>(lines);
+  void reserve_per_line(std::size_t count) {
     if (sink_ != nullptr) return;  // a streamed load keeps only SourceLines, which grow by doubling: 8 bytes each
     job_.sources.reserve(count);
     job_.segments.reserve(count);
@@ -882,25 +880,26 @@ class GcodeLoader {
 Job parse_gcode_job(std::string_view text, std::string name) { return parse_gcode_job(text, std::move(name), GcodeOptions{}); }
 
 Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options) {
-  GcodeLoader loader(std::move(name), options);
-  return loader.load(text);
+  GcodeLoader loader(name, options);
+  return loader.load(language::ProgramReader(text, std::move(name)));
 }
 
 Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options, JobSink& sink) {
-  GcodeLoader loader(std::move(name), options, &sink);
-  return loader.load(text);
+  GcodeLoader loader(name, options, &sink);
+  return loader.load(language::ProgramReader(text, std::move(name)));
 }
 
+// The file is read as a stream (ProgramReader::open_file): its text is never held whole.
 Job import_gcode(const std::filesystem::path& path, const GcodeOptions& options, JobSink& sink) {
-  const std::string text = read_text_file(path);
-  return parse_gcode_job(text, path.string(), options, sink);
+  GcodeLoader loader(path.string(), options, &sink);
+  return loader.load(language::ProgramReader::open_file(path, path.string()));
 }
 
 Job import_gcode(const std::filesystem::path& path) { return import_gcode(path, GcodeOptions{}); }
 
 Job import_gcode(const std::filesystem::path& path, const GcodeOptions& options) {
-  const std::string text = read_text_file(path);
-  return parse_gcode_job(text, path.string(), options);
+  GcodeLoader loader(path.string(), options);
+  return loader.load(language::ProgramReader::open_file(path, path.string()));
 }
 
 }  // namespace curvestep::host

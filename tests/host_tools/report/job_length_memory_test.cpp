@@ -7,21 +7,14 @@
 // as a stream (docs/robustness.md): what stays is about 185 bytes per program line, so a program
 // 200 000 lines longer may cost at most 300 bytes a line more (60 MB; the whole-job load took
 // about 0.8 KB a line, 160 MB).
-#include <cerrno>
-#include <cstdlib>
-#include <fcntl.h>
 #include <fstream>
 #include <string>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <vector>
 
 #include <catch2/catch.hpp>
 
 #include "report_test_support.hpp"
-
-extern char** environ;
+#include "support/child_peak_memory.hpp"
 
 namespace {
 
@@ -46,40 +39,7 @@ std::string write_zigzag_job(const std::string& name, double length_mm) {
 long peak_resident_kib(const std::vector<std::string>& arguments) {
   std::vector<std::string> words{CURVESTEP_BINARY};
   words.insert(words.end(), arguments.begin(), arguments.end());
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  // Under AddressSanitizer freed memory waits in a quarantine (256 MB by default), which would
-  // count every short-lived string as resident: keep it small in the child.
-  std::vector<std::string> environment;
-  for (char** e = environ; *e != nullptr; ++e) {
-    if (std::string(*e).rfind("ASAN_OPTIONS=", 0) != 0) environment.emplace_back(*e);
-  }
-  const char* asan = std::getenv("ASAN_OPTIONS");
-  environment.push_back(std::string("ASAN_OPTIONS=") + (asan != nullptr ? std::string(asan) + ":" : "") + "quarantine_size_mb=1");
-  std::vector<char*> envp;
-  for (auto& e : environment) envp.push_back(e.data());
-  envp.push_back(nullptr);
-
-  const pid_t child = ::fork();
-  REQUIRE(child >= 0);
-  if (child == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, STDOUT_FILENO);
-    ::dup2(null, STDERR_FILENO);
-    ::execve(argv[0], argv.data(), envp.data());
-    ::_exit(127);
-  }
-  int status = 0;
-  rusage usage{};
-  pid_t waited = -1;
-  do {
-    waited = ::wait4(child, &status, 0, &usage);
-  } while (waited < 0 && errno == EINTR);
-  REQUIRE(waited == child);
-  REQUIRE(WIFEXITED(status));
-  REQUIRE(WEXITSTATUS(status) == 0);
-  return usage.ru_maxrss;  // KiB on Linux
+  return curvestep::testing::peak_resident_kib(words);
 }
 
 /// `lines` G1 moves of 0.01 mm in rows of 10 mm (1000 moves, then a step of 0.01 mm in y to the

@@ -1,20 +1,24 @@
 // SPDX-License-Identifier: MIT
-// The language layer's executor: a program counter over the parsed lines, a stack of call frames
+// The language layer's executor: a program counter over the program's lines, a stack of call frames
 // (each with its saved #1-#30, its local named parameters and its repeat counters) and the links
 // found by scan_structure. Lines run lazily, one next() at a time, so every expression reads the
-// parameters as the machine layer left them after the previous block.
+// parameters as the machine layer left them after the previous block. The lines are read from a
+// LineSource as they run: forward, and by a seek to a kept O-word line's offset for a jump.
 #include <curvestep/host/gcode/program_reader.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include <curvestep/host/load_error.hpp>
 
 #include "line_parser.hpp"
+#include "line_source.hpp"
 #include "message_text.hpp"
 #include "program_structure.hpp"
 
@@ -43,51 +47,33 @@ struct Frame {
 
 bool is_global(const std::string& name) { return !name.empty() && name.front() == '_'; }
 
+/// An O-word line, kept from the structure pre-scan on: control flow comes back to these lines
+/// (and to the line after each), so each keeps its parse, its text and where the next line starts.
+struct KeptLine {
+  std::size_t line = no_line;     ///< 0-based
+  ParsedLine parsed;
+  std::string source;             ///< the line as written, without '\r'
+  std::uint64_t next_offset = 0;  ///< where the line after it starts in the file
+};
+
+/// A line as the parser reads it: without the '\r' of a CRLF line end.
+std::string_view without_carriage_return(std::string_view line) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
 }  // namespace
 
 class ProgramReader::Impl final : public detail::ParameterSource {
  public:
-  Impl(std::string_view text, std::string file_name, ProgramOptions options) : file_(std::move(file_name)), options_(options) {
-    std::size_t start = 0;
-    bool opened = false;   // the first non-blank line was '%'
-    bool content = false;  // a non-blank line was seen
-    // Room for every line at once: a vector that doubles as it grows holds up to three times its
-    // lines while it moves them (a large program's peak memory).
-    const std::size_t line_count = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
-    const std::size_t written_lines = line_count - (text.empty() || text.back() == '\n' ? 1 : 0);  // a last '\n' ends a line
-    if (written_lines > options_.max_lines) {
-      throw LoadError(SourceLocation{file_, options_.max_lines + 1, 1, std::nullopt, {}, {}},
-                      "the program has more than " + std::to_string(options_.max_lines) +
-                          " lines, the most a G-code file may have (docs/robustness.md): split it into several files",
-                      Error::CapacityExceeded);
-    }
-    sources_.reserve(line_count);
-    lines_.reserve(line_count);
-    for (;;) {
-      std::size_t stop = text.find('\n', start);
-      if (stop == std::string_view::npos) stop = text.size();
-      std::string_view line = text.substr(start, stop - start);
-      if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-      sources_.emplace_back(line);
-      const std::size_t index = sources_.size() - 1;
-      ParsedLine parsed;
-      try {
-        parsed = detail::parse_program_line(line);
-      } catch (const LineError& error) {
-        throw_at(index, error);
-      }
-      const OWord* oword = nullptr;
-      if (parsed.oword) oword = &*owords_.emplace(index, parsed).first->second.oword;
-      lines_.push_back(detail::summarise(parsed, oword));
-      if (parsed.percent && opened) break;  // LinuxCNC reads nothing after the closing '%'
-      if (parsed.percent && !content) opened = true;
-      if (!detail::is_blank(parsed)) content = true;
-      if (stop == text.size()) break;
-      start = stop + 1;
-    }
-    structure_ = detail::scan_structure(lines_, options_.block_delete, file_);
-    // Without O-words control never jumps: the links (40 bytes a line) are all empty.
-    if (owords_.empty()) std::vector<detail::ControlLink>().swap(structure_.links);
+  Impl(std::unique_ptr<detail::LineSource> source, std::string file_name, ProgramOptions options)
+      : source_(std::move(source)), file_(std::move(file_name)), options_(options) {
+    prescan();
+    std::vector<detail::OWordLine> scanned;
+    scanned.reserve(kept_.size());
+    for (const auto& kept : kept_) scanned.push_back(detail::OWordLine{kept.line, &*kept.parsed.oword});
+    structure_ = detail::scan_structure(scanned, file_);
+    source_->seek(0);
     frames_.emplace_back();
     store_.set_named("_value", 0.0);
     store_.set_named("_value_returned", 0.0);
@@ -96,17 +82,16 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   std::optional<ProgramBlock> next() {
     try {
       while (!ended_) {
-        if (pc_ >= structure_.end) {
+        if (pc_ >= end_) {
           ended_ = true;
           break;
         }
         count_line();
-        const detail::LineSummary& summary = lines_[pc_];
-        if (summary.percent || (summary.block_delete && options_.block_delete)) {
+        const ParsedLine& line = parsed(pc_);
+        if (skipped(line)) {
           ++pc_;
           continue;
         }
-        const ParsedLine& line = parsed(pc_);
         if (line.error) throw *line.error;
         if (line.oword) {
           run_control();
@@ -127,6 +112,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   ParameterStore& parameters() noexcept { return store_; }
   [[nodiscard]] bool ended() const noexcept { return ended_; }
   [[nodiscard]] std::size_t call_depth() const noexcept { return frames_.size() - 1; }
+  [[nodiscard]] std::size_t line_count() const noexcept { return line_count_; }
 
   [[nodiscard]] double numbered(int number) const override { return store_.get(number); }
   [[nodiscard]] std::optional<double> named(const std::string& name) const override {
@@ -138,6 +124,50 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   }
 
  private:
+  /// The structure pre-scan, one read of the whole file: counts its lines (refusing more than
+  /// max_lines before anything else), parses each line up to the closing '%' (an O-word line's
+  /// syntax error is thrown, after the count) and keeps the O-word lines that can run.
+  void prescan() {
+    bool opened = false;   // the first non-blank line was '%'
+    bool content = false;  // a non-blank line was seen
+    bool parsing = true;   // false after the closing '%' or an error
+    std::optional<std::pair<std::size_t, LineError>> error;
+    std::size_t index = 0;
+    for (;; ++index) {
+      const auto read = source_->next();
+      if (!read) break;
+      const bool written = !(read->empty() && source_->at_end());  // a last '\n' ends a line, it does not start one
+      if (written && index >= options_.max_lines) {
+        throw LoadError(SourceLocation{file_, options_.max_lines + 1, 1, std::nullopt, {}, {}},
+                        "the program has more than " + std::to_string(options_.max_lines) +
+                            " lines, the most a G-code file may have (docs/robustness.md): split it into several files",
+                        Error::CapacityExceeded);
+      }
+      if (written) line_count_ = index + 1;
+      if (!parsing) continue;
+      const std::string_view line = without_carriage_return(*read);
+      ParsedLine parsed;
+      try {
+        parsed = detail::parse_program_line(line);
+      } catch (const LineError& failure) {
+        error.emplace(index, failure);
+        parsing = false;
+        continue;
+      }
+      if (parsed.percent && opened) {  // LinuxCNC reads nothing after the closing '%'
+        end_ = index;
+        parsing = false;
+      }
+      if (parsed.percent && !content) opened = true;
+      if (!detail::is_blank(parsed)) content = true;
+      if (parsed.oword && !(parsed.block_delete && options_.block_delete)) {
+        kept_.push_back(KeptLine{index, std::move(parsed), std::string(line), source_->offset()});
+      }
+    }
+    if (parsing) end_ = index;
+    if (error) throw_at(error->first, error->second);
+  }
+
   [[noreturn]] void throw_at(std::size_t line, const LineError& error) const {
     throw LoadError(SourceLocation{file_, line + 1, error.column(), std::nullopt, {}, error.field()}, error.message(), error.code());
   }
@@ -149,30 +179,61 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// The budget that turns an endless loop into an error naming the loop.
   void count_line() {
     if (++executed_ <= options_.max_executed_lines) return;
-    const std::size_t loop = structure_.links.empty() ? no_line : structure_.links[pc_].loop;
+    const std::size_t loop = skipped(parsed(pc_)) ? no_line : structure_.loop_containing(pc_);
     const std::string message = "more than " + std::to_string(options_.max_executed_lines) +
                                 " lines executed: an endless loop? (the limit keeps a program from running forever)";
     if (loop != no_line) {
       pc_ = loop;
-      fail_oword(*lines_[loop].oword, message, Error::IterationLimit);
+      fail_oword(oword_at(loop), message, Error::IterationLimit);
     }
     throw LineError(0, {}, message, Error::IterationLimit);
   }
 
-  double value(const ParsedLine& line, detail::NodeIndex root) const {
-    return detail::evaluate(line.nodes, root, sources_[pc_], *this);
+  /// A '%' line, or one starting with '/' while the block delete switch is on.
+  bool skipped(const ParsedLine& line) const noexcept { return line.percent || (line.block_delete && options_.block_delete); }
+
+  /// A value of the current line, a line of words.
+  double value(const ParsedLine& line, detail::NodeIndex root) const { return detail::evaluate(line.nodes, root, current_source_, *this); }
+
+  /// A value of the O-word line at the program counter.
+  double oword_value(detail::NodeIndex root) const {
+    const KeptLine& line = kept(pc_);
+    return detail::evaluate(line.parsed.nodes, root, line.source, *this);
   }
 
-  /// Line `index` parsed: an O-word line from the store, any other parsed again from its text (the
-  /// last one is kept, so a line is parsed once more per pass, not per look).
+  /// The kept O-word line `index`, or nullptr if it is not one.
+  const KeptLine* find_kept(std::size_t index) const {
+    const auto found = std::lower_bound(kept_.begin(), kept_.end(), index, [](const KeptLine& k, std::size_t i) { return k.line < i; });
+    return found != kept_.end() && found->line == index ? &*found : nullptr;
+  }
+
+  const KeptLine& kept(std::size_t index) const { return *find_kept(index); }
+  const OWord& oword_at(std::size_t index) const { return *kept(index).parsed.oword; }
+
+  /// Line `index` parsed: an O-word line from those kept, any other read from the file and parsed
+  /// (the last one is kept, so a line is read and parsed once more per pass, not per look).
   const ParsedLine& parsed(std::size_t index) {
-    const auto oword = owords_.find(index);
-    if (oword != owords_.end()) return oword->second;
+    if (const KeptLine* line = find_kept(index)) return line->parsed;
     if (current_index_ != index) {
-      current_ = detail::parse_program_line(sources_[index]);  // cannot throw: only O-word lines do
+      current_source_.assign(without_carriage_return(read_line(index)));
+      current_ = detail::parse_program_line(current_source_);  // cannot throw: only O-word lines do
       current_index_ = index;
     }
     return current_;
+  }
+
+  /// Line `index` as written: the next line of the file, or after a seek to where the line starts
+  /// (control flow reaches a line out of order only at an O-word line or the line after one).
+  std::string_view read_line(std::size_t index) {
+    if (index != source_line_) {
+      const KeptLine* before = index == 0 ? nullptr : find_kept(index - 1);
+      if (index != 0 && before == nullptr) throw std::logic_error("line " + std::to_string(index + 1) + " reached by a jump");
+      source_->seek(before == nullptr ? 0 : before->next_offset);
+    }
+    const auto line = source_->next();
+    if (!line) throw std::logic_error("line " + std::to_string(index + 1) + " is past the end of the file");
+    source_line_ = index + 1;
+    return *line;
   }
 
   /// A line of words, assignments and comments.
@@ -180,7 +241,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     const ParsedLine& line = parsed(pc_);
     ProgramBlock block;
     block.line = pc_ + 1;
-    block.source = sources_[pc_];
+    block.source = current_source_;
     block.block_delete = line.block_delete;
     for (const auto& word : line.words) block.words.push_back(ProgramWord{word.letter, value(line, word.value), word.column});
     // LinuxCNC: every value on the line is read first; the assignments take effect at its end.
@@ -194,9 +255,9 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       int number = 0;
       if (assignment.name.empty()) {
         const auto& at = line.nodes[assignment.number];
-        number = detail::parameter_number(value(line, assignment.number), at, sources_[pc_]);
+        number = detail::parameter_number(value(line, assignment.number), at, current_source_);
         if (number > max_program_parameter) {
-          throw LineError(assignment.column, detail::node_text(at, sources_[pc_]),
+          throw LineError(assignment.column, detail::node_text(at, current_source_),
                           "parameters #" + std::to_string(max_program_parameter + 1) + "-#" + std::to_string(ParameterStore::max_numbered) +
                               " are read-only (the machine state: tool, position)",
                           Error::GcodeBadNumber);
@@ -226,12 +287,12 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     return block;
   }
 
-  bool test(const OWord& oword) const { return value(owords_.at(pc_), oword.arguments.front()) != 0.0; }
+  bool test(const OWord& oword) const { return oword_value(oword.arguments.front()) != 0.0; }
 
   void run_control() {
     const std::size_t here = pc_;
-    const OWord& oword = *lines_[here].oword;
-    const ControlLink& link = structure_.links[here];
+    const OWord& oword = oword_at(here);
+    const ControlLink& link = structure_.link(here);
     switch (oword.keyword) {
       case Keyword::Sub: pc_ = link.closing + 1; break;
       case Keyword::Endsub:
@@ -245,7 +306,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         }
         break;
       case Keyword::Elseif:
-      case Keyword::Else: pc_ = structure_.links[link.opening].closing + 1; break;  // the taken branch ends here
+      case Keyword::Else: pc_ = structure_.link(link.opening).closing + 1; break;  // the taken branch ends here
       case Keyword::Endif:
       case Keyword::Do: pc_ = here + 1; break;
       case Keyword::While:
@@ -257,7 +318,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         break;
       case Keyword::Endwhile: pc_ = link.opening; break;
       case Keyword::Repeat: {
-        const double count = value(owords_.at(here), oword.arguments.front());
+        const double count = oword_value(oword.arguments.front());
         const long long passes = count >= 1.0 ? static_cast<long long>(std::min(std::trunc(count), max_repeat_count)) : 0;
         if (passes <= 0) {
           pc_ = link.closing + 1;
@@ -277,11 +338,11 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         }
         break;
       }
-      case Keyword::Break: pc_ = structure_.links[link.opening].closing + 1; break;
+      case Keyword::Break: pc_ = structure_.link(link.opening).closing + 1; break;
       case Keyword::Continue: {
         const std::size_t loop = link.opening;
         // while: test again; do: its closing while tests; repeat: endrepeat counts the pass.
-        pc_ = lines_[loop].oword->keyword == Keyword::While ? loop : structure_.links[loop].closing;
+        pc_ = oword_at(loop).keyword == Keyword::While ? loop : structure_.link(loop).closing;
         break;
       }
     }
@@ -291,7 +352,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void enter_branch(std::size_t branch) {
     for (;;) {
       pc_ = branch;
-      const OWord& oword = *lines_[branch].oword;
+      const OWord& oword = oword_at(branch);
       if (oword.keyword != Keyword::Elseif) {
         pc_ = branch + 1;
         return;
@@ -301,14 +362,14 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         pc_ = branch + 1;
         return;
       }
-      branch = structure_.links[branch].next_branch;
+      branch = structure_.link(branch).next_branch;
     }
   }
 
   void call(const OWord& oword) {
     std::string label = oword.label;
     if (oword.label_value != detail::no_node) {
-      const double computed = value(owords_.at(pc_), oword.label_value);
+      const double computed = oword_value(oword.label_value);
       if (!(computed >= 0.0 && computed < 1e9 && computed == std::floor(computed))) {
         fail_oword(oword, "a computed subroutine label must be a whole number 0..999999999", Error::GcodeBadNumber);
       }
@@ -321,7 +382,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
                  Error::CapacityExceeded);
     }
     std::vector<double> arguments;
-    for (const auto argument : oword.arguments) arguments.push_back(value(owords_.at(pc_), argument));
+    for (const auto argument : oword.arguments) arguments.push_back(oword_value(argument));
     Frame frame;
     frame.return_line = pc_ + 1;
     for (int n = 1; n <= argument_parameters; ++n) frame.saved[static_cast<std::size_t>(n - 1)] = store_.get(n);
@@ -335,7 +396,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void return_from(const OWord& oword) {
     if (frames_.size() == 1) fail_oword(oword, "reached without a call", Error::GcodeSyntax);
     const bool has_value = !oword.arguments.empty();
-    const double result = has_value ? value(owords_.at(pc_), oword.arguments.front()) : 0.0;
+    const double result = has_value ? oword_value(oword.arguments.front()) : 0.0;
     store_.set_named("_value", result);
     store_.set_named("_value_returned", has_value ? 1.0 : 0.0);
     const Frame& frame = frames_.back();
@@ -344,16 +405,19 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     frames_.pop_back();
   }
 
+  std::unique_ptr<detail::LineSource> source_;
   std::string file_;
   ProgramOptions options_;
-  std::vector<std::string_view> sources_;  ///< each line, in the program's text (which outlives the reader)
   // A program's parse trees would take about 0.7 KB per line: only the O-word lines (control flow
-  // comes back to them) keep theirs; every line keeps what the structure scan needs.
-  std::vector<detail::LineSummary> lines_;
-  std::map<std::size_t, ParsedLine> owords_;
+  // comes back to them) keep theirs, with their text; any other line is read again when it runs.
+  std::vector<KeptLine> kept_;  ///< in line order
+  detail::ProgramStructure structure_;
+  std::size_t end_ = 0;         ///< lines from here on are not part of the program (closing %)
+  std::size_t line_count_ = 0;  ///< lines in the file (a last '\n' ends a line, it does not start one)
+  std::size_t source_line_ = 0;  ///< the line source_->next() reads
+  std::string current_source_;  ///< the line of words being run, as written
   ParsedLine current_;
   std::size_t current_index_ = no_line;
-  detail::ProgramStructure structure_;
   ParameterStore store_;
   std::vector<Frame> frames_;
   std::size_t pc_ = 0;
@@ -362,7 +426,11 @@ class ProgramReader::Impl final : public detail::ParameterSource {
 };
 
 ProgramReader::ProgramReader(std::string_view text, std::string file_name, ProgramOptions options)
-    : impl_(std::make_unique<Impl>(text, std::move(file_name), options)) {}
+    : impl_(std::make_unique<Impl>(detail::text_lines(text), std::move(file_name), options)) {}
+ProgramReader::ProgramReader(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+ProgramReader ProgramReader::open_file(const std::filesystem::path& path, std::string file_name, ProgramOptions options) {
+  return ProgramReader(std::make_unique<Impl>(detail::file_lines(path), std::move(file_name), options));
+}
 ProgramReader::~ProgramReader() = default;
 ProgramReader::ProgramReader(ProgramReader&&) noexcept = default;
 ProgramReader& ProgramReader::operator=(ProgramReader&&) noexcept = default;
@@ -372,5 +440,6 @@ ParameterStore& ProgramReader::parameters() noexcept { return impl_->parameters(
 const ParameterStore& ProgramReader::parameters() const noexcept { return impl_->parameters(); }
 bool ProgramReader::ended() const noexcept { return impl_->ended(); }
 std::size_t ProgramReader::call_depth() const noexcept { return impl_->call_depth(); }
+std::size_t ProgramReader::line_count() const noexcept { return impl_->line_count(); }
 
 }  // namespace curvestep::host::gcode

@@ -5,7 +5,10 @@
 // subroutine body; subroutine labels are global and unique.
 #include "program_structure.hpp"
 
+#include <algorithm>
+#include <iterator>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 
 #include <curvestep/host/load_error.hpp>
@@ -18,8 +21,9 @@ enum class Construct : std::uint8_t { Sub, If, While, Do, Repeat };
 struct Open {
   Construct kind;
   std::string label;
-  std::size_t line;
-  std::size_t last_branch;
+  std::size_t line;         ///< the opening line
+  std::size_t slot;         ///< its place in the scanned lines
+  std::size_t last_branch;  ///< if: the slot of its last branch so far
   bool has_else = false;
 };
 
@@ -49,39 +53,26 @@ bool is_loop(Construct kind) { return kind == Construct::While || kind == Constr
 
 class Scanner {
  public:
-  Scanner(const std::vector<LineSummary>& lines, bool block_delete, const std::string& file)
-      : lines_(lines), block_delete_(block_delete), file_(file) {}
+  Scanner(const std::vector<OWordLine>& lines, const std::string& file) : lines_(lines), file_(file) {}
 
   ProgramStructure scan() {
     structure_.links.resize(lines_.size());
-    structure_.end = find_end();
-    for (std::size_t i = 0; i < structure_.end; ++i) {
-      const LineSummary& line = lines_[i];
-      if (block_delete_ && line.block_delete) continue;
-      const std::size_t enclosing = innermost_loop();
-      structure_.links[i].loop = enclosing;
-      if (line.oword) visit(i, *line.oword);
+    for (std::size_t slot = 0; slot < lines_.size(); ++slot) {
+      ControlLink& link = structure_.links[slot];
+      link.line = lines_[slot].line;
+      link.loop = innermost_loop();
+      visit(slot, *lines_[slot].oword);
+      link.loop_after = innermost_loop();
     }
     if (!stack_.empty()) {
       const Open& open = stack_.back();
-      fail(open.line, "o" + open.label + " " + std::string(opener(open.kind)) + " is not closed: o" + open.label +
-                          " " + std::string(closer(open.kind)) + " missing");
+      fail(open.slot, "o" + open.label + " " + std::string(opener(open.kind)) + " is not closed: o" + open.label + " " +
+                          std::string(closer(open.kind)) + " missing");
     }
     return std::move(structure_);
   }
 
  private:
-  /// The closing '%' of a program whose first non-blank line is '%'.
-  std::size_t find_end() const {
-    std::size_t i = 0;
-    while (i < lines_.size() && lines_[i].blank) ++i;
-    if (i == lines_.size() || !lines_[i].percent) return lines_.size();
-    for (std::size_t j = i + 1; j < lines_.size(); ++j) {
-      if (lines_[j].percent) return j;
-    }
-    return lines_.size();
-  }
-
   std::size_t innermost_loop() const {
     for (auto it = stack_.rbegin(); it != stack_.rend(); ++it) {
       if (is_loop(it->kind)) return it->line;
@@ -89,87 +80,96 @@ class Scanner {
     return no_line;
   }
 
-  [[noreturn]] void fail(std::size_t line, const std::string& message) const {
-    const OWord& oword = *lines_[line].oword;
-    throw LoadError(SourceLocation{file_, line + 1, oword.column, std::nullopt, {}, oword_text(oword)}, message, Error::GcodeSyntax);
+  [[noreturn]] void fail(std::size_t slot, const std::string& message) const {
+    const OWord& oword = *lines_[slot].oword;
+    throw LoadError(SourceLocation{file_, lines_[slot].line + 1, oword.column, std::nullopt, {}, oword_text(oword)}, message,
+                    Error::GcodeSyntax);
   }
 
   /// The innermost open construct must be `kind` with this line's label.
-  Open& expect_top(std::size_t i, const OWord& oword, Construct kind) {
+  Open& expect_top(std::size_t slot, const OWord& oword, Construct kind) {
     if (stack_.empty()) {
-      fail(i, oword_text(oword) + " without o" + oword.label + " " + std::string(opener(kind)));
+      fail(slot, oword_text(oword) + " without o" + oword.label + " " + std::string(opener(kind)));
     }
     Open& top = stack_.back();
     if (top.kind != kind || top.label != oword.label) {
-      fail(i, oword_text(oword) + " does not match the open o" + top.label + " " + std::string(opener(top.kind)) + " (line " +
-                  std::to_string(top.line + 1) + ", closed by o" + top.label + " " + std::string(closer(top.kind)) +
-                  "): a construct is closed by the label that opened it");
+      fail(slot, oword_text(oword) + " does not match the open o" + top.label + " " + std::string(opener(top.kind)) + " (line " +
+                     std::to_string(top.line + 1) + ", closed by o" + top.label + " " + std::string(closer(top.kind)) +
+                     "): a construct is closed by the label that opened it");
     }
     return top;
   }
 
-  void close(std::size_t i, const Open& top) {
-    structure_.links[top.line].closing = i;
-    structure_.links[i].opening = top.line;
-    structure_.links[i].loop = is_loop(top.kind) ? top.line : structure_.links[i].loop;
+  void close(std::size_t slot, const Open& top) {
+    ControlLink& link = structure_.links[slot];
+    structure_.links[top.slot].closing = link.line;
+    link.opening = top.line;
+    if (is_loop(top.kind)) link.loop = top.line;
     stack_.pop_back();
   }
 
-  void push(std::size_t i, const OWord& oword, Construct kind) {
-    stack_.push_back(Open{kind, oword.label, i, i});
-    if (is_loop(kind)) structure_.links[i].loop = i;
+  void push(std::size_t slot, const OWord& oword, Construct kind) {
+    const std::size_t line = lines_[slot].line;
+    stack_.push_back(Open{kind, oword.label, line, slot, slot});
+    if (is_loop(kind)) structure_.links[slot].loop = line;
   }
 
-  void visit(std::size_t i, const OWord& oword) {
-    ControlLink& link = structure_.links[i];
+  void visit(std::size_t slot, const OWord& oword) {
+    ControlLink& link = structure_.links[slot];
+    const std::size_t line = link.line;
     switch (oword.keyword) {
       case Keyword::Sub: {
         if (!stack_.empty()) {
-          fail(i, "a subroutine cannot be defined inside o" + stack_.back().label + " " + std::string(opener(stack_.back().kind)) +
-                      " (line " + std::to_string(stack_.back().line + 1) + ")");
+          fail(slot, "a subroutine cannot be defined inside o" + stack_.back().label + " " + std::string(opener(stack_.back().kind)) +
+                         " (line " + std::to_string(stack_.back().line + 1) + ")");
         }
-        const auto [where, inserted] = structure_.subs.emplace(oword.label, i);
-        if (!inserted) fail(i, "subroutine o" + oword.label + " is defined twice (first on line " + std::to_string(where->second + 1) + ")");
-        push(i, oword, Construct::Sub);
+        const auto [where, inserted] = structure_.subs.emplace(oword.label, line);
+        if (!inserted) {
+          fail(slot, "subroutine o" + oword.label + " is defined twice (first on line " + std::to_string(where->second + 1) + ")");
+        }
+        push(slot, oword, Construct::Sub);
         break;
       }
-      case Keyword::Endsub: close(i, expect_top(i, oword, Construct::Sub)); break;
+      case Keyword::Endsub: close(slot, expect_top(slot, oword, Construct::Sub)); break;
       case Keyword::Return:
         if (stack_.empty() || stack_.front().kind != Construct::Sub || stack_.front().label != oword.label) {
-          fail(i, oword_text(oword) + " outside subroutine o" + oword.label + ": return must be inside the sub it names");
+          fail(slot, oword_text(oword) + " outside subroutine o" + oword.label + ": return must be inside the sub it names");
         }
         link.opening = stack_.front().line;
         break;
       case Keyword::Call: break;
-      case Keyword::If: push(i, oword, Construct::If); break;
+      case Keyword::If: push(slot, oword, Construct::If); break;
       case Keyword::Elseif:
       case Keyword::Else: {
-        Open& top = expect_top(i, oword, Construct::If);
-        if (top.has_else) fail(i, oword_text(oword) + " after o" + top.label + " else (line " + std::to_string(top.last_branch + 1) + ")");
-        structure_.links[top.last_branch].next_branch = i;
-        top.last_branch = i;
+        Open& top = expect_top(slot, oword, Construct::If);
+        if (top.has_else) {
+          fail(slot, oword_text(oword) + " after o" + top.label + " else (line " +
+                         std::to_string(structure_.links[top.last_branch].line + 1) + ")");
+        }
+        structure_.links[top.last_branch].next_branch = line;
+        top.last_branch = slot;
         top.has_else = oword.keyword == Keyword::Else;
         link.opening = top.line;
         break;
       }
       case Keyword::Endif: {
-        Open& top = expect_top(i, oword, Construct::If);
-        structure_.links[top.last_branch].next_branch = i;
-        close(i, top);
+        Open& top = expect_top(slot, oword, Construct::If);
+        structure_.links[top.last_branch].next_branch = line;
+        close(slot, top);
         break;
       }
       case Keyword::While:
         if (!stack_.empty() && stack_.back().kind == Construct::Do && stack_.back().label == oword.label) {
           link.closes_do = true;
-          close(i, stack_.back());
+          close(slot, stack_.back());
         } else {
-          push(i, oword, Construct::While);
+          push(slot, oword, Construct::While);
         }
         break;
-      case Keyword::Endwhile: close(i, expect_top(i, oword, Construct::While)); break;
-      case Keyword::Do: push(i, oword, Construct::Do); break;
-      case Keyword::Repeat: push(i, oword, Construct::Repeat); break;
-      case Keyword::Endrepeat: close(i, expect_top(i, oword, Construct::Repeat)); break;
+      case Keyword::Endwhile: close(slot, expect_top(slot, oword, Construct::While)); break;
+      case Keyword::Do: push(slot, oword, Construct::Do); break;
+      case Keyword::Repeat: push(slot, oword, Construct::Repeat); break;
+      case Keyword::Endrepeat: close(slot, expect_top(slot, oword, Construct::Repeat)); break;
       case Keyword::Break:
       case Keyword::Continue: {
         for (auto it = stack_.rbegin(); it != stack_.rend() && it->kind != Construct::Sub; ++it) {
@@ -178,13 +178,12 @@ class Scanner {
             return;
           }
         }
-        fail(i, oword_text(oword) + " outside a loop labelled o" + oword.label + " (while, do or repeat)");
+        fail(slot, oword_text(oword) + " outside a loop labelled o" + oword.label + " (while, do or repeat)");
       }
     }
   }
 
-  const std::vector<LineSummary>& lines_;
-  bool block_delete_;
+  const std::vector<OWordLine>& lines_;
   const std::string& file_;
   ProgramStructure structure_;
   std::vector<Open> stack_;
@@ -196,12 +195,30 @@ std::string oword_text(const OWord& oword) {
   return "o" + (oword.label.empty() ? std::string("[...]") : oword.label) + " " + std::string(keyword_name(oword.keyword));
 }
 
-LineSummary summarise(const ParsedLine& line, const OWord* oword) noexcept {
-  return LineSummary{line.percent, line.block_delete, is_blank(line), oword};
+namespace {
+
+/// The first link of a line after `line`.
+std::vector<ControlLink>::const_iterator after(const std::vector<ControlLink>& links, std::size_t line) {
+  return std::upper_bound(links.begin(), links.end(), line, [](std::size_t l, const ControlLink& link) { return l < link.line; });
 }
 
-ProgramStructure scan_structure(const std::vector<LineSummary>& lines, bool block_delete, const std::string& file) {
-  return Scanner(lines, block_delete, file).scan();
+}  // namespace
+
+const ControlLink& ProgramStructure::link(std::size_t line) const {
+  const auto found = after(links, line);
+  if (found == links.begin() || std::prev(found)->line != line) {
+    throw std::logic_error("line " + std::to_string(line + 1) + " is not an O-word line of the structure");
+  }
+  return *std::prev(found);
 }
+
+std::size_t ProgramStructure::loop_containing(std::size_t line) const {
+  const auto found = after(links, line);
+  if (found == links.begin()) return no_line;
+  const ControlLink& before = *std::prev(found);
+  return before.line == line ? before.loop : before.loop_after;
+}
+
+ProgramStructure scan_structure(const std::vector<OWordLine>& lines, const std::string& file) { return Scanner(lines, file).scan(); }
 
 }  // namespace curvestep::host::gcode::detail

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // The O-word structure of a whole program, found before the first line runs: which line closes
 // which construct, the branches of each if, and where each subroutine is defined (so a program may
-// call a subroutine defined further down, as LinuxCNC allows).
+// call a subroutine defined further down, as LinuxCNC allows). It is found from the O-word lines
+// alone and kept per O-word line, so a program without O-words keeps nothing per line.
 #pragma once
 
 #include <cstddef>
@@ -15,41 +16,43 @@ namespace curvestep::host::gcode::detail {
 
 inline constexpr std::size_t no_line = static_cast<std::size_t>(-1);
 
-/// What the scan learned about one line (0-based line indices; no_line when not applicable).
+/// What the scan learned about one O-word line (0-based line indices; no_line when not applicable).
 struct ControlLink {
+  std::size_t line = no_line;         ///< the O-word line
   std::size_t opening = no_line;      ///< branch, closing, break, continue, return: the construct's first line
   std::size_t closing = no_line;      ///< first line of a construct: its last line (endsub endif endwhile while endrepeat)
   std::size_t next_branch = no_line;  ///< if, elseif, else: the next elseif, else or endif
   std::size_t loop = no_line;         ///< the innermost loop containing the line (for the endless-loop message)
+  std::size_t loop_after = no_line;   ///< the innermost loop containing the lines after it, up to the next O-word line
   bool closes_do = false;             ///< a `while` that ends a `do` loop
 };
 
-/// What the scan needs of one line (ParsedLine keeps more: the reader keeps a ParsedLine only for
-/// O-word lines, so `oword` points into the reader's own store).
-struct LineSummary {
-  bool percent = false;       ///< a '%' delimiter line
-  bool block_delete = false;  ///< starts with '/'
-  bool blank = false;         ///< is_blank(): nothing but blanks and plain comments
+/// An O-word line as the scan reads it: its index and its O-word (owned by the reader).
+struct OWordLine {
+  std::size_t line = no_line;
   const OWord* oword = nullptr;
 };
 
-/// The summary of a parsed line; `oword` is the line's own O-word (nullptr if none).
-[[nodiscard]] LineSummary summarise(const ParsedLine& line, const OWord* oword) noexcept;
-
-/// The structure of a program.
+/// The structure of a program: what the O-word lines tell, nothing per other line.
 struct ProgramStructure {
-  std::vector<ControlLink> links;             ///< one per line
+  std::vector<ControlLink> links;             ///< one per O-word line, in line order
   std::map<std::string, std::size_t> subs;    ///< label ("100", "<name>") -> its `sub` line
-  std::size_t end = 0;                        ///< lines from here on are not part of the program (closing %)
+
+  /// The links of O-word line `line` (which must be one of the scanned lines).
+  [[nodiscard]] const ControlLink& link(std::size_t line) const;
+  /// The innermost loop containing `line`, a line that is not left out by block delete: the
+  /// O-word line's own, or that of the lines after the O-word line before it. no_line if none.
+  [[nodiscard]] std::size_t loop_containing(std::size_t line) const;
 };
 
 /// "o100 endwhile", "o<name> sub": an O-word as messages name it.
 [[nodiscard]] std::string oword_text(const OWord& oword);
 
-/// Scans the lines; throws LoadError (file:line:column, the O-word) for a construct closed by
-/// another label or keyword, one left open, break/continue outside its loop, return outside its
-/// subroutine, a subroutine defined twice or inside another construct. Lines starting with '/' are
-/// left out when `block_delete` is on.
-[[nodiscard]] ProgramStructure scan_structure(const std::vector<LineSummary>& lines, bool block_delete, const std::string& file);
+/// Scans the O-word lines of a program (in line order, those of its lines that run: the reader
+/// leaves out the lines after a closing '%' and, with block delete on, those starting with '/').
+/// Throws LoadError (file:line:column, the O-word) for a construct closed by another label or
+/// keyword, one left open, break/continue outside its loop, return outside its subroutine, a
+/// subroutine defined twice or inside another construct.
+[[nodiscard]] ProgramStructure scan_structure(const std::vector<OWordLine>& lines, const std::string& file);
 
 }  // namespace curvestep::host::gcode::detail

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -18,8 +19,8 @@ namespace curvestep::host::gcode {
 
 /// Lines a program may execute (O-word lines included) before it is taken for an endless loop.
 inline constexpr std::size_t default_max_executed_lines = 10'000'000;
-/// Lines a program file may have: the reader keeps 40 bytes per line (80 with O-words) and the
-/// importer about 140 (docs/robustness.md), so a file cannot make the host run out of memory.
+/// Lines a program file may have: the reader keeps nothing per line but the O-word lines, and the
+/// importer about 140 bytes (docs/robustness.md), so a file cannot make the host run out of memory.
 inline constexpr std::size_t default_max_program_lines = 10'000'000;
 /// Subroutine calls that may be nested.
 inline constexpr std::size_t default_max_call_depth = 64;
@@ -40,9 +41,14 @@ struct ProgramOptions {
 /// of more than max_lines lines).
 class ProgramReader {
  public:
-  /// Parses `text` and checks its O-word structure (throws LoadError). `file_name` is used in
-  /// messages. The reader keeps views into `text`, which must outlive it.
+  /// Reads `text` and checks its O-word structure (throws LoadError). `file_name` is used in
+  /// messages. The reader reads `text` as it runs, which must outlive it.
   ProgramReader(std::string_view text, std::string file_name, ProgramOptions options = {});
+  /// The same for the file at `path`, read as a stream: once for the structure (counting its lines
+  /// and keeping its O-word lines), then line by line as the program runs, with a seek for each jump
+  /// of its control flow. Without O-words the reader holds nothing per line. Throws
+  /// std::runtime_error if the file cannot be opened or read.
+  [[nodiscard]] static ProgramReader open_file(const std::filesystem::path& path, std::string file_name, ProgramOptions options = {});
   ~ProgramReader();
   ProgramReader(ProgramReader&&) noexcept;
   ProgramReader& operator=(ProgramReader&&) noexcept;
@@ -59,9 +65,12 @@ class ProgramReader {
   [[nodiscard]] bool ended() const noexcept;
   /// Subroutine calls active now (0 in the main program).
   [[nodiscard]] std::size_t call_depth() const noexcept;
+  /// The lines of the file (a last '\n' ends a line, it does not start one).
+  [[nodiscard]] std::size_t line_count() const noexcept;
 
  private:
   class Impl;
+  explicit ProgramReader(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 
