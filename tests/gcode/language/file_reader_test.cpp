@@ -183,6 +183,27 @@ TEST_CASE("file reader: errors name the file's line and column as the text reade
     CHECK(e.location().column == 1);
     CHECK(e.location().field == "o2 endwhile");
   }
+  SECTION("an O-word line's syntax error is reported before an earlier structure error, as the text reader does") {
+    const std::string text = "o1 endwhile\nG0 X1\no2 bogus [1]\n";
+    const ScratchProgram file("syntax_first", text);
+    for (const LoadError& e : {file_error(file.path()), program_error(text)}) {
+      CHECK(e.code() == Error::GcodeSyntax);
+      CHECK(e.location().line == 3);
+    }
+    const ScratchProgram structure_only("structure_only", "o1 endwhile\nG0 X1\n");
+    const LoadError e = file_error(structure_only.path());
+    CHECK(e.location().line == 1);
+    CHECK(e.location().field == "o1 endwhile");
+  }
+  SECTION("a construct left open names its first line") {
+    const ScratchProgram file("open", "G0 X1\n  o<outer> repeat [2]\nG0 X2\n");
+    const LoadError e = file_error(file.path());
+    CHECK(e.code() == Error::GcodeSyntax);
+    CHECK(e.location().line == 2);
+    CHECK(e.location().column == 3);
+    CHECK(e.location().field == "o<outer> repeat");
+    CHECK(e.message() == "o<outer> repeat is not closed: o<outer> endrepeat missing");
+  }
   SECTION("a file longer than max_lines, even with a syntax error before the limit") {
     ProgramOptions options;
     options.max_lines = 3;

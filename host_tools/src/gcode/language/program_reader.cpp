@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The language layer's executor: a program counter over the program's lines, a stack of call frames
 // (each with its saved #1-#30, its local named parameters and its repeat counters) and the links
-// found by scan_structure. Lines run lazily, one next() at a time, so every expression reads the
+// found by the StructureScan. Lines run lazily, one next() at a time, so every expression reads the
 // parameters as the machine layer left them after the previous block. The lines are read from a
-// LineSource as they run: forward, and by a seek to a kept O-word line's offset for a jump.
+// LineSource as they run: forward, and by a seek for a jump (always to an O-word line or the line
+// after one, whose places the structure pre-scan keeps).
 #include <curvestep/host/gcode/program_reader.hpp>
 
 #include <algorithm>
@@ -47,13 +48,12 @@ struct Frame {
 
 bool is_global(const std::string& name) { return !name.empty() && name.front() == '_'; }
 
-/// An O-word line, kept from the structure pre-scan on: control flow comes back to these lines
-/// (and to the line after each), so each keeps its parse, its text and where the next line starts.
-struct KeptLine {
-  std::size_t line = no_line;     ///< 0-based
-  ParsedLine parsed;
-  std::string source;             ///< the line as written, without '\r'
-  std::uint64_t next_offset = 0;  ///< where the line after it starts in the file
+/// Where an O-word line and the line after it start in the file: control flow jumps to these
+/// lines only, so no other line's place is kept.
+struct JumpTarget {
+  std::size_t line = no_line;     ///< the O-word line, 0-based
+  std::uint64_t offset = 0;       ///< where it starts
+  std::uint64_t next_offset = 0;  ///< where the line after it starts
 };
 
 /// A line as the parser reads it: without the '\r' of a CRLF line end.
@@ -69,10 +69,6 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   Impl(std::unique_ptr<detail::LineSource> source, std::string file_name, ProgramOptions options)
       : source_(std::move(source)), file_(std::move(file_name)), options_(options) {
     prescan();
-    std::vector<detail::OWordLine> scanned;
-    scanned.reserve(kept_.size());
-    for (const auto& kept : kept_) scanned.push_back(detail::OWordLine{kept.line, &*kept.parsed.oword});
-    structure_ = detail::scan_structure(scanned, file_);
     source_->seek(0);
     frames_.emplace_back();
     store_.set_named("_value", 0.0);
@@ -125,15 +121,18 @@ class ProgramReader::Impl final : public detail::ParameterSource {
 
  private:
   /// The structure pre-scan, one read of the whole file: counts its lines (refusing more than
-  /// max_lines before anything else), parses each line up to the closing '%' (an O-word line's
-  /// syntax error is thrown, after the count) and keeps the O-word lines that can run.
+  /// max_lines before anything else), parses each line up to the closing '%' and hands the O-word
+  /// lines that can run to the structure scan. The first error is thrown after the count: an
+  /// O-word line's syntax error, else the first structure error in line order.
   void prescan() {
+    detail::StructureScan scan(file_);
     bool opened = false;   // the first non-blank line was '%'
     bool content = false;  // a non-blank line was seen
-    bool parsing = true;   // false after the closing '%' or an error
-    std::optional<std::pair<std::size_t, LineError>> error;
+    bool parsing = true;   // false after the closing '%' or a syntax error
+    std::optional<std::pair<std::size_t, LineError>> syntax_error;
+    std::optional<LoadError> structure_error;
     std::size_t index = 0;
-    for (;; ++index) {
+    for (std::uint64_t offset = source_->offset();; offset = source_->offset(), ++index) {
       const auto read = source_->next();
       if (!read) break;
       const bool written = !(read->empty() && source_->at_end());  // a last '\n' ends a line, it does not start one
@@ -145,12 +144,11 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       }
       if (written) line_count_ = index + 1;
       if (!parsing) continue;
-      const std::string_view line = without_carriage_return(*read);
       ParsedLine parsed;
       try {
-        parsed = detail::parse_program_line(line);
+        parsed = detail::parse_program_line(without_carriage_return(*read));
       } catch (const LineError& failure) {
-        error.emplace(index, failure);
+        syntax_error.emplace(index, failure);
         parsing = false;
         continue;
       }
@@ -161,11 +159,20 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       if (parsed.percent && !content) opened = true;
       if (!detail::is_blank(parsed)) content = true;
       if (parsed.oword && !(parsed.block_delete && options_.block_delete)) {
-        kept_.push_back(KeptLine{index, std::move(parsed), std::string(line), source_->offset()});
+        jump_targets_.push_back(JumpTarget{index, offset, source_->offset()});
+        if (!structure_error) {
+          try {
+            scan.add(index, *parsed.oword);
+          } catch (const LoadError& failure) {
+            structure_error = failure;
+          }
+        }
       }
     }
     if (parsing) end_ = index;
-    if (error) throw_at(error->first, error->second);
+    if (syntax_error) throw_at(syntax_error->first, syntax_error->second);
+    if (structure_error) throw *structure_error;
+    structure_ = scan.finish();
   }
 
   [[noreturn]] void throw_at(std::size_t line, const LineError& error) const {
@@ -192,31 +199,18 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// A '%' line, or one starting with '/' while the block delete switch is on.
   bool skipped(const ParsedLine& line) const noexcept { return line.percent || (line.block_delete && options_.block_delete); }
 
-  /// A value of the current line, a line of words.
-  double value(const ParsedLine& line, detail::NodeIndex root) const { return detail::evaluate(line.nodes, root, current_source_, *this); }
+  /// A value of the line at the program counter (parsed last).
+  double value(detail::NodeIndex root) const { return detail::evaluate(current_.nodes, root, current_source_, *this); }
 
-  /// A value of the O-word line at the program counter.
-  double oword_value(detail::NodeIndex root) const {
-    const KeptLine& line = kept(pc_);
-    return detail::evaluate(line.parsed.nodes, root, line.source, *this);
-  }
+  /// The O-word of line `index`, an O-word line.
+  const OWord& oword_at(std::size_t index) { return *parsed(index).oword; }
 
-  /// The kept O-word line `index`, or nullptr if it is not one.
-  const KeptLine* find_kept(std::size_t index) const {
-    const auto found = std::lower_bound(kept_.begin(), kept_.end(), index, [](const KeptLine& k, std::size_t i) { return k.line < i; });
-    return found != kept_.end() && found->line == index ? &*found : nullptr;
-  }
-
-  const KeptLine& kept(std::size_t index) const { return *find_kept(index); }
-  const OWord& oword_at(std::size_t index) const { return *kept(index).parsed.oword; }
-
-  /// Line `index` parsed: an O-word line from those kept, any other read from the file and parsed
-  /// (the last one is kept, so a line is read and parsed once more per pass, not per look).
+  /// Line `index` read from the file and parsed (the last one is kept, so a line is read and
+  /// parsed once more per pass, not per look).
   const ParsedLine& parsed(std::size_t index) {
-    if (const KeptLine* line = find_kept(index)) return line->parsed;
     if (current_index_ != index) {
       current_source_.assign(without_carriage_return(read_line(index)));
-      current_ = detail::parse_program_line(current_source_);  // cannot throw: only O-word lines do
+      current_ = detail::parse_program_line(current_source_);  // cannot throw: the pre-scan parsed every O-word line
       current_index_ = index;
     }
     return current_;
@@ -225,15 +219,24 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// Line `index` as written: the next line of the file, or after a seek to where the line starts
   /// (control flow reaches a line out of order only at an O-word line or the line after one).
   std::string_view read_line(std::size_t index) {
-    if (index != source_line_) {
-      const KeptLine* before = index == 0 ? nullptr : find_kept(index - 1);
-      if (index != 0 && before == nullptr) throw std::logic_error("line " + std::to_string(index + 1) + " reached by a jump");
-      source_->seek(before == nullptr ? 0 : before->next_offset);
-    }
+    if (index != source_line_) source_->seek(offset_of(index));
     const auto line = source_->next();
     if (!line) throw std::logic_error("line " + std::to_string(index + 1) + " is past the end of the file");
     source_line_ = index + 1;
     return *line;
+  }
+
+  /// Where line `index` starts: the first line, an O-word line or the line after one.
+  std::uint64_t offset_of(std::size_t index) const {
+    if (index == 0) return 0;
+    const auto after = std::upper_bound(jump_targets_.begin(), jump_targets_.end(), index,
+                                        [](std::size_t i, const JumpTarget& target) { return i < target.line; });
+    if (after != jump_targets_.begin()) {
+      const JumpTarget& target = *std::prev(after);
+      if (target.line == index) return target.offset;
+      if (target.line + 1 == index) return target.next_offset;
+    }
+    throw std::logic_error("line " + std::to_string(index + 1) + " reached by a jump");
   }
 
   /// A line of words, assignments and comments.
@@ -243,7 +246,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     block.line = pc_ + 1;
     block.source = current_source_;
     block.block_delete = line.block_delete;
-    for (const auto& word : line.words) block.words.push_back(ProgramWord{word.letter, value(line, word.value), word.column});
+    for (const auto& word : line.words) block.words.push_back(ProgramWord{word.letter, value(word.value), word.column});
     // LinuxCNC: every value on the line is read first; the assignments take effect at its end.
     struct Pending {
       const detail::Assignment* assignment;
@@ -255,7 +258,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       int number = 0;
       if (assignment.name.empty()) {
         const auto& at = line.nodes[assignment.number];
-        number = detail::parameter_number(value(line, assignment.number), at, current_source_);
+        number = detail::parameter_number(value(assignment.number), at, current_source_);
         if (number > max_program_parameter) {
           throw LineError(assignment.column, detail::node_text(at, current_source_),
                           "parameters #" + std::to_string(max_program_parameter + 1) + "-#" + std::to_string(ParameterStore::max_numbered) +
@@ -263,7 +266,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
                           Error::GcodeBadNumber);
         }
       }
-      pending.push_back(Pending{&assignment, number, value(line, assignment.value)});
+      pending.push_back(Pending{&assignment, number, value(assignment.value)});
     }
     for (const auto& p : pending) {
       if (p.number != 0) {
@@ -287,7 +290,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     return block;
   }
 
-  bool test(const OWord& oword) const { return oword_value(oword.arguments.front()) != 0.0; }
+  bool test(const OWord& oword) const { return value(oword.arguments.front()) != 0.0; }
 
   void run_control() {
     const std::size_t here = pc_;
@@ -318,7 +321,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         break;
       case Keyword::Endwhile: pc_ = link.opening; break;
       case Keyword::Repeat: {
-        const double count = oword_value(oword.arguments.front());
+        const double count = value(oword.arguments.front());
         const long long passes = count >= 1.0 ? static_cast<long long>(std::min(std::trunc(count), max_repeat_count)) : 0;
         if (passes <= 0) {
           pc_ = link.closing + 1;
@@ -342,7 +345,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       case Keyword::Continue: {
         const std::size_t loop = link.opening;
         // while: test again; do: its closing while tests; repeat: endrepeat counts the pass.
-        pc_ = oword_at(loop).keyword == Keyword::While ? loop : structure_.link(loop).closing;
+        pc_ = structure_.link(loop).keyword == Keyword::While ? loop : structure_.link(loop).closing;
         break;
       }
     }
@@ -369,7 +372,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void call(const OWord& oword) {
     std::string label = oword.label;
     if (oword.label_value != detail::no_node) {
-      const double computed = oword_value(oword.label_value);
+      const double computed = value(oword.label_value);
       if (!(computed >= 0.0 && computed < 1e9 && computed == std::floor(computed))) {
         fail_oword(oword, "a computed subroutine label must be a whole number 0..999999999", Error::GcodeBadNumber);
       }
@@ -382,7 +385,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
                  Error::CapacityExceeded);
     }
     std::vector<double> arguments;
-    for (const auto argument : oword.arguments) arguments.push_back(oword_value(argument));
+    for (const auto argument : oword.arguments) arguments.push_back(value(argument));
     Frame frame;
     frame.return_line = pc_ + 1;
     for (int n = 1; n <= argument_parameters; ++n) frame.saved[static_cast<std::size_t>(n - 1)] = store_.get(n);
@@ -396,7 +399,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void return_from(const OWord& oword) {
     if (frames_.size() == 1) fail_oword(oword, "reached without a call", Error::GcodeSyntax);
     const bool has_value = !oword.arguments.empty();
-    const double result = has_value ? oword_value(oword.arguments.front()) : 0.0;
+    const double result = has_value ? value(oword.arguments.front()) : 0.0;
     store_.set_named("_value", result);
     store_.set_named("_value_returned", has_value ? 1.0 : 0.0);
     const Frame& frame = frames_.back();
@@ -408,9 +411,9 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   std::unique_ptr<detail::LineSource> source_;
   std::string file_;
   ProgramOptions options_;
-  // A program's parse trees would take about 0.7 KB per line: only the O-word lines (control flow
-  // comes back to them) keep theirs, with their text; any other line is read again when it runs.
-  std::vector<KeptLine> kept_;  ///< in line order
+  // A program's parse trees would take about 0.7 KB per line, its text about 20 bytes: the reader
+  // keeps neither, only where the O-word lines start (jumps go there) and their structure.
+  std::vector<JumpTarget> jump_targets_;  ///< one per O-word line, in line order
   detail::ProgramStructure structure_;
   std::size_t end_ = 0;         ///< lines from here on are not part of the program (closing %)
   std::size_t line_count_ = 0;  ///< lines in the file (a last '\n' ends a line, it does not start one)

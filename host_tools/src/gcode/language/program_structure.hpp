@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -24,16 +25,11 @@ struct ControlLink {
   std::size_t next_branch = no_line;  ///< if, elseif, else: the next elseif, else or endif
   std::size_t loop = no_line;         ///< the innermost loop containing the line (for the endless-loop message)
   std::size_t loop_after = no_line;   ///< the innermost loop containing the lines after it, up to the next O-word line
+  Keyword keyword = Keyword::Sub;
   bool closes_do = false;             ///< a `while` that ends a `do` loop
 };
 
-/// An O-word line as the scan reads it: its index and its O-word (owned by the reader).
-struct OWordLine {
-  std::size_t line = no_line;
-  const OWord* oword = nullptr;
-};
-
-/// The structure of a program: what the O-word lines tell, nothing per other line.
+/// The structure of a program: what its O-word lines tell, nothing per other line.
 struct ProgramStructure {
   std::vector<ControlLink> links;             ///< one per O-word line, in line order
   std::map<std::string, std::size_t> subs;    ///< label ("100", "<name>") -> its `sub` line
@@ -48,11 +44,41 @@ struct ProgramStructure {
 /// "o100 endwhile", "o<name> sub": an O-word as messages name it.
 [[nodiscard]] std::string oword_text(const OWord& oword);
 
-/// Scans the O-word lines of a program (in line order, those of its lines that run: the reader
-/// leaves out the lines after a closing '%' and, with block delete on, those starting with '/').
-/// Throws LoadError (file:line:column, the O-word) for a construct closed by another label or
-/// keyword, one left open, break/continue outside its loop, return outside its subroutine, a
+/// The kinds of construct an O-word opens (program_structure.cpp).
+enum class OWordConstruct : std::uint8_t;
+
+/// Finds the structure from the O-word lines of a program, given one at a time in line order (the
+/// lines that can run: the reader leaves out those after a closing '%' and, with block delete on,
+/// those starting with '/'), so that the reader need not keep their parse. Throws LoadError
+/// (file:line:column, the O-word) for a construct closed by another label or keyword, one left
+/// open (by finish()), break/continue outside its loop, return outside its subroutine, a
 /// subroutine defined twice or inside another construct.
-[[nodiscard]] ProgramStructure scan_structure(const std::vector<OWordLine>& lines, const std::string& file);
+class StructureScan {
+ public:
+  explicit StructureScan(std::string file);
+  ~StructureScan();
+  StructureScan(const StructureScan&) = delete;
+  StructureScan& operator=(const StructureScan&) = delete;
+
+  /// The next O-word line: `line` its 0-based index.
+  void add(std::size_t line, const OWord& oword);
+  /// The structure, once every line is added.
+  [[nodiscard]] ProgramStructure finish();
+
+ private:
+  using Construct = OWordConstruct;
+  struct Open;
+  [[nodiscard]] std::size_t innermost_loop() const;
+  [[noreturn]] void fail(std::size_t line, std::size_t column, const std::string& field, const std::string& message) const;
+  [[noreturn]] void fail(const OWord& oword, const std::string& message) const;
+  Open& expect_top(const OWord& oword, Construct kind);
+  void close(const Open& top);
+  void push(const OWord& oword, Construct kind);
+  void visit(const OWord& oword);
+
+  std::string file_;
+  ProgramStructure structure_;
+  std::vector<Open> stack_;
+};
 
 }  // namespace curvestep::host::gcode::detail
