@@ -109,6 +109,12 @@ TEST_CASE("file reader: loops, calls, branches and repeats give the blocks of th
     CHECK(file_x_values("if2", "#1 = 2\n" + branches) == Values{2, 9});
     CHECK(file_x_values("if3", "#1 = 7\n" + branches) == Values{4, 9});
   }
+  SECTION("an if with 300 elseifs, more lines than the reader keeps parsed, in a loop") {
+    std::string program = "#2 = 0\no9 repeat [2]\n#1 = [298 + #2]\no1 if [#1 EQ 0]\n  G0 X0\n";
+    for (int k = 1; k <= 300; ++k) program += "o1 elseif [#1 EQ " + std::to_string(k) + "]\n  G0 X" + std::to_string(k) + "\n";
+    program += "o1 else\n  G0 X-1\no1 endif\n#2 = 2\no9 endrepeat\n";
+    CHECK(file_x_values("elseifs", program) == Values{298, 300});
+  }
   SECTION("do / while runs its body once before the test") {
     CHECK(file_x_values("do", "#1 = 5\no2 do\n  G0 X#1\n  #1 = [#1 + 1]\no2 while [#1 LT 3]\nG0 X9\n") == Values{5, 9});
   }

@@ -56,6 +56,16 @@ struct JumpTarget {
   std::uint64_t next_offset = 0;  ///< where the line after it starts
 };
 
+/// A line read from the file, parsed.
+struct ReadLine {
+  std::string source;  ///< as written, without '\r'
+  ParsedLine parsed;
+};
+
+/// Lines read lately that the reader keeps parsed (about 0.7 KB each): the lines of a loop with
+/// fewer run again without being read and parsed again.
+constexpr std::size_t recent_lines_kept = 256;
+
 /// A line as the parser reads it: without the '\r' of a CRLF line end.
 std::string_view without_carriage_return(std::string_view line) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
@@ -82,6 +92,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
           ended_ = true;
           break;
         }
+        if (recent_.size() >= recent_lines_kept) recent_.clear();  // no line of an earlier step is looked at again
         count_line();
         const ParsedLine& line = parsed(pc_);
         if (skipped(line)) {
@@ -200,21 +211,25 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   bool skipped(const ParsedLine& line) const noexcept { return line.percent || (line.block_delete && options_.block_delete); }
 
   /// A value of the line at the program counter (parsed last).
-  double value(detail::NodeIndex root) const { return detail::evaluate(current_.nodes, root, current_source_, *this); }
+  double value(detail::NodeIndex root) const {
+    const ReadLine& line = recent_.at(pc_);
+    return detail::evaluate(line.parsed.nodes, root, line.source, *this);
+  }
 
   /// The O-word of line `index`, an O-word line.
   const OWord& oword_at(std::size_t index) { return *parsed(index).oword; }
 
-  /// Line `index` read from the file and parsed (the last one is kept, so a line is read and
-  /// parsed once more per pass, not per look).
-  const ParsedLine& parsed(std::size_t index) {
-    if (current_index_ != index) {
-      current_source_.assign(without_carriage_return(read_line(index)));
-      current_ = detail::parse_program_line(current_source_);  // cannot throw: the pre-scan parsed every O-word line
-      current_index_ = index;
-    }
-    return current_;
+  /// Line `index` parsed: one of the lines read lately, or read from the file and parsed.
+  const ReadLine& line(std::size_t index) {
+    const auto found = recent_.find(index);
+    if (found != recent_.end()) return found->second;
+    ReadLine read;
+    read.source = without_carriage_return(read_line(index));
+    read.parsed = detail::parse_program_line(read.source);  // cannot throw: the pre-scan parsed every O-word line
+    return recent_.emplace(index, std::move(read)).first->second;
   }
+
+  const ParsedLine& parsed(std::size_t index) { return line(index).parsed; }
 
   /// Line `index` as written: the next line of the file, or after a seek to where the line starts
   /// (control flow reaches a line out of order only at an O-word line or the line after one).
@@ -241,10 +256,11 @@ class ProgramReader::Impl final : public detail::ParameterSource {
 
   /// A line of words, assignments and comments.
   std::optional<ProgramBlock> run_line() {
-    const ParsedLine& line = parsed(pc_);
+    const ReadLine& current = line(pc_);
+    const ParsedLine& line = current.parsed;
     ProgramBlock block;
     block.line = pc_ + 1;
-    block.source = current_source_;
+    block.source = current.source;
     block.block_delete = line.block_delete;
     for (const auto& word : line.words) block.words.push_back(ProgramWord{word.letter, value(word.value), word.column});
     // LinuxCNC: every value on the line is read first; the assignments take effect at its end.
@@ -258,9 +274,9 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       int number = 0;
       if (assignment.name.empty()) {
         const auto& at = line.nodes[assignment.number];
-        number = detail::parameter_number(value(assignment.number), at, current_source_);
+        number = detail::parameter_number(value(assignment.number), at, current.source);
         if (number > max_program_parameter) {
-          throw LineError(assignment.column, detail::node_text(at, current_source_),
+          throw LineError(assignment.column, detail::node_text(at, current.source),
                           "parameters #" + std::to_string(max_program_parameter + 1) + "-#" + std::to_string(ParameterStore::max_numbered) +
                               " are read-only (the machine state: tool, position)",
                           Error::GcodeBadNumber);
@@ -352,9 +368,11 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   }
 
   /// After a false if or elseif: test the following elseifs, else enter the else or leave at endif.
+  /// The caller looks at nothing of its line afterwards: a long elseif chain may forget the lines read.
   void enter_branch(std::size_t branch) {
     for (;;) {
       pc_ = branch;
+      if (recent_.size() >= recent_lines_kept) recent_.clear();
       const OWord& oword = oword_at(branch);
       if (oword.keyword != Keyword::Elseif) {
         pc_ = branch + 1;
@@ -418,9 +436,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   std::size_t end_ = 0;         ///< lines from here on are not part of the program (closing %)
   std::size_t line_count_ = 0;  ///< lines in the file (a last '\n' ends a line, it does not start one)
   std::size_t source_line_ = 0;  ///< the line source_->next() reads
-  std::string current_source_;  ///< the line of words being run, as written
-  ParsedLine current_;
-  std::size_t current_index_ = no_line;
+  std::map<std::size_t, ReadLine> recent_;  ///< at most recent_lines_kept lines read lately (and the step's own)
   ParameterStore store_;
   std::vector<Frame> frames_;
   std::size_t pc_ = 0;
