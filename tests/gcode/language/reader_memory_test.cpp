@@ -38,35 +38,27 @@ std::string write_branches(const std::string& name, int ifs) {
   return path;
 }
 
+/// How much more (KiB) the largest resident size of reading `long_file` is than of reading
+/// `short_file` (both removed afterwards).
+long growth_kib(const std::string& short_file, const std::string& long_file) {
+  const long short_kib = curvestep::testing::peak_resident_kib({GCODE_READ_PROGRAM, short_file});
+  const long long_kib = curvestep::testing::peak_resident_kib({GCODE_READ_PROGRAM, long_file});
+  std::remove(short_file.c_str());
+  std::remove(long_file.c_str());
+  UNSCOPED_INFO("reader: " << short_kib << " KiB for " << short_file << ", " << long_kib << " KiB for " << long_file);
+  return long_kib - short_kib;
+}
+
 }  // namespace
 
 TEST_CASE("memory: the G-code reader reading a file 500 000 lines longer grows by at most 8 bytes a line",
           "[gcode][language][file][memory]") {
-  const std::string short_file = write_raster("short", 50'000);
-  const std::string long_file = write_raster("long", 550'000);
   constexpr long bytes_per_line = 8;
-  constexpr long margin_kib = 500'000 * bytes_per_line / 1024;
-
-  const long short_kib = curvestep::testing::peak_resident_kib({GCODE_READ_PROGRAM, short_file});
-  const long long_kib = curvestep::testing::peak_resident_kib({GCODE_READ_PROGRAM, long_file});
-  INFO("reader: " << short_kib << " KiB for 50 000 lines, " << long_kib << " KiB for 550 000");
-  CHECK(long_kib <= short_kib + margin_kib);
-
-  std::remove(short_file.c_str());
-  std::remove(long_file.c_str());
+  CHECK(growth_kib(write_raster("short", 50'000), write_raster("long", 550'000)) <= 500'000 * bytes_per_line / 1024);
 }
 
 TEST_CASE("memory: the G-code reader keeps at most 128 bytes per O-word line", "[gcode][language][file][memory]") {
-  const std::string short_file = write_branches("short_branches", 25'000);
-  const std::string long_file = write_branches("long_branches", 175'000);
-  constexpr long bytes_per_oword_line = 128;
-  constexpr long margin_kib = 300'000 * bytes_per_oword_line / 1024;
-
-  const long short_kib = curvestep::testing::peak_resident_kib({GCODE_READ_PROGRAM, short_file});
-  const long long_kib = curvestep::testing::peak_resident_kib({GCODE_READ_PROGRAM, long_file});
-  INFO("reader: " << short_kib << " KiB for 50 000 O-word lines, " << long_kib << " KiB for 350 000");
-  CHECK(long_kib <= short_kib + margin_kib);
-
-  std::remove(short_file.c_str());
-  std::remove(long_file.c_str());
+  constexpr long bytes_per_oword_line = 128;  // 25 000 and 175 000 ifs: 50 000 and 350 000 O-word lines
+  CHECK(growth_kib(write_branches("short_branches", 25'000), write_branches("long_branches", 175'000)) <=
+        300'000 * bytes_per_oword_line / 1024);
 }
