@@ -220,6 +220,13 @@ TEST_CASE("file reader: errors name the file's line and column as the text reade
     const ScratchProgram three("three", "G0 X1\nG0 X2\nG0 X3\n");
     CHECK(run_file(three.path(), options).size() == 3);
   }
+  SECTION("a file cut short after the pre-scan read it") {
+    const ScratchProgram file("cut", "G0 X1\nG0 X2\nG0 X3\n");
+    ProgramReader reader = ProgramReader::open_file(file.path(), "test.ngc");
+    std::ofstream(file.path(), std::ios::binary | std::ios::trunc) << "G0 X1\n";
+    REQUIRE(reader.next());
+    CHECK_THROWS_WITH(reader.next(), Catch::Contains("line 3 is past the end of the file: did the file change"));
+  }
   SECTION("a file that cannot be opened") {
     CHECK_THROWS_WITH(ProgramReader::open_file("no_such_dir/none.ngc", "none.ngc"), "no_such_dir/none.ngc: cannot open the file");
   }

@@ -236,7 +236,10 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   std::string_view read_line(std::size_t index) {
     if (index != source_line_) source_->seek(offset_of(index));
     const auto line = source_->next();
-    if (!line) throw std::logic_error("line " + std::to_string(index + 1) + " is past the end of the file");
+    if (!line) {
+      throw std::runtime_error(file_ + ": line " + std::to_string(index + 1) +
+                               " is past the end of the file: did the file change while it was read?");
+    }
     source_line_ = index + 1;
     return *line;
   }
