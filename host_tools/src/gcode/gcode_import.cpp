@@ -492,8 +492,7 @@ class GcodeLoader {
 
   /// Room for a segment per program line (the reader counted them): the job's vectors then never
   /// move their contents while they grow (a doubling vector of 472-byte PathSegments held up to 2.5
-  /// times its segments at once; without it sim of 1 000 000 lines took 157.4 MB, with it 153.7 MB).
-  /// Pages reserved and never written take no memory.
+  /// times its segments at once). Pages reserved and never written take no memory.
   void reserve_per_line(std::size_t count) {
     if (sink_ != nullptr) return;  // a streamed load keeps only SourceLines, which grow by doubling: 8 bytes each
     job_.sources.reserve(count);
