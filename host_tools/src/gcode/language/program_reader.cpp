@@ -63,7 +63,8 @@ struct ReadLine {
 };
 
 /// Lines read lately that the reader keeps parsed (about 0.7 KB each): the lines of a loop with
-/// fewer run again without being read and parsed again.
+/// fewer run again without being read and parsed again. A program without O-words runs each line
+/// once and keeps only the last.
 constexpr std::size_t recent_lines_kept = 256;
 
 /// A line as the parser reads it: without the '\r' of a CRLF line end.
@@ -92,7 +93,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
           ended_ = true;
           break;
         }
-        if (recent_.size() >= recent_lines_kept) recent_.clear();  // no line of an earlier step is looked at again
+        forget_lines();  // no line of an earlier step is looked at again
         count_line();
         const ParsedLine& line = parsed(pc_);
         if (skipped(line)) {
@@ -219,14 +220,30 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// The O-word of line `index`, an O-word line.
   const OWord& oword_at(std::size_t index) { return *parsed(index).oword; }
 
-  /// Line `index` parsed: one of the lines read lately, or read from the file and parsed.
+  /// Line `index` parsed: one of the lines read lately, or read from the file and parsed (into
+  /// the room of a line forgotten, if any: its text keeps its capacity).
   const ReadLine& line(std::size_t index) {
     const auto found = recent_.find(index);
     if (found != recent_.end()) return found->second;
-    ReadLine read;
-    read.source = without_carriage_return(read_line(index));
-    read.parsed = detail::parse_program_line(read.source);  // cannot throw: the pre-scan parsed every O-word line
-    return recent_.emplace(index, std::move(read)).first->second;
+    if (spare_.empty()) return read_into(recent_[index], index);
+    spare_.key() = index;
+    read_into(spare_.mapped(), index);
+    return recent_.insert(std::move(spare_)).position->second;  // leaves spare_ empty
+  }
+
+  const ReadLine& read_into(ReadLine& line, std::size_t index) {
+    line.source.assign(without_carriage_return(read_line(index)));
+    line.parsed = detail::parse_program_line(line.source);  // cannot throw: the pre-scan parsed every O-word line
+    return line;
+  }
+
+  /// Forgets the lines read lately once there are as many as the reader keeps, and keeps the room
+  /// of one for the next line read.
+  void forget_lines() {
+    const std::size_t kept = structure_.links.empty() ? 1 : recent_lines_kept;
+    if (recent_.size() < kept) return;
+    if (spare_.empty()) spare_ = recent_.extract(recent_.begin());
+    recent_.clear();
   }
 
   const ParsedLine& parsed(std::size_t index) { return line(index).parsed; }
@@ -375,7 +392,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void enter_branch(std::size_t branch) {
     for (;;) {
       pc_ = branch;
-      if (recent_.size() >= recent_lines_kept) recent_.clear();
+      forget_lines();
       const OWord& oword = oword_at(branch);
       if (oword.keyword != Keyword::Elseif) {
         pc_ = branch + 1;
@@ -440,6 +457,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   std::size_t line_count_ = 0;  ///< lines in the file (a last '\n' ends a line, it does not start one)
   std::size_t source_line_ = 0;  ///< the line source_->next() reads
   std::map<std::size_t, ReadLine> recent_;  ///< at most recent_lines_kept lines read lately (and the step's own)
+  std::map<std::size_t, ReadLine>::node_type spare_;  ///< a forgotten line's room
   ParameterStore store_;
   std::vector<Frame> frames_;
   std::size_t pc_ = 0;
