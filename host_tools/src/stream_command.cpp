@@ -21,6 +21,7 @@
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/simulator.hpp>
+#include <curvestep/host/streamed_job.hpp>
 
 #include "command_registry.hpp"
 #include "job_pipeline_options.hpp"
@@ -82,9 +83,19 @@ std::string look_ahead_text(const link::StreamResult& result, bool by_distance) 
 
 int run_stream(const StreamCommandOptions& o) {
   const MachineFile machine_file = load_machine_for_link(o.machine);
-  const PreparedJob prepared = prepare_job(o.job, machine_file, machine_file.limits, o.pipeline);
+  // A streamed job is not held (streamed_job.hpp): the file is read for the plan, then again for
+  // the wire's checks (or the host's planning) and for the upload. A pen drawing is prepared whole.
+  const bool streamed = !o.pipeline.optimize && is_streamed(o.job, machine_file);
+  StreamedJobPlan plan;
+  if (streamed) {
+    plan = plan_streamed_job(o.job, machine_file, machine_file.limits, o.pipeline);
+  } else {
+    plan.prepared = prepare_job(o.job, machine_file, machine_file.limits, o.pipeline);
+  }
+  const PreparedJob& prepared = plan.prepared;
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
+  const ReadableJob readable_job = streamed ? readable(plan, o.job, machine_file, machine_file.limits, o.pipeline) : readable(job);
   for (const auto& note : prepared.notes) std::cerr << "curvestep stream: note: " << note << "\n";
   auto transport = link::open_port(o.link.port, o.link.baud);
   link::StreamOptions options;
@@ -117,7 +128,7 @@ int run_stream(const StreamCommandOptions& o) {
   };
   link::StreamResult result;
   try {
-    result = link::stream_job(*transport, job, machine, options);
+    result = link::stream_job(*transport, readable_job, machine, options);
   } catch (const link::StreamError& e) {
     drop_capture();
     session.end_line();

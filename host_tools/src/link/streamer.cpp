@@ -18,7 +18,9 @@
 #include <curvestep/host/link/host_link.hpp>
 #include <curvestep/host/link/tick_timing_text.hpp>
 #include <curvestep/host/link/wire.hpp>
+#include <curvestep/host/joint_stops.hpp>
 #include <curvestep/host/piece_planner.hpp>
+#include <curvestep/host/readable_job.hpp>
 #include <curvestep/protocol/messages.hpp>
 
 namespace curvestep::host::link {
@@ -26,8 +28,8 @@ namespace {
 
 class Upload {
  public:
-  Upload(Transport& transport, const Job& job, const MachineLimits& machine, const StreamOptions& options)
-      : transport_(transport), job_(job), machine_(machine), options_(options), link_(transport, options.link),
+  Upload(Transport& transport, const ReadableJob& job, const MachineLimits& machine, const StreamOptions& options)
+      : transport_(transport), job_(job), outline_(*job.outline), machine_(machine), options_(options), link_(transport, options.link),
         capture_(options.setpoint_sink) {}
 
   StreamResult run() {
@@ -45,17 +47,16 @@ class Upload {
       for (const auto& note : wire_machine.notes) warn("machine: " + note);
       rate_hz_ = wire_machine.configuration.control_rate_hz;
       capture_.set_rate_hz(rate_hz_);
+      axes_ = axes;
+      if (job_.segments == 0) throw StreamError(Error::NothingQueued, outline_.name + ": the job has no moves: nothing to stream");
       if (link_.capabilities().lookahead == 0) {
-        plan_here(axes);
+        plan_here();
+        events_ = to_wire_events(outline_, machine_.rate_hz, job_.event_labels);  // pieces carry file labels
       } else {
-        wire_job_ = to_wire(job_, axes, machine_.rate_hz);
-        for (const auto& note : wire_job_.notes) warn(note);
-        if (!wire_job_.segments.empty()) wire_job_.segments.back().end_of_job = true;
+        check_segments();
+        const std::size_t total = job_.segments;  // the device numbers the segments as they arrive
+        events_ = to_wire_events(outline_, machine_.rate_hz, [total](std::size_t k) { return std::min(k, total); });
       }
-      if (piece_mode_ ? job_.segments.empty() : wire_job_.segments.empty()) {
-        throw StreamError(Error::NothingQueued, job_.name + ": the job has no moves: nothing to stream");
-      }
-      events_ = to_wire_events(job_, machine_.rate_hz, piece_mode_);
       check_event_room(link_.capabilities().queue_capacity);
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
@@ -271,7 +272,7 @@ class Upload {
   /// controller with options_.lookahead), piece by piece as they are sent. It is first planned
   /// through once, keeping nothing but the count: what the planner refuses or the wire cannot
   /// carry is refused before the machine moves (the executor cannot brake on a broken stream).
-  void plan_here(std::size_t axes) {
+  void plan_here() {
     SimulationOptions planning;
     planning.lookahead = options_.lookahead;
     planning.lookahead_distance_mm = options_.lookahead_distance_mm;
@@ -280,17 +281,52 @@ class Upload {
       overrides_.push_back({0, requested_override_});
     }
     PiecePlanner check(job_, machine_, planning);
-    axes_ = axes;
     while (const std::optional<PlannedPiece> piece = check.next_piece()) (void)wire_piece(*piece, planned_total_++);
     planner_ = std::make_unique<PiecePlanner>(job_, machine_, planning);
     piece_mode_ = true;
+  }
+
+  /// Segment mode: reads the job once through, converting each segment for the wire and keeping
+  /// none: what the wire cannot carry is refused, and what it rounds is told, before the machine
+  /// moves. Then opens the read the upload takes its segments from.
+  void check_segments() {
+    entries_ = joint_stops(outline_.events, job_.segments, outline_.name, machine_.rate_hz);
+    std::vector<std::string> notes;
+    std::unique_ptr<SegmentSource> all = job_.read();
+    std::size_t source = 0;
+    for (std::size_t k = 0; const PathSegment* segment = all->next(source); ++k) {
+      (void)to_wire(*segment, entries_[k], axes_, wire_segment_where(outline_.name, source), notes);
+    }
+    for (const auto& note : notes) warn(note);
+    segments_ = job_.read();
+  }
+
+  /// Segment mode: converts the next segment into next_segment_ unless one waits there; false once
+  /// all went out.
+  bool prepare_segment() {
+    if (next_segment_) return true;
+    if (next_ == job_.segments) return false;
+    std::size_t source = 0;
+    const PathSegment* segment = segments_->next(source);
+    if (segment == nullptr) {
+      throw std::runtime_error(outline_.name + ": the job ended after " + std::to_string(next_) + " of its " +
+                               std::to_string(job_.segments) + " segments");
+    }
+    std::vector<std::string> notes;  // told by check_segments
+    next_segment_ = to_wire(*segment, entries_[next_], axes_, wire_segment_where(outline_.name, source), notes);
+    next_segment_label_ = static_cast<std::uint32_t>(source);
+    if (next_ + 1 == job_.segments) {
+      next_segment_->end_of_job = true;
+      next_segment_->end_rest_ticks = entries_.at_end().rest_ticks;  // the dwells after the last move
+    }
+    return true;
   }
 
   /// Piece mode: plans the next piece into next_piece_ unless one waits there, the planner has none
   /// now (held, done) or the pieces sent reach options_.piece_lead_s ahead of the controller.
   /// Segment mode: true while segments are left. True if a unit is ready to go.
   bool prepare_unit() {
-    if (!piece_mode_) return next_ < wire_job_.segments.size();
+    if (!piece_mode_) return prepare_segment();
     if (next_piece_) return true;
     if (planner_->done() || !within_piece_lead()) return false;
     const std::optional<PlannedPiece> planned = planner_->next_piece();
@@ -304,7 +340,7 @@ class Upload {
     try {
       return to_wire(piece, axes_);
     } catch (const std::runtime_error& e) {
-      throw std::runtime_error(job_.name + ": piece " + std::to_string(k + 1) + ", " + e.what());
+      throw std::runtime_error(outline_.name + ": piece " + std::to_string(k + 1) + ", " + e.what());
     }
   }
 
@@ -329,7 +365,7 @@ class Upload {
     std::size_t joint = ~std::size_t{0};
     std::size_t count = 0;
     bool after_dwell = false;
-    for (const JobEvent& event : job_.events) {
+    for (const JobEvent& event : outline_.events) {
       if (event.before_segment != joint) {
         joint = event.before_segment;
         count = 0;
@@ -341,14 +377,14 @@ class Upload {
       }
       if (event.kind == JobEventKind::Message) continue;
       ++count;
-      const bool last = joint >= job_.segments.size();
+      const bool last = joint >= job_.segments;
       const bool limited = piece_mode_ || joint == 0 || after_dwell || last;
       if (!limited || count <= capacity) continue;
       const char* where = piece_mode_ ? "at one joint (a controller without a planner cannot wait there for more)"
                           : joint == 0 ? "before the first move"
                           : last       ? "after the last move"
                                        : "after a dwell at one joint";
-      throw StreamError(Error::CapacityExceeded, job_.name + (event.line > 0 ? ":" + std::to_string(event.line) : "") + ": " +
+      throw StreamError(Error::CapacityExceeded, outline_.name + (event.line > 0 ? ":" + std::to_string(event.line) : "") + ": " +
                                                      event.text + ": more than " + std::to_string(capacity) +
                                                      " machine events " + where + "; this controller's event ring holds " +
                                                      std::to_string(capacity) + " (docs/gcode.md, \"Machine events\")");
@@ -357,27 +393,22 @@ class Upload {
 
   /// True once every unit of the job was submitted.
   [[nodiscard]] bool all_units_sent() const {
-    return piece_mode_ ? planner_->done() && !next_piece_ : next_ == wire_job_.segments.size();
+    return piece_mode_ ? planner_->done() && !next_piece_ : next_ == job_.segments;
   }
   /// The job's units (segments, or pieces for a controller without a planner); pieces after a hold
   /// or override changed the plan: 0 until its last one is planned.
   [[nodiscard]] std::size_t known_units() const {
-    if (!piece_mode_) return wire_job_.segments.size();
+    if (!piece_mode_) return job_.segments;
     if (!plan_changed_) return planned_total_;
     return planner_->done() ? next_ + (next_piece_ ? 1 : 0) : 0;
   }
-  /// The job file's segment index of unit k (a piece's: unacknowledged or among the last 256 acknowledged).
+  /// The job file's segment index of unit k (unacknowledged or among the last 256 acknowledged).
   [[nodiscard]] std::size_t file_segment(std::size_t k) const {
-    if (piece_mode_) {
-      const bool kept = k >= piece_segments_base_ && k - piece_segments_base_ < piece_segments_.size();
-      return kept ? piece_segments_[k - piece_segments_base_] : 0;
-    }
-    return job_.source_index.empty() ? k : job_.source_index[k];
+    const bool kept = k >= unit_labels_base_ && k - unit_labels_base_ < unit_labels_.size();
+    return kept ? unit_labels_[k - unit_labels_base_] : 0;
   }
   /// The job file's segments (the last one's index + 1).
-  [[nodiscard]] std::size_t file_segment_count() const {
-    return job_.source_index.empty() ? job_.segments.size() : job_.source_index.back() + 1;
-  }
+  [[nodiscard]] std::size_t file_segment_count() const { return job_.file_segments; }
   /// "piece 12" (1-based; "piece 12 of 340" once the last is planned) in piece mode, "" otherwise.
   [[nodiscard]] std::string piece_text(std::size_t k) const {
     if (!piece_mode_) return "";
@@ -393,7 +424,7 @@ class Upload {
       text += piece_mode_ ? "no acknowledged piece" : "no acknowledged segment";
     } else {
       const std::size_t last = acknowledged_units_ - 1;
-      text += "segment " + std::to_string(file_segment(last)) + " of " + job_.name + " (" +
+      text += "segment " + std::to_string(file_segment(last)) + " of " + outline_.name + " (" +
               (piece_mode_ ? piece_text(last) : std::to_string(acknowledged_units_) + " of " + std::to_string(known_units())) +
               " acknowledged)";
     }
@@ -406,9 +437,9 @@ class Upload {
     while (submitted_.size() > link_.in_flight()) {
       if (submitted_.front() < event_marker) acknowledged_units_ = submitted_.front() + 1;  // a unit, not a marker
       // Keep the pieces a report may still name: up to 256 frames back (the sequence numbers' range).
-      while (!piece_segments_.empty() && piece_segments_base_ + 256 < acknowledged_units_) {
-        piece_segments_.pop_front();
-        ++piece_segments_base_;
+      while (!unit_labels_.empty() && unit_labels_base_ + 256 < acknowledged_units_) {
+        unit_labels_.pop_front();
+        ++unit_labels_base_;
       }
       if (submitted_.front() == start_marker) {
         start_acknowledged_ = true;
@@ -458,7 +489,7 @@ class Upload {
     if (found->second == start_marker) return " in the Start command";
     if (found->second == operator_marker) return " in the operator's FeedHold, Resume, Abort or FeedOverride";
     const std::size_t k = found->second;
-    const std::string text = " in " + job_.name + " segment " + std::to_string(file_segment(k));
+    const std::string text = " in " + outline_.name + " segment " + std::to_string(file_segment(k));
     return piece_mode_ ? text + " (" + piece_text(k) + ")" : text;
   }
 
@@ -468,11 +499,13 @@ class Upload {
       if (piece_mode_) {
         link_.submit(protocol::Message(*next_piece_));
         planned_ticks_ += next_piece_->ticks;
-        piece_segments_.push_back(next_piece_->segment);
+        unit_labels_.push_back(next_piece_->segment);
         last_piece_segment_ = next_piece_->segment;
         next_piece_.reset();
       } else {
-        link_.submit(protocol::Message(wire_job_.segments[next_]));
+        link_.submit(protocol::Message(*next_segment_));
+        unit_labels_.push_back(next_segment_label_);
+        next_segment_.reset();
       }
       submitted_.push_back(next_);
       sequence_to_unit_[sequence_] = next_;
@@ -485,7 +518,7 @@ class Upload {
   /// earlier one; all that are left before the last unit); false while one waits for credit.
   bool submit_events_before_next() {
     const std::size_t label = piece_mode_ ? next_piece_->segment : next_;
-    const bool last = piece_mode_ ? next_piece_->end_of_job : next_ + 1 == wire_job_.segments.size();
+    const bool last = piece_mode_ ? next_piece_->end_of_job : next_ + 1 == job_.segments;
     while (next_event_ < events_.size() && (events_[next_event_].segment <= label || last)) {
       if (!link_.can_submit(protocol::MessageType::QueueEvent)) return false;
       link_.submit(protocol::Message(events_[next_event_]));
@@ -709,11 +742,15 @@ class Upload {
   static constexpr std::size_t event_marker = static_cast<std::size_t>(-5);     // QueueEvent, a pause's Resume; the smallest marker
 
   Transport& transport_;
-  const Job& job_;
+  const ReadableJob& job_;
+  const Job& outline_;  // the job's name and events
   const MachineLimits& machine_;
   const StreamOptions& options_;
   HostLink link_;
-  WireJob wire_job_;                         // segment mode: the job's queue segments
+  std::unique_ptr<SegmentSource> segments_;         // segment mode: the job's segments, read as they go out
+  JointStops entries_;                              // segment mode: the joint stops its events ask for
+  std::optional<protocol::QueueSegment> next_segment_;  // segment mode: converted, waiting for credit
+  std::uint32_t next_segment_label_ = 0;            // its job file segment
   std::vector<protocol::QueueEvent> events_;  // machine events, sent before the unit they precede
   std::size_t next_event_ = 0;
   bool pause_pending_ = false;  // the controller paused and waits for Resume
@@ -722,10 +759,10 @@ class Upload {
   std::string pause_text_;
   bool piece_mode_ = false;                        // the controller has no planner (Capabilities::lookahead 0)
   std::unique_ptr<PiecePlanner> planner_;          // piece mode: plans the job as its pieces go out
-  std::size_t axes_ = 3;                           // piece mode: the controller's axes (QueuePiece::axis_count)
+  std::size_t axes_ = 3;                           // the controller's axes (QueuePiece and QueueSegment axis_count)
   std::optional<protocol::QueuePiece> next_piece_;  // piece mode: planned, waiting for credit
-  std::deque<std::uint32_t> piece_segments_;       // piece mode: job segment of the last 256 acknowledged pieces and those after
-  std::size_t piece_segments_base_ = 0;            // the unit index of piece_segments_.front()
+  std::deque<std::uint32_t> unit_labels_;          // job file segment of the last 256 acknowledged units and those after
+  std::size_t unit_labels_base_ = 0;               // the unit index of unit_labels_.front()
   std::uint64_t planned_ticks_ = 0;                // piece mode: setpoints the pieces sent cover
   std::uint32_t last_piece_segment_ = 0;           // piece mode: the job segment of the last piece sent
   bool hold_sent_ = false;                         // piece mode: FeedHold sent for the hold in progress
@@ -788,9 +825,13 @@ std::string override_at_option(const std::vector<StreamOverride>& overrides, dou
   return text;
 }
 
-StreamResult stream_job(Transport& transport, const Job& job, const MachineLimits& machine, const StreamOptions& options) {
+StreamResult stream_job(Transport& transport, const ReadableJob& job, const MachineLimits& machine, const StreamOptions& options) {
   Upload upload(transport, job, machine, options);
   return upload.run();
+}
+
+StreamResult stream_job(Transport& transport, const Job& job, const MachineLimits& machine, const StreamOptions& options) {
+  return stream_job(transport, readable(job), machine, options);
 }
 
 }  // namespace curvestep::host::link

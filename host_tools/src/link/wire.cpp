@@ -95,73 +95,80 @@ WireMachine to_wire(const MachineLimits& m, std::size_t axis_count) {
   return out;
 }
 
+protocol::QueueSegment to_wire(const PathSegment& s, const JointStop& entry, std::size_t axis_count, const std::string& where,
+                              std::vector<std::string>& notes) {
+  protocol::QueueSegment q;
+  q.axis_count = static_cast<std::uint8_t>(axis_count);
+  q.rapid = s.rapid();
+  q.stop_before = entry.stop;
+  q.rest_ticks = entry.rest_ticks;
+  bool exact = true;
+  const auto coordinate = [&](double value) {
+    try {
+      return to_q16(value, exact);
+    } catch (const std::out_of_range& e) {
+      throw std::runtime_error(where + e.what());
+    }
+  };
+  const auto put = [&](std::size_t slot, const MachinePoint& p, std::size_t axes) {
+    for (std::size_t a = 0; a < axes; ++a) q.points[slot][a] = coordinate(p[a]);
+    if (axes < 3 && p[2] != 0) throw std::runtime_error(where + "moves Z, but the controller has 2 axes");
+  };
+  if (s.feed_mm_per_s() != 0) {
+    q.has_feed = true;
+    bool feed_exact = true;
+    q.feed_mm_per_s = to_q16(s.feed_mm_per_s(), feed_exact);
+    if (!feed_exact) notes.push_back(where + "feed " + format_number(s.feed_mm_per_s()) + " rounded to Q16.16");
+  }
+  switch (s.kind()) {
+    case SegmentKind::Line:
+    case SegmentKind::Bezier: {
+      const auto points = s.polynomial().control_points();
+      q.kind = s.kind() == SegmentKind::Line ? protocol::SegmentKind::Line : protocol::SegmentKind::Bezier;
+      q.degree = static_cast<std::uint8_t>(points.size() - 1);
+      for (std::size_t k = 0; k < points.size(); ++k) put(k, points[k], axis_count);
+      break;
+    }
+    case SegmentKind::RationalBezier: {
+      const auto points = s.rational().control_points();
+      q.kind = protocol::SegmentKind::RationalBezier;
+      q.degree = static_cast<std::uint8_t>(points.size() - 1);
+      bool weights_exact = true;
+      for (std::size_t k = 0; k < points.size(); ++k) {
+        put(k, points[k], axis_count);
+        q.weights[k] = to_q16(s.rational().weight(k), weights_exact);
+      }
+      if (!weights_exact) notes.push_back(where + "weights rounded to Q16.16");
+      break;
+    }
+    case SegmentKind::Arc: {
+      q.kind = protocol::SegmentKind::Arc;
+      q.degree = 2;
+      q.direction = s.arc_sweep_rad() > 0 ? ArcDirection::CounterClockwise : ArcDirection::Clockwise;
+      put(0, s.start(), axis_count);
+      put(1, s.end(), axis_count);
+      q.points[2][0] = coordinate(s.arc_center()[0]);
+      q.points[2][1] = coordinate(s.arc_center()[1]);
+      q.turns = extra_turns(s, q, where);
+      break;
+    }
+  }
+  if (!exact) throw std::runtime_error(where + "a coordinate is not a Q16.16 value (load the job with load_job)");
+  return q;
+}
+
+std::string wire_segment_where(const std::string& job_name, std::size_t file_index) {
+  return job_name + ": segment " + std::to_string(file_index) + ": ";
+}
+
 WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz) {
   WireJob out;
   out.segments.reserve(job.segments.size());
   const JointStops entries = joint_stops(job, rate_hz);
   for (std::size_t i = 0; i < job.segments.size(); ++i) {
-    const PathSegment& s = job.segments[i];
     const std::size_t file_index = job.source_index.empty() ? i : job.source_index[i];
-    const std::string where = job.name + ": segment " + std::to_string(file_index) + ": ";
-    protocol::QueueSegment q;
-    q.axis_count = static_cast<std::uint8_t>(axis_count);
-    q.rapid = s.rapid();
-    q.stop_before = entries[i].stop;
-    q.rest_ticks = entries[i].rest_ticks;
-    if (i + 1 == job.segments.size()) q.end_rest_ticks = entries.at_end().rest_ticks;  // dwells after the last move
-    bool exact = true;
-    const auto coordinate = [&](double value) {
-      try {
-        return to_q16(value, exact);
-      } catch (const std::out_of_range& e) {
-        throw std::runtime_error(where + e.what());
-      }
-    };
-    const auto put = [&](std::size_t slot, const MachinePoint& p, std::size_t axes) {
-      for (std::size_t a = 0; a < axes; ++a) q.points[slot][a] = coordinate(p[a]);
-      if (axes < 3 && p[2] != 0) throw std::runtime_error(where + "moves Z, but the controller has 2 axes");
-    };
-    if (s.feed_mm_per_s() != 0) {
-      q.has_feed = true;
-      bool feed_exact = true;
-      q.feed_mm_per_s = to_q16(s.feed_mm_per_s(), feed_exact);
-      if (!feed_exact) out.notes.push_back(where + "feed " + format_number(s.feed_mm_per_s()) + " rounded to Q16.16");
-    }
-    switch (s.kind()) {
-      case SegmentKind::Line:
-      case SegmentKind::Bezier: {
-        const auto points = s.polynomial().control_points();
-        q.kind = s.kind() == SegmentKind::Line ? protocol::SegmentKind::Line : protocol::SegmentKind::Bezier;
-        q.degree = static_cast<std::uint8_t>(points.size() - 1);
-        for (std::size_t k = 0; k < points.size(); ++k) put(k, points[k], axis_count);
-        break;
-      }
-      case SegmentKind::RationalBezier: {
-        const auto points = s.rational().control_points();
-        q.kind = protocol::SegmentKind::RationalBezier;
-        q.degree = static_cast<std::uint8_t>(points.size() - 1);
-        bool weights_exact = true;
-        for (std::size_t k = 0; k < points.size(); ++k) {
-          put(k, points[k], axis_count);
-          q.weights[k] = to_q16(s.rational().weight(k), weights_exact);
-        }
-        if (!weights_exact) out.notes.push_back(where + "weights rounded to Q16.16");
-        break;
-      }
-      case SegmentKind::Arc: {
-        q.kind = protocol::SegmentKind::Arc;
-        q.degree = 2;
-        q.direction = s.arc_sweep_rad() > 0 ? ArcDirection::CounterClockwise : ArcDirection::Clockwise;
-        put(0, s.start(), axis_count);
-        put(1, s.end(), axis_count);
-        q.points[2][0] = coordinate(s.arc_center()[0]);
-        q.points[2][1] = coordinate(s.arc_center()[1]);
-        q.turns = extra_turns(s, q, where);
-        break;
-      }
-    }
-    if (!exact) throw std::runtime_error(where + "a coordinate is not a Q16.16 value (load the job with load_job)");
-    out.segments.push_back(q);
+    out.segments.push_back(to_wire(job.segments[i], entries[i], axis_count, wire_segment_where(job.name, file_index), out.notes));
+    if (i + 1 == job.segments.size()) out.segments.back().end_rest_ticks = entries.at_end().rest_ticks;  // dwells after the last move
   }
   return out;
 }
@@ -277,6 +284,10 @@ std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz,
     if (found == labels.end()) throw std::logic_error("to_wire_events: no label for the joint into segment " + std::to_string(k));
     return found->second;
   });
+}
+
+std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, const std::function<std::size_t(std::size_t)>& label_of) {
+  return wire_events(job, rate_hz, label_of);
 }
 
 std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {

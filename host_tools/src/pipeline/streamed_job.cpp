@@ -102,6 +102,7 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   bool outside = false;  // a smoothed segment leaves the travel
   plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
     ++plan.segments;
+    plan.file_segments = source + 1;
     plan.approximate_length_mm += approximate_length(segment);
     outside = outside || !within_travel(segment, machine_file.travel);
     if (segment.rapid()) {
@@ -133,6 +134,17 @@ bool StreamedJobPlan::rapid_source(std::size_t source) const noexcept {
 std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_file, const MachineFile& machine_file,
                                                const MachineLimits& machine, const JobPipelineOptions& options) {
   return std::make_unique<ThreadedSegments>(job_file, machine_file, machine, options);
+}
+
+ReadableJob readable(const StreamedJobPlan& plan, const std::filesystem::path& job_file, const MachineFile& machine_file,
+                     const MachineLimits& machine, const JobPipelineOptions& options) {
+  ReadableJob out;
+  out.outline = &plan.prepared.job;
+  out.segments = plan.segments;
+  out.file_segments = plan.file_segments;
+  out.event_labels = plan.prepared.event_labels;
+  out.read = [job_file, &machine_file, machine, options] { return stream_segments(job_file, machine_file, machine, options); };
+  return out;
 }
 
 SimulationSummary simulate_streamed_job(const StreamedJobPlan& plan, const std::filesystem::path& job_file, const MachineFile& machine_file,

@@ -13,7 +13,9 @@
 namespace curvestep::host {
 
 struct PiecePlanner::Run {
-  Run(const Job& job, const MachineLimits& machine, const SimulationOptions& options) : run(job, machine, options) {}
+  Run(const ReadableJob& job, const MachineLimits& machine, const SimulationOptions& options)
+      : run(job.outline->name, job.segments, joint_stops(job.outline->events, job.segments, job.outline->name, machine.rate_hz), job.read(),
+            machine, options) {}
 
   /// Plans until a piece is ready, the job's last one was recorded, or the controller stands in a hold.
   void plan_until_piece() {
@@ -46,7 +48,10 @@ struct PiecePlanner::Run {
   bool holding = false;   // hold() without resume()
 };
 
-PiecePlanner::PiecePlanner(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
+PiecePlanner::PiecePlanner(const Job& job, const MachineLimits& machine, const SimulationOptions& options)
+    : PiecePlanner(readable(job), machine, options) {}
+
+PiecePlanner::PiecePlanner(const ReadableJob& job, const MachineLimits& machine, const SimulationOptions& options) {
   detail::check_request(machine, options);
   run_ = std::make_unique<Run>(job, machine, options);
 }

@@ -17,6 +17,7 @@
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/readable_job.hpp>
 #include <curvestep/host/segment_source.hpp>
 #include <curvestep/host/simulator.hpp>
 
@@ -33,6 +34,7 @@ struct StreamedJobPlan {
   /// The file segments whose smoothed segments are rapids, as ranges [first, last] (one per run of
   /// consecutive rapids: a plot draws them apart).
   std::vector<std::pair<std::size_t, std::size_t>> rapid_sources;
+  std::size_t file_segments = 0;     ///< the last smoothed segment's file segment + 1 (ReadableJob::file_segments)
   /// True if file segment `source` is a rapid.
   [[nodiscard]] bool rapid_source(std::size_t source) const noexcept;
 };
@@ -55,6 +57,11 @@ struct StreamedJobPlan {
                                                       const MachineFile& machine_file, const MachineLimits& machine,
                                                       const JobPipelineOptions& options, const SimulationOptions& simulation,
                                                       const SetpointSink& sink);
+
+/// The job `plan` describes as a ReadableJob: each read() reads the file again (stream_segments).
+/// The plan and the machine file must outlive it (the path, limits and options are copied).
+[[nodiscard]] ReadableJob readable(const StreamedJobPlan& plan, const std::filesystem::path& job_file, const MachineFile& machine_file,
+                                   const MachineLimits& machine, const JobPipelineOptions& options);
 
 /// How many smoothed segments the reading thread may be ahead of the run (about 0.5 KB each).
 inline constexpr std::size_t streamed_segments_queued = 256;

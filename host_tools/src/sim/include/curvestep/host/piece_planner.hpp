@@ -24,6 +24,7 @@
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/readable_job.hpp>
 #include <curvestep/host/simulator.hpp>
 
 namespace curvestep::host {
@@ -35,6 +36,9 @@ class PiecePlanner {
   /// options.overrides (options.holds are not used). The job and machine must outlive it. Throws
   /// what simulate() throws for an invalid request.
   PiecePlanner(const Job& job, const MachineLimits& machine, const SimulationOptions& options);
+  /// The same for a job read rather than held (its segments pulled from one job.read() as the
+  /// planning needs them); the outline and machine must outlive it.
+  PiecePlanner(const ReadableJob& job, const MachineLimits& machine, const SimulationOptions& options);
   ~PiecePlanner();
   PiecePlanner(const PiecePlanner&) = delete;
   PiecePlanner& operator=(const PiecePlanner&) = delete;

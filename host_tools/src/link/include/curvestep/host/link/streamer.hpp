@@ -53,6 +53,7 @@
 #include <curvestep/host/link/operator_command.hpp>
 #include <curvestep/host/link/transport.hpp>
 #include <curvestep/host/machine_file.hpp>
+#include <curvestep/host/readable_job.hpp>
 #include <curvestep/host/simulator.hpp>
 #include <curvestep/protocol/link_sender.hpp>
 
@@ -181,5 +182,10 @@ struct StreamResult {
 /// StreamOptions::lookahead outside 1..max_lookahead for a controller without a planner).
 [[nodiscard]] StreamResult stream_job(Transport& transport, const Job& job, const MachineLimits& machine,
                                       const StreamOptions& options = {});
+/// The same for a job read rather than held (readable_job.hpp): the segments are read once through
+/// before anything moves (the wire's checks; for a controller without a planner, the planning's),
+/// then again as they go out. Memory then does not grow with the job.
+[[nodiscard]] StreamResult stream_job(Transport& transport, const ReadableJob& job, const MachineLimits& machine,
+                                      const StreamOptions& options);
 
 }  // namespace curvestep::host::link

@@ -12,11 +12,13 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include <curvestep/core/motion/joint_stop.hpp>
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/host/job.hpp>
@@ -44,6 +46,13 @@ struct WireJob {
 /// naming the job file and segment for what the wire cannot express (a Z move on a 2-axis
 /// controller, a coordinate outside Q16.16), or the line of a dwell joint_stops refuses.
 [[nodiscard]] WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz);
+/// One segment of a job as to_wire(job) makes it, with its joint stop `entry` (end_rest_ticks
+/// left 0: the caller sets it on the last one); `where` (wire_segment_where) starts its messages,
+/// and the notes of what the wire rounds are appended to `notes`.
+[[nodiscard]] protocol::QueueSegment to_wire(const PathSegment& segment, const JointStop& entry, std::size_t axis_count,
+                                             const std::string& where, std::vector<std::string>& notes);
+/// "job.ngc: segment 12: ", the start of a wire message about file segment `file_index`.
+[[nodiscard]] std::string wire_segment_where(const std::string& job_name, std::size_t file_index);
 
 /// The job's events that a controller acts on, as QueueEvents in program order (G4 dwells are
 /// motion, JointStop; operator messages stay on the host). Each is keyed by the setpoints'
@@ -59,6 +68,9 @@ struct WireJob {
 /// The same, with file labels, for a job whose PathSegments and source_index are not held (a
 /// streamed job: its events and name, and `labels`, PreparedJob::event_labels).
 [[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, const std::map<std::size_t, std::size_t>& labels);
+/// The same with the label of the joint into each segment k (past the last: the job's end) from `label_of`.
+[[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz,
+                                                               const std::function<std::size_t(std::size_t)>& label_of);
 
 /// A planned piece (plan_pieces) as a QueuePiece for a controller with `axis_count` axes (2 or
 /// 3), for a controller without a planner. Coordinates travel as binary64, exactly. Throws
