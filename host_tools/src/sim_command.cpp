@@ -91,7 +91,7 @@ FeedOverrideEvent parse_override(const std::string& text, double rate_hz) {
                                      "the feed override F (percent)");
   if (second != std::string::npos) event.value.rapid_percent = percent(text.substr(second + 1), "the rapid override R (percent)");
   if (!event.value.valid()) {
-    throw std::runtime_error("--override-at " + text + ": the feed override must be 10..200 % and the rapid override 10..100 %");
+    throw std::runtime_error("--override-at " + text + ": " + override_range_text());
   }
   return event;
 }

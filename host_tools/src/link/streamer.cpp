@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <iterator>
 #include <map>
@@ -25,6 +26,24 @@
 
 namespace curvestep::host::link {
 namespace {
+
+/// Where the operator's feed hold stands (one phase; Abort leaves it as it is, an aborting stream
+/// ignores it). Segment mode uses Running and Sent only; piece mode (a controller without a planner)
+/// plans the hold here first.
+///
+/// | phase   | meaning                                        | next phase, on                                              |
+/// |---------|------------------------------------------------|-------------------------------------------------------------|
+/// | Running | no hold                                        | Sent: Hold key, FeedHold submitted (segment mode)           |
+/// |         |                                                | Asked: Hold key (piece mode)                                |
+/// | Asked   | the hold waits until the planner can brake     | Braking: planner_->hold() once started and can_hold()       |
+/// |         | (not before the first piece, nor while it      | Running: Resume key (dropped, nothing on the wire), or the  |
+/// |         | still brakes from a hold just resumed)         | planner is done (nothing left to brake, warns)              |
+/// | Braking | the braking pieces go out, no FeedHold yet     | Sent: planner stands, its pieces all submitted, FeedHold    |
+/// |         |                                                | Running: Resume key (planner_->resume(), no Resume sent)    |
+/// | Sent    | FeedHold sent, no Resume yet                   | Running: Resume key, Resume submitted                       |
+///
+/// "Hold" in the progress line: every phase but Running. A hold in force (Resume ends it): Braking, Sent.
+enum class HoldPhase : std::uint8_t { Running, Asked, Braking, Sent };
 
 class Upload {
  public:
@@ -105,36 +124,39 @@ class Upload {
   /// (docs/protocol.md), and the StatusRequest's answer covers a hold before the job moved.
   void hold() {
     if (piece_mode_) return hold_here();
-    if (aborting_ || holding_) {
+    if (aborting_ || holding()) {
       pending_command_ = OperatorCommand::None;
       return;
     }
     if (!started_ || link_.in_flight() + 2 > HostLink::window) return;  // later
     submit_operator_message(protocol::Message(protocol::FeedHold{}));
     submit_status_request();
-    holding_ = true;
+    hold_phase_ = HoldPhase::Sent;
     hold_index_pending_ = true;
     holds_.push_back(StreamHold{});
     resumed_.push_back(false);
     pending_command_ = OperatorCommand::None;
   }
 
+  /// A hold the planner or the controller has taken: Resume ends it (HoldPhase Braking or Sent).
+  [[nodiscard]] bool holding() const { return hold_phase_ == HoldPhase::Braking || hold_phase_ == HoldPhase::Sent; }
+
   void resume() {
-    if (pause_pending_ && !holding_ && !aborting_) {  // the operator's answer to a program pause
+    if (pause_pending_ && !holding() && !aborting_) {  // the operator's answer to a program pause
       pause_resume_asked_ = true;
       pending_command_ = OperatorCommand::None;
       return;
     }
-    hold_asked_ = false;  // a hold not yet applied is simply dropped
-    if (!holding_ || aborting_) {
+    if (hold_phase_ == HoldPhase::Asked) hold_phase_ = HoldPhase::Running;  // a hold not yet applied is simply dropped
+    if (!holding() || aborting_) {
       pending_command_ = OperatorCommand::None;
       return;
     }
-    const bool tell_controller = !piece_mode_ || hold_sent_;  // a hold planned here waits there only after FeedHold
+    const bool tell_controller = hold_phase_ == HoldPhase::Sent;  // a hold planned here waits there only after FeedHold
     if (tell_controller && !link_.can_submit(protocol::MessageType::Resume)) return;  // later
     if (tell_controller) submit_operator_message(protocol::Message(protocol::Resume{}));
     if (piece_mode_) planner_->resume();  // the pieces after the hold follow the Resume
-    holding_ = false;
+    hold_phase_ = HoldPhase::Running;
     resumed_.back() = true;
     pending_command_ = OperatorCommand::None;
   }
@@ -186,26 +208,24 @@ class Upload {
   /// once the job's last piece is sent nothing can brake any more (warn).
   void hold_here() {
     pending_command_ = OperatorCommand::None;
-    if (!aborting_ && !holding_) hold_asked_ = true;  // the other keys stay free meanwhile (Abort)
+    if (!aborting_ && hold_phase_ == HoldPhase::Running) hold_phase_ = HoldPhase::Asked;  // the other keys stay free meanwhile (Abort)
     apply_asked_hold();
   }
 
   /// The operator's hold, as soon as the planner can brake: not before the first piece, nor while
   /// it still brakes from a hold just resumed.
   void apply_asked_hold() {
-    if (!hold_asked_ || aborting_) return;
+    if (hold_phase_ != HoldPhase::Asked || aborting_) return;
     if (planner_->done()) {
       warn("the whole rest of the job is already sent to this controller (it has no planner): it cannot be held now; abort with Ctrl-X or Esc");
-      hold_asked_ = false;
+      hold_phase_ = HoldPhase::Running;
       return;
     }
     if (!started_ || !planner_->can_hold()) return;  // later
     holds_.push_back(StreamHold{planner_->hold(), std::nullopt});
     plan_changed_ = true;
     resumed_.push_back(false);
-    holding_ = true;
-    hold_sent_ = false;
-    hold_asked_ = false;
+    hold_phase_ = HoldPhase::Braking;
   }
 
   /// FeedHold once the planner stands and its braking pieces are all submitted: the controller
@@ -213,10 +233,10 @@ class Upload {
   void submit_host_hold() {
     if (!piece_mode_) return;
     apply_asked_hold();
-    if (!holding_ || hold_sent_ || next_piece_ || !planner_->held()) return;
+    if (hold_phase_ != HoldPhase::Braking || next_piece_ || !planner_->held()) return;
     if (!link_.can_submit(protocol::MessageType::FeedHold)) return;
     submit_operator_message(protocol::Message(protocol::FeedHold{}));
-    hold_sent_ = true;
+    hold_phase_ = HoldPhase::Sent;
   }
 
   /// An override planned here, before the setpoint the planner has planned up to.
@@ -684,7 +704,7 @@ class Upload {
       }
     }
     if (final_call) p.eta_s = 0;
-    p.state = aborting_ ? "Aborting" : holding_ || hold_asked_ ? "Hold" : "Running";
+    p.state = aborting_ ? "Aborting" : hold_phase_ != HoldPhase::Running ? "Hold" : "Running";
     p.have_status = have_status_;
     if (have_status_) {
       p.setpoint_index = last_status_.setpoint_index;
@@ -765,10 +785,8 @@ class Upload {
   std::size_t unit_labels_base_ = 0;               // the unit index of unit_labels_.front()
   std::uint64_t planned_ticks_ = 0;                // piece mode: setpoints the pieces sent cover
   std::uint32_t last_piece_segment_ = 0;           // piece mode: the job segment of the last piece sent
-  bool hold_sent_ = false;                         // piece mode: FeedHold sent for the hold in progress
   std::size_t planned_total_ = 0;                  // piece mode: the job's pieces as planned before it started
   bool plan_changed_ = false;                      // piece mode: a hold or override changed that plan
-  bool hold_asked_ = false;                        // piece mode: the operator's hold, waiting until the planner can brake
   SetpointCapture capture_;  // the setpoint stream, to options_.setpoint_sink or kept
   std::map<std::uint8_t, std::size_t> sequence_to_unit_{{0, configuration_marker}};
   protocol::StatusReport last_status_{};
@@ -790,7 +808,7 @@ class Upload {
   bool have_status_ = false;
   bool seen_running_ = false;
   OperatorCommand pending_command_ = OperatorCommand::None;  // waiting for room in the window
-  bool holding_ = false;             // FeedHold sent, no Resume yet
+  HoldPhase hold_phase_ = HoldPhase::Running;  // the operator's hold, see HoldPhase
   bool hold_index_pending_ = false;  // waiting for the StatusReport that names the hold's setpoint
   bool aborting_ = false;            // Abort sent
   std::optional<std::uint16_t> hard_limit_switch_;  // the switch of a HardLimit fault, until its StatusReport

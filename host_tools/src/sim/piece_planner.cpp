@@ -88,7 +88,7 @@ void PiecePlanner::resume() { run_->holding = false; }
 std::uint64_t PiecePlanner::set_override(FeedOverride value) {
   if (!value.valid()) {
     throw std::runtime_error("feed override " + std::to_string(value.feed_percent) + " %, rapid " + std::to_string(value.rapid_percent) +
-                             " %: the feed override must be 10..200 % and the rapid override 10..100 %");
+                             " %: " + override_range_text());
   }
   run_->run.add_override(FeedOverrideEvent{tick(), value});
   return tick();

@@ -27,6 +27,12 @@ using detail::ExactController;
 using detail::FixedController;
 using detail::LockstepRun;
 
+std::string override_range_text() {
+  return "the feed override must be " + std::to_string(FeedOverride::min_feed_percent) + ".." +
+         std::to_string(FeedOverride::max_feed_percent) + " % and the rapid override " +
+         std::to_string(FeedOverride::min_rapid_percent) + ".." + std::to_string(FeedOverride::max_rapid_percent) + " %";
+}
+
 namespace detail {
 
 void check_request(const MachineLimits& machine, const SimulationOptions& options) {
@@ -47,7 +53,7 @@ void check_request(const MachineLimits& machine, const SimulationOptions& option
   for (const FeedOverrideEvent& event : options.overrides) {
     if (!event.value.valid()) {
       throw std::runtime_error("--override-at: feed " + std::to_string(event.value.feed_percent) + " %, rapid " +
-                               std::to_string(event.value.rapid_percent) + " %: the feed override must be 10..200 % and the rapid override 10..100 %");
+                               std::to_string(event.value.rapid_percent) + " %: " + override_range_text());
     }
   }
   for (std::size_t k = 1; k < options.holds.size(); ++k) {

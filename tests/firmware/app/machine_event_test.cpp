@@ -212,6 +212,96 @@ TEST_CASE("firmware: a tool change pauses the job at its joint until Resume, and
   check_same_stream(host.setpoints(), expected);
 }
 
+/// The App on a HookBoard, connected and configured (machine(50)), for the pause tests below.
+struct PauseRig {
+  explicit PauseRig(AppSettings settings = {}) : app(board, settings), host(board, app) {
+    REQUIRE(host.connect());
+    REQUIRE(host.send(Message(machine(50))));
+  }
+  /// One control tick, `ms` on the board's clock, then a link exchange.
+  void tick(std::uint32_t ms = 1) {
+    app.on_tick();
+    board.clock_ms += ms;
+    host.pump();
+  }
+  /// Delivers what was sent, then ticks until the App stands idle (the job over).
+  void tick_until_idle() {
+    host.pump(3);
+    for (int t = 0; t < 100000 && (app.moving() || app.state() != MachineState::Idle); ++t) tick();
+  }
+
+  HookBoard board;
+  App<HookBoard> app;
+  Host<App<HookBoard>> host;
+};
+
+TEST_CASE("firmware: a pause due at the job's end is reported and ends with the job, so the next job runs without a Resume",
+          "[firmware][app][events][pause]") {
+  PauseRig rig;
+  // M0 after the last move: the event precedes segment 1, which never comes.
+  QueueSegment first = line(p(0, 0), p(10, 0));
+  first.end_of_job = true;
+  REQUIRE(rig.host.send(Message(event(1, 0, MachineEventKind::ProgramPause))));
+  REQUIRE(rig.host.send(Message(first)));
+  REQUIRE(rig.host.send(Message(Start{})));
+  rig.tick_until_idle();
+  REQUIRE(rig.host.received.pauses.size() == 1);
+  CHECK(rig.host.received.pauses[0].kind == MachineEventKind::ProgramPause);
+  REQUIRE_FALSE(rig.host.setpoints().empty());
+  CHECK(rig.host.received.pauses[0].setpoint_index == rig.host.setpoints().back().first);  // at the job's last setpoint
+  CHECK_FALSE(rig.app.paused());
+  CHECK(rig.app.phase() == Phase::Configured);
+  // The next job of the session moves at once (a pause left over from the last job would hold it).
+  const std::size_t first_job_setpoints = rig.host.setpoints().size();
+  QueueSegment second = line(p(10, 0), p(10, 10));
+  second.end_of_job = true;
+  REQUIRE(rig.host.send(Message(second)));
+  REQUIRE(rig.host.send(Message(Start{})));
+  for (int t = 0; t < 300; ++t) rig.tick();
+  CHECK(rig.host.setpoints().size() > first_job_setpoints);
+  rig.tick_until_idle();
+  CHECK(rig.host.received.errors.empty());
+  CHECK(rig.app.phase() == Phase::Configured);
+  CHECK(rig.app.position() == p(10, 10));
+}
+
+TEST_CASE("firmware: a fault during a pause ends the pause, and Resume does not leave the fault",
+          "[firmware][app][events][pause]") {
+  AppSettings settings;
+  settings.stall_timeout_ms = 0;  // as `curvestep device --fast`: only the setpoint sender gives up
+  settings.link_timeout_ms = 0;
+  PauseRig rig(settings);
+  QueueSegment first = line(p(0, 0), p(0.5, 0));  // short: its setpoints fit the stream unacknowledged
+  QueueSegment second = line(p(0.5, 0), p(10, 0));
+  second.stop_before = true;
+  second.end_of_job = true;
+  REQUIRE(rig.host.send(Message(first)));
+  REQUIRE(rig.host.send(Message(event(1, 0, MachineEventKind::ProgramPause))));
+  REQUIRE(rig.host.send(Message(second)));
+  REQUIRE(rig.host.send(Message(Start{})));
+  rig.host.pump(3);
+  rig.host.acknowledge_setpoints = false;  // the stream will give up (RetransmitLimit) while the job is paused
+  for (int t = 0; t < 2000 && !rig.app.paused(); ++t) rig.tick();
+  REQUIRE(rig.app.paused());
+  for (int i = 0; i < 400 && rig.app.state() != MachineState::Fault; ++i) {
+    REQUIRE(rig.host.send(Message(StatusRequest{})));  // the host talks, so the stream's failure is RetransmitLimit
+    rig.tick(100);
+  }
+  rig.host.pump(2);
+  REQUIRE(rig.app.state() == MachineState::Fault);
+  REQUIRE_FALSE(rig.host.received.errors.empty());
+  CHECK(rig.host.received.errors.back().code == Error::RetransmitLimit);
+  CHECK_FALSE(rig.app.paused());
+  const std::size_t errors = rig.host.received.errors.size();
+  REQUIRE(rig.host.send(Message(Resume{})));
+  rig.host.pump(3);
+  REQUIRE(rig.host.received.errors.size() == errors + 1);
+  CHECK(rig.host.received.errors.back().code == Error::RetransmitLimit);  // a failed stream refuses with its reason
+  CHECK_FALSE(rig.app.paused());
+  CHECK(rig.app.state() == MachineState::Fault);
+  CHECK(rig.app.phase() == Phase::StreamFailed);
+}
+
 TEST_CASE("firmware: Abort switches a running spindle and the coolant off through their hooks", "[firmware][app][events][abort]") {
   HookBoard board;
   App<HookBoard> app{board};

@@ -194,7 +194,7 @@ class App {
   /// One control period: the next setpoint, its step edges to the board, the setpoint to the stream.
   /// If the setpoint stream is backed up, nothing advances (a stalled tick, see the header).
   void on_tick() noexcept {
-    if (!moving_ || paused_) return;  // a program pause: nothing advances until Resume
+    if (motion_ != JobMotion::Moving) return;  // a program pause: nothing advances until Resume
     if constexpr (has_cycle_clock) {
       if (!settings_.watch_ticks) return run_tick();
       const std::uint32_t late_periods = tick_watch_.on_start(board_.cycle_count());
@@ -240,7 +240,7 @@ class App {
     const ControllerState before = controller_.state();
     auto next = controller_.next_setpoint();
     if (!next) {
-      moving_ = false;
+      motion_ = JobMotion::Idle;
       if (controller_.state() == ControllerState::Fault) raise_fault(controller_.fault());
       return;
     }
@@ -284,7 +284,7 @@ class App {
     const ControllerState after = controller_.state();
     if (after == ControllerState::Finished) {
       if constexpr (Events > 0) machine_events_.finish([this](const protocol::QueueEvent& e) { act_on(e); });  // after the last move
-      moving_ = false;
+      motion_ = JobMotion::Idle;  // a pause due at the end ends with the job (its PauseReport still goes out)
       events_.finished = true;
     } else if (after == ControllerState::Starved && before == ControllerState::Running) {
       events_.underrun = true;
@@ -299,8 +299,8 @@ class App {
   [[nodiscard]] bool configured() const noexcept { return control_rate_hz_ != 0; }
   /// The configured setpoint rate in Hz (0 without a configuration): call on_tick() this often.
   [[nodiscard]] std::uint32_t control_rate_hz() const noexcept { return control_rate_hz_; }
-  /// True while on_tick() produces setpoints.
-  [[nodiscard]] bool moving() const noexcept { return moving_; }
+  /// True while a started job is in motion: on_tick() produces setpoints, or a pause holds it.
+  [[nodiscard]] bool moving() const noexcept { return motion_ != JobMotion::Idle; }
   /// The motion controller (queue, planner, interpolator).
   [[nodiscard]] const Controller& controller() const noexcept { return controller_; }
   /// Counts of dropped frames and setpoints.
@@ -313,7 +313,7 @@ class App {
   /// Without a planner also false while the next setpoint needs a piece that has not arrived.
   [[nodiscard]] bool ready_to_tick() const noexcept {
     if (settings_.stream_setpoints && stream_.full()) return false;
-    if constexpr (!plans_on_board) return !moving_ || controller_.state() != ControllerState::Running || controller_.can_step();
+    if constexpr (!plans_on_board) return !moving() || controller_.state() != ControllerState::Running || controller_.can_step();
     return true;
   }
   /// True once the job's last segment (flag end of job) has been queued.
@@ -328,7 +328,7 @@ class App {
     return static_cast<std::uint16_t>(segments < machine_events_.free() ? segments : machine_events_.free());
   }
   /// True while a program pause (M0/M1, M6, a layer change) holds the job until Resume.
-  [[nodiscard]] bool paused() const noexcept { return paused_; }
+  [[nodiscard]] bool paused() const noexcept { return motion_ == JobMotion::Paused; }
   /// Machine events queued and not yet reached by the motion.
   [[nodiscard]] std::size_t queued_events() const noexcept { return machine_events_.size(); }
 
@@ -371,7 +371,7 @@ class App {
     return controller_.queued() > 0 ? Phase::Queued : Phase::Configured;
   }
   /// Started and waiting for the start rule (Running) or held before it began (Holding).
-  [[nodiscard]] bool armed() const noexcept { return job_started(phase_) && !moving_; }
+  [[nodiscard]] bool armed() const noexcept { return job_started(phase_) && !moving(); }
 
   // --- receiving ---------------------------------------------------------------------------
 
@@ -402,7 +402,7 @@ class App {
     const protocol::Reception r = receiver_.on_frame(frame, hello ? 0 : free_segments(), now, takes_segments(phase_));
     send_reply(r);
     if (r.disposition == protocol::Disposition::Connect) {
-      stop_job(moving_);
+      stop_job(moving());
       control_rate_hz_ = 0;  // a new session declares its machine afresh
       axis_count_ = static_cast<std::uint8_t>(B::axis_count);
       phase_ = Phase::Connected;
@@ -520,7 +520,7 @@ class App {
   void act_on(const protocol::QueueEvent& e) noexcept { act_on(e, setpoint_index_); }
   void act_on(const protocol::QueueEvent& e, std::uint32_t at) noexcept {
     apply_machine_event(board_, e, at, spindle_, coolant_);
-    if (pauses(e.kind) && !paused_) pause_for(e, at);
+    if (pauses(e.kind) && !paused()) pause_for(e, at);
   }
 
   /// Machine events for the segment after everything queued (more of them than the event ring
@@ -562,7 +562,7 @@ class App {
 
   /// Stops producing setpoints after this one until Resume; poll() reports the pause.
   void pause_for(const protocol::QueueEvent& e, std::uint32_t at) noexcept {
-    paused_ = true;
+    motion_ = JobMotion::Paused;
     pause_ = protocol::PauseReport{at, e.kind, e.value};
     phase_ = Phase::Holding;
     events_.paused = true;
@@ -597,7 +597,7 @@ class App {
     const auto m = protocol::decode<protocol::SetPosition>(payload);
     if (!m) return report(m.failure());
     if (phase_ == Phase::Fault) return report(fail(Error::InvalidState));
-    if (moving_ || job_started(phase_) || controller_.queued() > 0) return report(fail(Error::PlannerBusy));
+    if (moving() || job_started(phase_) || controller_.queued() > 0) return report(fail(Error::PlannerBusy));
     if (m.value().axes >= (1u << axis_count_)) return report(fail(Error::InvalidArgument, 0));
     const protocol::WirePoint at{m.value().x, m.value().y, m.value().z};
     for (std::size_t axis = 0; axis < axis_count_; ++axis) {
@@ -633,7 +633,7 @@ class App {
   [[nodiscard, gnu::noinline]] Result<void> configure(const protocol::MachineConfiguration& m) noexcept {
     // Queued segments were planned with the old limits: a new configuration needs an empty queue.
     if (phase_ == Phase::Fault) return fail(Error::InvalidState);  // Abort first
-    if (moving_ || job_started(phase_) || controller_.queued() > 0) return fail(Error::PlannerBusy);
+    if (moving() || job_started(phase_) || controller_.queued() > 0) return fail(Error::PlannerBusy);
     if (m.axis_count > B::axis_count) return fail(Error::InvalidArgument, 0);
     // The Results are used in place (no CURVESTEP_TRY copies): this frame is on the deepest
     // call chain of a small board's stack (docs/boards.md, "Footprint").
@@ -747,7 +747,7 @@ class App {
     if (!configured()) return fail(Error::ConfigurationMissing);
     if (phase_ == Phase::Configured) return fail(Error::NothingQueued);
     if (phase_ != Phase::Queued) return fail(Error::InvalidState);
-    phase_ = Phase::Running;  // armed: moving_ is set when the start rule holds
+    phase_ = Phase::Running;  // armed: Moving once the start rule holds
     apply_start_rule();
     return ok();
   }
@@ -758,7 +758,7 @@ class App {
       phase_ = Phase::Holding;  // held before the start
       return;
     }
-    if (!moving_) return;
+    if (!moving()) return;
     if (controller_.state() == ControllerState::Starved) {
       phase_ = Phase::Holding;  // already stopped on the path: stay there
       return;
@@ -776,7 +776,7 @@ class App {
   void host_hold() noexcept {
     if (phase_ != Phase::Running) return;
     phase_ = Phase::Holding;
-    if (moving_) send_status();
+    if (moving()) send_status();
   }
 
   /// Without a planner: held by the host (host_hold) with the queue run dry, at the end of the
@@ -785,13 +785,13 @@ class App {
     if constexpr (plans_on_board) {
       return false;
     } else {
-      return phase_ == Phase::Holding && moving_ && !paused_ && !controller_.can_step();
+      return phase_ == Phase::Holding && motion_ == JobMotion::Moving && !controller_.can_step();
     }
   }
 
   [[nodiscard]] Result<void> resume() noexcept {
-    if (paused_) {  // the operator is done: on from the pause
-      paused_ = false;
+    if (paused()) {  // the operator is done: on from the pause
+      motion_ = JobMotion::Moving;
       phase_ = Phase::Running;
       return ok();
     }
@@ -835,9 +835,8 @@ class App {
     controller_.reset();
     machine_events_.clear();
     seek_switch_ = no_limit_switch;
-    paused_ = false;
     waiting_at_joint_ = false;
-    moving_ = false;
+    motion_ = JobMotion::Idle;
     job_end_known_ = false;
     events_ = TickEvents{};
     resume_when_held_ = false;
@@ -875,7 +874,7 @@ class App {
     board_.fault_stop();
     switch_off_spindle_and_coolant();
     controller_.abort();
-    moving_ = false;
+    motion_ = JobMotion::Idle;  // a fault also ends a pause (Resume does not leave Fault)
     fault_ = failure;
     events_.fault = true;
     phase_ = stream_.failed() ? Phase::StreamFailed : Phase::Fault;
@@ -940,18 +939,18 @@ class App {
         phase_ = settled_phase();
         return report(started.failure());
       }
-      moving_ = true;
+      motion_ = JobMotion::Moving;
       tick_watch_.restart();  // the ticks of this motion keep its schedule
     }
     // After an underrun the finished segment is still at the front: resume() drops it.
-    if (moving_ && controller_.state() == ControllerState::Starved && phase_ == Phase::Running && window_ready(1)) {
+    if (moving() && controller_.state() == ControllerState::Starved && phase_ == Phase::Running && window_ready(1)) {
       if (auto resumed = controller_.resume(); !resumed) report(resumed.failure());
     }
   }
 
   /// A setpoint stream backed up for longer than stall_timeout_ms while moving is a fault.
   void watch_stall(std::uint32_t now) noexcept {
-    if (!stalled_ || !moving_ || settings_.stall_timeout_ms == 0) return;
+    if (!stalled_ || !moving() || settings_.stall_timeout_ms == 0) return;
     if (now - stalled_since_ms_ < settings_.stall_timeout_ms) return;
     stalled_ = false;
     // Without a planner a stall is usually a queue the host did not refill in time.
@@ -968,7 +967,7 @@ class App {
     send_reply(receiver_.poll(free_segments(), now));
     if (link_hold_latched_ || receiver_.check_link(now)) return;
     link_hold_latched_ = true;
-    const bool running = moving_ && controller_.state() == ControllerState::Running;
+    const bool running = moving() && controller_.state() == ControllerState::Running;
     if (!running && !(phase_ == Phase::Running && armed())) return;
     // Without a planner there is no braking: the queued pieces run out (QueueUnderrun).
     if constexpr (plans_on_board) feed_hold();
@@ -1026,7 +1025,7 @@ class App {
   /// Moves buffered setpoints into the setpoint stream's window as batches (never drops any).
   void send_setpoints() noexcept {
     // Stopped, stalled or paused (a paused interpolator must not hold back what it already produced).
-    const bool stopped = !moving_ || stalled_ || paused_ || controller_.state() == ControllerState::Held ||
+    const bool stopped = motion_ != JobMotion::Moving || stalled_ || controller_.state() == ControllerState::Held ||
                          controller_.state() == ControllerState::Starved || stands_in_host_hold();
     stream_.submit(stopped, axis_count_, statistics_.setpoint_go_backs);
   }
@@ -1041,10 +1040,9 @@ class App {
   [[no_unique_address]] std::conditional_t<plans_on_board, FeedOverrideCommand, NoFeedOverride> override_{};
   EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
   SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
-  protocol::PauseReport pause_{};          ///< the pause in force (paused_), reported once
+  protocol::PauseReport pause_{};          ///< the pause in force (JobMotion::Paused), reported once
   protocol::SwitchReport switch_report_{};  ///< where a SeekSwitch job stopped, reported once
   std::uint8_t seek_switch_ = no_limit_switch;  ///< the switch that ends the next job (SeekSwitch), or none
-  bool paused_ = false;                    ///< a pause event holds the job until Resume
   bool waiting_at_joint_ = false;          ///< the motion waits for the segment its events precede (wait_at_joint)
   CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
   StepGenerator steps_{StepConfig{}};
@@ -1067,7 +1065,7 @@ class App {
   std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
   std::uint8_t last_error_ = 0;
   std::uint8_t sequence_ = 0;
-  bool moving_ = false;               ///< the interpolator produces setpoints (started, not finished)
+  JobMotion motion_ = JobMotion::Idle;  ///< idle, moving or paused (phase.hpp)
   bool positioned_ = false;           ///< the step generator knows where the machine is
   bool has_last_end_ = false;         ///< the next segment must start at last_end_
   bool job_end_known_ = false;        ///< the job's last segment has been queued

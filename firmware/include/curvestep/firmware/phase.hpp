@@ -20,6 +20,23 @@ enum class Phase : std::uint8_t {
   StreamFailed,  ///< the setpoint stream gave up (RetransmitLimit): reported Fault, only a new session leaves it
 };
 
+/// Whether the App's interpolator runs, beside the Phase (armed, held or starved while Moving is
+/// the controller's business). One value, not a `moving` and a `paused` flag: a pause only ever
+/// stops a moving job, and a job that ends or faults is Idle, so a pause never outlives its job.
+///
+/// | motion  | on_tick()                  | entered by                                  | left by                                   |
+/// |---------|----------------------------|---------------------------------------------|-------------------------------------------|
+/// | Idle    | nothing                    | power-up, the job's last setpoint, a fault, | the start rule holds (controller started) |
+/// |         |                            | Abort or a new session (stop_job)           |   -> Moving                               |
+/// | Moving  | makes the next setpoint    | the start rule; Resume after a pause        | a pause event going due -> Paused; the    |
+/// |         |                            |                                             | job's end, a fault, Abort -> Idle         |
+/// | Paused  | nothing (until Resume)     | a pause event (M0/M1, M6, layer change)     | Resume -> Moving; a fault, Abort -> Idle  |
+enum class JobMotion : std::uint8_t {
+  Idle,    ///< no job in motion (not started, armed, finished or stopped)
+  Moving,  ///< the interpolator produces setpoints (started, not finished)
+  Paused,  ///< a pause event holds the moving job until Resume
+};
+
 /// The state a StatusReport carries for `phase`.
 [[nodiscard]] constexpr protocol::MachineState reported_state(Phase phase) noexcept {
   switch (phase) {

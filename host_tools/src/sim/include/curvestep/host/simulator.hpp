@@ -62,6 +62,10 @@ struct FeedOverrideEvent {
   FeedOverride value{};
 };
 
+/// Why a FeedOverride is not valid(): "the feed override must be 10..200 % and the rapid override
+/// 10..100 %", from FeedOverride's range constants; the one text every host check of an override ends with.
+[[nodiscard]] std::string override_range_text();
+
 /// Options of one simulation.
 struct SimulationOptions {
   /// The largest look-ahead window the simulator's controllers have (their template Lookahead).
