@@ -44,6 +44,7 @@
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/job_pipeline.hpp>
 #include <curvestep/host/simulator.hpp>
+#include <curvestep/host/streamed_job.hpp>
 
 #include "board_thread.hpp"
 #include "command_registry.hpp"
@@ -87,8 +88,9 @@ struct Plan {
 
 /// Plans the job as the device will and refuses it (std::runtime_error, exit_step_rate) if an axis
 /// needs more than max_step_rate or a tick more steps than the host board's timing allows.
-Plan check_before_moving(const Job& job, const MachineLimits& machine, int& status) {
-  auto [device_job, device_machine] = link::as_device_sees(job, machine);
+Plan check_before_moving(const ReadableJob& job, const MachineLimits& machine, int& status) {
+  const ReadableJob device_job = link::as_device_sees(job);
+  MachineLimits device_machine = link::as_device_sees(machine);
   // The file's own max_step_rate is what the drivers can take (it also travels on the wire as binary64).
   device_machine.max_step_rate_hz = machine.max_step_rate_hz;
   const auto config = StepConfig::create(device_machine, boards::host::HostBoard<boards::host::CountingStepOutput>::step_timing());
@@ -108,14 +110,15 @@ Plan check_before_moving(const Job& job, const MachineLimits& machine, int& stat
   std::optional<Setpoint<Q16_16>> first;
   Setpoint<Q16_16> last;
   Plan plan;
-  plan.summary = simulate_stream(device_job, device_machine, SimulationOptions{}, [&](const SetpointRecord& r) {
+  StreamedJob pulled{device_job.outline, device_job.segments, 0.0, device_job.read()};
+  plan.summary = simulate_stream(std::move(pulled), device_machine, SimulationOptions{}, [&](const SetpointRecord& r) {
     Setpoint<Q16_16> s;
     for (std::size_t a = 0; a < motion_axes; ++a) s.position[a] = Q16_16::from_raw(r.raw_q16[a]);
     if (!first) first = s;
     last = s;
     if (measured) measured = meter.add(s);
   });
-  if (!measured) throw std::runtime_error(job.name + ": " + std::string(describe(measured.error())));
+  if (!measured) throw std::runtime_error(job.outline->name + ": " + std::string(describe(measured.error())));
   const StepRateReport& report = meter.report();
   plan.peak_steps_per_s = report.peak_steps_per_s;
   for (std::size_t a = 0; a < motion_axes; ++a) {
@@ -159,7 +162,7 @@ std::string join_steps(const auto& values) {
 }
 
 template <class Inner>
-int run_on_board(const GpioCommandOptions& o, const Job& job, const MachineLimits& machine, const Plan& plan, Inner* inner,
+int run_on_board(const GpioCommandOptions& o, const ReadableJob& job, const MachineLimits& machine, const Plan& plan, Inner* inner,
                  boards::host::MachineOutputHooks* machine_outputs, const std::string& where) {
   CountingOutput<Inner> output(inner);
   link::StreamOptions options;
@@ -239,8 +242,18 @@ int run_gpio(const GpioCommandOptions& o) {
     machine.rate_hz = o.rate_hz;
     if (auto valid = machine.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
-  const PreparedJob prepared = prepare_job(o.job, file, machine, o.pipeline);
+  // A streamed job is not held (streamed_job.hpp): the file is read for the plan, for the check
+  // below, for the wire's checks and for the upload. A pen drawing is prepared whole.
+  const bool streamed = !o.pipeline.optimize && is_streamed(o.job, file);
+  StreamedJobPlan streamed_plan;
+  if (streamed) {
+    streamed_plan = plan_streamed_job(o.job, file, machine, o.pipeline);
+  } else {
+    streamed_plan.prepared = prepare_job(o.job, file, machine, o.pipeline);
+  }
+  const PreparedJob& prepared = streamed_plan.prepared;
   const Job& job = prepared.job;
+  const ReadableJob readable_job = streamed ? readable(streamed_plan, o.job, file, machine, o.pipeline) : readable(job);
   machine = prepared.machine;
   for (const auto& note : prepared.notes) std::cerr << "curvestep gpio: note: " << note << "\n";
   boards::host::GpioLines lines;
@@ -269,7 +282,7 @@ int run_gpio(const GpioCommandOptions& o) {
     }
   }
   int status = 0;
-  const Plan plan = check_before_moving(job, machine, status);
+  const Plan plan = check_before_moving(readable_job, machine, status);
   if (status != 0) return status;
   for (std::size_t a = 0; a < motion_axes; ++a) {
     const bool moves = plan.peak_steps_per_s[a] > 0;
@@ -279,9 +292,9 @@ int run_gpio(const GpioCommandOptions& o) {
   }
   std::signal(SIGPIPE, SIG_IGN);
   if (o.dry_run) {
-    return run_on_board<boards::host::GpiodStepOutput>(o, job, machine, plan, nullptr, nullptr, "dry run (no lines driven)");
+    return run_on_board<boards::host::GpiodStepOutput>(o, readable_job, machine, plan, nullptr, nullptr, "dry run (no lines driven)");
   }
-  return run_on_board(o, job, machine, plan, gpio.get(), outputs ? &outputs->hooks() : nullptr, "GPIO chip \"" + lines.chip + "\"");
+  return run_on_board(o, readable_job, machine, plan, gpio.get(), outputs ? &outputs->hooks() : nullptr, "GPIO chip \"" + lines.chip + "\"");
 }
 
 void add_gpio_command(CLI::App& app) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -290,9 +291,46 @@ std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz,
   return wire_events(job, rate_hz, label_of);
 }
 
-std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
+namespace {
+
+/// The segments of `inner` as the device sees them: through the wire and the firmware's conversion.
+class DeviceViewSegments final : public SegmentSource {
+ public:
+  DeviceViewSegments(std::unique_ptr<SegmentSource> inner, std::string name) : inner_(std::move(inner)), name_(std::move(name)) {}
+
+  const PathSegment* next(std::size_t& source) override {
+    const PathSegment* segment = inner_->next(source);
+    if (segment == nullptr) return nullptr;
+    const std::string where = wire_segment_where(name_, source);
+    std::vector<std::string> notes;  // what the wire rounds is the device's too
+    const auto seen = firmware::to_path_segment(to_wire(*segment, JointStop{}, motion_axes, where, notes));
+    if (!seen) throw std::runtime_error(where + std::string(describe(seen.error())));
+    current_ = seen.value();
+    return &*current_;
+  }
+
+ private:
+  std::unique_ptr<SegmentSource> inner_;
+  std::string name_;
+  std::optional<PathSegment> current_;
+};
+
+}  // namespace
+
+MachineLimits as_device_sees(const MachineLimits& machine) {
   const auto limits = firmware::to_machine_limits(to_wire(machine, motion_axes).configuration);
   if (!limits) throw std::runtime_error("machine: " + std::string(describe(limits.error())));
+  return limits.value();
+}
+
+ReadableJob as_device_sees(const ReadableJob& job) {
+  ReadableJob seen = job;
+  seen.read = [read = job.read, name = job.outline->name] { return std::make_unique<DeviceViewSegments>(read(), name); };
+  return seen;
+}
+
+std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
+  const MachineLimits limits = as_device_sees(machine);
   const auto wire_job = to_wire(job, motion_axes, machine.rate_hz);
   Job seen = job;
   seen.segments.clear();
@@ -301,7 +339,7 @@ std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits
     if (!segment) throw std::runtime_error(job.name + ": segment " + std::to_string(i) + ": " + std::string(describe(segment.error())));
     seen.segments.push_back(segment.value());
   }
-  return {seen, limits.value()};
+  return {seen, limits};
 }
 
 }  // namespace curvestep::host::link

@@ -22,6 +22,7 @@
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/readable_job.hpp>
 #include <curvestep/protocol/messages.hpp>
 
 namespace curvestep::host::link {
@@ -89,5 +90,9 @@ struct WireJob {
 /// gives the device's setpoints, so a comparison cannot be fooled by rounding on the wire.
 /// Throws std::runtime_error naming the machine or the job's segment the firmware would refuse.
 [[nodiscard]] std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine);
+/// The machine alone as the controller sees it.
+[[nodiscard]] MachineLimits as_device_sees(const MachineLimits& machine);
+/// A job read rather than held, each segment converted as it is read (errors name its file segment).
+[[nodiscard]] ReadableJob as_device_sees(const ReadableJob& job);
 
 }  // namespace curvestep::host::link
