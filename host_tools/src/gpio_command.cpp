@@ -244,16 +244,10 @@ int run_gpio(const GpioCommandOptions& o) {
   }
   // A streamed job is not held (streamed_job.hpp): the file is read for the plan, for the check
   // below, for the wire's checks and for the upload. A pen drawing is prepared whole.
-  const bool streamed = !o.pipeline.optimize && is_streamed(o.job, file);
-  StreamedJobPlan streamed_plan;
-  if (streamed) {
-    streamed_plan = plan_streamed_job(o.job, file, machine, o.pipeline);
-  } else {
-    streamed_plan.prepared = prepare_job(o.job, file, machine, o.pipeline);
-  }
+  const StreamedJobPlan streamed_plan = plan_job(o.job, file, machine, o.pipeline);
   const PreparedJob& prepared = streamed_plan.prepared;
   const Job& job = prepared.job;
-  const ReadableJob readable_job = streamed ? readable(streamed_plan, o.job, file, machine, o.pipeline) : readable(job);
+  const ReadableJob readable_job = readable(streamed_plan, o.job, file, machine, o.pipeline);
   machine = prepared.machine;
   for (const auto& note : prepared.notes) std::cerr << "curvestep gpio: note: " << note << "\n";
   boards::host::GpioLines lines;

@@ -39,14 +39,7 @@ void run_plot(const PlotOptions& o) {
     // With a machine: the path the machine runs (the job pipeline of sim, stream and gpio).
     const MachineFile machine_file = load_machine_file(o.machine);
     // A streamed job is not held: each of the two passes below reads the file again, as sim does.
-    const bool streamed = !o.pipeline.optimize && is_streamed(o.job, machine_file);
-    StreamedJobPlan plan;
-    if (streamed) {
-      plan = plan_streamed_job(o.job, machine_file, machine_file.limits, o.pipeline);
-    } else {
-      plan.prepared = prepare_job(o.job, machine_file, machine_file.limits, o.pipeline);
-      plan.segments = plan.prepared.job.segments.size();
-    }
+    const StreamedJobPlan plan = plan_job(o.job, machine_file, machine_file.limits, o.pipeline);
     const Job& job = plan.prepared.job;
     const MachineLimits& machine = plan.prepared.machine;
     plot.title = job.name;
@@ -59,14 +52,10 @@ void run_plot(const PlotOptions& o) {
       if (progress) progress((pass + fraction) / 2);
     };
     const SetpointReplay replay = [&](const SetpointSink& sink) {
-      if (streamed) {
-        (void)simulate_streamed_job(plan, o.job, machine_file, machine_file.limits, o.pipeline, options, sink);
-      } else {
-        (void)simulate_stream(job, machine, options, sink);
-      }
+      (void)simulate_streamed_job(plan, o.job, machine_file, machine_file.limits, o.pipeline, options, sink);
       ++pass;
     };
-    if (streamed) {
+    if (plan.streamed) {
       if (plan.segments == 0) throw std::invalid_argument(job.name + ": the job has no segments");
       write_path_plot_streamed(o.output, PlottedJob{job.name, [&plan](std::size_t source) { return plan.rapid_source(source); }}, replay,
                                plot);

@@ -164,16 +164,10 @@ int run_sim(const SimOptions& o) {
     file_limits.rate_hz = o.rate_hz;
     if (auto valid = file_limits.validate(); !valid) throw std::runtime_error("--rate: must be between 100 and 100000 Hz");
   }
-  // The job is read twice (a third time for --report) and never held (streamed_job.hpp): memory
+  // A streamed job is read twice (more for --report) and never held (streamed_job.hpp): memory
   // independent of its length. A pen drawing (or --optimize) is prepared whole.
-  const bool streamed = !o.pipeline.optimize && is_streamed(o.job, machine_file);
-  StreamedJobPlan plan;
-  if (streamed) {
-    plan = plan_streamed_job(o.job, machine_file, file_limits, o.pipeline);
-  } else {
-    plan.prepared = prepare_job(o.job, machine_file, file_limits, o.pipeline);
-    plan.segments = plan.prepared.job.segments.size();
-  }
+  const StreamedJobPlan plan = plan_job(o.job, machine_file, file_limits, o.pipeline);
+  const bool streamed = plan.streamed;
   const PreparedJob& prepared = plan.prepared;
   const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
@@ -192,7 +186,6 @@ int run_sim(const SimOptions& o) {
   // simulation again for its plots (write_html_report_streamed).
   // One simulation of the job: pulled from a new read of the file when streamed.
   const auto simulate_job = [&](const SimulationOptions& with, const SetpointSink& sink) {
-    if (!streamed) return simulate_stream(job, machine, with, sink);
     return simulate_streamed_job(plan, o.job, machine_file, file_limits, o.pipeline, with, sink);
   };
   SimulationResult result;

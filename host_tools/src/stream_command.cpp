@@ -85,17 +85,10 @@ int run_stream(const StreamCommandOptions& o) {
   const MachineFile machine_file = load_machine_for_link(o.machine);
   // A streamed job is not held (streamed_job.hpp): the file is read for the plan, then again for
   // the wire's checks (or the host's planning) and for the upload. A pen drawing is prepared whole.
-  const bool streamed = !o.pipeline.optimize && is_streamed(o.job, machine_file);
-  StreamedJobPlan plan;
-  if (streamed) {
-    plan = plan_streamed_job(o.job, machine_file, machine_file.limits, o.pipeline);
-  } else {
-    plan.prepared = prepare_job(o.job, machine_file, machine_file.limits, o.pipeline);
-  }
+  const StreamedJobPlan plan = plan_job(o.job, machine_file, machine_file.limits, o.pipeline);
   const PreparedJob& prepared = plan.prepared;
-  const Job& job = prepared.job;
   const MachineLimits& machine = prepared.machine;
-  const ReadableJob readable_job = streamed ? readable(plan, o.job, machine_file, machine_file.limits, o.pipeline) : readable(job);
+  const ReadableJob readable_job = readable(plan, o.job, machine_file, machine_file.limits, o.pipeline);
   for (const auto& note : prepared.notes) std::cerr << "curvestep stream: note: " << note << "\n";
   auto transport = link::open_port(o.link.port, o.link.baud);
   link::StreamOptions options;

@@ -99,6 +99,7 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   // 10 MB of G-code. The default threshold, fixed, keeps both passes' peaks the whole job's.
   ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   StreamedJobPlan plan;
+  plan.streamed = true;
   bool outside = false;  // a smoothed segment leaves the travel
   plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
     ++plan.segments;
@@ -136,8 +137,18 @@ std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_
   return std::make_unique<ThreadedSegments>(job_file, machine_file, machine, options);
 }
 
+StreamedJobPlan plan_job(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
+                         const JobPipelineOptions& options) {
+  if (!options.optimize && is_streamed(job_file, machine_file)) return plan_streamed_job(job_file, machine_file, machine, options);
+  StreamedJobPlan plan;
+  plan.prepared = prepare_job(job_file, machine_file, machine, options);
+  plan.segments = plan.prepared.job.segments.size();
+  return plan;
+}
+
 ReadableJob readable(const StreamedJobPlan& plan, const std::filesystem::path& job_file, const MachineFile& machine_file,
                      const MachineLimits& machine, const JobPipelineOptions& options) {
+  if (!plan.streamed) return readable(plan.prepared.job);
   ReadableJob out;
   out.outline = &plan.prepared.job;
   out.segments = plan.segments;
@@ -150,6 +161,7 @@ ReadableJob readable(const StreamedJobPlan& plan, const std::filesystem::path& j
 SimulationSummary simulate_streamed_job(const StreamedJobPlan& plan, const std::filesystem::path& job_file, const MachineFile& machine_file,
                                         const MachineLimits& machine, const JobPipelineOptions& options, const SimulationOptions& simulation,
                                         const SetpointSink& sink) {
+  if (!plan.streamed) return simulate_stream(plan.prepared.job, plan.prepared.machine, simulation, sink);
   StreamedJob pulled{&plan.prepared.job, plan.segments, plan.approximate_length_mm, stream_segments(job_file, machine_file, machine, options)};
   return simulate_stream(std::move(pulled), plan.prepared.machine, simulation, sink);
 }

@@ -23,8 +23,9 @@
 
 namespace curvestep::host {
 
-/// What the first pass over a streamed job found.
+/// What the first pass over a streamed job found (or, `streamed` false, the job prepared whole).
 struct StreamedJobPlan {
+  bool streamed = false;  ///< false: prepared.job holds the whole smoothed job (plan_job)
   /// The prepared job without its segments, source_index and sources (the second pass's load has
   /// them): name, version, events (few: they are kept) and the event timeline's labels
   /// (PreparedJob::event_labels, one per joint with events). Nothing per segment.
@@ -45,20 +46,27 @@ struct StreamedJobPlan {
 [[nodiscard]] StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const MachineFile& machine_file,
                                                 const MachineLimits& machine, const JobPipelineOptions& options);
 
+/// What a command runs: plan_streamed_job when the job is streamed (is_streamed, and not
+/// options.optimize, which needs the whole drawing), else the job prepared whole (prepare_job).
+/// readable() and simulate_streamed_job() take either.
+[[nodiscard]] StreamedJobPlan plan_job(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
+                                       const JobPipelineOptions& options);
+
 /// Pass 2: the smoothed segments of the same load, read again in a thread (at most
 /// streamed_segments_queued ahead of the run). The thread's errors (the first pass's, as the code
 /// is the same) are thrown by next(); destroying the source stops the thread.
 [[nodiscard]] std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_file, const MachineFile& machine_file,
                                                              const MachineLimits& machine, const JobPipelineOptions& options);
 
-/// simulate_stream of the job `plan` describes (plan_streamed_job of the same arguments), its
-/// segments pulled from a new read of the file (stream_segments): each call reads the file again.
+/// simulate_stream of the job `plan` describes (plan_job of the same arguments): a streamed job's
+/// segments pulled from a new read of the file (stream_segments, each call reads it again).
 [[nodiscard]] SimulationSummary simulate_streamed_job(const StreamedJobPlan& plan, const std::filesystem::path& job_file,
                                                       const MachineFile& machine_file, const MachineLimits& machine,
                                                       const JobPipelineOptions& options, const SimulationOptions& simulation,
                                                       const SetpointSink& sink);
 
-/// The job `plan` describes as a ReadableJob: each read() reads the file again (stream_segments).
+/// The job `plan` describes as a ReadableJob: a streamed job's read() reads the file again
+/// (stream_segments), a job held whole is read from memory.
 /// The plan and the machine file must outlive it (the path, limits and options are copied).
 [[nodiscard]] ReadableJob readable(const StreamedJobPlan& plan, const std::filesystem::path& job_file, const MachineFile& machine_file,
                                    const MachineLimits& machine, const JobPipelineOptions& options);
