@@ -22,11 +22,25 @@ namespace {
 /// The second pass: prepare_job_streamed in a thread, its smoothed segments through a bounded queue.
 class ThreadedSegments final : public SegmentSource {
  public:
-  ThreadedSegments(std::filesystem::path job_file, MachineFile machine_file, MachineLimits machine, JobPipelineOptions options) {
-    reader_ = std::thread([this, job_file = std::move(job_file), machine_file = std::move(machine_file), machine, options = std::move(options)] {
+  ThreadedSegments(std::filesystem::path job_file, MachineFile machine_file, MachineLimits machine, JobPipelineOptions options,
+                   std::optional<FileStamp> expected) {
+    reader_ = std::thread([this, job_file = std::move(job_file), machine_file = std::move(machine_file), machine, options = std::move(options),
+                           expected] {
       try {
-        (void)prepare_job_streamed(job_file, machine_file, machine, options,
-                                   [this](const PathSegment& segment, std::size_t source) { push(segment, source); });
+        const auto check_unchanged = [&] {
+          if (expected && file_stamp(job_file) != *expected) {
+            throw std::runtime_error(job_file.string() +
+                                     ": the file changed while the job ran (its size or modification time is not the first "
+                                     "read's): it is read again for each pass, so it must stay as it was checked");
+          }
+        };
+        check_unchanged();
+        std::size_t pushed = 0;
+        (void)prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
+          if (++pushed % 64 == 0) check_unchanged();
+          push(segment, source);
+        });
+        check_unchanged();
       } catch (const Cancelled&) {
         // the run ended first (it failed, or was abandoned)
       } catch (...) {
@@ -100,6 +114,7 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
   ::mallopt(M_MMAP_THRESHOLD, 128 * 1024);
   StreamedJobPlan plan;
   plan.streamed = true;
+  plan.file = file_stamp(job_file);
   bool outside = false;  // a smoothed segment leaves the travel
   plan.prepared = prepare_job_streamed(job_file, machine_file, machine, options, [&](const PathSegment& segment, std::size_t source) {
     ++plan.segments;
@@ -115,6 +130,9 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
       }
     }
   });
+  if (file_stamp(job_file) != plan.file) {
+    throw std::runtime_error(job_file.string() + ": the file changed while it was read (its size or modification time): read it again");
+  }
   if (outside) {
     // Its message names the file's line, which the streamed load does not keep: the whole job's
     // check_travel (a third read, holding the job, on this error only) throws it.
@@ -133,8 +151,18 @@ bool StreamedJobPlan::rapid_source(std::size_t source) const noexcept {
 }
 
 std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_file, const MachineFile& machine_file,
-                                               const MachineLimits& machine, const JobPipelineOptions& options) {
-  return std::make_unique<ThreadedSegments>(job_file, machine_file, machine, options);
+                                               const MachineLimits& machine, const JobPipelineOptions& options,
+                                               std::optional<FileStamp> expected) {
+  return std::make_unique<ThreadedSegments>(job_file, machine_file, machine, options, expected);
+}
+
+FileStamp file_stamp(const std::filesystem::path& path) {
+  std::error_code error;
+  FileStamp stamp;
+  stamp.size = std::filesystem::file_size(path, error);
+  if (!error) stamp.modified = std::filesystem::last_write_time(path, error);
+  if (error) throw std::runtime_error(path.string() + ": cannot read the file (" + error.message() + ")");
+  return stamp;
 }
 
 StreamedJobPlan plan_job(const std::filesystem::path& job_file, const MachineFile& machine_file, const MachineLimits& machine,
@@ -154,7 +182,9 @@ ReadableJob readable(const StreamedJobPlan& plan, const std::filesystem::path& j
   out.segments = plan.segments;
   out.file_segments = plan.file_segments;
   out.event_labels = plan.prepared.event_labels;
-  out.read = [job_file, &machine_file, machine, options] { return stream_segments(job_file, machine_file, machine, options); };
+  out.read = [job_file, &machine_file, machine, options, stamp = plan.file] {
+    return stream_segments(job_file, machine_file, machine, options, stamp);
+  };
   return out;
 }
 
@@ -162,7 +192,8 @@ SimulationSummary simulate_streamed_job(const StreamedJobPlan& plan, const std::
                                         const MachineLimits& machine, const JobPipelineOptions& options, const SimulationOptions& simulation,
                                         const SetpointSink& sink) {
   if (!plan.streamed) return simulate_stream(plan.prepared.job, plan.prepared.machine, simulation, sink);
-  StreamedJob pulled{&plan.prepared.job, plan.segments, plan.approximate_length_mm, stream_segments(job_file, machine_file, machine, options)};
+  StreamedJob pulled{&plan.prepared.job, plan.segments, plan.approximate_length_mm,
+                     stream_segments(job_file, machine_file, machine, options, plan.file)};
   return simulate_stream(std::move(pulled), plan.prepared.machine, simulation, sink);
 }
 

@@ -169,3 +169,19 @@ TEST_CASE("streamed sim: an error of the second read is thrown by the run, and a
                       Catch::Contains(":1502"));
   std::remove(program.c_str());
 }
+
+TEST_CASE("streamed sim: a file changed after the first read ends the run with a message naming it", "[host_tools][pipeline][streamed]") {
+  const MachineFile machine_file = load_machine_file(source_dir / "examples/jobs/machine.json");
+  const std::string program = scratch("changed.ngc");
+  std::ofstream(program) << "G21 G90 G17\nF600\nG1 X10\nG1 X10 Y10\nM2\n";
+  const StreamedJobPlan plan = plan_streamed_job(program, machine_file, machine_file.limits, JobPipelineOptions{});
+  REQUIRE(plan.segments >= 1);
+  // The same file read again runs; rewritten (longer: another size) it is refused before a segment.
+  SimulationOptions options;
+  options.lookahead_distance_mm = lookahead_distance_for(plan.prepared.machine);
+  CHECK(simulate_streamed_job(plan, program, machine_file, machine_file.limits, JobPipelineOptions{}, options, {}).setpoints > 0);
+  std::ofstream(program) << "G21 G90 G17\nF600\nG1 X10\nG1 X10 Y10\nG1 X40 Y10\nM2\n";
+  CHECK_THROWS_WITH(simulate_streamed_job(plan, program, machine_file, machine_file.limits, JobPipelineOptions{}, options, {}),
+                    Catch::Contains(program) && Catch::Contains("the file changed while the job ran"));
+  std::remove(program.c_str());
+}

@@ -8,8 +8,10 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,6 +25,16 @@
 
 namespace curvestep::host {
 
+/// What tells one read of a job file from another: its size and modification time. A streamed job
+/// is read again for each pass, so it must not change while it runs.
+struct FileStamp {
+  std::uintmax_t size = 0;
+  std::filesystem::file_time_type modified{};
+  friend bool operator==(const FileStamp&, const FileStamp&) = default;
+};
+/// The stamp of `path` now; std::runtime_error naming the file if it cannot be read.
+[[nodiscard]] FileStamp file_stamp(const std::filesystem::path& path);
+
 /// What the first pass over a streamed job found (or, `streamed` false, the job prepared whole).
 struct StreamedJobPlan {
   bool streamed = false;  ///< false: prepared.job holds the whole smoothed job (plan_job)
@@ -30,6 +42,7 @@ struct StreamedJobPlan {
   /// them): name, version, events (few: they are kept) and the event timeline's labels
   /// (PreparedJob::event_labels, one per joint with events). Nothing per segment.
   PreparedJob prepared;
+  FileStamp file;                    ///< the job file as the first pass read it (a streamed job)
   std::size_t segments = 0;          ///< smoothed segments
   double approximate_length_mm = 0;  ///< approximate_length summed over them (progress)
   /// The file segments whose smoothed segments are rapids, as ranges [first, last] (one per run of
@@ -54,9 +67,12 @@ struct StreamedJobPlan {
 
 /// Pass 2: the smoothed segments of the same load, read again in a thread (at most
 /// streamed_segments_queued ahead of the run). The thread's errors (the first pass's, as the code
-/// is the same) are thrown by next(); destroying the source stops the thread.
+/// is the same) are thrown by next(); destroying the source stops the thread. With `expected`
+/// (StreamedJobPlan::file), a file whose stamp differs before, during (every 64 segments) or after
+/// the read ends it with std::runtime_error naming the file.
 [[nodiscard]] std::unique_ptr<SegmentSource> stream_segments(const std::filesystem::path& job_file, const MachineFile& machine_file,
-                                                             const MachineLimits& machine, const JobPipelineOptions& options);
+                                                             const MachineLimits& machine, const JobPipelineOptions& options,
+                                                             std::optional<FileStamp> expected = std::nullopt);
 
 /// simulate_stream of the job `plan` describes (plan_job of the same arguments): a streamed job's
 /// segments pulled from a new read of the file (stream_segments, each call reads it again).
