@@ -91,3 +91,31 @@ TEST_CASE("hil: the dwell after the last move reaches curvestep device --executo
           "[integration][hil][dwell][pieces]") {
   check_final_dwell({"device", "--fast", "--executor"}, "executor_final_dwell");
 }
+
+// An M0 after the last move: the controller reports the pause and ends the job with it, so the
+// host tells the operator and sends no Resume (the controller would refuse it, InvalidState). Before,
+// `stream --resume-pauses` raced the job's end: it either told nothing or sent that Resume.
+TEST_CASE("hil: an M0 after the last move is told by curvestep stream, which sends no Resume for it", "[integration][hil][pause]") {
+  const auto machine = ct::wire_exact_machine();
+  const auto job = ct::scratch_dir() / "end_pause.ngc";
+  std::ofstream(job) << "G21 G90\nG1 X10 F600\nM0\nM2\n";
+  for (const bool executor : {false, true}) {
+    INFO((executor ? "executor" : "device with a planner"));
+    std::vector<std::string> device_options{"device", "--fast"};
+    if (executor) device_options.push_back("--executor");
+    ct::Process device(device_options, executor ? "end_pause_executor.stderr" : "end_pause_device.stderr");
+    const std::string port = device.first_line();
+    REQUIRE(port.rfind("/dev/pts/", 0) == 0);
+    std::string errors;
+    std::string output;
+    const int status = ct::run_program({"stream", job.string(), "--machine", machine.string(), "--port", port, "--resume-pauses"}, errors,
+                                       executor ? "end_pause_stream_executor" : "end_pause_stream", std::chrono::seconds(60), &output);
+    INFO(errors);
+    INFO(output);
+    CHECK(status == 0);
+    CHECK(errors.find("program pause (M0/M1), after the job's last move: the job ended there, nothing is left to resume") !=
+          std::string::npos);
+    CHECK(output.find("going on") == std::string::npos);  // no Resume sent
+    CHECK(device.stop() == 0);
+  }
+}

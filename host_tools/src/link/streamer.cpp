@@ -76,6 +76,7 @@ class Upload {
         const std::size_t total = job_.segments;  // the device numbers the segments as they arrive
         events_ = to_wire_events(outline_, machine_.rate_hz, [total](std::size_t k) { return std::min(k, total); });
       }
+      count_pause_events();
       check_event_room(link_.capabilities().queue_capacity);
       link_.submit(protocol::Message(wire_machine.configuration));
       submitted_.push_back(configuration_marker);
@@ -99,6 +100,7 @@ class Upload {
       throw StreamError(e.code(), std::string(e.what()) + progress_text() + last_state_text());
     }
     report_progress(true);
+    if (pause_pending_) tell_end_pause();  // reported as the job ended
     return collect();
   }
 
@@ -558,9 +560,33 @@ class Upload {
     ++sequence_;
   }
 
+  /// The events that pause the controller (M0/M1, M6, a pen change), and whether the last one comes
+  /// after the job's last move (its label is the end's: the job's segments, or its file segments
+  /// for pieces).
+  void count_pause_events() {
+    const std::size_t end_label = piece_mode_ ? job_.file_segments : job_.segments;
+    for (const protocol::QueueEvent& e : events_) {
+      if (e.kind != protocol::MachineEventKind::ProgramPause && e.kind != protocol::MachineEventKind::ToolChange &&
+          e.kind != protocol::MachineEventKind::LayerChange) {
+        continue;
+      }
+      ++pause_events_;
+      last_pause_ends_job_ = e.segment >= end_label;
+    }
+  }
+
+  /// A pause after the job's last move: the controller ends the job with it (firmware/app.hpp), so
+  /// there is nothing to resume (a Resume would be refused); the operator is told once.
+  void tell_end_pause() {
+    if (!pause_told_) warn(pause_text_ + ", after the job's last move: the job ended there, nothing is left to resume");
+    pause_told_ = true;
+    pause_pending_ = false;
+  }
+
   /// A pause the controller reported: tell the operator once, Resume when resume_now() says so.
   void serve_pause() {
     if (!pause_pending_) return;
+    if (last_pause_ends_job_ && pauses_reported_ == pause_events_) return tell_end_pause();
     if (!pause_told_) {
       if (options_.paused) options_.paused(pause_text_);
       pause_told_ = true;
@@ -636,6 +662,7 @@ class Upload {
                                                                                 : std::string("program pause (M0/M1)"));
         pause_pending_ = true;
         pause_told_ = false;
+        ++pauses_reported_;
         break;
       }
       case protocol::MessageType::SwitchReport: switch_closed_ = m.get<protocol::SwitchReport>(); break;
@@ -777,6 +804,9 @@ class Upload {
   bool pause_told_ = false;     // options_.paused was called for it
   bool pause_resume_asked_ = false;  // the operator's Resume came for it
   std::string pause_text_;
+  std::size_t pause_events_ = 0;      // the job's events that pause the controller
+  std::size_t pauses_reported_ = 0;   // PauseReports received
+  bool last_pause_ends_job_ = false;  // the last of them comes after the job's last move
   bool piece_mode_ = false;                        // the controller has no planner (Capabilities::lookahead 0)
   std::unique_ptr<PiecePlanner> planner_;          // piece mode: plans the job as its pieces go out
   std::size_t axes_ = 3;                           // the controller's axes (QueuePiece and QueueSegment axis_count)
