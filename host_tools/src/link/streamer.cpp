@@ -290,6 +290,19 @@ class Upload {
     if (options_.warn) options_.warn(text);
   }
 
+  /// During the host's long passes between the handshake and the job (the check-through read or
+  /// planning of a job read from its file can take seconds): a StatusRequest every
+  /// keep_alive_ms and its answer taken in, so that neither side's link timeout ends the session.
+  void keep_link_alive() {
+    const std::uint32_t now = link_.now_ms();
+    const std::uint32_t timeout = options_.link.link_timeout_ms;
+    if (now - last_keep_alive_ms_ < (timeout == 0 ? keep_alive_ms : std::min(keep_alive_ms, timeout / 4))) return;
+    last_keep_alive_ms_ = now;
+    settle_acknowledged();
+    if (link_.can_submit(protocol::MessageType::StatusRequest)) submit_status_request();
+    link_.pump(0, [this](const protocol::Message& m) { on_message(m); });
+  }
+
   /// A controller without a planner: the job is planned here (PiecePlanner, the simulator's Q16.16
   /// controller with options_.lookahead), piece by piece as they are sent. It is first planned
   /// through once, keeping nothing but the count: what the planner refuses or the wire cannot
@@ -303,7 +316,10 @@ class Upload {
       overrides_.push_back({0, requested_override_});
     }
     PiecePlanner check(job_, machine_, planning);
-    while (const std::optional<PlannedPiece> piece = check.next_piece()) (void)wire_piece(*piece, planned_total_++);
+    while (const std::optional<PlannedPiece> piece = check.next_piece()) {
+      (void)wire_piece(*piece, planned_total_++);
+      keep_link_alive();
+    }
     planner_ = std::make_unique<PiecePlanner>(job_, machine_, planning);
     piece_mode_ = true;
   }
@@ -318,6 +334,7 @@ class Upload {
     std::size_t source = 0;
     for (std::size_t k = 0; const PathSegment* segment = all->next(source); ++k) {
       (void)to_wire(*segment, entries_[k], axes_, wire_segment_where(outline_.name, source), notes);
+      keep_link_alive();
     }
     for (const auto& note : notes) warn(note);
     segments_ = job_.read();
@@ -828,6 +845,8 @@ class Upload {
   std::uint32_t idle_since_ms_ = 0;
   bool idle_seen_ = false;
   std::uint32_t last_status_ms_ = 0;
+  static constexpr std::uint32_t keep_alive_ms = 200;  // a fifth of the default link timeout, at most a quarter of the one set
+  std::uint32_t last_keep_alive_ms_ = 0;
   std::uint32_t last_progress_ms_ = 0;
   std::uint32_t start_ms_ = 0;
   std::uint32_t stream_progress_ms_ = 0;  // the last setpoint batch delivered (or Start acknowledged, or a non-running report)

@@ -84,16 +84,18 @@ std::string write_long_moves_program(const std::string& name, int lines) {
 }  // namespace
 
 // The smoothed job is not held (streamed_job.hpp: the file is read again for each pass): sim,
-// plot, sim --report and gpio keep nothing per move. Holding the smoothed job cost about 930 bytes
-// a move here (472 per segment and the load's), which fails this (measured through the whole-job
-// path, `--optimize`). Plot, report and gpio simulate the job more than once: 10 000 moves more.
-TEST_CASE("memory: sim, plot, report and gpio of a G-code program of many more moves smoothing keeps cost at most 50 bytes a move more",
+// plot, sim --report and gpio keep nothing per move (measured: flat in a release build, up to 1.4 MB
+// under the sanitizers, whose allocator moves the peak). Holding the smoothed job cost about 930
+// bytes a move here (472 per segment and the load's): 9 MB for 10 000 moves more, 37 MB for 40 000,
+// which fails this (measured through the whole-job path, `--optimize`). Plot, report and gpio
+// simulate the job more than once: 10 000 moves more for them.
+TEST_CASE("memory: sim, plot, report and gpio of a G-code program of many more moves smoothing keeps grow by at most 3 MiB",
           "[host_tools][report][memory]") {
   const std::string machine = source("examples/jobs/machine.json");
   const std::string short_program = write_long_moves_program("short_moves.ngc", 2'000);
   const std::string long_program = write_long_moves_program("long_moves.ngc", 42'000);
   const std::string medium_program = write_long_moves_program("medium_moves.ngc", 12'000);
-  constexpr long bytes_per_move = 50;
+  constexpr long margin_kib = 3072;
   const auto peak = [&machine](const std::string& command, const std::string& program, const std::vector<std::string>& extra) {
     std::vector<std::string> arguments{command, program, "--machine", machine, "--blend-tolerance", "0"};
     arguments.insert(arguments.end(), extra.begin(), extra.end());
@@ -103,7 +105,7 @@ TEST_CASE("memory: sim, plot, report and gpio of a G-code program of many more m
   const long sim_short = peak("sim", short_program, {"--lookahead", "16"});
   const long sim_long = peak("sim", long_program, {"--lookahead", "16"});
   INFO("sim: " << sim_short << " KiB for 2 000 moves, " << sim_long << " KiB for 42 000");
-  CHECK(sim_long <= sim_short + 40'000 * bytes_per_move / 1024);
+  CHECK(sim_long <= sim_short + margin_kib);
 
   const std::string svg = scratch("moves.svg");
   const std::string html = scratch("moves.html");
@@ -115,7 +117,7 @@ TEST_CASE("memory: sim, plot, report and gpio of a G-code program of many more m
     const long short_kib = peak(c.name, short_program, c.arguments);
     const long medium_kib = peak(c.name, medium_program, c.arguments);
     INFO(c.name << " " << c.arguments.front() << ": " << short_kib << " KiB for 2 000 moves, " << medium_kib << " KiB for 12 000");
-    CHECK(medium_kib <= short_kib + 10'000 * bytes_per_move / 1024);
+    CHECK(medium_kib <= short_kib + margin_kib);
   }
 
   for (const std::string& file : {short_program, medium_program, long_program, svg, html}) std::remove(file.c_str());

@@ -1,14 +1,18 @@
 // SPDX-License-Identifier: MIT
-// Memory of `curvestep stream` (issue 19, item 7): a G-code program is not held while it is
+// Long G-code jobs read from their file by `curvestep stream`. The link stays alive through the
+// host's check-through pass, and (issue 19, item 7) the program is not held while it is
 // uploaded to a real `curvestep device` on a pty. The file is read for the plan, once more for the
 // wire's checks (or, for a controller without a planner, the host's planning) and again as the
 // segments go out (streamed_job.hpp, readable_job.hpp). Two programs of 2 000 and 22 000 moves of
 // 0.5 mm, every corner a stop (--blend-tolerance 0: one smoothed segment per move), are streamed
 // to a device with a planner and to an executor; the stream's largest resident size (wait4) may
-// grow by at most 100 bytes a move. The job held whole (the stream of commit 2f8e7c3, and
-// `--optimize` still) took about 750 bytes a move more: 7.5 -> 37.7 MB for 2 000 -> 42 000 moves.
+// grow by at most 4 MiB (measured: flat in a release build, up to 1.5 MB under the sanitizers).
+// The job held whole (the stream of commit 2f8e7c3, and `--optimize` still) took about 750 bytes a
+// move more: 7.5 -> 22 MB for 2 000 -> 22 000 moves, 37.7 MB for 42 000.
 #include <catch2/catch.hpp>
 
+#include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -53,11 +57,11 @@ long stream_peak_kib(const std::filesystem::path& program, const std::vector<std
 
 }  // namespace
 
-TEST_CASE("memory: curvestep stream of a G-code program 20 000 moves longer costs at most 100 bytes a move more",
+TEST_CASE("memory: curvestep stream of a G-code program 20 000 moves longer grows by at most 4 MiB (held whole: 15 MB)",
           "[integration][hil][memory]") {
   const auto short_program = write_zigzag_program("memory_short.ngc", 2'000);
   const auto long_program = write_zigzag_program("memory_long.ngc", 22'000);
-  constexpr long margin_kib = 20'000 * 100 / 1024;
+  constexpr long margin_kib = 4096;  // the sanitizers' allocator alone moves the peak by up to about 1.5 MB
   for (const bool executor : {false, true}) {
     std::vector<std::string> device{"device", "--fast"};
     if (executor) device.push_back("--executor");
@@ -70,4 +74,33 @@ TEST_CASE("memory: curvestep stream of a G-code program 20 000 moves longer cost
   }
   std::filesystem::remove(short_program);
   std::filesystem::remove(long_program);
+}
+
+// Between the handshake and the job the host reads the whole job once (the wire's check, or for a
+// controller without a planner the whole planning): seconds for a long job. A StatusRequest every
+// quarter of the link timeout keeps the session; before, a check longer than the link timeout left
+// an executor's session dead (LinkTimeout, "no acknowledged piece"). 8 000 moves with every corner
+// a stop take about 1 s to plan, five times the 200 ms link timeout set on both ends.
+TEST_CASE("hil: a job whose check-through pass outlasts the link timeout streams to a device and an executor",
+          "[integration][hil][link]") {
+  const auto program = write_zigzag_program("check_pass.ngc", 8'000);
+  for (const bool executor : {false, true}) {
+    INFO((executor ? "executor" : "device with a planner"));
+    std::vector<std::string> device_options{"device", "--fast", "--link-timeout-ms", "200"};
+    if (executor) device_options.push_back("--executor");
+    ct::Process device(device_options, executor ? "check_pass_executor.stderr" : "check_pass_device.stderr");
+    const std::string port = device.first_line();
+    REQUIRE(port.rfind("/dev/pts/", 0) == 0);
+    std::string errors;
+    std::string output;
+    const int status = ct::run_program({"stream", program.string(), "--machine", std::string(CURVESTEP_EXAMPLE_JOBS) + "/machine.json",
+                                        "--port", port, "--blend-tolerance", "0", "--link-timeout-ms", "200"},
+                                       errors, executor ? "check_pass_stream_executor" : "check_pass_stream", std::chrono::seconds(120),
+                                       &output);
+    INFO(errors);
+    CHECK(status == 0);
+    CHECK(output.find("setpoints received") != std::string::npos);
+    CHECK(device.stop() == 0);
+  }
+  std::filesystem::remove(program);
 }
