@@ -63,7 +63,6 @@ Candidate make_candidate(const CornerRequest& r, const Maps& maps, double d_a, d
   if (!made) return c;
   c.blend.curve = made.value();
   c.blend.curve.set_rapid(r.outgoing->rapid());
-  c.blend.curve.set_feed_mm_per_s(r.outgoing->feed_mm_per_s());
   c.blend.incoming_u = u_a;
   c.blend.outgoing_u = u_b;
   c.blend.incoming_cut_mm = d_a;

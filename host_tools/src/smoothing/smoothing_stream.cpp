@@ -4,9 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
+#include <curvestep/core/motion/path_length_table.hpp>
+#include <curvestep/core/motion/segment_plan.hpp>
 #include <curvestep/host/smoothing/line_run_fit.hpp>
 #include <curvestep/host/smoothing/segment_geometry.hpp>
 
@@ -31,15 +34,61 @@ double speed_change_time(double v, double a, double j) {
   return v > a * a / j ? v / a + a / j : 2 * std::sqrt(v / j);
 }
 
-/// Whether passing the blend (at its curvature speed) beats stopping at the corner and starting
-/// again from that speed: at sharp corners under a jerk limit, a tolerance-sized blend is so tight
-/// that it must be crawled through for longer than a stop takes.
-bool blend_pays(const CornerBlend& blend, const SmoothingOptions& options) {
-  const double v = blend.speed_cap_mm_per_s;
-  if (!std::isfinite(v)) return true;
-  const double through = length_between(blend.curve, 0, 1) / v;
-  const double stop_and_go = 2 * speed_change_time(v, options.a_max_mm_per_s2, options.j_max_mm_per_s3);
-  return through < stop_and_go;
+/// Time lost against running on at `cruise` when the speed changes to `low` (and back, or from it):
+/// the change takes t = speed_change_time(cruise − low) at the mean speed (cruise + low)/2 (S-curve
+/// and trapezoid changes are symmetric), so it loses t (cruise − low) / (2 cruise).
+double change_loss(double cruise, double low, const SmoothingOptions& options) {
+  if (!(cruise > low)) return 0;
+  return speed_change_time(cruise - low, options.a_max_mm_per_s2, options.j_max_mm_per_s3) * (cruise - low) / (2 * cruise);
+}
+
+/// The largest speed reached from rest within `distance_mm` (the S-curve or trapezoid covers
+/// v t(v) / 2), at most `limit` (bisection).
+double reachable_from_rest(double distance_mm, double limit, const SmoothingOptions& options) {
+  const auto covers = [&](double v) { return v * speed_change_time(v, options.a_max_mm_per_s2, options.j_max_mm_per_s3) / 2 <= distance_mm; };
+  if (covers(limit)) return limit;
+  double low = 0;
+  double high = limit;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (low + high);
+    (covers(mid) ? low : high) = mid;
+  }
+  return low;
+}
+
+/// The planner's view of a segment (its caps and end geometry), as the controller will plan it.
+std::optional<SegmentPlan> planned(const PathSegment& segment, const MachineLimits& machine) {
+  const auto table = PathLengthTable<64>::build(segment);
+  if (!table) return std::nullopt;
+  auto plan = plan_segment(segment, table.value(), machine);
+  if (!plan) return std::nullopt;
+  return plan.value();
+}
+
+/// Whether the planner passes the blend faster than the corner it replaces. Each neighbour runs at
+/// up to its speed cap (the planner's, at most what half its length reaches from rest), V_a and V_b.
+/// Kept, the corner is passed at the planner's junction speed v_c (near rest at a sharp corner):
+/// the loss is the speed change from V_a to v_c and back to V_b. Blended, the speed changes to the
+/// blend's cap v and the blend runs its length L at v instead of the cut lengths d_a, d_b at V_a,
+/// V_b. At sharp corners under a jerk limit a tolerance-sized blend is so tight that it is crawled
+/// through for longer than a stop takes; at speed even a shallow corner's long, gentle blend can
+/// cost more than the stop (5° between 20 mm G0 moves at 150 mm/s); and a joint the planner passes
+/// at speed (a deflection of the Q16.16 grid) gains nothing from a blend.
+bool blend_pays(const CornerBlend& blend, const SmoothingStream::Item& a, const SmoothingStream::Item& b, const SmoothingOptions& options) {
+  const MachineLimits& machine = options.machine;
+  const auto plan_a = planned(a.segment, machine);
+  const auto plan_b = planned(b.segment, machine);
+  const auto plan_blend = planned(blend.curve, machine);
+  if (!plan_a || !plan_b || !plan_blend) return false;
+  const double cruise_a = reachable_from_rest(0.5 * a.length_mm, plan_a->limits.speed_cap_mm_per_s, options);
+  const double cruise_b = reachable_from_rest(0.5 * b.length_mm, plan_b->limits.speed_cap_mm_per_s, options);
+  const double corner = std::fmin(std::fmin(cruise_a, cruise_b), junction_speed(*plan_a, *plan_b, machine));
+  const double v = std::fmin(plan_blend->limits.speed_cap_mm_per_s, std::fmin(cruise_a, cruise_b));
+  if (!(v > 0) || !(cruise_a > 0) || !(cruise_b > 0)) return false;
+  const double kept = change_loss(cruise_a, corner, options) + change_loss(cruise_b, corner, options);
+  const double blended = change_loss(cruise_a, v, options) + change_loss(cruise_b, v, options) + plan_blend->length_mm / v -
+                         blend.incoming_cut_mm / cruise_a - blend.outgoing_cut_mm / cruise_b;
+  return blended < kept;
 }
 
 bool fittable_line(const PathSegment& s, const SmoothingOptions& options) {
@@ -67,7 +116,10 @@ void SmoothingStream::event(JobEvent event) {
 
 double SmoothingStream::joint_tolerance(const PathSegment& segment, std::optional<double> blend_tolerance_mm) const {
   if (events_at_segment_.count(pushed_) != 0) return 0;
-  if (previous_->rapid() || segment.rapid()) return 0;
+  // A joint between a rapid and a feed move stays as programmed (where the tool enters or leaves
+  // the work, and where a laser switches); two rapids are blended like two feed moves (G64 in
+  // LinuxCNC blends G0 corners too).
+  if (previous_->rapid() != segment.rapid()) return 0;
   double tolerance = options_.tolerance_mm;
   if (blend_tolerance_mm) {
     if (*blend_tolerance_mm < 0) return 0;
@@ -205,7 +257,11 @@ void SmoothingStream::decide_corner(Item& a, Item& b) {
   request.j_max_mm_per_s3 = options_.j_max_mm_per_s3;
   auto blend = blend_corner(request);
   if (!blend) return;
-  if (!blend_pays(*blend, options_)) {
+  // The blend takes up to half of each neighbour: it runs at the slower of their feeds, never
+  // faster than either was programmed (a feed change is kept).
+  const auto feed_of = [&](const PathSegment& s) { return s.feed_mm_per_s() > 0 ? s.feed_mm_per_s() : options_.machine.feed_mm_per_s; };
+  blend->curve.set_feed_mm_per_s(std::fmin(feed_of(a.segment), feed_of(b.segment)));
+  if (!blend_pays(*blend, a, b, options_)) {
     ++figures_.corners_stopped;
     return;
   }

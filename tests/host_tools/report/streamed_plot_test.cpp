@@ -3,7 +3,8 @@
 // SVG and the HTML must be those the earlier implementation wrote while it held every setpoint in
 // memory. The expected files in data/ were written by that implementation (curvestep plot and
 // curvestep sim --report of commit 53bce29, before the change), run from data/ so the title is
-// the bare file name.
+// the bare file name; since blends are weighed by the planner's speeds and run at the slower feed,
+// by 53bce29 with that smoothing rule ported onto it (its setpoints of the job equal this tree's).
 #include <cstdio>
 #include <string>
 

@@ -148,9 +148,10 @@ TEST_CASE("smoothing: a run longer than fit_max_run_lines is fitted as consecuti
 }
 
 TEST_CASE("smoothing: a blended corner is curvature-continuous and passed at the blend's own speed", "[host][smoothing]") {
-  // Two 10 mm lines meeting at 20 degrees: too few lines to fit, so a blend.
+  // Two 10 mm lines meeting at 5 degrees: too few lines to fit, so a blend (at 20 degrees, at
+  // 50 mm/s, a stop is faster: test below).
   const Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}},
-                                       MachinePoint{{10 + 10 * std::cos(pi / 9), 10 * std::sin(pi / 9), 0}}});
+                                       MachinePoint{{10 + 10 * std::cos(pi / 36), 10 * std::sin(pi / 36), 0}}});
   const MachineLimits machine = example_machine();
   smoothing::SmoothingReport report;
   const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
@@ -173,9 +174,9 @@ TEST_CASE("smoothing: a blended corner is curvature-continuous and passed at the
 
 TEST_CASE("smoothing: rapids, exact stops, reversals and joints with events are kept as programmed", "[host][smoothing]") {
   const MachineLimits machine = example_machine();
-  Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}}, MachinePoint{{20, 2, 0}}, MachinePoint{{30, 0, 0}},
+  Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}}, MachinePoint{{20, 0.5, 0}}, MachinePoint{{30, 0, 0}},
                                  MachinePoint{{40, 3, 0}}, MachinePoint{{30, 3, 0}}, MachinePoint{{20, 6, 0}}});
-  // joints: 1 (10,0) blended; 2 (20,2) exact stop (G61); 3 (30,0) an event; 4 (40,3) a hairpin (free);
+  // joints: 1 (10,0) blended (3 degrees); 2 (20,0.5) exact stop (G61); 3 (30,0) an event; 4 (40,3) a hairpin (free);
   programmed.segments[5].set_rapid(true);  // joint 5 rapid
   programmed.blend_tolerance_mm.assign(programmed.segments.size(), 0.0);
   programmed.blend_tolerance_mm[2] = -1;
@@ -199,6 +200,90 @@ TEST_CASE("smoothing: rapids, exact stops, reversals and joints with events are 
   CHECK(smoothed.segments.back().start() == programmed.segments.back().start());
   CHECK(smoothed.segments.back().end() == programmed.segments.back().end());
   CHECK(smoothed.blend_tolerance_mm.empty());
+}
+
+TEST_CASE("smoothing: corners between two rapids are blended within the tolerance, the blends stay rapids", "[host][smoothing]") {
+  // A G0 travel through shallow corners (as LinuxCNC blends G0 corners under G64): each corner is a
+  // near-stop as programmed (a velocity jump within one tick allows < 1 mm/s), a blend passes it
+  // (at 150 mm/s, corners of 5 degrees and more are faster stopped: test below).
+  constexpr double tolerance = 0.01;
+  constexpr double sampling = 5e-5;
+  const MachineLimits machine = example_machine();
+  Job programmed = polyline_job(turning_walk({2, -3, 2}, 4, 20));
+  for (auto& s : programmed.segments) s.set_rapid(true);
+  REQUIRE(programmed.segments.size() == 4);
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, tolerance, &report);
+  require_connected(smoothed);
+  CHECK(report.corners == 3);
+  CHECK(report.corners_blended == 3);
+  CHECK(smoothed.segments.size() == 7);
+  for (const auto& s : smoothed.segments) CHECK(s.rapid());
+  const Deviation d = deviation(programmed, smoothed);
+  CHECK(d.path_to_programmed <= tolerance);
+  CHECK(d.programmed_to_path <= tolerance + sampling);
+  const auto as_programmed = simulate(programmed, machine).summary;
+  const auto blended = simulate(smoothed, machine).summary;
+  CHECK(blended.violations.empty());
+  // Each blend saves at least a stop and a restart from the blend's speed (2 x 2 sqrt(v/j) > 20 ms
+  // above 2.5 mm/s); the corners as programmed are passed below 1 mm/s.
+  CHECK(blended.duration_s < as_programmed.duration_s - 3 * 0.02);
+}
+
+TEST_CASE("smoothing: a corner is blended only where the blend is faster than stopping", "[host][smoothing][sim]") {
+  // Zig-zags of 10 mm lines at 50 mm/s and of 20 mm rapids at 150 mm/s, each simulated smoothed and
+  // as programmed (stopping at every corner): smoothing never makes a job slower, and the shallow
+  // corners, where a blend is far faster, are blended. (Deciding by the blend's length against a
+  // stop from the blend's own speed blended the 20 and 30 degree feed corners: 1.667 and 1.712 s
+  // against 1.58 s stopping.)
+  const MachineLimits machine = example_machine();
+  const double tick = 1.0 / machine.rate_hz;
+  for (const bool rapid : {false, true}) {
+    for (const double turn : {1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 45.0}) {
+      INFO((rapid ? "rapids" : "feed lines") << ", corners of " << turn << " degrees");
+      Job programmed = polyline_job(turning_walk({turn, -turn}, 6, rapid ? 20 : 10));
+      for (auto& s : programmed.segments) s.set_rapid(rapid);
+      smoothing::SmoothingReport report;
+      const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
+      const auto stopping = simulate(programmed, machine).summary;
+      const auto with_smoothing = simulate(smoothed, machine).summary;
+      CHECK(with_smoothing.violations.empty());
+      CHECK(with_smoothing.duration_s <= stopping.duration_s + tick / 2);
+      if (turn <= 2) {
+        CHECK(report.corners_blended == 5);
+        CHECK(with_smoothing.duration_s < stopping.duration_s - 5 * 0.02);  // each blend saves > 20 ms
+      }
+    }
+  }
+}
+
+TEST_CASE("smoothing: a blend never runs faster than the programmed feeds of the moves it joins", "[host][smoothing][sim]") {
+  // A 10 mm line at 40 mm/s into one at 50 mm/s at 3 degrees: the blend takes up to half of each
+  // (4.9 mm here). It ran at the outgoing feed, 50 mm/s, over the first line's last 4.9 mm.
+  const MachineLimits machine = example_machine();
+  Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}},
+                                 MachinePoint{{10 + 10 * std::cos(pi / 60), 10 * std::sin(pi / 60), 0}}});
+  programmed.segments[0].set_feed_mm_per_s(40);
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
+  REQUIRE(report.corners_blended == 1);
+  REQUIRE(smoothed.segments.size() == 3);
+  CHECK(smoothed.segments[1].feed_mm_per_s() == 40);
+  // Measured from the setpoints: the speed between consecutive setpoints whose positions lie on the
+  // first line's stretch (x up to 10 mm) stays within its feed.
+  const auto run = simulate(smoothed, machine);
+  CHECK(run.summary.violations.empty());
+  double fastest_on_first_line = 0;
+  for (std::size_t i = 1; i < run.setpoints.size(); ++i) {
+    const auto& p = run.setpoints[i - 1].position_mm;
+    const auto& q = run.setpoints[i].position_mm;
+    if (q[0] > 10) break;
+    const double step = std::hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]);
+    fastest_on_first_line = std::fmax(fastest_on_first_line, step * machine.rate_hz);
+  }
+  // Setpoints are on the Q16.16 grid: a step's length is exact to within two grid units.
+  CHECK(fastest_on_first_line <= 40 + 2.0 / 65536 * machine.rate_hz);
+  CHECK(fastest_on_first_line > 39.9);
 }
 
 TEST_CASE("smoothing: with the tolerance 0 the job is unchanged", "[host][smoothing]") {

@@ -40,7 +40,7 @@ struct CornerRequest {
 
 /// A blend: the curve, where it leaves and joins the neighbours, its deviation and speed cap.
 struct CornerBlend {
-  PathSegment curve;             ///< quintic Bézier on the Q16.16 grid, rapid/feed of the outgoing segment
+  PathSegment curve;             ///< quintic Bézier on the Q16.16 grid, rapid if the outgoing segment is (no feed: the caller sets it)
   double incoming_u = 1;         ///< the incoming segment now ends at this parameter
   double outgoing_u = 0;         ///< the outgoing segment now starts at this parameter
   double incoming_cut_mm = 0;    ///< arc length taken from the incoming segment's end

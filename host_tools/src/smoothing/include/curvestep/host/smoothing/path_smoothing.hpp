@@ -12,7 +12,8 @@
 //
 // A blend is kept only when passing it is faster than stopping at the corner: under a jerk limit a
 // sharp corner's tolerance-sized blend is crawled through for longer than a stop and restart take.
-// Kept as programmed: rapids and the corners next to them, reversals (deflection above 179°),
+// Rapids are never fitted; a corner between two rapids is blended, one between a rapid and a feed move
+// kept as programmed, as are reversals (deflection above 179°),
 // joints with a job event (a dwell or a spindle change needs the stop), exact-stop joints (G61),
 // arcs of more than one turn. With a fit next to it, a blend gets half the tolerance (the fit took
 // the other half), so the deviation from the programmed path never exceeds the tolerance.
@@ -40,6 +41,8 @@ struct SmoothingOptions {
   double blend_max_share = 0.49;        ///< a blend takes at most this share of a neighbour (each end)
   double a_max_mm_per_s2 = 1000;        ///< the machine's limits (to shape blends for speed)
   double j_max_mm_per_s3 = 10000;
+  MachineLimits machine{};              ///< the machine the job is smoothed for: a blend is kept only
+                                        ///< where its planner passes it faster than the corner
 };
 
 /// What smoothing did.
@@ -56,7 +59,7 @@ struct SmoothingReport {
   double max_deviation_mm = 0;      ///< largest deviation from the programmed path (both ways)
 };
 
-/// Options for a machine: its a_max/j_max and `tolerance_mm`.
+/// Options for a machine: its limits and `tolerance_mm`.
 [[nodiscard]] SmoothingOptions options_for(const MachineLimits& machine, double tolerance_mm);
 
 /// The smoothed job (the same job when the tolerance is 0). Job::blend_tolerance_mm gives the
