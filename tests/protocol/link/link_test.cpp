@@ -625,6 +625,23 @@ TEST_CASE("link: Naks that never end still fail the link after the link timeout 
   CHECK(now - 50 == 3000);
 }
 
+TEST_CASE("link: a controller that answers once after the last progress and then goes silent is gone (LinkTimeout)",
+          "[protocol][link]") {
+  // A cut line: the controller's last heartbeat arrives just after the last acknowledgement that
+  // moved the window, then nothing. It was reported as RetransmitLimit ("the controller answered"),
+  // or LinkTimeout, depending on which of the two came last before the cut (a flaky HIL test).
+  Host<> host(SenderSettings{100, 10, 1500});
+  Controller controller(4);
+  handshake(host, controller);
+  REQUIRE(host.sender.submit(Message(Start{})).has_value());
+  CHECK(host.transmit(0).size() == 1);
+  host.receive(controller.reply(Reception{Disposition::Ignore, ReplyKind::Ack, Ack{0, 0}, Nak{}}), 10);  // heard, no progress
+  std::uint32_t now = 10;
+  for (now = 20; now < 5000 && host.link_errors.empty(); now += 10) (void)host.transmit(now);
+  REQUIRE(host.link_errors.size() == 1);
+  CHECK(host.link_errors[0] == Error::LinkTimeout);
+}
+
 TEST_CASE("link: with a link timeout a silent pause is judged by it, not by max_retransmits (issue 19.6)", "[protocol][link]") {
   Host<> host(SenderSettings{100, 10, 30000});
   Controller controller(4);

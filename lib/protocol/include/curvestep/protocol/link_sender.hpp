@@ -21,7 +21,8 @@
 //     one, so a peer that is merely paused (a frozen process, a busy USB hub) is given the whole
 //     link_timeout_ms of silence, not max_retransmits x retransmit_timeout_ms;
 //   * frames outstanding and no acknowledgement that moves the window for link_timeout_ms fail
-//     the link (RetransmitLimit if the peer was heard meanwhile, else LinkTimeout), however many
+//     the link (RetransmitLimit if the peer was heard meanwhile and within the last half link
+//     timeout, else LinkTimeout: it went silent), however many
 //     Naks and go-backs kept the retransmission timer from expiring: on a line that damages
 //     every long frame the Naks never stop, and without this bound nothing would ever fail.
 // Sequence numbers are 8 bits; Window is at most 127, so "behind" and "ahead" can never be
@@ -149,7 +150,11 @@ class LinkSender {
       return give_up(Error::LinkTimeout, now_ms - heard_ms_);
     }
     if (transmitted_ > 0 && settings_.link_timeout_ms != 0 && now_ms - progress_ms_ >= settings_.link_timeout_ms) {
-      if (static_cast<std::int32_t>(heard_ms_ - progress_ms_) > 0) return give_up(Error::RetransmitLimit, first_sequence_);
+      // The peer talks but never takes the frame only if it still talks: heard since the last
+      // progress and within the last half link timeout. A frame it sent just before it went silent
+      // (a cut line) does not make a gone peer a talking one.
+      const bool talking = static_cast<std::int32_t>(heard_ms_ - progress_ms_) > 0 && now_ms - heard_ms_ < settings_.link_timeout_ms / 2;
+      if (talking) return give_up(Error::RetransmitLimit, first_sequence_);
       return give_up(Error::LinkTimeout, now_ms - heard_ms_);
     }
     if (transmitted_ > 0 && now_ms - timer_ms_ >= settings_.retransmit_timeout_ms) {
