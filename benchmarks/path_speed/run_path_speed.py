@@ -7,8 +7,8 @@ and the simulator's double-precision setpoints, not by the code under test).
     python3 run_path_speed.py CURVESTEP MACHINE.json [--small] [--check] [--out results.json]
 
 Prints JSON. With --check, exits 1 unless these goals hold: circles of 360 and 3600 chords within
-1.15x the arc, the spiral within 1.15x length/feed, no limit exceeded, and every setpoint within the
-tolerance of the programmed path. The CAM raster against the grbl model (16-block buffer, same a_max)
+1.15x the arc, the spiral within 1.15x length/feed, no limit exceeded, no job slower smoothed than as
+programmed, and every setpoint within the tolerance of the programmed path. The CAM raster against the grbl model (16-block buffer, same a_max)
 is reported in "open_goals" while it is slower: its row turnarounds are 90-degree corners, which a
 jerk-limited machine stops at (faster than any blend within 10 um) and grbl's jerk-free model passes
 at its junction speed. turnaround_bound.py shows that no jerk-limited machine can lose as little time
@@ -148,6 +148,10 @@ def main():
                 failures.append(job.name + ": %.3fx the arc's time" % entry["ratio_to_arc"])
             if job.name.startswith("spiral") and entry["ratio_to_length_over_feed"] > 1.15:
                 failures.append(job.name + ": %.3fx length/feed" % entry["ratio_to_length_over_feed"])
+            # Smoothing never makes a job slower than as programmed (a blend is made only where the
+            # planner passes it faster than the corner); one tick of slack.
+            if smoothed["duration_s"] > raw["duration_s"] + 0.0015:
+                failures.append(job.name + ": smoothed %.3f s, slower than as programmed %.3f s" % (smoothed["duration_s"], raw["duration_s"]))
             if job.name.startswith("cam_raster") and entry["ratio_to_grbl_16"] > 1.0:
                 open_goals.append(job.name + ": slower than the grbl model (%.3fx)" % entry["ratio_to_grbl_16"])
             # Setpoints lie on the smoothed path (chord and Q16.16 effects are far below a micrometre),
