@@ -110,8 +110,7 @@ Plan check_before_moving(const ReadableJob& job, const MachineLimits& machine, i
   std::optional<Setpoint<Q16_16>> first;
   Setpoint<Q16_16> last;
   Plan plan;
-  StreamedJob pulled{device_job.outline, device_job.segments, 0.0, device_job.read()};
-  plan.summary = simulate_stream(std::move(pulled), device_machine, SimulationOptions{}, [&](const SetpointRecord& r) {
+  plan.summary = simulate_stream(device_job, device_machine, SimulationOptions{}, [&](const SetpointRecord& r) {
     Setpoint<Q16_16> s;
     for (std::size_t a = 0; a < motion_axes; ++a) s.position[a] = Q16_16::from_raw(r.raw_q16[a]);
     if (!first) first = s;

@@ -189,8 +189,8 @@ int run_sim(const SimOptions& o) {
     return simulate_streamed_job(plan, o.job, machine_file, file_limits, o.pipeline, with, sink);
   };
   SimulationResult result;
-  link::SimulatedEventTimeline timeline(streamed ? link::to_wire_events(job, machine.rate_hz, prepared.event_labels)
-                                                 : link::to_wire_events(job, machine.rate_hz, true));
+  link::SimulatedEventTimeline timeline(
+      link::to_wire_events(job, machine.rate_hz, readable(plan, o.job, machine_file, file_limits, o.pipeline).event_labels));
   std::uint64_t last_index = 0;
   const auto run = [&](const SetpointSink& sink) {
     const SetpointSink both = [&](const SetpointRecord& r) {

@@ -272,13 +272,6 @@ std::vector<protocol::QueueEvent> wire_events(const Job& job, double rate_hz, co
 
 }  // namespace
 
-std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels) {
-  const std::size_t segments = job.segments.size();
-  const auto label_into = [&](std::size_t k) { return file_labels && !job.source_index.empty() ? job.source_index[k] : k; };
-  // After the last move: the label after the last segment's (the rest at the job's end carries it).
-  return wire_events(job, rate_hz, [&](std::size_t k) { return k < segments ? label_into(k) : (segments == 0 ? 0 : label_into(segments - 1) + 1); });
-}
-
 std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, const std::map<std::size_t, std::size_t>& labels) {
   return wire_events(job, rate_hz, [&](std::size_t k) {
     const auto found = labels.find(k);

@@ -181,6 +181,7 @@ ReadableJob readable(const StreamedJobPlan& plan, const std::filesystem::path& j
   out.outline = &plan.prepared.job;
   out.segments = plan.segments;
   out.file_segments = plan.file_segments;
+  out.approximate_length_mm = plan.approximate_length_mm;
   out.event_labels = plan.prepared.event_labels;
   out.read = [job_file, &machine_file, machine, options, stamp = plan.file] {
     return stream_segments(job_file, machine_file, machine, options, stamp);
@@ -192,9 +193,7 @@ SimulationSummary simulate_streamed_job(const StreamedJobPlan& plan, const std::
                                         const MachineLimits& machine, const JobPipelineOptions& options, const SimulationOptions& simulation,
                                         const SetpointSink& sink) {
   if (!plan.streamed) return simulate_stream(plan.prepared.job, plan.prepared.machine, simulation, sink);
-  StreamedJob pulled{&plan.prepared.job, plan.segments, plan.approximate_length_mm,
-                     stream_segments(job_file, machine_file, machine, options, plan.file)};
-  return simulate_stream(std::move(pulled), plan.prepared.machine, simulation, sink);
+  return simulate_stream(readable(plan, job_file, machine_file, machine, options), plan.prepared.machine, simulation, sink);
 }
 
 }  // namespace curvestep::host

@@ -195,6 +195,11 @@ SimulationSummary simulate_stream(StreamedJob job, const MachineLimits& machine,
   return summarize(run, machine, options, job.approximate_length_mm, sink);
 }
 
+SimulationSummary simulate_stream(const ReadableJob& job, const MachineLimits& machine, const SimulationOptions& options,
+                                  const SetpointSink& sink) {
+  return simulate_stream(StreamedJob{job.outline, job.segments, job.approximate_length_mm, job.read()}, machine, options, sink);
+}
+
 SimulationResult simulate(const Job& job, const MachineLimits& machine, const SimulationOptions& options) {
   SimulationResult result;
   result.summary = simulate_stream(job, machine, options, [&result](const SetpointRecord& r) { result.setpoints.push_back(r); });

@@ -19,6 +19,9 @@ struct ReadableJob {
   const Job* outline = nullptr;  ///< name and events (their before_segment numbers the smoothed segments); no segments needed
   std::size_t segments = 0;      ///< how many each read gives
   std::size_t file_segments = 0;  ///< the file segment labels (Job::source_index) are below this
+  /// The sum of approximate_length(segment) over its segments, for a simulation's progress; 0 when
+  /// not known (readable() of a job held whole: its simulation reports progress only at the end).
+  double approximate_length_mm = 0;
   /// For each joint with events, the file segment label of the segment after it, or past the last
   /// segment the last one's + 1 (SmoothingStream::event_labels).
   std::map<std::size_t, std::size_t> event_labels;

@@ -74,8 +74,9 @@ struct StreamedJobPlan {
                                                              const MachineLimits& machine, const JobPipelineOptions& options,
                                                              std::optional<FileStamp> expected = std::nullopt);
 
-/// simulate_stream of the job `plan` describes (plan_job of the same arguments): a streamed job's
-/// segments pulled from a new read of the file (stream_segments, each call reads it again).
+/// simulate_stream of the job `plan` describes (plan_job of the same arguments): a streamed job as
+/// its readable() (its segments pulled from a new read of the file, each call reads it again), a job
+/// held whole from memory.
 [[nodiscard]] SimulationSummary simulate_streamed_job(const StreamedJobPlan& plan, const std::filesystem::path& job_file,
                                                       const MachineFile& machine_file, const MachineLimits& machine,
                                                       const JobPipelineOptions& options, const SimulationOptions& simulation,

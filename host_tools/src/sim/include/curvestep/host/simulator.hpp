@@ -16,6 +16,7 @@
 #include <curvestep/core/motion/machine_limits.hpp>
 #include <curvestep/core/motion/planned_piece.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/readable_job.hpp>
 #include <curvestep/host/segment_source.hpp>
 
 namespace curvestep::host {
@@ -122,6 +123,11 @@ struct StreamedJob {
 /// simulate_stream of a streamed job: the setpoints and summary of the same job held whole, bit
 /// for bit, in memory independent of its length. Also throws what `source` throws.
 [[nodiscard]] SimulationSummary simulate_stream(StreamedJob job, const MachineLimits& machine, const SimulationOptions& options,
+                                                const SetpointSink& sink);
+
+/// simulate_stream of a new read of `job` (job.read(), a StreamedJob of its outline, count and
+/// approximate length): the one way a ReadableJob is simulated (`sim`'s streamed job, gpio's check).
+[[nodiscard]] SimulationSummary simulate_stream(const ReadableJob& job, const MachineLimits& machine, const SimulationOptions& options,
                                                 const SetpointSink& sink);
 
 /// A segment's path length for progress: arcs exactly (helix: √((r·sweep)² + Δz²)), curves by the

@@ -56,20 +56,19 @@ struct WireJob {
 [[nodiscard]] std::string wire_segment_where(const std::string& job_name, std::size_t file_index);
 
 /// The job's events that a controller acts on, as QueueEvents in program order (G4 dwells are
-/// motion, JointStop; operator messages stay on the host). Each is keyed by the setpoints'
-/// segment number where it happens: the PathSegment index it precedes (`file_labels` false: a
-/// planner on board numbers the segments as they arrive) or that segment's job-file index
-/// (`file_labels` true: host-planned pieces carry it); after the last move, that of the last
-/// segment + 1, the label of the setpoints of the rest at the job's end (a dwell after the last
-/// move; without one the events are left for the job's end). `after_rest_ticks` adds the dwells
-/// at its joint before it (joint_stops' rounding). Spindle
+/// motion, JointStop; operator messages stay on the host); `job` gives their name and events only
+/// (its PathSegments and source_index need not be held). Each is keyed by the setpoints' segment
+/// number where it happens: its joint's label in `labels` (ReadableJob::event_labels, the one rule
+/// for a job held whole, readable(), and a streamed one: the job-file index of the segment after
+/// the joint, which host-planned pieces carry; after the last move the last segment's + 1, the
+/// label of the setpoints of the rest at the job's end: a dwell after the last move, without one
+/// the events are left for the job's end). std::logic_error if an event's joint has no label.
+/// `after_rest_ticks` adds the dwells at its joint before it (joint_stops' rounding). Spindle
 /// speeds round to whole rev/min; output and tool numbers must be whole and >= 0 (else
 /// std::runtime_error naming the job file and line).
-[[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, bool file_labels);
-/// The same, with file labels, for a job whose PathSegments and source_index are not held (a
-/// streamed job: its events and name, and `labels`, PreparedJob::event_labels).
 [[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz, const std::map<std::size_t, std::size_t>& labels);
-/// The same with the label of the joint into each segment k (past the last: the job's end) from `label_of`.
+/// The same with the label of the joint into each segment k (past the last: the job's end) from
+/// `label_of` (a planner on board numbers the segments as they arrive: k, the end the segment count).
 [[nodiscard]] std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz,
                                                                const std::function<std::size_t(std::size_t)>& label_of);
 
