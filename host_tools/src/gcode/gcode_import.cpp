@@ -127,7 +127,7 @@ std::string explain(Error code, const std::string& word) {
         return "G41/G42 without D use the loaded tool, which has no diameter in the machine file's tool table: give D<tool> of a tool "
                "with a diameter, or G41.1/G42.1 D<diameter>";
       }
-      if (g5_1) return "G5.1 needs I or J";
+      if (g5_1) return "G5.1 needs both I and J (the offset of the control point; LinuxCNC refuses either alone)";
       if (g5) return "G5 needs P and Q, and I and J together";
       if (arc) return "an arc needs I J (centre) or R (radius)";
       if (word.starts_with("R")) return "the radius form cannot make a full circle: give the centre with I J";

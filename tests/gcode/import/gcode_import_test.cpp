@@ -292,6 +292,7 @@ TEST_CASE("gcode import: every G-code error code reaches the user with its word"
       {"G0 X1\nG3 X0 Y1.1 I-1\n", 2, 1, "G3", Error::GcodeArcRadiusMismatch},
       {"G2 X10 R2\n", 1, 8, "R2", Error::GcodeArcRadiusMismatch},
       {"G19\nG5.1 I1 X1\n", 2, 1, "G5.1", Error::GcodeSplineNotG17},
+      {"G5.1 I1 X1 Y1\n", 1, 1, "G5.1", Error::GcodeMissingWord},  // LinuxCNC: both I and J
       {"G5 P0 Q-3 X2 Y2\n", 1, 1, "G5", Error::GcodeSplineNoTangent},
       {"G1 X1 $\n", 1, 7, "$", Error::GcodeSyntax},
       {"G1 X1 X2\n", 1, 7, "X2", Error::GcodeConflictingWords},

@@ -186,6 +186,11 @@ TEST_CASE("gcode interpreter: G5.1 is the quadratic P0, P0 plus IJ, P1", "[gcode
   CHECK(motion.control[2] == pt(4, 1));
   auto f = run_failing({"G5.1 X4 Y1"});
   CHECK(f.code == Error::GcodeMissingWord);
+  // LinuxCNC refuses either offset alone ("Must specify both I and J with G5.1").
+  f = run_failing({"G5.1 I1 X4 Y1"});
+  CHECK(f.code == Error::GcodeMissingWord);
+  f = run_failing({"G5.1 J1 X4 Y1"});
+  CHECK(f.code == Error::GcodeMissingWord);
   f = run_failing({"G19 G5.1 I1 X4"});
   CHECK(f.code == Error::GcodeSplineNotG17);
   CHECK(f.index == 5);

@@ -18,7 +18,7 @@
 //                      relative). Omitting I and J continues the previous G5's end tangent:
 //                      (I,J) = -(P,Q) of the previous G5 — an error if the previous motion was not
 //                      a G5. P and Q are required; I without J (or J without I) is an error.
-//   G5.1 X Y I J       quadratic Bézier P0, P0+(I,J), P1; I and J may not both be omitted.
+//   G5.1 X Y I J       quadratic Bézier P0, P0+(I,J), P1; I and J both required (as LinuxCNC).
 //   G5.2 [X Y] [P] [L] opens a NURBS block: the current point is the first control point (weight P
 //                      when the G5.2 line has no X Y, else weight 1 and X Y is the second control
 //                      point with weight P); following lines "X Y [P]" add control points (weight
@@ -1392,7 +1392,8 @@ class Interpreter {
   [[nodiscard]] Result<Motion> quadratic(const Block<Capacity>& block, std::uint16_t column, Motion motion) noexcept {
     if (plane_ != Plane::XY) return fail(Error::GcodeSplineNotG17, column);
     CURVESTEP_CHECK(only(block, "XYIJ@^", Error::GcodeConflictingWords));
-    if (block.find('I') == nullptr && block.find('J') == nullptr) return fail(Error::GcodeMissingWord, column);
+    // Both offsets, as LinuxCNC's interpreter requires ("Must specify both I and J with G5.1").
+    if (block.find('I') == nullptr || block.find('J') == nullptr) return fail(Error::GcodeMissingWord, column);
     CURVESTEP_TRY(const double i, offset(block, 'I'));
     CURVESTEP_TRY(const double j, offset(block, 'J'));
     CURVESTEP_TRY(motion.end, end_point(block));
