@@ -42,7 +42,7 @@ std::string format_smoothing(const SmoothingReport& r) {
   out << "  smoothing:           tolerance " << r.tolerance_mm * 1000 << " um; " << r.segments_before << " segments -> "
       << r.segments_after << "\n";
   out << "  corners blended:     " << r.corners_blended << " of " << r.corners;
-  if (r.corners_stopped > 0) out << " (" << r.corners_stopped << " sharp ones stop: faster than their blend)";
+  if (r.corners_stopped > 0) out << " (" << r.corners_stopped << " kept: the planner passes them faster as programmed)";
   out << "\n";
   out << "  line runs fitted:    " << r.runs_fitted << " (" << r.lines_fitted << " lines -> " << r.fitted_pieces << " curves)\n";
   out << "  path deviation:      " << r.max_deviation_mm * 1000 << " um from the programmed path (tolerance "

@@ -50,7 +50,7 @@ struct SmoothingReport {
   double tolerance_mm = 0;          ///< the tolerance in force (machine file or command line)
   std::size_t corners = 0;          ///< joints that were corners or curvature jumps
   std::size_t corners_blended = 0;  ///< of those, replaced by blends
-  std::size_t corners_stopped = 0;  ///< of those, kept because a stop is faster than the tightest blend
+  std::size_t corners_stopped = 0;  ///< of those, kept because the planner passes them faster than their blend (a stop at a sharp one)
   std::size_t runs_fitted = 0;      ///< runs of lines replaced by splines
   std::size_t lines_fitted = 0;     ///< lines in those runs
   std::size_t fitted_pieces = 0;    ///< Bézier pieces the runs became
