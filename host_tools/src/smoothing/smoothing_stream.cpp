@@ -42,12 +42,14 @@ double change_loss(double cruise, double low, const SmoothingOptions& options) {
   return speed_change_time(cruise - low, options.a_max_mm_per_s2, options.j_max_mm_per_s3) * (cruise - low) / (2 * cruise);
 }
 
-/// The largest speed reached from rest within `distance_mm` (the S-curve or trapezoid covers
-/// v t(v) / 2), at most `limit` (bisection).
-double reachable_from_rest(double distance_mm, double limit, const SmoothingOptions& options) {
-  const auto covers = [&](double v) { return v * speed_change_time(v, options.a_max_mm_per_s2, options.j_max_mm_per_s3) / 2 <= distance_mm; };
-  if (covers(limit)) return limit;
-  double low = 0;
+/// The largest speed reached from `start` within `distance_mm`, at most `limit`: a change to v covers
+/// its mean speed (start + v)/2 times its time t(v − start) (bisection).
+double reachable(double start, double distance_mm, double limit, const SmoothingOptions& options) {
+  const auto covers = [&](double v) {
+    return 0.5 * (start + v) * speed_change_time(v - start, options.a_max_mm_per_s2, options.j_max_mm_per_s3) <= distance_mm;
+  };
+  if (!(limit > start) || covers(limit)) return limit;
+  double low = start;
   double high = limit;
   for (int i = 0; i < 60; ++i) {
     const double mid = 0.5 * (low + high);
@@ -69,24 +71,29 @@ std::optional<SegmentPlan> planned(const PathSegment& segment, const MachineLimi
 /// up to its speed cap (the planner's, at most what half its length reaches from rest), V_a and V_b.
 /// Kept, the corner is passed at the planner's junction speed v_c (near rest at a sharp corner):
 /// the loss is the speed change from V_a to v_c and back to V_b. Blended, the speed changes to the
-/// blend's cap v and the blend runs its length L at v instead of the cut lengths d_a, d_b at V_a,
-/// V_b. At sharp corners under a jerk limit a tolerance-sized blend is so tight that it is crawled
-/// through for longer than a stop takes; at speed even a shallow corner's long, gentle blend can
-/// cost more than the stop (5° between 20 mm G0 moves at 150 mm/s); and a joint the planner passes
-/// at speed (a deflection of the Q16.16 grid) gains nothing from a blend.
+/// blend's entry speed w (its cap, at most V_a and V_b), and the blend runs its length L instead of
+/// the cut lengths d_a, d_b at V_a, V_b: at w, or faster where it is gentler than its neighbours (up
+/// to what half its length reaches from w, and back). At sharp corners under a jerk limit a
+/// tolerance-sized blend is so tight that it is crawled through for longer than a stop takes; at
+/// speed even a shallow corner's long, gentle blend can cost more than the stop (5° between 20 mm G0
+/// moves at 150 mm/s); and a joint the planner passes at speed (a deflection of the Q16.16 grid)
+/// gains nothing from a blend unless the blend is faster than the curves it cuts.
 bool blend_pays(const CornerBlend& blend, const SmoothingStream::Item& a, const SmoothingStream::Item& b, const SmoothingOptions& options) {
   const MachineLimits& machine = options.machine;
   const auto plan_a = planned(a.segment, machine);
   const auto plan_b = planned(b.segment, machine);
   const auto plan_blend = planned(blend.curve, machine);
   if (!plan_a || !plan_b || !plan_blend) return false;
-  const double cruise_a = reachable_from_rest(0.5 * a.length_mm, plan_a->limits.speed_cap_mm_per_s, options);
-  const double cruise_b = reachable_from_rest(0.5 * b.length_mm, plan_b->limits.speed_cap_mm_per_s, options);
+  const double cruise_a = reachable(0, 0.5 * a.length_mm, plan_a->limits.speed_cap_mm_per_s, options);
+  const double cruise_b = reachable(0, 0.5 * b.length_mm, plan_b->limits.speed_cap_mm_per_s, options);
   const double corner = std::fmin(std::fmin(cruise_a, cruise_b), junction_speed(*plan_a, *plan_b, machine));
-  const double v = std::fmin(plan_blend->limits.speed_cap_mm_per_s, std::fmin(cruise_a, cruise_b));
-  if (!(v > 0) || !(cruise_a > 0) || !(cruise_b > 0)) return false;
+  const double blend_cap = plan_blend->limits.speed_cap_mm_per_s;
+  const double entry = std::fmin(blend_cap, std::fmin(cruise_a, cruise_b));
+  if (!(entry > 0) || !(cruise_a > 0) || !(cruise_b > 0)) return false;
+  const double length = plan_blend->length_mm;
+  const double top = reachable(entry, 0.5 * length, blend_cap, options);
   const double kept = change_loss(cruise_a, corner, options) + change_loss(cruise_b, corner, options);
-  const double blended = change_loss(cruise_a, v, options) + change_loss(cruise_b, v, options) + plan_blend->length_mm / v -
+  const double blended = change_loss(cruise_a, entry, options) + change_loss(cruise_b, entry, options) + length / (0.5 * (entry + top)) -
                          blend.incoming_cut_mm / cruise_a - blend.outgoing_cut_mm / cruise_b;
   return blended < kept;
 }
