@@ -10,6 +10,7 @@
 
 #include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/segment_plan.hpp>
+#include <curvestep/core/motion/velocity_profile.hpp>
 #include <curvestep/host/smoothing/line_run_fit.hpp>
 #include <curvestep/host/smoothing/segment_geometry.hpp>
 
@@ -28,10 +29,10 @@ double deflection_cos(const PathSegment& a, const PathSegment& b) {
   return dot(local_frame(a, 1.0).tangent, local_frame(b, 0.0).tangent);
 }
 
-/// Time to change speed by v from or to rest: S-curve v/a + a/j (or 2√(v/j) below a²/j), trapezoid v/a.
-double speed_change_time(double v, double a, double j) {
-  if (!(j < 1e11)) return v / a;
-  return v > a * a / j ? v / a + a / j : 2 * std::sqrt(v / j);
+/// The machine's speed changes as the planner times them (velocity_profile.hpp): S-curve, or the
+/// trapezoid when the options carry no jerk limit.
+ProfileLimits speed_changes(const SmoothingOptions& options) {
+  return ProfileLimits{0, options.a_max_mm_per_s2, options.j_max_mm_per_s3, options.j_max_mm_per_s3 < 1e11};
 }
 
 /// Time lost against running on at `cruise` when the speed changes to `low` (and back, or from it):
@@ -39,23 +40,7 @@ double speed_change_time(double v, double a, double j) {
 /// and trapezoid changes are symmetric), so it loses t (cruise − low) / (2 cruise).
 double change_loss(double cruise, double low, const SmoothingOptions& options) {
   if (!(cruise > low)) return 0;
-  return speed_change_time(cruise - low, options.a_max_mm_per_s2, options.j_max_mm_per_s3) * (cruise - low) / (2 * cruise);
-}
-
-/// The largest speed reached from `start` within `distance_mm`, at most `limit`: a change to v covers
-/// its mean speed (start + v)/2 times its time t(v − start) (bisection).
-double reachable(double start, double distance_mm, double limit, const SmoothingOptions& options) {
-  const auto covers = [&](double v) {
-    return 0.5 * (start + v) * speed_change_time(v - start, options.a_max_mm_per_s2, options.j_max_mm_per_s3) <= distance_mm;
-  };
-  if (!(limit > start) || covers(limit)) return limit;
-  double low = start;
-  double high = limit;
-  for (int i = 0; i < 60; ++i) {
-    const double mid = 0.5 * (low + high);
-    (covers(mid) ? low : high) = mid;
-  }
-  return low;
+  return speed_change_time(cruise - low, speed_changes(options)) * (cruise - low) / (2 * cruise);
 }
 
 /// The planner's view of a segment (its caps and end geometry), as the controller will plan it.
@@ -84,14 +69,15 @@ bool blend_pays(const CornerBlend& blend, const SmoothingStream::Item& a, const 
   const auto plan_b = planned(b.segment, machine);
   const auto plan_blend = planned(blend.curve, machine);
   if (!plan_a || !plan_b || !plan_blend) return false;
-  const double cruise_a = reachable(0, 0.5 * a.length_mm, plan_a->limits.speed_cap_mm_per_s, options);
-  const double cruise_b = reachable(0, 0.5 * b.length_mm, plan_b->limits.speed_cap_mm_per_s, options);
+  const ProfileLimits changes = speed_changes(options);
+  const double cruise_a = reachable_speed(0, 0.5 * a.length_mm, plan_a->limits.speed_cap_mm_per_s, changes);
+  const double cruise_b = reachable_speed(0, 0.5 * b.length_mm, plan_b->limits.speed_cap_mm_per_s, changes);
   const double corner = std::fmin(std::fmin(cruise_a, cruise_b), junction_speed(*plan_a, *plan_b, machine));
   const double blend_cap = plan_blend->limits.speed_cap_mm_per_s;
   const double entry = std::fmin(blend_cap, std::fmin(cruise_a, cruise_b));
   if (!(entry > 0) || !(cruise_a > 0) || !(cruise_b > 0)) return false;
   const double length = plan_blend->length_mm;
-  const double top = reachable(entry, 0.5 * length, blend_cap, options);
+  const double top = reachable_speed(entry, 0.5 * length, blend_cap, changes);
   const double kept = change_loss(cruise_a, corner, options) + change_loss(cruise_b, corner, options);
   const double blended = change_loss(cruise_a, entry, options) + change_loss(cruise_b, entry, options) + length / (0.5 * (entry + top)) -
                          blend.incoming_cut_mm / cruise_a - blend.outgoing_cut_mm / cruise_b;
