@@ -34,6 +34,27 @@ class TurnaroundBoundTest(unittest.TestCase):
         expected = 0.09 - 2 * d / V
         self.assertAlmostEqual(problem.lost_time(back), expected, delta=1e-6)
 
+    def test_checks_between_samples_keep_the_hand_computed_reversal(self):
+        # The same reversal with the tube checked at 4 points per interval (check point 4 (k + 1) is
+        # sample k + 1, the one in the step's tube): the continuous optimum never leaves x <= tol (its
+        # peak is on a sample), so the bound must not rise above it.
+        d = 50 * 0.04 - J * 0.04 ** 3 / 6 + 10 * 0.005 - A * 0.005 ** 2 / 2
+        problem = t.Turnaround(A, J, V, 0.0, 1e-7, 0.005, 0.22, d + 0.75, checks=4)
+        back = max(b for b in (problem.solve(4 * k + 3, 4 * k + 5) for k in range(problem.n - 2)) if b is not None)
+        self.assertAlmostEqual(problem.lost_time(back), 0.09 - 2 * d / V, delta=1e-6)
+
+    def test_checks_between_samples_raise_the_bound_below_a_feasible_turnaround(self):
+        # Checked only at samples 5 ms apart, the tool may cut a corner between two samples; checked
+        # between them too, the bound rises. It stays below the loss of a turnaround every machine with
+        # these limits can run, worked by hand: stop at the corner (jerk-only S-curve: V < A^2/J, so
+        # T = 2 sqrt(V/J), d = V T/2, lost T - d/V = sqrt(V/J)), the step of 0.5 mm rest to rest
+        # (jerk-only: 0.5 = J T^3/32, peak a = J T/4 = 855 <= A), start again.
+        feasible = 2 * math.sqrt(V / J) + (32 * 0.5 / J) ** (1 / 3) - 0.5 / V
+        samples = t.Turnaround(A, J, V, 0.5, 0.01, 0.005, 0.26, 2.2).least_lost_time(2)["lost_s"]
+        between = t.Turnaround(A, J, V, 0.5, 0.01, 0.005, 0.26, 2.2, checks=4).least_lost_time(2)["lost_s"]
+        self.assertGreater(between, samples)
+        self.assertLess(between, feasible)
+
     def test_a_step_costs_more_than_a_reversal_and_a_looser_tolerance_less(self):
         tight = t.Turnaround(A, J, V, 0.5, 0.005, 0.005, 0.26, 2.2).least_lost_time(2)
         loose = t.Turnaround(A, J, V, 0.5, 0.05, 0.005, 0.26, 2.2).least_lost_time(2)

@@ -4,7 +4,7 @@ found by linear programming (needs SciPy: Debian's python3-scipy), against grbl'
 turnaround. An independent bound: it knows nothing of curvestep's planner or blends.
 
     /usr/bin/python3 turnaround_bound.py [--a 2000] [--j 50000] [--feed 50] [--step 0.5] [--tol 0.01]
-                                         [--dt 0.0005] [--deviation 0.02 0.01]
+                                         [--dt 0.0005] [--deviation 0.02 0.01] [--checks 4]
 
 The turnaround: a row along +x ends at the corner (0, 0), a step of `step` mm along +y, the next row
 back along -x. The tool comes in at the feed with zero acceleration and must leave at the feed along
@@ -14,9 +14,11 @@ The bound is a relaxation of the real problem, so its least lost time is at most
 with these limits:
   * the whole-vector limits |v| <= feed, |a| <= a_max, |j| <= j_max are relaxed to the octagons
     |c_x|, |c_y| <= L and |c_x +- c_y| <= sqrt(2) L, which contain the discs;
-  * the path tolerance is checked only at the samples (every `dt`), as the tubes of radius `tol`
-    around the programmed row 1, step and row 2, passed in that order (from sample k_a on the tool
-    is in the step's tube, from k_b on in row 2's); every k_a < k_b is tried;
+  * the path tolerance is checked only at the check points (every sample `dt`, and `checks` - 1
+    points between two samples), as the tubes of radius `tol` around the programmed row 1, step and
+    row 2, passed in that order (after check point p_a the tool is in the step's tube, from p_b on in
+    row 2's); the switches are searched on a grid of samples, then point by point. Checked only at
+    the samples (--checks 1), the optimum cuts a corner between two samples;
   * the jerk is constant between samples. This one restricts rather than relaxes: a switch of the
     jerk between samples costs at most one sample, so the bound is shown at two `dt`.
 
@@ -44,7 +46,8 @@ class Turnaround:
     """The LP of one turnaround, sampled every dt: per axis the jerks j_0..j_{n-1} and the states
     a, v, s at the samples 0..n, tied by the exact integration of a constant jerk over dt."""
 
-    def __init__(self, a_max, j_max, feed, step, tol, dt, horizon_s, lead_mm):
+    def __init__(self, a_max, j_max, feed, step, tol, dt, horizon_s, lead_mm, checks=1):
+        self.checks = checks
         self.a_max, self.j_max, self.feed, self.step, self.tol, self.dt = a_max, j_max, feed, step, tol, dt
         self.n = int(round(horizon_s / dt))
         self.lead = lead_mm
@@ -99,9 +102,43 @@ class Turnaround:
         self.a_ub = sparse.csr_matrix((vals, (rows, cols)), shape=(row, self.size))
         self.b_ub = np.array(bound)
 
-    def solve(self, k_a, k_b):
-        """Largest distance back along row 2 at the horizon, for the phase switch samples k_a < k_b;
-        None if infeasible."""
+    def _tube(self, p, p_a, p_b):
+        """The tube that check point p lies in, as (x_low, x_high, y_low, y_high)."""
+        tol, step = self.tol, self.step
+        if p <= p_a:  # row 1
+            return -np.inf, tol, -tol, tol
+        if p < p_b:  # the step
+            return -tol, tol, -tol, step + tol
+        return -np.inf, tol, step - tol, step + tol  # row 2
+
+    def _between_samples(self, p_a, p_b):
+        """The tubes checked between the samples, at checks - 1 points in every interval: the position
+        there is linear in the interval's start state and jerk."""
+        if self.checks == 1:
+            return self.a_ub, self.b_ub
+        rows, cols, vals, bound = [], [], [], []
+        for k in range(self.n):
+            for m in range(1, self.checks):
+                tau = self.dt * m / self.checks
+                x_low, x_high, y_low, y_high = self._tube(k * self.checks + m, p_a, p_b)
+                terms = (("s", 1.0), ("v", tau), ("a", tau * tau / 2), ("j", tau ** 3 / 6))
+                for axis, low, high in ((0, x_low, x_high), (1, y_low, y_high)):
+                    for sign, value in ((1.0, high), (-1.0, -low)):
+                        if not math.isfinite(value):
+                            continue
+                        row = len(bound)
+                        for quantity, c in terms:
+                            rows.append(row)
+                            cols.append(self.index(axis, quantity, k))
+                            vals.append(sign * c)
+                        bound.append(value)
+        extra = sparse.csr_matrix((vals, (rows, cols)), shape=(len(bound), self.size))
+        return sparse.vstack([self.a_ub, extra]).tocsr(), np.concatenate([self.b_ub, np.array(bound)])
+
+    def solve(self, p_a, p_b):
+        """Largest distance back along row 2 at the horizon, for the phase switches p_a < p_b (check
+        points: the samples times `checks`; the tool is in the step's tube after check point p_a and in
+        row 2's from p_b on); None if infeasible."""
         n, tol, step = self.n, self.tol, self.step
         lo = np.full(self.size, -np.inf)
         hi = np.full(self.size, np.inf)
@@ -117,14 +154,9 @@ class Turnaround:
                 box(axis, "a", k, -self.a_max, self.a_max)
                 box(axis, "v", k, -self.feed, self.feed)
         for k in range(n + 1):
-            box(0, "s", k, -np.inf, tol)  # x <= tol in every tube
-            if k <= k_a:  # row 1
-                box(1, "s", k, -tol, tol)
-            elif k < k_b:  # the step
-                box(0, "s", k, -tol, tol)
-                box(1, "s", k, -tol, step + tol)
-            else:  # row 2
-                box(1, "s", k, step - tol, step + tol)
+            x_low, x_high, y_low, y_high = self._tube(k * self.checks, p_a, p_b)
+            box(0, "s", k, x_low, x_high)
+            box(1, "s", k, y_low, y_high)
         # Start: along +x at the feed, lead_mm before the corner; end: along -x at the feed, at rest in y.
         for axis, s0, v0 in ((0, -self.lead, self.feed), (1, 0.0, 0.0)):
             box(axis, "s", 0, s0, s0)
@@ -138,7 +170,8 @@ class Turnaround:
             return None
         cost = np.zeros(self.size)
         cost[self.index(0, "s", n)] = 1.0  # maximise the distance back: minimise x_n
-        result = linprog(cost, A_ub=self.a_ub, b_ub=self.b_ub, A_eq=self.a_eq, b_eq=self.b_eq,
+        a_ub, b_ub = self._between_samples(p_a, p_b)
+        result = linprog(cost, A_ub=a_ub, b_ub=b_ub, A_eq=self.a_eq, b_eq=self.b_eq,
                          bounds=list(zip(lo, hi)), method="highs")
         if result.status != 0:
             return None
@@ -149,10 +182,10 @@ class Turnaround:
         return self.n * self.dt - covered / self.feed
 
     def least_lost_time(self, coarse, seed=None):
-        """Search the phase switches: a coarse grid (around `seed`, the switch times of a coarser
-        search, when given), then every sample around the best pair."""
+        """Search the phase switches: a coarse grid of samples (around `seed`, the switch times of a
+        coarser search, when given), then every check point around the best pair."""
         best = None
-        n = self.n
+        n, m = self.n, self.checks
         if seed is None:
             pairs = [(k_a, k_b) for k_a in range(0, n, coarse) for k_b in range(k_a + coarse, n, coarse)]
         else:
@@ -161,25 +194,30 @@ class Turnaround:
             pairs = [(centre_a + i, centre_b + k) for i in window for k in window
                      if 0 <= centre_a + i < centre_b + k < n]
         for k_a, k_b in pairs:
-            back = self.solve(k_a, k_b)
+            back = self.solve(k_a * m, k_b * m)
             if back is not None and (best is None or back > best[0]):
-                best = (back, k_a, k_b)
+                best = (back, k_a * m, k_b * m)
         if best is None:
             return None
+        last = n * m
+        reach = coarse * m
         improved = True
         while improved:
             improved = False
-            _, k_a0, k_b0 = best
-            for k_a in range(max(0, k_a0 - coarse), min(n, k_a0 + coarse + 1)):
-                for k_b in (k_b0 - 1, k_b0, k_b0 + 1):
-                    if k_b <= k_a or k_b >= n or (k_a, k_b) == (k_a0, k_b0):
+            _, p_a0, p_b0 = best
+            for p_a in range(max(0, p_a0 - reach), min(last, p_a0 + reach + 1)):
+                for p_b in range(p_b0 - m, p_b0 + m + 1):
+                    if p_b <= p_a or p_b >= last or (p_a, p_b) == (p_a0, p_b0):
                         continue
-                    back = self.solve(k_a, k_b)
+                    back = self.solve(p_a, p_b)
                     if back is not None and back > best[0] + 1e-12:
-                        best, improved = (back, k_a, k_b), True
-        back, k_a, k_b = best
-        return {"lost_s": round(self.lost_time(back), 5), "step_tube_from_s": round(k_a * self.dt, 5),
-                "row2_tube_from_s": round(k_b * self.dt, 5), "samples": n, "dt_s": self.dt}
+                        best, improved = (back, p_a, p_b), True
+            reach = m
+        back, p_a, p_b = best
+        check_dt = self.dt / m
+        return {"lost_s": round(self.lost_time(back), 5), "step_tube_from_s": round(p_a * check_dt, 5),
+                "row2_tube_from_s": round(p_b * check_dt, 5), "samples": n, "dt_s": self.dt,
+                "checks_per_sample": m}
 
 
 def grbl_lost_time(a_max, feed, step, deviation, lead_mm=5.0):
@@ -214,11 +252,12 @@ def main():
     parser.add_argument("--deviation", type=float, nargs="+", default=[0.02, 0.01])
     parser.add_argument("--horizon", type=float, default=0.26)
     parser.add_argument("--lead", type=float, default=2.2)
+    parser.add_argument("--checks", type=int, default=4, help="tube checks per sample interval")
     args = parser.parse_args()
     bounds = []
     seed = None
     for dt in sorted(args.dt, reverse=True):
-        problem = Turnaround(args.a, args.j, args.feed, args.step, args.tol, dt, args.horizon, args.lead)
+        problem = Turnaround(args.a, args.j, args.feed, args.step, args.tol, dt, args.horizon, args.lead, args.checks)
         found = problem.least_lost_time(max(1, int(round((0.01 if seed is None else 0.005) / dt))), seed)
         bounds.append(found)
         if found:
