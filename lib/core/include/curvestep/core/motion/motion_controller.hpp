@@ -34,14 +34,8 @@
 // gives must be reachable. Until then the plan follows the override in effect. The rule is a pure
 // function of the ticks at which overrides are set, so `sim --override-at` replays a device.
 //
-// Per-tick work (docs/motion.md, "Per-tick work"): inside one profile phase of one segment the
-// ticks are cut into chunks of N = 2^k <= max_chunk_ticks() ticks. At a chunk's end the path is
-// evaluated exactly (position, velocity, acceleration); the ticks inside follow the quintic Hermite
-// between the chunk's ends (hermite_chunk.hpp), stepped by 5 additions per axis. A chunk is used
-// only if the Hermite is within chunk_error_bound(N)/4 of exact evaluations at its middle (and its
-// quarters when it crosses a knot of the arc-length table); otherwise N is halved, down to the
-// exact path. Every setpoint that is not stepped (chunk ends, exact ticks, feed hold, the end) is
-// the exact evaluation bit for bit.
+// Per-tick work (docs/motion.md, "Per-tick work"): ticks are stepped in chunks from a quintic
+// Hermite between exact evaluations, or evaluated exactly (chunk_interpolator.hpp).
 // Budget per tick: a stepped tick is 15 additions, the profile's speed (a quadratic) and the
 // quantisation; a chunk end costs a plan: 2 to 4 exact evaluations (profile, table search, de
 // Casteljau) and 2 derivatives, plus up to 3 evaluations and 2 derivatives per halving (at most
@@ -54,6 +48,7 @@
 #include <cstdint>
 
 #include <curvestep/core/container/ring_buffer.hpp>
+#include <curvestep/core/motion/chunk_interpolator.hpp>
 #include <curvestep/core/motion/hermite_chunk.hpp>
 #include <curvestep/core/motion/path_length_table.hpp>
 #include <curvestep/core/motion/controller_state.hpp>
@@ -165,9 +160,7 @@ class MotionController {
     rest_left_ = queue_.front().rest_ticks;
     rest_position_ = front().segment.start();
     // A job's setpoints depend only on the job: the chunk adaptation starts afresh.
-    preferred_chunk_ticks_ = max_chunk_ticks_;
-    retry_tick_ = 0;
-    backoff_ticks_ = 1;
+    chunks_.restart_adaptation();
     state_ = ControllerState::Running;
     return ok();
   }
@@ -220,18 +213,13 @@ class MotionController {
     override_tick_ = 0;
     rested_ticks_ = 0;
     rest_left_ = 0;
-    chunk_end_tick_ = no_chunk;
-    chunk_begin_tick_ = no_chunk;
-    clear_state_cache();
-    retry_tick_ = 0;
-    backoff_ticks_ = 1;
-    stats_ = InterpolatorStats{};
+    chunks_.reset();
   }
 
   /// The next setpoint (one tick). InvalidState when idle, finished, aborted or faulted.
   /// Holding, Held and Starved produce setpoints that stay on the path (speed 0 once stopped).
   [[nodiscard]] Result<Setpoint<S>> next_setpoint() noexcept {
-    last_chunk_ticks_ = 1;
+    chunks_.note_exact();
     switch (state_) {
       case ControllerState::Running: return running_tick();
       case ControllerState::Holding: return holding_tick();
@@ -249,7 +237,7 @@ class MotionController {
   /// queueing the next segment then continues exactly as if it had been there all along.
   [[nodiscard]] bool next_tick_ends_queue() const noexcept {
     return state_ == ControllerState::Running && !end_of_job_ && queue_.size() == 1 && rest_left_ == 0 &&
-           chunk_end_tick_ == no_chunk && time_now() - origin_s_ >= profile_.duration_s();
+           !chunks_.pending() && time_now() - origin_s_ >= profile_.duration_s();
   }
   [[nodiscard]] bool finished() const noexcept { return state_ == ControllerState::Finished; }
   /// The error that put the controller into Fault.
@@ -267,16 +255,11 @@ class MotionController {
   [[nodiscard]] const VelocityProfile& current_profile() const noexcept { return profile_; }
 
   /// Work of the interpolator so far (for tests and benchmarks; reset() clears it).
-  struct InterpolatorStats {
-    std::uint64_t exact_evaluations = 0;  ///< exact path evaluations (exact ticks, chunk ends and checks)
-    std::uint64_t stepped_ticks = 0;      ///< setpoints produced by forward differencing
-    std::uint64_t chunks = 0;             ///< chunks of >= 2 ticks accepted
-    std::uint64_t rejected_chunks = 0;    ///< chunk halvings because the midpoint check failed
-  };
-  [[nodiscard]] const InterpolatorStats& interpolator_stats() const noexcept { return stats_; }
+  using InterpolatorStats = curvestep::InterpolatorStats;
+  [[nodiscard]] const InterpolatorStats& interpolator_stats() const noexcept { return chunks_.stats(); }
   /// The length in ticks of the chunk the last setpoint was stepped in, 1 if it was evaluated
   /// exactly (tests check each stepped setpoint against chunk_error_bound of its chunk).
-  [[nodiscard]] std::uint32_t last_chunk_ticks() const noexcept { return last_chunk_ticks_; }
+  [[nodiscard]] std::uint32_t last_chunk_ticks() const noexcept { return chunks_.last_ticks(); }
 
   // What a PieceRecorder (piece_recorder.hpp) needs to hand the stream to a PieceExecutor:
   /// The unrounded position (mm) of the last setpoint.
@@ -284,12 +267,10 @@ class MotionController {
   /// True if a chunk begins at the last setpoint: its next chunk_ticks() setpoints are the chunk's
   /// (chunk_ticks() - 1 stepped from chunk_controls(), relative to the last setpoint, then
   /// chunk_end_position() exactly).
-  [[nodiscard]] bool chunk_begins_at_last_setpoint() const noexcept {
-    return chunk_end_tick_ != no_chunk && chunk_begin_tick_ + 1 == tick_;
-  }
-  [[nodiscard]] std::uint32_t chunk_ticks() const noexcept { return chunk_ticks_; }
-  [[nodiscard]] const HermiteChunk::Controls& chunk_controls() const noexcept { return chunk_controls_; }
-  [[nodiscard]] const MachinePoint& chunk_end_position() const noexcept { return chunk_end_state_.position; }
+  [[nodiscard]] bool chunk_begins_at_last_setpoint() const noexcept { return chunks_.began_before(tick_); }
+  [[nodiscard]] std::uint32_t chunk_ticks() const noexcept { return chunks_.ticks(); }
+  [[nodiscard]] const HermiteChunk::Controls& chunk_controls() const noexcept { return chunks_.controls(); }
+  [[nodiscard]] const MachinePoint& chunk_end_position() const noexcept { return chunks_.end_position(); }
 
   /// Longest chunk in ticks (a power of two, 1..HermiteChunk::max_ticks, the default). 1 evaluates
   /// the path exactly at every tick (the reference the stepped stream is tested against).
@@ -297,11 +278,10 @@ class MotionController {
   [[nodiscard]] Result<void> set_max_chunk_ticks(std::uint32_t ticks) noexcept {
     if (!stopped()) return fail(Error::InvalidState);
     if (ticks == 0 || ticks > HermiteChunk::max_ticks || (ticks & (ticks - 1)) != 0) return fail(Error::InvalidArgument);
-    max_chunk_ticks_ = ticks;
-    preferred_chunk_ticks_ = ticks;
+    chunks_.set_max_ticks(ticks);
     return ok();
   }
-  [[nodiscard]] std::uint32_t max_chunk_ticks() const noexcept { return max_chunk_ticks_; }
+  [[nodiscard]] std::uint32_t max_chunk_ticks() const noexcept { return chunks_.max_ticks(); }
 
  private:
   /// What the queue keeps of a SegmentPlan (the end tangents and curvatures are needed only for
@@ -447,8 +427,7 @@ class MotionController {
   /// Plans the rest of the front segment, from arc length `offset` at speed v0 (acceleration 0) at
   /// time `origin`, under the override in effect (from above its cap: slowing down first).
   [[nodiscard]] Result<void> plan_rest(double offset, double v0, double origin) noexcept {
-    chunk_end_tick_ = no_chunk;
-    clear_state_cache();
+    chunks_.drop();
     offset_mm_ = offset;
     origin_s_ = origin;
     const double remaining = table_.length() - offset;
@@ -516,18 +495,16 @@ class MotionController {
   }
 
   [[nodiscard]] Result<Setpoint<S>> running_tick() noexcept {
-    if (chunk_end_tick_ != no_chunk) {
-      // Inside a chunk: no segment or phase boundary until its end (plan_chunk made sure).
+    if (chunks_.pending()) {
+      // Inside a chunk: no segment or phase boundary until its end (ChunkInterpolator::plan made sure).
       const double tau = time_now() - origin_s_;
-      if (tick_ < chunk_end_tick_) {
-        ++stats_.stepped_ticks;
-        last_chunk_ticks_ = chunk_ticks_;
-        return emit(chunk_.next(), profile_.state_in(chunk_span_, tau).speed_mm_per_s, front().job_index);
+      if (chunks_.steps(tick_)) {
+        const MachinePoint stepped = chunks_.step();
+        return emit(stepped, chunks_.stepped_speed(profile_, tau), front().job_index);
       }
-      chunk_end_tick_ = no_chunk;
+      PathTickState end = chunks_.finish();  // evaluated exactly when the chunk was planned
       if (!override_due(tau)) {
-        PathTickState end = chunk_end_state_;  // evaluated exactly when the chunk was planned
-        plan_chunk(tau, end);
+        chunks_.plan(motion(), tick_, tau, end, machine_);
         return emit(end.position, end.speed_mm_per_s, front().job_index);
       }
       // An override may take effect here: the exact path below evaluates this tick again (the same bits).
@@ -572,173 +549,14 @@ class MotionController {
       if (auto taken = take_override_here(tau); !taken) return fault(taken.failure());
       tau = t - origin_s_;
     }
-    PathTickState now = exact_state(tau);
-    plan_chunk(tau, now);
+    PathTickState now = chunks_.exact_state(motion(), tau);
+    chunks_.plan(motion(), tick_, tau, now, machine_);
     return emit(now.position, now.speed_mm_per_s, front().job_index);
   }
 
-  /// The exact path at segment time tau: profile → arc-length table → curve (the position is what
-  /// the per-tick exact evaluation gives, bit for bit); velocity and acceleration are added by
-  /// add_derivatives() when a chunk needs them.
-  [[nodiscard]] PathTickState exact_state(double tau) noexcept {
-    ++stats_.exact_evaluations;
-    const MotionState m = profile_.at(tau);
-    const auto located = table_.locate(offset_mm_ + m.distance_mm);
-    PathTickState state;
-    state.position = current_segment().point(located.u);
-    state.speed_mm_per_s = m.speed_mm_per_s;
-    state.tau_s = tau;
-    state.u = located.u;
-    state.ds_du = located.ds_du;
-    state.d2s_du2 = located.d2s_du2;
-    return state;
-  }
-
-  /// Velocity and acceleration of the exact path for a state from exact_state(), by the
-  /// chain rule through the profile (ṡ, s̈ of the phase `span`) and the table's s(u):
-  /// u̇ = ṡ / S'(u), ü = (s̈ - S''(u) u̇²) / S'(u), ẋ = p' u̇, ẍ = p'' u̇² + p' ü.
-  void add_derivatives(PathTickState& state, const VelocityProfile::PhaseSpan& span) const noexcept {
-    state.smooth = false;
-    if (!(state.ds_du > 0)) return;  // a cusp end: |p'| = 0
-    const MotionState m = profile_.state_in(span, state.tau_s);
-    const double du = m.speed_mm_per_s / state.ds_du;
-    const double ddu = (m.acceleration_mm_per_s2 - state.d2s_du2 * du * du) / state.ds_du;
-    const MachinePoint d1 = current_segment().derivative(state.u, 1);
-    const MachinePoint d2 = current_segment().derivative(state.u, 2);
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      state.velocity[axis] = d1[axis] * du;
-      state.acceleration[axis] = d2[axis] * (du * du) + d1[axis] * ddu;
-      if (!std::isfinite(state.velocity[axis]) || !std::isfinite(state.acceleration[axis])) return;
-    }
-    state.smooth = true;
-  }
-
-  /// The segment being followed (the chunk planner's only access to the queued geometry).
-  [[nodiscard]] const PathSegment& current_segment() const noexcept { return front().segment; }
-
-  [[nodiscard]] double tau_at(std::uint64_t tick) const noexcept {
-    return static_cast<double>(tick - rested_ticks_) / machine_.rate_hz - origin_s_;
-  }
-
-  /// At tick_ (segment time tau, exact state `start`, its velocity and acceleration added here if
-  /// not yet known): plans the chunk of ticks tick_+1 .. tick_+N. N is the largest power of two
-  /// <= the preferred length whose last tick is still in the profile phase of tick_ (so chunks
-  /// never straddle a phase or segment boundary). The Hermite to the exact end state is compared
-  /// with exact evaluations at N/2, N/4 and 3N/4 and N is halved (the middle becoming the end)
-  /// until all are within chunk_error_bound(N)/4; with N = 2 failing, the exact state of the
-  /// next tick is kept (a chunk of one tick). Exact states computed for a rejected chunk are
-  /// cached for the next one. N never goes below the shortest chunk whose check is above the
-  /// rounding of the exact evaluation (rounding_floor); when no chunk passes, the next attempt
-  /// waits a back-off of 1, 2, 4, ... ticks (exact ticks meanwhile).
-  void plan_chunk(double tau, PathTickState& start) noexcept {
-    if (max_chunk_ticks_ < 2 || profile_.phase_count() == 0 || tick_ < retry_tick_) return;
-    const auto span = profile_.phase_span(tau);
-    const std::uint64_t k0 = tick_;
-    std::uint32_t n = preferred_chunk_ticks_;
-    while (n >= 2 && !(tau_at(k0 + n) < span.end_s)) n /= 2;
-    const double floor = rounding_floor(start.position);
-    std::uint32_t shortest = 2;
-    while (shortest < n && chunk_error_bound(shortest, machine_) / 4 < floor) shortest *= 2;
-    if (n < 2 || chunk_error_bound(n, machine_) / 4 < floor) return;
-    const bool limited = n < preferred_chunk_ticks_;
-    if (!start.smooth) add_derivatives(start, span);
-    bool rejected = false;
-    while (start.smooth) {
-      const PathTickState end = state_at(k0 + n, span, true);
-      if (!end.smooth) break;
-      const auto q = HermiteChunk::controls(start, end, static_cast<double>(n) / machine_.rate_hz);
-      const double allowed = chunk_error_bound(n, machine_) / 4;
-      // σ = 1/2 first (where a smooth path's error peaks), then 1/4 and 3/4.
-      bool passed = deviation(HermiteChunk::at_half(q), state_at(k0 + n / 2, span, false), start) <= allowed;
-      // Inside one piece of the arc-length table the exact path is smooth and the Hermite's error
-      // peaks at σ = 1/2 (a line's is a cubic in t, reproduced up to rounding). The table is only
-      // C1 at its knots, so a chunk that crosses one is also checked at σ = 1/4 and 3/4.
-      if (passed && n >= 4 && current_segment().kind() != SegmentKind::Line && crosses_knot(start.u, end.u)) {
-        passed = deviation(HermiteChunk::at_quarter(q), state_at(k0 + n / 4, span, false), start) <= allowed &&
-                 deviation(HermiteChunk::at_three_quarters(q), state_at(k0 + 3 * (n / 4), span, false), start) <= allowed;
-      }
-      if (passed && chunk_.start(start.position, q, n)) {
-        ++stats_.chunks;
-        chunk_ticks_ = n;
-        chunk_begin_tick_ = k0;
-        chunk_controls_ = q;
-        chunk_end_tick_ = k0 + n;
-        chunk_end_state_ = end;
-        chunk_span_ = span;
-        backoff_ticks_ = 1;
-        if (rejected) {
-          preferred_chunk_ticks_ = n;
-        } else if (!limited && n < max_chunk_ticks_) {
-          preferred_chunk_ticks_ = 2 * n;
-        }
-        return;
-      }
-      ++stats_.rejected_chunks;
-      rejected = true;
-      if (n == 2) {
-        // The exact state of the next tick is known: keep it (a chunk of one tick, nothing stepped).
-        chunk_end_tick_ = k0 + 1;
-        chunk_begin_tick_ = no_chunk;  // nothing stepped: no chunk begins here
-        chunk_end_state_ = state_at(k0 + 1, span, false);
-        chunk_span_ = span;
-        break;
-      }
-      if (n / 2 < shortest) break;
-      n /= 2;
-    }
-    // No chunk passed: exact ticks for a while, then try again from the shortest chunk.
-    preferred_chunk_ticks_ = shortest;
-    retry_tick_ = k0 + backoff_ticks_;
-    if (backoff_ticks_ < HermiteChunk::max_ticks) backoff_ticks_ *= 2;
-  }
-
-  /// True if u0 < u1 lie in different pieces of the arc-length table.
-  [[nodiscard]] static bool crosses_knot(double u0, double u1) noexcept {
-    constexpr double intervals = static_cast<double>(TableIntervals);
-    return std::floor(u0 * intervals) != std::floor(u1 * intervals);
-  }
-
-  /// Largest per-axis |(x0 + offset) - exact| with x0 = start's position.
-  [[nodiscard]] static double deviation(const MachinePoint& offset, const PathTickState& exact, const PathTickState& start) noexcept {
-    double worst = 0;
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) {
-      worst = std::fmax(worst, std::fabs(offset[axis] - (exact.position[axis] - start.position[axis])));
-    }
-    return worst;
-  }
-
-  /// The exact state at `tick` (in phase `span` of the current segment), from the cache of states
-  /// evaluated while planning, or evaluated now and cached; with velocity and acceleration if asked.
-  [[nodiscard]] PathTickState state_at(std::uint64_t tick, const VelocityProfile::PhaseSpan& span, bool derivatives) noexcept {
-    CachedState* slot = nullptr;
-    for (auto& c : state_cache_) {
-      if (c.tick == tick) {
-        slot = &c;
-        break;
-      }
-    }
-    if (slot == nullptr) {
-      slot = &state_cache_[0];  // replace the oldest (the smallest tick, often already passed)
-      for (auto& c : state_cache_) {
-        if (c.tick == no_chunk || (slot->tick != no_chunk && c.tick < slot->tick)) slot = &c;
-      }
-      slot->tick = tick;
-      slot->state = exact_state(tau_at(tick));
-    }
-    if (derivatives && !slot->state.smooth) add_derivatives(slot->state, span);
-    return slot->state;
-  }
-
-  void clear_state_cache() noexcept {
-    for (auto& c : state_cache_) c.tick = no_chunk;
-  }
-
-  /// The rounding level of an exact evaluation near `p` (2^-48 of its largest coordinate, at
-  /// least 2^-48 mm): a chunk whose check would be tighter than that is not attempted.
-  [[nodiscard]] static double rounding_floor(const MachinePoint& p) noexcept {
-    double largest = 1;
-    for (std::size_t axis = 0; axis < motion_axes; ++axis) largest = std::fmax(largest, std::fabs(p[axis]));
-    return largest * 0x1p-48;
+  /// The front segment as the interpolator follows it.
+  [[nodiscard]] SegmentMotion<TableIntervals> motion() const noexcept {
+    return SegmentMotion<TableIntervals>{front().segment, table_, profile_, offset_mm_, origin_s_, rested_ticks_, machine_.rate_hz};
   }
 
   /// Held during a rest at a joint: the machine stands already; resume serves the rest of the rest first.
@@ -766,8 +584,7 @@ class MotionController {
     hold_profile_ = stop;
     hold_base_mm_ = offset_mm_ + now.distance_mm;
     origin_s_ = time_now();
-    chunk_end_tick_ = no_chunk;
-    clear_state_cache();
+    chunks_.drop();
   }
 
   /// True if `stop`, begun `to_joint_mm` before the front segment's end, passes every queued joint
@@ -908,26 +725,7 @@ class MotionController {
   bool last_was_rest_ = false;      ///< the last setpoint was a rest tick (resting())
   MachinePoint last_position_{};
   std::uint32_t last_segment_ = 0;
-  // Chunked interpolation (plan_chunk): the chunk being stepped and the exact state at its end.
-  static constexpr std::uint64_t no_chunk = ~std::uint64_t{0};
-  std::uint32_t max_chunk_ticks_ = HermiteChunk::max_ticks;
-  std::uint32_t preferred_chunk_ticks_ = HermiteChunk::max_ticks;
-  std::uint64_t chunk_end_tick_ = no_chunk;
-  std::uint32_t chunk_ticks_ = 1;       ///< N of the chunk being stepped
-  std::uint64_t chunk_begin_tick_ = no_chunk;  ///< the tick the chunk being stepped began at
-  HermiteChunk::Controls chunk_controls_{};    ///< its control points (chunk_controls())
-  std::uint32_t last_chunk_ticks_ = 1;  ///< N of the chunk of the last setpoint (1: exact)
-  std::uint64_t retry_tick_ = 0;     ///< no chunk is planned before this tick (back-off)
-  std::uint32_t backoff_ticks_ = 1;  ///< the next back-off after a failed plan
-  HermiteChunk chunk_{};
-  struct CachedState {
-    std::uint64_t tick = no_chunk;  ///< no_chunk: empty
-    PathTickState state{};
-  };
-  std::array<CachedState, 2> state_cache_{};  ///< exact states of future ticks (plan_chunk)
-  PathTickState chunk_end_state_{};
-  VelocityProfile::PhaseSpan chunk_span_{};
-  InterpolatorStats stats_{};
+  ChunkInterpolator<TableIntervals> chunks_{};  ///< exact evaluation and chunked stepping of the front segment
 };
 
 }  // namespace curvestep
