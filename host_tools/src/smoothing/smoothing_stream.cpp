@@ -30,9 +30,10 @@ double deflection_cos(const PathSegment& a, const PathSegment& b) {
 }
 
 /// The machine's speed changes as the planner times them (velocity_profile.hpp): S-curve, or the
-/// trapezoid when the options carry no jerk limit.
+/// trapezoid without a jerk limit (smoothing_jerk_mm_per_s3).
 ProfileLimits speed_changes(const SmoothingOptions& options) {
-  return ProfileLimits{0, options.a_max_mm_per_s2, options.j_max_mm_per_s3, options.j_max_mm_per_s3 < 1e11};
+  const double jerk = smoothing_jerk_mm_per_s3(options.machine);
+  return ProfileLimits{0, options.machine.a_max_mm_per_s2, jerk, jerk < 1e11};
 }
 
 /// Time lost against running on at `cruise` when the speed changes to `low` (and back, or from it):
@@ -246,8 +247,8 @@ void SmoothingStream::decide_corner(Item& a, Item& b) {
   request.outgoing_length_mm = b.length_mm;
   request.outgoing_available_mm = options_.blend_max_share * b.length_mm;
   request.tolerance_mm = (a.fitted || b.fitted) ? 0.5 * a.joint_tolerance_mm : a.joint_tolerance_mm;
-  request.a_max_mm_per_s2 = options_.a_max_mm_per_s2;
-  request.j_max_mm_per_s3 = options_.j_max_mm_per_s3;
+  request.a_max_mm_per_s2 = options_.machine.a_max_mm_per_s2;
+  request.j_max_mm_per_s3 = smoothing_jerk_mm_per_s3(options_.machine);
   auto blend = blend_corner(request);
   if (!blend) return;
   // The blend takes up to half of each neighbour: it runs at the slower of their feeds, never
