@@ -53,6 +53,12 @@ std::optional<SegmentPlan> planned(const PathSegment& segment, const MachineLimi
   return plan.value();
 }
 
+/// planned(item.segment), made once per item (Item::plan).
+const std::optional<SegmentPlan>& planned(SmoothingStream::Item& item, const MachineLimits& machine) {
+  if (!item.plan) item.plan = planned(item.segment, machine);
+  return *item.plan;
+}
+
 /// Whether the planner passes the blend faster than the corner it replaces. Each neighbour runs at
 /// up to its speed cap (the planner's, at most what half its length reaches from rest), V_a and V_b.
 /// Kept, the corner is passed at the planner's junction speed v_c (near rest at a sharp corner):
@@ -64,10 +70,10 @@ std::optional<SegmentPlan> planned(const PathSegment& segment, const MachineLimi
 /// speed even a shallow corner's long, gentle blend can cost more than the stop (5° between 20 mm G0
 /// moves at 150 mm/s); and a joint the planner passes at speed (a deflection of the Q16.16 grid)
 /// gains nothing from a blend unless the blend is faster than the curves it cuts.
-bool blend_pays(const CornerBlend& blend, const SmoothingStream::Item& a, const SmoothingStream::Item& b, const SmoothingOptions& options) {
+bool blend_pays(const CornerBlend& blend, SmoothingStream::Item& a, SmoothingStream::Item& b, const SmoothingOptions& options) {
   const MachineLimits& machine = options.machine;
-  const auto plan_a = planned(a.segment, machine);
-  const auto plan_b = planned(b.segment, machine);
+  const auto& plan_a = planned(a, machine);
+  const auto& plan_b = planned(b, machine);
   const auto plan_blend = planned(blend.curve, machine);
   if (!plan_a || !plan_b || !plan_blend) return false;
   const ProfileLimits changes = speed_changes(options);
