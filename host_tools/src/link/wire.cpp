@@ -43,6 +43,9 @@ std::uint32_t extra_turns(const PathSegment& s, const protocol::QueueSegment& q,
   return static_cast<std::uint32_t>(turns);
 }
 
+/// The file segment index of the job's segment `i` (Job::source_index, or `i` without one).
+std::size_t file_segment(const Job& job, std::size_t i) { return job.source_index.empty() ? i : job.source_index[i]; }
+
 }  // namespace
 
 std::int32_t to_q16(double value, bool& exact) {
@@ -167,8 +170,7 @@ WireJob to_wire(const Job& job, std::size_t axis_count, double rate_hz) {
   out.segments.reserve(job.segments.size());
   const JointStops entries = joint_stops(job, rate_hz);
   for (std::size_t i = 0; i < job.segments.size(); ++i) {
-    const std::size_t file_index = job.source_index.empty() ? i : job.source_index[i];
-    out.segments.push_back(to_wire(job.segments[i], entries[i], axis_count, wire_segment_where(job.name, file_index), out.notes));
+    out.segments.push_back(to_wire(job.segments[i], entries[i], axis_count, wire_segment_where(job.name, file_segment(job, i)), out.notes));
     if (i + 1 == job.segments.size()) out.segments.back().end_rest_ticks = entries.at_end().rest_ticks;  // dwells after the last move
   }
   return out;
@@ -286,7 +288,16 @@ std::vector<protocol::QueueEvent> to_wire_events(const Job& job, double rate_hz,
 
 namespace {
 
-/// The segments of `inner` as the device sees them: through the wire and the firmware's conversion.
+/// `segment` as the device sees it: through the wire (its errors begin with `where`) and the
+/// firmware's conversion (its refusal begins with `refused_where`).
+PathSegment device_view(const PathSegment& segment, const JointStop& entry, const std::string& where, const std::string& refused_where) {
+  std::vector<std::string> notes;  // what the wire rounds is the device's too
+  const auto seen = firmware::to_path_segment(to_wire(segment, entry, motion_axes, where, notes));
+  if (!seen) throw std::runtime_error(refused_where + std::string(describe(seen.error())));
+  return seen.value();
+}
+
+/// The segments of `inner` as the device sees them (device_view, errors naming the file segment).
 class DeviceViewSegments final : public SegmentSource {
  public:
   DeviceViewSegments(std::unique_ptr<SegmentSource> inner, std::string name) : inner_(std::move(inner)), name_(std::move(name)) {}
@@ -295,10 +306,7 @@ class DeviceViewSegments final : public SegmentSource {
     const PathSegment* segment = inner_->next(source);
     if (segment == nullptr) return nullptr;
     const std::string where = wire_segment_where(name_, source);
-    std::vector<std::string> notes;  // what the wire rounds is the device's too
-    const auto seen = firmware::to_path_segment(to_wire(*segment, JointStop{}, motion_axes, where, notes));
-    if (!seen) throw std::runtime_error(where + std::string(describe(seen.error())));
-    current_ = seen.value();
+    current_ = device_view(*segment, JointStop{}, where, where);
     return &*current_;
   }
 
@@ -324,13 +332,13 @@ ReadableJob as_device_sees(const ReadableJob& job) {
 
 std::pair<Job, MachineLimits> as_device_sees(const Job& job, const MachineLimits& machine) {
   const MachineLimits limits = as_device_sees(machine);
-  const auto wire_job = to_wire(job, motion_axes, machine.rate_hz);
+  const JointStops entries = joint_stops(job, machine.rate_hz);
   Job seen = job;
   seen.segments.clear();
-  for (std::size_t i = 0; i < wire_job.segments.size(); ++i) {
-    const auto segment = firmware::to_path_segment(wire_job.segments[i]);
-    if (!segment) throw std::runtime_error(job.name + ": segment " + std::to_string(i) + ": " + std::string(describe(segment.error())));
-    seen.segments.push_back(segment.value());
+  for (std::size_t i = 0; i < job.segments.size(); ++i) {
+    // The wire's errors name the file segment (as to_wire(Job) does), the firmware's refusal the job's.
+    seen.segments.push_back(
+        device_view(job.segments[i], entries[i], wire_segment_where(job.name, file_segment(job, i)), wire_segment_where(job.name, i)));
   }
   return {seen, limits};
 }

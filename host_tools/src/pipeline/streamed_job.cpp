@@ -19,6 +19,16 @@
 namespace curvestep::host {
 namespace {
 
+/// std::runtime_error naming `job_file` unless its stamp is still `stamp`: a streamed job is read
+/// again for each pass (and each pass checks it as it reads).
+void require_unchanged(const std::filesystem::path& job_file, const FileStamp& stamp) {
+  if (file_stamp(job_file) != stamp) {
+    throw std::runtime_error(job_file.string() +
+                             ": the file changed while the job ran (its size or modification time is not the first "
+                             "read's): it is read again for each pass, so it must stay as it was checked");
+  }
+}
+
 /// The second pass: prepare_job_streamed in a thread, its smoothed segments through a bounded queue.
 class ThreadedSegments final : public SegmentSource {
  public:
@@ -28,11 +38,7 @@ class ThreadedSegments final : public SegmentSource {
                            expected] {
       try {
         const auto check_unchanged = [&] {
-          if (expected && file_stamp(job_file) != *expected) {
-            throw std::runtime_error(job_file.string() +
-                                     ": the file changed while the job ran (its size or modification time is not the first "
-                                     "read's): it is read again for each pass, so it must stay as it was checked");
-          }
+          if (expected) require_unchanged(job_file, *expected);
         };
         check_unchanged();
         std::size_t pushed = 0;
@@ -130,9 +136,7 @@ StreamedJobPlan plan_streamed_job(const std::filesystem::path& job_file, const M
       }
     }
   });
-  if (file_stamp(job_file) != plan.file) {
-    throw std::runtime_error(job_file.string() + ": the file changed while it was read (its size or modification time): read it again");
-  }
+  require_unchanged(job_file, plan.file);
   if (outside) {
     // Its message names the file's line, which the streamed load does not keep: the whole job's
     // check_travel (a third read, holding the job, on this error only) throws it.

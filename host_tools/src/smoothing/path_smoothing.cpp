@@ -13,8 +13,6 @@ namespace curvestep::host::smoothing {
 SmoothingOptions options_for(const MachineLimits& machine, double tolerance_mm) {
   SmoothingOptions options;
   options.tolerance_mm = tolerance_mm;
-  options.a_max_mm_per_s2 = machine.a_max_mm_per_s2;
-  options.j_max_mm_per_s3 = machine.jerk_limited ? machine.j_max_mm_per_s3 : 1e12;
   options.machine = machine;
   return options;
 }

@@ -30,9 +30,10 @@ double deflection_cos(const PathSegment& a, const PathSegment& b) {
 }
 
 /// The machine's speed changes as the planner times them (velocity_profile.hpp): S-curve, or the
-/// trapezoid when the options carry no jerk limit.
+/// trapezoid without a jerk limit (smoothing_jerk_mm_per_s3).
 ProfileLimits speed_changes(const SmoothingOptions& options) {
-  return ProfileLimits{0, options.a_max_mm_per_s2, options.j_max_mm_per_s3, options.j_max_mm_per_s3 < 1e11};
+  const double jerk = smoothing_jerk_mm_per_s3(options.machine);
+  return ProfileLimits{0, options.machine.a_max_mm_per_s2, jerk, jerk < 1e11};
 }
 
 /// Time lost against running on at `cruise` when the speed changes to `low` (and back, or from it):
@@ -52,6 +53,12 @@ std::optional<SegmentPlan> planned(const PathSegment& segment, const MachineLimi
   return plan.value();
 }
 
+/// planned(item.segment), made once per item (Item::plan).
+const std::optional<SegmentPlan>& planned(SmoothingStream::Item& item, const MachineLimits& machine) {
+  if (!item.plan) item.plan = planned(item.segment, machine);
+  return *item.plan;
+}
+
 /// Whether the planner passes the blend faster than the corner it replaces. Each neighbour runs at
 /// up to its speed cap (the planner's, at most what half its length reaches from rest), V_a and V_b.
 /// Kept, the corner is passed at the planner's junction speed v_c (near rest at a sharp corner):
@@ -63,10 +70,10 @@ std::optional<SegmentPlan> planned(const PathSegment& segment, const MachineLimi
 /// speed even a shallow corner's long, gentle blend can cost more than the stop (5° between 20 mm G0
 /// moves at 150 mm/s); and a joint the planner passes at speed (a deflection of the Q16.16 grid)
 /// gains nothing from a blend unless the blend is faster than the curves it cuts.
-bool blend_pays(const CornerBlend& blend, const SmoothingStream::Item& a, const SmoothingStream::Item& b, const SmoothingOptions& options) {
+bool blend_pays(const CornerBlend& blend, SmoothingStream::Item& a, SmoothingStream::Item& b, const SmoothingOptions& options) {
   const MachineLimits& machine = options.machine;
-  const auto plan_a = planned(a.segment, machine);
-  const auto plan_b = planned(b.segment, machine);
+  const auto& plan_a = planned(a, machine);
+  const auto& plan_b = planned(b, machine);
   const auto plan_blend = planned(blend.curve, machine);
   if (!plan_a || !plan_b || !plan_blend) return false;
   const ProfileLimits changes = speed_changes(options);
@@ -246,8 +253,8 @@ void SmoothingStream::decide_corner(Item& a, Item& b) {
   request.outgoing_length_mm = b.length_mm;
   request.outgoing_available_mm = options_.blend_max_share * b.length_mm;
   request.tolerance_mm = (a.fitted || b.fitted) ? 0.5 * a.joint_tolerance_mm : a.joint_tolerance_mm;
-  request.a_max_mm_per_s2 = options_.a_max_mm_per_s2;
-  request.j_max_mm_per_s3 = options_.j_max_mm_per_s3;
+  request.a_max_mm_per_s2 = options_.machine.a_max_mm_per_s2;
+  request.j_max_mm_per_s3 = smoothing_jerk_mm_per_s3(options_.machine);
   auto blend = blend_corner(request);
   if (!blend) return;
   // The blend takes up to half of each neighbour: it runs at the slower of their feeds, never

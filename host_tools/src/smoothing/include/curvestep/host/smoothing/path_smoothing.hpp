@@ -39,11 +39,16 @@ struct SmoothingOptions {
   double fit_max_deflection_deg = 30;   ///< a sharper corner ends a run
   std::size_t fit_max_run_lines = 100'000;  ///< a longer run is fitted in runs of this many lines (bounds a streamed load's memory)
   double blend_max_share = 0.49;        ///< a blend takes at most this share of a neighbour (each end)
-  double a_max_mm_per_s2 = 1000;        ///< the machine's limits (to shape blends for speed)
-  double j_max_mm_per_s3 = 10000;
-  MachineLimits machine{};              ///< the machine the job is smoothed for: a blend is kept only
-                                        ///< where its planner passes it faster than the corner
+  MachineLimits machine{};              ///< the machine the job is smoothed for: its limits shape the blends
+                                        ///< for speed, and a blend is kept only where its planner passes it
+                                        ///< faster than the corner
 };
+
+/// The jerk limit smoothing shapes and times speed changes with: the machine's, or 1e12 mm/s³
+/// (none: its speed changes are trapezoids) on a machine without one.
+[[nodiscard]] inline double smoothing_jerk_mm_per_s3(const MachineLimits& machine) noexcept {
+  return machine.jerk_limited ? machine.j_max_mm_per_s3 : 1e12;
+}
 
 /// What smoothing did.
 struct SmoothingReport {

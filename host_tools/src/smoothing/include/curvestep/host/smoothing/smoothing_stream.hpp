@@ -16,6 +16,7 @@
 #include <set>
 #include <vector>
 
+#include <curvestep/core/motion/segment_plan.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/smoothing/corner_blend.hpp>
 #include <curvestep/host/smoothing/path_smoothing.hpp>
@@ -59,6 +60,12 @@ class SmoothingStream final : public JobSink {
     double end_u = 1;               ///< cut by the blend after it
     MachinePoint start_point{};
     MachinePoint end_point{};
+    /// The planner's view of `segment` (plan_segment; inner nullopt: it refuses it), made by the
+    /// first blend decision that needs it and reused by the second (the item is the outgoing
+    /// neighbour of one corner, then the incoming one of the next). Valid while `segment` is
+    /// unchanged: a blend cuts an item only through start_u/end_u (the piece is made when written),
+    /// so the plan is always of the whole segment, as blend decisions judge it.
+    std::optional<std::optional<SegmentPlan>> plan;
   };
 
  private:
