@@ -130,9 +130,11 @@
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/event_timeline.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
+#include <curvestep/firmware/link_watch.hpp>
 #include <curvestep/firmware/feed_override_command.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
+#include <curvestep/firmware/switch_seek.hpp>
 #include <curvestep/firmware/tick_watch.hpp>
 #include <curvestep/firmware/transmit_buffer.hpp>
 #include <curvestep/protocol/frame.hpp>
@@ -225,15 +227,14 @@ class App {
   void run_tick() noexcept {
     if (!ready_to_tick()) {
       if (stands_in_host_hold()) {
-        stalled_ = false;  // waiting for Resume, not for the host's pieces
+        link_watch_.stall_ended();  // waiting for Resume, not for the host's pieces
         return;
       }
-      if (!stalled_) stalled_since_ms_ = board_.now_ms();
-      stalled_ = true;
+      link_watch_.stalled_tick(board_);
       ++statistics_.stalled_ticks;
       return;
     }
-    stalled_ = false;
+    link_watch_.stall_ended();
     if constexpr (Events > 0 && plans_on_board) {
       if (wait_at_joint()) return;
     }
@@ -268,7 +269,7 @@ class App {
       }
       const std::uint8_t closed = read_limit_switches(board_);
       const std::uint8_t hit = hard_limit_hit(closed, position_, wire, axis_count_);
-      const bool sought_switch_closed = seek_closed(closed, seek_switch_);
+      const bool sought_switch_closed = switch_seek_.met(closed);
       if (sought_switch_closed || hit != no_limit_switch) {
         position_ = wire;  // the board has this setpoint's edges: the machine stops there
         setpoint_index_ = static_cast<std::uint32_t>(job_tick);
@@ -340,7 +341,7 @@ class App {
     bool held = false;      ///< a feed hold came to a stop
     bool paused = false;    ///< a pause event stopped the job: report it (PauseReport)
     bool fault = false;     ///< raise_fault() stopped the machine: report fault_
-    bool switch_closed = false;  ///< a SeekSwitch job met its switch: report switch_report_
+    bool switch_closed = false;  ///< a SeekSwitch job met its switch: report it (SwitchSeek)
   };
 
   [[nodiscard]] static constexpr protocol::Capabilities make_capabilities() noexcept {
@@ -392,8 +393,7 @@ class App {
   }
 
   void on_frame(const protocol::Frame& frame, std::uint32_t now) noexcept {
-    link_hold_latched_ = false;
-    last_heard_ms_ = now;
+    link_watch_.heard(now);
     stream_.heard(now);  // the host talks: a stream it never acknowledges is RetransmitLimit, not LinkTimeout
     // A new session starts without a configuration: its Capabilities grant no credit. Credit
     // commands are refused by phase where no segment is taken (ConfigurationMissing, ...), not
@@ -587,8 +587,7 @@ class App {
     if (!m) return report(m.failure());
     if (!configured()) return report(fail(Error::ConfigurationMissing));
     if (phase_ == Phase::Fault || job_started(phase_)) return report(fail(Error::InvalidState));
-    if (m.value().limit_switch >= 2 * axis_count_) return report(fail(Error::InvalidArgument, 0));
-    seek_switch_ = m.value().limit_switch;
+    report_if_failed(switch_seek_.arm(m.value(), axis_count_));
   }
 
   /// SetPosition: new coordinates for the standing machine; the next job starts there (its first
@@ -611,7 +610,7 @@ class App {
   /// A SeekSwitch job met its switch: it ends where it stands, without braking (the edges already
   /// handed to the board play out, so the position stays exact); poll() sends the SwitchReport.
   void stop_at_switch() noexcept {
-    switch_report_ = protocol::SwitchReport{seek_switch_, setpoint_index_, position_[0], position_[1], position_[2]};
+    switch_seek_.record_stop(setpoint_index_, position_);
     stop_job(false);
     events_.switch_closed = true;
   }
@@ -834,13 +833,13 @@ class App {
     controller_.abort();
     controller_.reset();
     machine_events_.clear();
-    seek_switch_ = no_limit_switch;
+    switch_seek_.disarm();
     waiting_at_joint_ = false;
     motion_ = JobMotion::Idle;
     job_end_known_ = false;
     events_ = TickEvents{};
     resume_when_held_ = false;
-    stalled_ = false;  // a stall of the stopped job is not the next job's
+    link_watch_.stall_ended();  // a stall of the stopped job is not the next job's
     job_segments_ = 0;
     // The next job starts where the machine stands.
     has_last_end_ = positioned_;
@@ -888,12 +887,12 @@ class App {
     }
     if (events_.switch_closed) {
       events_.switch_closed = false;
-      send_message(switch_report_);
+      send_message(switch_seek_.report());
       send_status();
     }
     if (events_.finished) {
       events_.finished = false;
-      seek_switch_ = no_limit_switch;  // the job ended without meeting its switch
+      switch_seek_.disarm();  // the job ended without meeting its switch
       controller_.reset();
       job_end_known_ = false;
       job_segments_ = 0;
@@ -950,23 +949,16 @@ class App {
 
   /// A setpoint stream backed up for longer than stall_timeout_ms while moving is a fault.
   void watch_stall(std::uint32_t now) noexcept {
-    if (!stalled_ || !moving() || settings_.stall_timeout_ms == 0) return;
-    if (now - stalled_since_ms_ < settings_.stall_timeout_ms) return;
-    stalled_ = false;
+    if (!moving() || !link_watch_.stall_expired(now, settings_.stall_timeout_ms)) return;
     // Without a planner a stall is usually a queue the host did not refill in time.
     bool starved = false;
     if constexpr (!plans_on_board) starved = !controller_.can_step();
-    // A host heard during the stall talks but does not take the setpoints (RetransmitLimit);
-    // a silent one is gone (LinkTimeout), as the sender itself tells them apart.
-    const bool heard = static_cast<std::int32_t>(last_heard_ms_ - stalled_since_ms_) > 0;
-    const Error code = starved ? Error::QueueUnderrun : (heard ? Error::RetransmitLimit : Error::LinkTimeout);
-    raise_fault(fail(code, now - stalled_since_ms_));
+    raise_fault(link_watch_.stall_fault(now, starved));
   }
 
   void watch_link(std::uint32_t now) noexcept {
     send_reply(receiver_.poll(free_segments(), now));
-    if (link_hold_latched_ || receiver_.check_link(now)) return;
-    link_hold_latched_ = true;
+    if (!link_watch_.newly_lost(static_cast<bool>(receiver_.check_link(now)))) return;
     const bool running = moving() && controller_.state() == ControllerState::Running;
     if (!running && !(phase_ == Phase::Running && armed())) return;
     // Without a planner there is no braking: the queued pieces run out (QueueUnderrun).
@@ -1025,7 +1017,7 @@ class App {
   /// Moves buffered setpoints into the setpoint stream's window as batches (never drops any).
   void send_setpoints() noexcept {
     // Stopped, stalled or paused (a paused interpolator must not hold back what it already produced).
-    const bool stopped = motion_ != JobMotion::Moving || stalled_ || controller_.state() == ControllerState::Held ||
+    const bool stopped = motion_ != JobMotion::Moving || link_watch_.stalled() || controller_.state() == ControllerState::Held ||
                          controller_.state() == ControllerState::Starved || stands_in_host_hold();
     stream_.submit(stopped, axis_count_, statistics_.setpoint_go_backs);
   }
@@ -1041,8 +1033,7 @@ class App {
   EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
   SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
   protocol::PauseReport pause_{};          ///< the pause in force (JobMotion::Paused), reported once
-  protocol::SwitchReport switch_report_{};  ///< where a SeekSwitch job stopped, reported once
-  std::uint8_t seek_switch_ = no_limit_switch;  ///< the switch that ends the next job (SeekSwitch), or none
+  SwitchSeek switch_seek_{};                ///< the homing seek (SeekSwitch) and its SwitchReport
   bool waiting_at_joint_ = false;          ///< the motion waits for the segment its events precede (wait_at_joint)
   CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
   StepGenerator steps_{StepConfig{}};
@@ -1050,6 +1041,7 @@ class App {
   TransmitBuffer transmit_{};
   AppStatistics statistics_{};
   TickWatch tick_watch_{};
+  LinkWatch link_watch_{};  ///< link loss and setpoint-stream stalls
   protocol::WirePoint position_{};
   protocol::WirePoint last_end_{};
   TravelLimits travel_{};
@@ -1057,8 +1049,6 @@ class App {
   std::uint32_t control_rate_hz_ = 0;
   std::uint32_t setpoint_index_ = 0;
   std::uint32_t job_segments_ = 0;
-  std::uint32_t stalled_since_ms_ = 0;
-  std::uint32_t last_heard_ms_ = 0;  ///< when the last valid frame from the host arrived
   std::uint32_t edges_dropped_seen_ = 0;  ///< the board's edges_dropped() at the last check
   Phase phase_ = Phase::NotConnected;
   TickEvents events_{};
@@ -1070,8 +1060,6 @@ class App {
   bool has_last_end_ = false;         ///< the next segment must start at last_end_
   bool job_end_known_ = false;        ///< the job's last segment has been queued
   bool resume_when_held_ = false;     ///< a Resume arrived while still braking
-  bool link_hold_latched_ = false;    ///< the link loss was acted on (until the next frame)
-  bool stalled_ = false;              ///< the last tick found the setpoint stream backed up
 };
 
 }  // namespace curvestep::firmware
