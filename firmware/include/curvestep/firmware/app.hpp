@@ -126,10 +126,9 @@
 #include <curvestep/core/scalar.hpp>
 #include <curvestep/firmware/app_settings.hpp>
 #include <curvestep/firmware/board.hpp>
-#include <curvestep/firmware/board_hooks.hpp>
 #include <curvestep/firmware/conversions.hpp>
-#include <curvestep/firmware/event_timeline.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
+#include <curvestep/firmware/machine_events.hpp>
 #include <curvestep/firmware/link_watch.hpp>
 #include <curvestep/firmware/feed_override_command.hpp>
 #include <curvestep/firmware/phase.hpp>
@@ -510,60 +509,30 @@ class App {
     return protocol::decode<protocol::MachineConfiguration>(payload);
   }
 
-  /// Events that hold the job for the operator (the joint is an exact stop: the machine stands).
-  [[nodiscard]] static constexpr bool pauses(protocol::MachineEventKind kind) noexcept {
-    using protocol::MachineEventKind;
-    return kind == MachineEventKind::ProgramPause || kind == MachineEventKind::ToolChange || kind == MachineEventKind::LayerChange;
-  }
   /// A due machine event at setpoint `at` (by default the last one): the board's hooks, and a
   /// pause if it is one.
   void act_on(const protocol::QueueEvent& e) noexcept { act_on(e, setpoint_index_); }
   void act_on(const protocol::QueueEvent& e, std::uint32_t at) noexcept {
-    apply_machine_event(board_, e, at, spindle_, coolant_);
-    if (pauses(e.kind) && !paused()) pause_for(e, at);
+    if (machine_events_.act_on(board_, e, at) && !paused()) pause_for(e, at);
   }
 
-  /// Machine events for the segment after everything queued (more of them than the event ring
-  /// holds, docs/protocol.md "Credit"): rather than run the queue dry, the motion waits at the
-  /// setpoint before the queue's end (at rest or within a tick of it: the plan's window ends at
-  /// rest there) and acts on the events due at that joint, naming the setpoint they precede, so
-  /// that their room brings the rest of them and the segment. Once that came, the motion goes on
-  /// when the look-ahead window is as full as after an underrun (window_ready(1)): the setpoints
-  /// are those it would have made without waiting. True while waiting (no setpoint this tick).
+  /// The motion waits at a joint whose segment has not arrived (MachineEvents::wait_at_joint,
+  /// while the job runs); the events due there act at the setpoint they precede. True while
+  /// waiting (no setpoint this tick).
   [[nodiscard]] bool wait_at_joint() noexcept {
     if (phase_ != Phase::Running || controller_.state() != ControllerState::Running) {
-      waiting_at_joint_ = false;
+      machine_events_.stop_waiting();
       return false;
     }
-    const bool at_end = controller_.next_tick_ends_queue();
-    if (!waiting_at_joint_ && !(at_end && machine_events_.waiting_for(job_segments_))) return false;
-    if (!at_end && window_ready(1)) {
-      waiting_at_joint_ = false;
-      return false;
-    }
-    waiting_at_joint_ = true;
-    machine_events_.at_joint(job_segments_, [this](const protocol::QueueEvent& e) { act_on(e, setpoint_index_ + 1); });
-    return true;
-  }
-
-  /// Abort and faults: a running spindle and coolant are switched off through the same hooks (as
-  /// M5 and M9 would), so a stopped job never leaves a cutter turning.
-  void switch_off_spindle_and_coolant() noexcept {
-    protocol::QueueEvent off{};
-    if (spindle_.on) {
-      off.kind = protocol::MachineEventKind::SpindleOff;
-      apply_machine_event(board_, off, setpoint_index_, spindle_, coolant_);
-    }
-    if (coolant_.mist || coolant_.flood) {
-      off.kind = protocol::MachineEventKind::CoolantOff;
-      apply_machine_event(board_, off, setpoint_index_, spindle_, coolant_);
-    }
+    return machine_events_.wait_at_joint(
+        controller_.next_tick_ends_queue(), job_segments_, [this] { return window_ready(1); },
+        [this](const protocol::QueueEvent& e) { act_on(e, setpoint_index_ + 1); });
   }
 
   /// Stops producing setpoints after this one until Resume; poll() reports the pause.
   void pause_for(const protocol::QueueEvent& e, std::uint32_t at) noexcept {
     motion_ = JobMotion::Paused;
-    pause_ = protocol::PauseReport{at, e.kind, e.value};
+    machine_events_.hold_for(e, at);
     phase_ = Phase::Holding;
     events_.paused = true;
   }
@@ -829,12 +798,11 @@ class App {
   /// Ends the job at once; `outputs` also stops the board's scheduled edges (Abort).
   void stop_job(bool outputs) noexcept {
     if (outputs) board_.fault_stop();
-    switch_off_spindle_and_coolant();
+    machine_events_.switch_off_spindle_and_coolant(board_, setpoint_index_);
     controller_.abort();
     controller_.reset();
-    machine_events_.clear();
+    machine_events_.clear();  // and any wait at a joint
     switch_seek_.disarm();
-    waiting_at_joint_ = false;
     motion_ = JobMotion::Idle;
     job_end_known_ = false;
     events_ = TickEvents{};
@@ -871,7 +839,7 @@ class App {
   /// Stops the machine at once (phase Fault); poll() reports `failure`.
   void raise_fault(Failure failure) noexcept {
     board_.fault_stop();
-    switch_off_spindle_and_coolant();
+    machine_events_.switch_off_spindle_and_coolant(board_, setpoint_index_);
     controller_.abort();
     motion_ = JobMotion::Idle;  // a fault also ends a pause (Resume does not leave Fault)
     fault_ = failure;
@@ -902,7 +870,7 @@ class App {
     if constexpr (Events > 0) {
       if (events_.paused) {
         events_.paused = false;
-        send_message(pause_);
+        send_message(machine_events_.pause());
         send_status();
       }
     }
@@ -1030,12 +998,8 @@ class App {
   Controller controller_{};
   /// The override last set (FeedOverride; nothing without a planner).
   [[no_unique_address]] std::conditional_t<plans_on_board, FeedOverrideCommand, NoFeedOverride> override_{};
-  EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
-  SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
-  protocol::PauseReport pause_{};          ///< the pause in force (JobMotion::Paused), reported once
+  MachineEvents<Events> machine_events_{};  ///< QueueEvents, the spindle and coolant they set, the pause
   SwitchSeek switch_seek_{};                ///< the homing seek (SeekSwitch) and its SwitchReport
-  bool waiting_at_joint_ = false;          ///< the motion waits for the segment its events precede (wait_at_joint)
-  CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
   TransmitBuffer transmit_{};
