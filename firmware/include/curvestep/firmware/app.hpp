@@ -129,13 +129,13 @@
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
 #include <curvestep/firmware/machine_events.hpp>
+#include <curvestep/firmware/outbox.hpp>
 #include <curvestep/firmware/link_watch.hpp>
 #include <curvestep/firmware/feed_override_command.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
 #include <curvestep/firmware/switch_seek.hpp>
 #include <curvestep/firmware/tick_watch.hpp>
-#include <curvestep/firmware/transmit_buffer.hpp>
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
 #include <curvestep/protocol/link_receiver.hpp>
@@ -188,8 +188,8 @@ class App {
     watch_link(now);
     watch_stall(now);
     send_setpoints();
-    if (auto sent = stream_.transmit(now, transmit_); !sent) raise_fault(sent.failure());
-    transmit_.flush(board_);
+    if (auto sent = stream_.transmit(now, outbox_.buffer()); !sent) raise_fault(sent.failure());
+    outbox_.flush(board_);
   }
 
   /// One control period: the next setpoint, its step edges to the board, the setpoint to the stream.
@@ -417,7 +417,7 @@ class App {
       if (!receiver_.connected()) return;
       if (auto handled = stream_.on_reply(frame, now); !handled) raise_fault(handled.failure());
     } else if (r.disposition == protocol::Disposition::Deliver) {
-      sequence_ = frame.sequence;
+      outbox_.answering(frame.sequence);
       dispatch(frame);
     }
   }
@@ -556,7 +556,7 @@ class App {
     if (!m) return report(m.failure());
     if (!configured()) return report(fail(Error::ConfigurationMissing));
     if (phase_ == Phase::Fault || job_started(phase_)) return report(fail(Error::InvalidState));
-    report_if_failed(switch_seek_.arm(m.value(), axis_count_));
+    if (!switch_seek_.arm(m.value().limit_switch, axis_count_)) return report(fail(Error::InvalidArgument, 0));
   }
 
   /// SetPosition: new coordinates for the standing machine; the next job starts there (its first
@@ -926,7 +926,7 @@ class App {
 
   void watch_link(std::uint32_t now) noexcept {
     send_reply(receiver_.poll(free_segments(), now));
-    if (!link_watch_.newly_lost(static_cast<bool>(receiver_.check_link(now)))) return;
+    if (!link_watch_.newly_lost([&] { return static_cast<bool>(receiver_.check_link(now)); })) return;
     const bool running = moving() && controller_.state() == ControllerState::Running;
     if (!running && !(phase_ == Phase::Running && armed())) return;
     // Without a planner there is no braking: the queued pieces run out (QueueUnderrun).
@@ -936,31 +936,17 @@ class App {
 
   // --- sending -------------------------------------------------------------------------------
 
-  void send_reply(const protocol::Reception& r) noexcept {
-    if (r.reply != protocol::ReplyKind::None) encode_reply(r);
-  }
-
-  /// Not inlined: its frame buffer must not sit in poll()'s frame, under the command handlers.
-  [[gnu::noinline]] void encode_reply(const protocol::Reception& r) noexcept {
-    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
-    const auto size = receiver_.encode_reply(r, frame);
-    if (size) queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
-  }
+  // Frames that find the transmit buffer full are counted, not queued (outbox.hpp).
+  void send_reply(const protocol::Reception& r) noexcept { outbox_.reply(receiver_, r, statistics_.dropped_frames); }
 
   template <class M>
   void send_message(const M& m) noexcept {
-    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
-    const auto size = protocol::encode_frame(m, receiver_.next_outgoing_sequence(), frame);
-    if (size) queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
-  }
-
-  void queue_bytes(std::span<const std::byte> bytes) noexcept {
-    if (!transmit_.queue(bytes)) ++statistics_.dropped_frames;
+    outbox_.send(receiver_, m, statistics_.dropped_frames);
   }
 
   void report(Failure failure) noexcept {
     last_error_ = static_cast<std::uint8_t>(failure.code);
-    send_message(protocol::ErrorReport{failure.code, failure.index, sequence_});
+    send_message(outbox_.error_report(failure));
   }
   void report_if_failed(const Result<void>& r) noexcept {
     if (!r) report(r.failure());
@@ -998,14 +984,23 @@ class App {
   Controller controller_{};
   /// The override last set (FeedOverride; nothing without a planner).
   [[no_unique_address]] std::conditional_t<plans_on_board, FeedOverrideCommand, NoFeedOverride> override_{};
-  MachineEvents<Events> machine_events_{};  ///< QueueEvents, the spindle and coolant they set, the pause
-  SwitchSeek switch_seek_{};                ///< the homing seek (SeekSwitch) and its SwitchReport
+  // The App's parts are [[no_unique_address]] so that the one-byte members after each fill its
+  // tail padding (RAM of the small boards, docs/boards.md "Footprint").
+  [[no_unique_address]] MachineEvents<Events> machine_events_{};  ///< QueueEvents, the spindle and coolant they set, the pause
+  JobMotion motion_ = JobMotion::Idle;  ///< idle, moving or paused (phase.hpp)
+  [[no_unique_address]] SwitchSeek switch_seek_{};  ///< the homing seek (SeekSwitch) and its SwitchReport
+  bool positioned_ = false;            ///< the step generator knows where the machine is
+  bool has_last_end_ = false;          ///< the next segment must start at last_end_
+  bool job_end_known_ = false;         ///< the job's last segment has been queued
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
-  TransmitBuffer transmit_{};
+  Phase phase_ = Phase::NotConnected;
+  std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
+  std::uint8_t last_error_ = 0;
   AppStatistics statistics_{};
   TickWatch tick_watch_{};
-  LinkWatch link_watch_{};  ///< link loss and setpoint-stream stalls
+  [[no_unique_address]] LinkWatch link_watch_{};  ///< link loss and setpoint-stream stalls
+  bool resume_when_held_ = false;      ///< a Resume arrived while still braking
   protocol::WirePoint position_{};
   protocol::WirePoint last_end_{};
   TravelLimits travel_{};
@@ -1014,16 +1009,8 @@ class App {
   std::uint32_t setpoint_index_ = 0;
   std::uint32_t job_segments_ = 0;
   std::uint32_t edges_dropped_seen_ = 0;  ///< the board's edges_dropped() at the last check
-  Phase phase_ = Phase::NotConnected;
   TickEvents events_{};
-  std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
-  std::uint8_t last_error_ = 0;
-  std::uint8_t sequence_ = 0;
-  JobMotion motion_ = JobMotion::Idle;  ///< idle, moving or paused (phase.hpp)
-  bool positioned_ = false;           ///< the step generator knows where the machine is
-  bool has_last_end_ = false;         ///< the next segment must start at last_end_
-  bool job_end_known_ = false;        ///< the job's last segment has been queued
-  bool resume_when_held_ = false;     ///< a Resume arrived while still braking
+  [[no_unique_address]] Outbox outbox_{};  ///< outgoing frames (transmit buffer) and the sequence ErrorReports answer
 };
 
 }  // namespace curvestep::firmware

@@ -27,9 +27,11 @@ class LinkWatch {
     last_heard_ms_ = now_ms;
   }
 
-  /// True the first time the link is found lost (`link_ok` false) since the last valid frame.
-  [[nodiscard]] bool newly_lost(bool link_ok) noexcept {
-    if (hold_latched_ || link_ok) return false;
+  /// True the first time the link is found lost (`link_ok()` false) since the last valid frame;
+  /// once acted on, `link_ok` is not asked again until then.
+  template <class LinkOk>
+  [[nodiscard]] bool newly_lost(LinkOk&& link_ok) noexcept {
+    if (hold_latched_ || link_ok()) return false;
     hold_latched_ = true;
     return true;
   }

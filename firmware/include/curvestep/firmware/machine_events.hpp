@@ -105,7 +105,7 @@ class MachineEvents {
   }
 
  private:
-  EventTimeline<Events> timeline_{};  ///< QueueEvents waiting for the motion to reach them
+  [[no_unique_address]] EventTimeline<Events> timeline_{};  ///< QueueEvents for the motion to reach (Events 0: no room)
   protocol::PauseReport pause_{};     ///< the pause in force (JobMotion::Paused), reported once
   SpindleState spindle_{};            ///< the spindle as the events left it (board hooks)
   CoolantState coolant_{};            ///< the coolant as the events left it (board hooks)

@@ -10,8 +10,6 @@
 #include <cstddef>
 #include <cstdint>
 
-#include <curvestep/core/error.hpp>
-#include <curvestep/core/result.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
 #include <curvestep/protocol/messages.hpp>
 
@@ -20,12 +18,12 @@ namespace curvestep::firmware {
 /// The switch that ends the next job, and where the last seek stopped.
 class SwitchSeek {
  public:
-  /// Arms the switch of `m` for the next job. InvalidArgument (byte 0) for a switch of an axis
-  /// beyond `axis_count` (2 per axis: min, max).
-  [[nodiscard]] Result<void> arm(const protocol::SeekSwitch& m, std::size_t axis_count) noexcept {
-    if (m.limit_switch >= 2 * axis_count) return fail(Error::InvalidArgument, 0);
-    switch_ = m.limit_switch;
-    return ok();
+  /// Arms `limit_switch` (limit_switch_bit) for the next job; false (nothing armed) for a switch
+  /// of an axis beyond `axis_count` (2 per axis: min, max).
+  [[nodiscard]] bool arm(std::uint8_t limit_switch, std::size_t axis_count) noexcept {
+    if (limit_switch >= 2 * axis_count) return false;
+    switch_ = limit_switch;
+    return true;
   }
   /// No switch ends the next job.
   void disarm() noexcept { switch_ = no_limit_switch; }
