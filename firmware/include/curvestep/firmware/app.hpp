@@ -112,7 +112,6 @@
 #pragma once
 
 #include <array>
-#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -126,6 +125,7 @@
 #include <curvestep/core/scalar.hpp>
 #include <curvestep/firmware/app_settings.hpp>
 #include <curvestep/firmware/board.hpp>
+#include <curvestep/firmware/board_facts.hpp>
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
 #include <curvestep/firmware/machine_events.hpp>
@@ -173,7 +173,7 @@ class App {
   explicit App(B& board, AppSettings settings = {}) noexcept
       : board_(board),
         settings_(settings),
-        receiver_(make_capabilities(), make_receiver_settings(settings)),
+        receiver_(board_capabilities<B>(Queue, Lookahead), make_receiver_settings(settings)),
         stream_(settings.retransmit_timeout_ms) {
     edges_dropped_seen_ = edges_dropped_by(board);  // edges lost before this App existed are not its to report
   }
@@ -196,7 +196,7 @@ class App {
   /// If the setpoint stream is backed up, nothing advances (a stalled tick, see the header).
   void on_tick() noexcept {
     if (motion_ != JobMotion::Moving) return;  // a program pause: nothing advances until Resume
-    if constexpr (has_cycle_clock) {
+    if constexpr (has_cycle_clock<B>) {
       if (!settings_.watch_ticks) return run_tick();
       const std::uint32_t late_periods = tick_watch_.on_start(board_.cycle_count());
       if (late_periods != 0) return raise_fault(fail(Error::TickDeadlineMissed, late_periods));
@@ -216,12 +216,6 @@ class App {
   [[nodiscard]] const TickWatch& tick_watch() const noexcept { return tick_watch_; }
 
  private:
-  /// True if the board has a free-running cycle counter to time the ticks with.
-  static constexpr bool has_cycle_clock = requires(B& b) {
-    { b.cycle_count() } -> std::convertible_to<std::uint32_t>;
-    { b.cycles_per_second() } -> std::convertible_to<std::uint32_t>;
-  };
-
   /// The work of on_tick(), untimed.
   void run_tick() noexcept {
     if (!ready_to_tick()) {
@@ -343,15 +337,6 @@ class App {
     bool switch_closed = false;  ///< a SeekSwitch job met its switch: report it (SwitchSeek)
   };
 
-  [[nodiscard]] static constexpr protocol::Capabilities make_capabilities() noexcept {
-    protocol::Capabilities c;
-    c.queue_capacity = static_cast<std::uint16_t>(Queue);
-    c.axis_count = static_cast<std::uint8_t>(B::axis_count);
-    c.max_degree = plans_on_board ? static_cast<std::uint8_t>(protocol::max_segment_degree) : 0;  // no segments without a planner
-    c.tick_rate_hz = B::step_timing().timer_hz;
-    c.lookahead = static_cast<std::uint16_t>(Lookahead);
-    return c;
-  }
   [[nodiscard]] static constexpr protocol::ReceiverSettings make_receiver_settings(const AppSettings& s) noexcept {
     return protocol::ReceiverSettings{s.ack_interval_ms, s.link_timeout_ms};
   }
@@ -609,7 +594,7 @@ class App {
     if (!limits) return limits.failure();
     const auto travel = to_travel_limits(m);
     if (!travel) return travel.failure();
-    const auto step_config = fit_step_config(limits.value());
+    const auto step_config = fit_step_config<B>(limits.value());
     if (!step_config) {
       // A control period too short for one step (StepConfig's Period) is the rate's fault.
       const Failure f = step_config.failure();
@@ -634,23 +619,7 @@ class App {
   /// The tick watch for the configured rate. Not inlined: configure() is on a small board's
   /// deepest call chain (docs/boards.md, "Footprint").
   [[gnu::noinline]] void configure_tick_watch() noexcept {
-    if constexpr (has_cycle_clock) tick_watch_.configure(board_.cycles_per_second() / control_rate_hz_, settings_.tick_deadline_periods);
-  }
-
-  /// The step configuration for `limits` and the board's timing, with max_step_rate_hz lowered
-  /// until the busiest possible tick fits the board's StepBatch (the planner does not use that
-  /// field, so the plan is unchanged; a faster job then faults with StepRateTooHigh instead of
-  /// overflowing the batch). BufferTooSmall if not even one step per tick fits.
-  [[nodiscard]] static Result<StepConfig> fit_step_config(MachineLimits& limits) noexcept {
-    for (int attempt = 0; attempt < 32; ++attempt) {
-      CURVESTEP_TRY(const StepConfig config, StepConfig::create(limits, B::step_timing()));
-      const std::size_t events = config.max_events_per_tick();
-      if (events <= B::step_events_per_tick) return config;
-      double scale = static_cast<double>(B::step_events_per_tick) / static_cast<double>(events);
-      if (scale > 0.9) scale = 0.9;
-      limits.max_step_rate_hz *= scale;
-    }
-    return fail(Error::BufferTooSmall, B::step_events_per_tick);
+    if constexpr (has_cycle_clock<B>) tick_watch_.configure(board_.cycles_per_second() / control_rate_hz_, settings_.tick_deadline_periods);
   }
 
   /// Counts one more accepted segment or piece: the deepest queue, and Configured becomes Queued.
@@ -817,16 +786,6 @@ class App {
 
   // --- tick events, start rule, link watch ----------------------------------------------------
 
-  /// The board's running count of lost step/dir edges (a board that buffers edges reports
-  /// edges_dropped(); one that does not loses none).
-  [[nodiscard]] static std::uint32_t edges_dropped_by(B& board) noexcept {
-    if constexpr (requires { board.edges_dropped(); }) {
-      return board.edges_dropped();
-    } else {
-      return 0;
-    }
-  }
-
   /// True when the board lost edges since the last check: a lost edge is a lost step, so the
   /// position is no longer known.
   [[nodiscard]] bool edges_lost() noexcept {
@@ -962,7 +921,7 @@ class App {
     s.setpoint_index = setpoint_index_;
     s.limit_switches = read_limit_switches(board_);
     s.tick_overruns = tick_watch_.overruns();
-    if constexpr (has_cycle_clock) s.worst_tick_us = tick_watch_.worst_microseconds(board_.cycles_per_second());
+    if constexpr (has_cycle_clock<B>) s.worst_tick_us = tick_watch_.worst_microseconds(board_.cycles_per_second());
     override_.describe(s);
     s.position = position_;
     send_message(s);
