@@ -109,6 +109,11 @@
 // command type it does not take (a report, or one a newer host defines) is answered, as ever,
 // with ErrorReport(UnknownMessage, index = type).
 // Nothing allocates; all buffers are members sized at compile time (see docs/firmware.md).
+//
+// The App composes parts that own their state (docs/firmware.md): Outbox (outbox.hpp, outgoing
+// frames), SetpointStream, LinkWatch (link_watch.hpp, link loss and stalls), MachineEvents
+// (machine_events.hpp), SwitchSeek (switch_seek.hpp, homing), TickWatch; board_facts.hpp holds
+// what it derives from the board type. It keeps the phase, the commands and the tick.
 #pragma once
 
 #include <array>
