@@ -112,8 +112,9 @@
 //
 // The App composes parts that own their state (docs/firmware.md): Outbox (outbox.hpp, outgoing
 // frames), SetpointStream, LinkWatch (link_watch.hpp, link loss and stalls), MachineEvents
-// (machine_events.hpp), SwitchSeek (switch_seek.hpp, homing), TickWatch; board_facts.hpp holds
-// what it derives from the board type. It keeps the phase, the commands and the tick.
+// (machine_events.hpp), SwitchSeek (switch_seek.hpp, homing), NextStart (next_start.hpp,
+// continuity), TickWatch; board_facts.hpp holds what it derives from the board type. It keeps
+// the phase, the commands and the tick.
 #pragma once
 
 #include <array>
@@ -134,6 +135,7 @@
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
 #include <curvestep/firmware/machine_events.hpp>
+#include <curvestep/firmware/next_start.hpp>
 #include <curvestep/firmware/outbox.hpp>
 #include <curvestep/firmware/link_watch.hpp>
 #include <curvestep/firmware/feed_override_command.hpp>
@@ -396,7 +398,7 @@ class App {
       axis_count_ = static_cast<std::uint8_t>(B::axis_count);
       phase_ = Phase::Connected;
       last_error_ = 0;
-      has_last_end_ = false;
+      next_start_.forget();
       positioned_ = false;
       stream_.open(now);
       statistics_.max_queue_depth = 0;
@@ -561,8 +563,7 @@ class App {
     for (std::size_t axis = 0; axis < axis_count_; ++axis) {
       if ((m.value().axes & (1u << axis)) != 0) position_[axis] = at[axis];
     }
-    last_end_ = position_;
-    has_last_end_ = true;
+    next_start_.set(position_);
     positioned_ = false;
   }
 
@@ -613,7 +614,7 @@ class App {
     steps_ = StepGenerator(step_config.value());
     travel_ = travel.value();
     positioned_ = false;
-    has_last_end_ = false;
+    next_start_.forget();
     axis_count_ = m.axis_count;
     control_rate_hz_ = m.control_rate_hz;
     configure_tick_watch();
@@ -640,14 +641,13 @@ class App {
     if (phase_ == Phase::Fault || job_end_known_) return fail(Error::InvalidState);
     if (s.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
     const protocol::WirePoint start = segment_start(s);
-    if (has_last_end_ && start != last_end_) return fail(Error::SegmentsNotConnected, job_segments_);
+    if (!next_start_.connects(start)) return fail(Error::SegmentsNotConnected, job_segments_);
     const auto made = to_path_segment(s);  // used in place: a PathSegment is large for small stacks
     if (!made) return made.failure();
     const PathSegment& segment = made.value();
     CURVESTEP_CHECK(check_travel(segment, travel_));
     CURVESTEP_CHECK(controller_.try_push(segment, job_segments_, JointStop{s.stop_before, s.rest_ticks}));
-    last_end_ = segment_end(s);
-    has_last_end_ = true;
+    next_start_.set(segment_end(s));
     note_queued();
     if (s.end_of_job) {
       controller_.end_of_job(s.end_rest_ticks);
@@ -669,18 +669,17 @@ class App {
     if (piece.exact_run) {
       for (std::uint32_t k = 0; k + 1 < piece.ticks; ++k) CURVESTEP_CHECK(check_travel(piece.controls[k], travel_));
     }
-    if (job_segments_ == 0 && has_last_end_) {
+    if (job_segments_ == 0 && next_start_.known()) {
       // The job's first setpoint: an exact run's first point, else the piece's end.
       CURVESTEP_TRY(const protocol::WirePoint start, to_wire_point(piece.exact_run ? piece.controls[0] : piece.end));
-      if (start != last_end_) return fail(Error::SegmentsNotConnected, 0);
+      if (!next_start_.connects(start)) return fail(Error::SegmentsNotConnected, 0);
     }
     CURVESTEP_TRY(const protocol::WirePoint end, to_wire_point(piece.end));  // checked before anything is queued
     CURVESTEP_CHECK(controller_.push(piece));
     note_queued();
     if (m.end_of_job) {
       job_end_known_ = true;
-      last_end_ = end;  // where the next job must start
-      has_last_end_ = true;
+      next_start_.set(end);  // where the next job must start
     }
     return ok();
   }
@@ -784,8 +783,7 @@ class App {
     link_watch_.stall_ended();  // a stall of the stopped job is not the next job's
     job_segments_ = 0;
     // The next job starts where the machine stands.
-    has_last_end_ = positioned_;
-    last_end_ = position_;
+    next_start_.stand_at(position_, positioned_);
     phase_ = settled_phase();
   }
 
@@ -954,19 +952,18 @@ class App {
   JobMotion motion_ = JobMotion::Idle;  ///< idle, moving or paused (phase.hpp)
   [[no_unique_address]] SwitchSeek switch_seek_{};  ///< the homing seek (SeekSwitch) and its SwitchReport
   bool positioned_ = false;            ///< the step generator knows where the machine is
-  bool has_last_end_ = false;          ///< the next segment must start at last_end_
   bool job_end_known_ = false;         ///< the job's last segment has been queued
+  bool resume_when_held_ = false;      ///< a Resume arrived while still braking
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
-  Phase phase_ = Phase::NotConnected;
-  std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
-  std::uint8_t last_error_ = 0;
   AppStatistics statistics_{};
   TickWatch tick_watch_{};
   [[no_unique_address]] LinkWatch link_watch_{};  ///< link loss and setpoint-stream stalls
-  bool resume_when_held_ = false;      ///< a Resume arrived while still braking
+  Phase phase_ = Phase::NotConnected;
+  std::uint8_t last_error_ = 0;
   protocol::WirePoint position_{};
-  protocol::WirePoint last_end_{};
+  [[no_unique_address]] NextStart next_start_{};  ///< where the next segment must start
+  std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
   TravelLimits travel_{};
   Failure fault_{Error::InvalidState, no_index};
   std::uint32_t control_rate_hz_ = 0;
