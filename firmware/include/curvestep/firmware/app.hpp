@@ -134,10 +134,10 @@
 #include <curvestep/firmware/board_facts.hpp>
 #include <curvestep/firmware/conversions.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
+#include <curvestep/firmware/link_watch.hpp>
 #include <curvestep/firmware/machine_events.hpp>
 #include <curvestep/firmware/next_start.hpp>
 #include <curvestep/firmware/outbox.hpp>
-#include <curvestep/firmware/link_watch.hpp>
 #include <curvestep/firmware/feed_override_command.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
