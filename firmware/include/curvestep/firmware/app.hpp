@@ -109,10 +109,15 @@
 // command type it does not take (a report, or one a newer host defines) is answered, as ever,
 // with ErrorReport(UnknownMessage, index = type).
 // Nothing allocates; all buffers are members sized at compile time (see docs/firmware.md).
+//
+// The App composes parts that own their state (docs/firmware.md): Outbox (outbox.hpp, outgoing
+// frames), SetpointStream, LinkWatch (link_watch.hpp, link loss and stalls), MachineEvents
+// (machine_events.hpp), SwitchSeek (switch_seek.hpp, homing), NextStart (next_start.hpp,
+// continuity), TickWatch; board_facts.hpp holds what it derives from the board type. It keeps
+// the phase, the commands and the tick.
 #pragma once
 
 #include <array>
-#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -126,15 +131,18 @@
 #include <curvestep/core/scalar.hpp>
 #include <curvestep/firmware/app_settings.hpp>
 #include <curvestep/firmware/board.hpp>
-#include <curvestep/firmware/board_hooks.hpp>
+#include <curvestep/firmware/board_facts.hpp>
 #include <curvestep/firmware/conversions.hpp>
-#include <curvestep/firmware/event_timeline.hpp>
 #include <curvestep/firmware/limit_switches.hpp>
+#include <curvestep/firmware/link_watch.hpp>
+#include <curvestep/firmware/machine_events.hpp>
+#include <curvestep/firmware/next_start.hpp>
+#include <curvestep/firmware/outbox.hpp>
 #include <curvestep/firmware/feed_override_command.hpp>
 #include <curvestep/firmware/phase.hpp>
 #include <curvestep/firmware/setpoint_stream.hpp>
+#include <curvestep/firmware/switch_seek.hpp>
 #include <curvestep/firmware/tick_watch.hpp>
-#include <curvestep/firmware/transmit_buffer.hpp>
 #include <curvestep/protocol/frame.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
 #include <curvestep/protocol/link_receiver.hpp>
@@ -172,7 +180,7 @@ class App {
   explicit App(B& board, AppSettings settings = {}) noexcept
       : board_(board),
         settings_(settings),
-        receiver_(make_capabilities(), make_receiver_settings(settings)),
+        receiver_(board_capabilities<B>(Queue, Lookahead), make_receiver_settings(settings)),
         stream_(settings.retransmit_timeout_ms) {
     edges_dropped_seen_ = edges_dropped_by(board);  // edges lost before this App existed are not its to report
   }
@@ -187,15 +195,15 @@ class App {
     watch_link(now);
     watch_stall(now);
     send_setpoints();
-    if (auto sent = stream_.transmit(now, transmit_); !sent) raise_fault(sent.failure());
-    transmit_.flush(board_);
+    if (auto sent = stream_.transmit(now, outbox_.buffer()); !sent) raise_fault(sent.failure());
+    outbox_.flush(board_);
   }
 
   /// One control period: the next setpoint, its step edges to the board, the setpoint to the stream.
   /// If the setpoint stream is backed up, nothing advances (a stalled tick, see the header).
   void on_tick() noexcept {
     if (motion_ != JobMotion::Moving) return;  // a program pause: nothing advances until Resume
-    if constexpr (has_cycle_clock) {
+    if constexpr (has_cycle_clock<B>) {
       if (!settings_.watch_ticks) return run_tick();
       const std::uint32_t late_periods = tick_watch_.on_start(board_.cycle_count());
       if (late_periods != 0) return raise_fault(fail(Error::TickDeadlineMissed, late_periods));
@@ -215,25 +223,18 @@ class App {
   [[nodiscard]] const TickWatch& tick_watch() const noexcept { return tick_watch_; }
 
  private:
-  /// True if the board has a free-running cycle counter to time the ticks with.
-  static constexpr bool has_cycle_clock = requires(B& b) {
-    { b.cycle_count() } -> std::convertible_to<std::uint32_t>;
-    { b.cycles_per_second() } -> std::convertible_to<std::uint32_t>;
-  };
-
   /// The work of on_tick(), untimed.
   void run_tick() noexcept {
     if (!ready_to_tick()) {
       if (stands_in_host_hold()) {
-        stalled_ = false;  // waiting for Resume, not for the host's pieces
+        link_watch_.stall_ended();  // waiting for Resume, not for the host's pieces
         return;
       }
-      if (!stalled_) stalled_since_ms_ = board_.now_ms();
-      stalled_ = true;
+      link_watch_.stalled_tick(board_);
       ++statistics_.stalled_ticks;
       return;
     }
-    stalled_ = false;
+    link_watch_.stall_ended();
     if constexpr (Events > 0 && plans_on_board) {
       if (wait_at_joint()) return;
     }
@@ -268,7 +269,7 @@ class App {
       }
       const std::uint8_t closed = read_limit_switches(board_);
       const std::uint8_t hit = hard_limit_hit(closed, position_, wire, axis_count_);
-      const bool sought_switch_closed = seek_closed(closed, seek_switch_);
+      const bool sought_switch_closed = switch_seek_.met(closed);
       if (sought_switch_closed || hit != no_limit_switch) {
         position_ = wire;  // the board has this setpoint's edges: the machine stops there
         setpoint_index_ = static_cast<std::uint32_t>(job_tick);
@@ -340,18 +341,9 @@ class App {
     bool held = false;      ///< a feed hold came to a stop
     bool paused = false;    ///< a pause event stopped the job: report it (PauseReport)
     bool fault = false;     ///< raise_fault() stopped the machine: report fault_
-    bool switch_closed = false;  ///< a SeekSwitch job met its switch: report switch_report_
+    bool switch_closed = false;  ///< a SeekSwitch job met its switch: report it (SwitchSeek)
   };
 
-  [[nodiscard]] static constexpr protocol::Capabilities make_capabilities() noexcept {
-    protocol::Capabilities c;
-    c.queue_capacity = static_cast<std::uint16_t>(Queue);
-    c.axis_count = static_cast<std::uint8_t>(B::axis_count);
-    c.max_degree = plans_on_board ? static_cast<std::uint8_t>(protocol::max_segment_degree) : 0;  // no segments without a planner
-    c.tick_rate_hz = B::step_timing().timer_hz;
-    c.lookahead = static_cast<std::uint16_t>(Lookahead);
-    return c;
-  }
   [[nodiscard]] static constexpr protocol::ReceiverSettings make_receiver_settings(const AppSettings& s) noexcept {
     return protocol::ReceiverSettings{s.ack_interval_ms, s.link_timeout_ms};
   }
@@ -392,8 +384,7 @@ class App {
   }
 
   void on_frame(const protocol::Frame& frame, std::uint32_t now) noexcept {
-    link_hold_latched_ = false;
-    last_heard_ms_ = now;
+    link_watch_.heard(now);
     stream_.heard(now);  // the host talks: a stream it never acknowledges is RetransmitLimit, not LinkTimeout
     // A new session starts without a configuration: its Capabilities grant no credit. Credit
     // commands are refused by phase where no segment is taken (ConfigurationMissing, ...), not
@@ -407,7 +398,7 @@ class App {
       axis_count_ = static_cast<std::uint8_t>(B::axis_count);
       phase_ = Phase::Connected;
       last_error_ = 0;
-      has_last_end_ = false;
+      next_start_.forget();
       positioned_ = false;
       stream_.open(now);
       statistics_.max_queue_depth = 0;
@@ -418,7 +409,7 @@ class App {
       if (!receiver_.connected()) return;
       if (auto handled = stream_.on_reply(frame, now); !handled) raise_fault(handled.failure());
     } else if (r.disposition == protocol::Disposition::Deliver) {
-      sequence_ = frame.sequence;
+      outbox_.answering(frame.sequence);
       dispatch(frame);
     }
   }
@@ -510,60 +501,30 @@ class App {
     return protocol::decode<protocol::MachineConfiguration>(payload);
   }
 
-  /// Events that hold the job for the operator (the joint is an exact stop: the machine stands).
-  [[nodiscard]] static constexpr bool pauses(protocol::MachineEventKind kind) noexcept {
-    using protocol::MachineEventKind;
-    return kind == MachineEventKind::ProgramPause || kind == MachineEventKind::ToolChange || kind == MachineEventKind::LayerChange;
-  }
   /// A due machine event at setpoint `at` (by default the last one): the board's hooks, and a
   /// pause if it is one.
   void act_on(const protocol::QueueEvent& e) noexcept { act_on(e, setpoint_index_); }
   void act_on(const protocol::QueueEvent& e, std::uint32_t at) noexcept {
-    apply_machine_event(board_, e, at, spindle_, coolant_);
-    if (pauses(e.kind) && !paused()) pause_for(e, at);
+    if (machine_events_.act_on(board_, e, at) && !paused()) pause_for(e, at);
   }
 
-  /// Machine events for the segment after everything queued (more of them than the event ring
-  /// holds, docs/protocol.md "Credit"): rather than run the queue dry, the motion waits at the
-  /// setpoint before the queue's end (at rest or within a tick of it: the plan's window ends at
-  /// rest there) and acts on the events due at that joint, naming the setpoint they precede, so
-  /// that their room brings the rest of them and the segment. Once that came, the motion goes on
-  /// when the look-ahead window is as full as after an underrun (window_ready(1)): the setpoints
-  /// are those it would have made without waiting. True while waiting (no setpoint this tick).
+  /// The motion waits at a joint whose segment has not arrived (MachineEvents::wait_at_joint,
+  /// while the job runs); the events due there act at the setpoint they precede. True while
+  /// waiting (no setpoint this tick).
   [[nodiscard]] bool wait_at_joint() noexcept {
     if (phase_ != Phase::Running || controller_.state() != ControllerState::Running) {
-      waiting_at_joint_ = false;
+      machine_events_.stop_waiting();
       return false;
     }
-    const bool at_end = controller_.next_tick_ends_queue();
-    if (!waiting_at_joint_ && !(at_end && machine_events_.waiting_for(job_segments_))) return false;
-    if (!at_end && window_ready(1)) {
-      waiting_at_joint_ = false;
-      return false;
-    }
-    waiting_at_joint_ = true;
-    machine_events_.at_joint(job_segments_, [this](const protocol::QueueEvent& e) { act_on(e, setpoint_index_ + 1); });
-    return true;
-  }
-
-  /// Abort and faults: a running spindle and coolant are switched off through the same hooks (as
-  /// M5 and M9 would), so a stopped job never leaves a cutter turning.
-  void switch_off_spindle_and_coolant() noexcept {
-    protocol::QueueEvent off{};
-    if (spindle_.on) {
-      off.kind = protocol::MachineEventKind::SpindleOff;
-      apply_machine_event(board_, off, setpoint_index_, spindle_, coolant_);
-    }
-    if (coolant_.mist || coolant_.flood) {
-      off.kind = protocol::MachineEventKind::CoolantOff;
-      apply_machine_event(board_, off, setpoint_index_, spindle_, coolant_);
-    }
+    return machine_events_.wait_at_joint(
+        controller_.next_tick_ends_queue(), job_segments_, [this] { return window_ready(1); },
+        [this](const protocol::QueueEvent& e) { act_on(e, setpoint_index_ + 1); });
   }
 
   /// Stops producing setpoints after this one until Resume; poll() reports the pause.
   void pause_for(const protocol::QueueEvent& e, std::uint32_t at) noexcept {
     motion_ = JobMotion::Paused;
-    pause_ = protocol::PauseReport{at, e.kind, e.value};
+    machine_events_.hold_for(e, at);
     phase_ = Phase::Holding;
     events_.paused = true;
   }
@@ -587,8 +548,7 @@ class App {
     if (!m) return report(m.failure());
     if (!configured()) return report(fail(Error::ConfigurationMissing));
     if (phase_ == Phase::Fault || job_started(phase_)) return report(fail(Error::InvalidState));
-    if (m.value().limit_switch >= 2 * axis_count_) return report(fail(Error::InvalidArgument, 0));
-    seek_switch_ = m.value().limit_switch;
+    if (!switch_seek_.arm(m.value().limit_switch, axis_count_)) return report(fail(Error::InvalidArgument, 0));
   }
 
   /// SetPosition: new coordinates for the standing machine; the next job starts there (its first
@@ -603,15 +563,14 @@ class App {
     for (std::size_t axis = 0; axis < axis_count_; ++axis) {
       if ((m.value().axes & (1u << axis)) != 0) position_[axis] = at[axis];
     }
-    last_end_ = position_;
-    has_last_end_ = true;
+    next_start_.set(position_);
     positioned_ = false;
   }
 
   /// A SeekSwitch job met its switch: it ends where it stands, without braking (the edges already
   /// handed to the board play out, so the position stays exact); poll() sends the SwitchReport.
   void stop_at_switch() noexcept {
-    switch_report_ = protocol::SwitchReport{seek_switch_, setpoint_index_, position_[0], position_[1], position_[2]};
+    switch_seek_.record_stop(setpoint_index_, position_);
     stop_job(false);
     events_.switch_closed = true;
   }
@@ -641,7 +600,7 @@ class App {
     if (!limits) return limits.failure();
     const auto travel = to_travel_limits(m);
     if (!travel) return travel.failure();
-    const auto step_config = fit_step_config(limits.value());
+    const auto step_config = fit_step_config<B>(limits.value());
     if (!step_config) {
       // A control period too short for one step (StepConfig's Period) is the rate's fault.
       const Failure f = step_config.failure();
@@ -655,7 +614,7 @@ class App {
     steps_ = StepGenerator(step_config.value());
     travel_ = travel.value();
     positioned_ = false;
-    has_last_end_ = false;
+    next_start_.forget();
     axis_count_ = m.axis_count;
     control_rate_hz_ = m.control_rate_hz;
     configure_tick_watch();
@@ -666,23 +625,7 @@ class App {
   /// The tick watch for the configured rate. Not inlined: configure() is on a small board's
   /// deepest call chain (docs/boards.md, "Footprint").
   [[gnu::noinline]] void configure_tick_watch() noexcept {
-    if constexpr (has_cycle_clock) tick_watch_.configure(board_.cycles_per_second() / control_rate_hz_, settings_.tick_deadline_periods);
-  }
-
-  /// The step configuration for `limits` and the board's timing, with max_step_rate_hz lowered
-  /// until the busiest possible tick fits the board's StepBatch (the planner does not use that
-  /// field, so the plan is unchanged; a faster job then faults with StepRateTooHigh instead of
-  /// overflowing the batch). BufferTooSmall if not even one step per tick fits.
-  [[nodiscard]] static Result<StepConfig> fit_step_config(MachineLimits& limits) noexcept {
-    for (int attempt = 0; attempt < 32; ++attempt) {
-      CURVESTEP_TRY(const StepConfig config, StepConfig::create(limits, B::step_timing()));
-      const std::size_t events = config.max_events_per_tick();
-      if (events <= B::step_events_per_tick) return config;
-      double scale = static_cast<double>(B::step_events_per_tick) / static_cast<double>(events);
-      if (scale > 0.9) scale = 0.9;
-      limits.max_step_rate_hz *= scale;
-    }
-    return fail(Error::BufferTooSmall, B::step_events_per_tick);
+    if constexpr (has_cycle_clock<B>) tick_watch_.configure(board_.cycles_per_second() / control_rate_hz_, settings_.tick_deadline_periods);
   }
 
   /// Counts one more accepted segment or piece: the deepest queue, and Configured becomes Queued.
@@ -698,14 +641,13 @@ class App {
     if (phase_ == Phase::Fault || job_end_known_) return fail(Error::InvalidState);
     if (s.axis_count > axis_count_) return fail(Error::InvalidArgument, 1);
     const protocol::WirePoint start = segment_start(s);
-    if (has_last_end_ && start != last_end_) return fail(Error::SegmentsNotConnected, job_segments_);
+    if (!next_start_.connects(start)) return fail(Error::SegmentsNotConnected, job_segments_);
     const auto made = to_path_segment(s);  // used in place: a PathSegment is large for small stacks
     if (!made) return made.failure();
     const PathSegment& segment = made.value();
     CURVESTEP_CHECK(check_travel(segment, travel_));
     CURVESTEP_CHECK(controller_.try_push(segment, job_segments_, JointStop{s.stop_before, s.rest_ticks}));
-    last_end_ = segment_end(s);
-    has_last_end_ = true;
+    next_start_.set(segment_end(s));
     note_queued();
     if (s.end_of_job) {
       controller_.end_of_job(s.end_rest_ticks);
@@ -727,18 +669,17 @@ class App {
     if (piece.exact_run) {
       for (std::uint32_t k = 0; k + 1 < piece.ticks; ++k) CURVESTEP_CHECK(check_travel(piece.controls[k], travel_));
     }
-    if (job_segments_ == 0 && has_last_end_) {
+    if (job_segments_ == 0 && next_start_.known()) {
       // The job's first setpoint: an exact run's first point, else the piece's end.
       CURVESTEP_TRY(const protocol::WirePoint start, to_wire_point(piece.exact_run ? piece.controls[0] : piece.end));
-      if (start != last_end_) return fail(Error::SegmentsNotConnected, 0);
+      if (!next_start_.connects(start)) return fail(Error::SegmentsNotConnected, 0);
     }
     CURVESTEP_TRY(const protocol::WirePoint end, to_wire_point(piece.end));  // checked before anything is queued
     CURVESTEP_CHECK(controller_.push(piece));
     note_queued();
     if (m.end_of_job) {
       job_end_known_ = true;
-      last_end_ = end;  // where the next job must start
-      has_last_end_ = true;
+      next_start_.set(end);  // where the next job must start
     }
     return ok();
   }
@@ -830,35 +771,23 @@ class App {
   /// Ends the job at once; `outputs` also stops the board's scheduled edges (Abort).
   void stop_job(bool outputs) noexcept {
     if (outputs) board_.fault_stop();
-    switch_off_spindle_and_coolant();
+    machine_events_.switch_off_spindle_and_coolant(board_, setpoint_index_);
     controller_.abort();
     controller_.reset();
-    machine_events_.clear();
-    seek_switch_ = no_limit_switch;
-    waiting_at_joint_ = false;
+    machine_events_.clear();  // and any wait at a joint
+    switch_seek_.disarm();
     motion_ = JobMotion::Idle;
     job_end_known_ = false;
     events_ = TickEvents{};
     resume_when_held_ = false;
-    stalled_ = false;  // a stall of the stopped job is not the next job's
+    link_watch_.stall_ended();  // a stall of the stopped job is not the next job's
     job_segments_ = 0;
     // The next job starts where the machine stands.
-    has_last_end_ = positioned_;
-    last_end_ = position_;
+    next_start_.stand_at(position_, positioned_);
     phase_ = settled_phase();
   }
 
   // --- tick events, start rule, link watch ----------------------------------------------------
-
-  /// The board's running count of lost step/dir edges (a board that buffers edges reports
-  /// edges_dropped(); one that does not loses none).
-  [[nodiscard]] static std::uint32_t edges_dropped_by(B& board) noexcept {
-    if constexpr (requires { board.edges_dropped(); }) {
-      return board.edges_dropped();
-    } else {
-      return 0;
-    }
-  }
 
   /// True when the board lost edges since the last check: a lost edge is a lost step, so the
   /// position is no longer known.
@@ -872,7 +801,7 @@ class App {
   /// Stops the machine at once (phase Fault); poll() reports `failure`.
   void raise_fault(Failure failure) noexcept {
     board_.fault_stop();
-    switch_off_spindle_and_coolant();
+    machine_events_.switch_off_spindle_and_coolant(board_, setpoint_index_);
     controller_.abort();
     motion_ = JobMotion::Idle;  // a fault also ends a pause (Resume does not leave Fault)
     fault_ = failure;
@@ -888,12 +817,12 @@ class App {
     }
     if (events_.switch_closed) {
       events_.switch_closed = false;
-      send_message(switch_report_);
+      send_message(switch_seek_.report());
       send_status();
     }
     if (events_.finished) {
       events_.finished = false;
-      seek_switch_ = no_limit_switch;  // the job ended without meeting its switch
+      switch_seek_.disarm();  // the job ended without meeting its switch
       controller_.reset();
       job_end_known_ = false;
       job_segments_ = 0;
@@ -903,7 +832,7 @@ class App {
     if constexpr (Events > 0) {
       if (events_.paused) {
         events_.paused = false;
-        send_message(pause_);
+        send_message(machine_events_.pause());
         send_status();
       }
     }
@@ -950,23 +879,16 @@ class App {
 
   /// A setpoint stream backed up for longer than stall_timeout_ms while moving is a fault.
   void watch_stall(std::uint32_t now) noexcept {
-    if (!stalled_ || !moving() || settings_.stall_timeout_ms == 0) return;
-    if (now - stalled_since_ms_ < settings_.stall_timeout_ms) return;
-    stalled_ = false;
+    if (!moving() || !link_watch_.stall_expired(now, settings_.stall_timeout_ms)) return;
     // Without a planner a stall is usually a queue the host did not refill in time.
     bool starved = false;
     if constexpr (!plans_on_board) starved = !controller_.can_step();
-    // A host heard during the stall talks but does not take the setpoints (RetransmitLimit);
-    // a silent one is gone (LinkTimeout), as the sender itself tells them apart.
-    const bool heard = static_cast<std::int32_t>(last_heard_ms_ - stalled_since_ms_) > 0;
-    const Error code = starved ? Error::QueueUnderrun : (heard ? Error::RetransmitLimit : Error::LinkTimeout);
-    raise_fault(fail(code, now - stalled_since_ms_));
+    raise_fault(link_watch_.stall_fault(now, starved));
   }
 
   void watch_link(std::uint32_t now) noexcept {
     send_reply(receiver_.poll(free_segments(), now));
-    if (link_hold_latched_ || receiver_.check_link(now)) return;
-    link_hold_latched_ = true;
+    if (!link_watch_.newly_lost([&] { return static_cast<bool>(receiver_.check_link(now)); })) return;
     const bool running = moving() && controller_.state() == ControllerState::Running;
     if (!running && !(phase_ == Phase::Running && armed())) return;
     // Without a planner there is no braking: the queued pieces run out (QueueUnderrun).
@@ -976,31 +898,17 @@ class App {
 
   // --- sending -------------------------------------------------------------------------------
 
-  void send_reply(const protocol::Reception& r) noexcept {
-    if (r.reply != protocol::ReplyKind::None) encode_reply(r);
-  }
-
-  /// Not inlined: its frame buffer must not sit in poll()'s frame, under the command handlers.
-  [[gnu::noinline]] void encode_reply(const protocol::Reception& r) noexcept {
-    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
-    const auto size = receiver_.encode_reply(r, frame);
-    if (size) queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
-  }
+  // Frames that find the transmit buffer full are counted, not queued (outbox.hpp).
+  void send_reply(const protocol::Reception& r) noexcept { outbox_.reply(receiver_, r, statistics_.dropped_frames); }
 
   template <class M>
   void send_message(const M& m) noexcept {
-    std::array<std::byte, protocol::max_encoded_frame_size> frame{};
-    const auto size = protocol::encode_frame(m, receiver_.next_outgoing_sequence(), frame);
-    if (size) queue_bytes(std::span<const std::byte>(frame.data(), size.value()));
-  }
-
-  void queue_bytes(std::span<const std::byte> bytes) noexcept {
-    if (!transmit_.queue(bytes)) ++statistics_.dropped_frames;
+    outbox_.send(receiver_, m, statistics_.dropped_frames);
   }
 
   void report(Failure failure) noexcept {
     last_error_ = static_cast<std::uint8_t>(failure.code);
-    send_message(protocol::ErrorReport{failure.code, failure.index, sequence_});
+    send_message(outbox_.error_report(failure));
   }
   void report_if_failed(const Result<void>& r) noexcept {
     if (!r) report(r.failure());
@@ -1016,7 +924,7 @@ class App {
     s.setpoint_index = setpoint_index_;
     s.limit_switches = read_limit_switches(board_);
     s.tick_overruns = tick_watch_.overruns();
-    if constexpr (has_cycle_clock) s.worst_tick_us = tick_watch_.worst_microseconds(board_.cycles_per_second());
+    if constexpr (has_cycle_clock<B>) s.worst_tick_us = tick_watch_.worst_microseconds(board_.cycles_per_second());
     override_.describe(s);
     s.position = position_;
     send_message(s);
@@ -1025,7 +933,7 @@ class App {
   /// Moves buffered setpoints into the setpoint stream's window as batches (never drops any).
   void send_setpoints() noexcept {
     // Stopped, stalled or paused (a paused interpolator must not hold back what it already produced).
-    const bool stopped = motion_ != JobMotion::Moving || stalled_ || controller_.state() == ControllerState::Held ||
+    const bool stopped = motion_ != JobMotion::Moving || link_watch_.stalled() || controller_.state() == ControllerState::Held ||
                          controller_.state() == ControllerState::Starved || stands_in_host_hold();
     stream_.submit(stopped, axis_count_, statistics_.setpoint_go_backs);
   }
@@ -1038,40 +946,32 @@ class App {
   Controller controller_{};
   /// The override last set (FeedOverride; nothing without a planner).
   [[no_unique_address]] std::conditional_t<plans_on_board, FeedOverrideCommand, NoFeedOverride> override_{};
-  EventTimeline<Events> machine_events_{};  ///< QueueEvents waiting for the motion to reach them
-  SpindleState spindle_{};                 ///< the spindle as the events left it (board hooks)
-  protocol::PauseReport pause_{};          ///< the pause in force (JobMotion::Paused), reported once
-  protocol::SwitchReport switch_report_{};  ///< where a SeekSwitch job stopped, reported once
-  std::uint8_t seek_switch_ = no_limit_switch;  ///< the switch that ends the next job (SeekSwitch), or none
-  bool waiting_at_joint_ = false;          ///< the motion waits for the segment its events precede (wait_at_joint)
-  CoolantState coolant_{};                 ///< the coolant as the events left it (board hooks)
+  // The App's parts are [[no_unique_address]] so that the one-byte members after each fill its
+  // tail padding (RAM of the small boards, docs/boards.md "Footprint").
+  [[no_unique_address]] MachineEvents<Events> machine_events_{};  ///< QueueEvents, the spindle and coolant they set, the pause
+  JobMotion motion_ = JobMotion::Idle;  ///< idle, moving or paused (phase.hpp)
+  [[no_unique_address]] SwitchSeek switch_seek_{};  ///< the homing seek (SeekSwitch) and its SwitchReport
+  bool positioned_ = false;            ///< the step generator knows where the machine is
+  bool job_end_known_ = false;         ///< the job's last segment has been queued
+  bool resume_when_held_ = false;      ///< a Resume arrived while still braking
   StepGenerator steps_{StepConfig{}};
   StepBatch<B::step_events_per_tick> batch_{};
-  TransmitBuffer transmit_{};
   AppStatistics statistics_{};
   TickWatch tick_watch_{};
+  [[no_unique_address]] LinkWatch link_watch_{};  ///< link loss and setpoint-stream stalls
+  Phase phase_ = Phase::NotConnected;
+  std::uint8_t last_error_ = 0;
   protocol::WirePoint position_{};
-  protocol::WirePoint last_end_{};
+  [[no_unique_address]] NextStart next_start_{};  ///< where the next segment must start
+  std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
   TravelLimits travel_{};
   Failure fault_{Error::InvalidState, no_index};
   std::uint32_t control_rate_hz_ = 0;
   std::uint32_t setpoint_index_ = 0;
   std::uint32_t job_segments_ = 0;
-  std::uint32_t stalled_since_ms_ = 0;
-  std::uint32_t last_heard_ms_ = 0;  ///< when the last valid frame from the host arrived
   std::uint32_t edges_dropped_seen_ = 0;  ///< the board's edges_dropped() at the last check
-  Phase phase_ = Phase::NotConnected;
   TickEvents events_{};
-  std::uint8_t axis_count_ = static_cast<std::uint8_t>(B::axis_count);
-  std::uint8_t last_error_ = 0;
-  std::uint8_t sequence_ = 0;
-  JobMotion motion_ = JobMotion::Idle;  ///< idle, moving or paused (phase.hpp)
-  bool positioned_ = false;           ///< the step generator knows where the machine is
-  bool has_last_end_ = false;         ///< the next segment must start at last_end_
-  bool job_end_known_ = false;        ///< the job's last segment has been queued
-  bool resume_when_held_ = false;     ///< a Resume arrived while still braking
-  bool link_hold_latched_ = false;    ///< the link loss was acted on (until the next frame)
-  bool stalled_ = false;              ///< the last tick found the setpoint stream backed up
+  [[no_unique_address]] Outbox outbox_{};  ///< outgoing frames (transmit buffer) and the sequence ErrorReports answer
 };
 
 }  // namespace curvestep::firmware
