@@ -549,8 +549,9 @@ class MotionController {
       if (auto taken = take_override_here(tau); !taken) return fault(taken.failure());
       tau = t - origin_s_;
     }
-    PathTickState now = chunks_.exact_state(motion(), tau);
-    chunks_.plan(motion(), tick_, tau, now, machine_);
+    const SegmentMotion<TableIntervals> front_motion = motion();
+    PathTickState now = chunks_.exact_state(front_motion, tau);
+    chunks_.plan(front_motion, tick_, tau, now, machine_);
     return emit(now.position, now.speed_mm_per_s, front().job_index);
   }
 
