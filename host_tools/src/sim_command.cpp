@@ -139,7 +139,7 @@ std::string format_events(const Job& job) {
 std::string format_timeline(const link::SimulatedEventTimeline& timeline) {
   if (timeline.events().empty()) return {};
   std::ostringstream out;
-  out << "  event timeline:      (a device logs the same lines)\n";
+  out << "  event timeline:      (the board hooks a device calls, logged the same; a dwell is a rest in the motion, not a hook)\n";
   for (std::size_t k = 0; k < timeline.setpoints().size(); ++k) {
     if (k == 40) {
       out << "                       ... " << timeline.setpoints().size() - k << " more\n";

@@ -191,7 +191,7 @@ void SmoothingStream::make_items(bool at_end) {
       ++figures_.runs_fitted;
       figures_.lines_fitted += end;
       figures_.fitted_pieces += fit->pieces.size();
-      figures_.max_deviation_mm = std::fmax(figures_.max_deviation_mm, fit->deviation_mm);
+      note_deviation(fit->deviation_mm, pending_[1].joint_tolerance_mm);
       if (next_known) items_.back().joint_tolerance_mm = pending_[end].joint_tolerance_mm;
     } else {
       add_item(pending_[0].segment(), pending_[0].source, false);
@@ -243,8 +243,15 @@ void SmoothingStream::decide_corner(Item& a, Item& b) {
   const double curvature_jump = norm(local_frame(a.segment, 1.0).curvature - local_frame(b.segment, 0.0).curvature);
   if (deflection <= corner_deflection_rad && curvature_jump <= curvature_jump_per_mm) return;
   ++figures_.corners;
-  if (!options_.blend_corners || deflection * 180 / pi > reversal_deflection_deg) return;
-  if (!can_cut(a.segment) || !can_cut(b.segment)) return;
+  if (deflection * 180 / pi > reversal_deflection_deg) {
+    ++figures_.corners_reversed;
+    return;
+  }
+  if (!options_.blend_corners) return;
+  if (!can_cut(a.segment) || !can_cut(b.segment)) {
+    ++figures_.corners_unblendable;
+    return;
+  }
   CornerRequest request;
   request.incoming = &a.segment;
   request.incoming_length_mm = a.length_mm;
@@ -256,7 +263,10 @@ void SmoothingStream::decide_corner(Item& a, Item& b) {
   request.a_max_mm_per_s2 = options_.machine.a_max_mm_per_s2;
   request.j_max_mm_per_s3 = smoothing_jerk_mm_per_s3(options_.machine);
   auto blend = blend_corner(request);
-  if (!blend) return;
+  if (!blend) {
+    ++figures_.corners_unblendable;
+    return;
+  }
   // The blend takes up to half of each neighbour: it runs at the slower of their feeds, never
   // faster than either was programmed (a feed change is kept).
   const auto feed_of = [&](const PathSegment& s) { return s.feed_mm_per_s() > 0 ? s.feed_mm_per_s() : options_.machine.feed_mm_per_s; };
@@ -271,8 +281,14 @@ void SmoothingStream::decide_corner(Item& a, Item& b) {
   b.start_point = blend->curve.end();
   ++figures_.corners_blended;
   const double fitted_share = (a.fitted || b.fitted) ? 0.5 * a.joint_tolerance_mm : 0.0;
-  figures_.max_deviation_mm = std::fmax(figures_.max_deviation_mm, blend->deviation_mm + fitted_share);
+  note_deviation(blend->deviation_mm + fitted_share, a.joint_tolerance_mm);
   front_blend_ = std::move(blend);
+}
+
+void SmoothingStream::note_deviation(double deviation_mm, double tolerance_mm) {
+  figures_.max_deviation_mm = std::fmax(figures_.max_deviation_mm, deviation_mm);
+  figures_.largest_tolerance_mm = std::fmax(figures_.largest_tolerance_mm, tolerance_mm);
+  figures_.max_deviation_share = std::fmax(figures_.max_deviation_share, deviation_mm / tolerance_mm);
 }
 
 // 3. The smoothed job: each item cut to what the blends left, then its blend.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -200,6 +201,43 @@ TEST_CASE("smoothing: rapids, exact stops, reversals and joints with events are 
   CHECK(smoothed.segments.back().start() == programmed.segments.back().start());
   CHECK(smoothed.segments.back().end() == programmed.segments.back().end());
   CHECK(smoothed.blend_tolerance_mm.empty());
+}
+
+TEST_CASE("smoothing: the report accounts for every corner it kept, reversals among them", "[host][smoothing]") {
+  // Joints: (10,0) a 3 degree corner, (20,0.5) an exact reversal (back along the same line),
+  // (10,0) again a 90 degree corner, (10,10) a 45 degree corner.
+  const Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}}, MachinePoint{{20, 0.5, 0}},
+                                       MachinePoint{{10, 0, 0}}, MachinePoint{{10, 10, 0}}, MachinePoint{{20, 20, 0}}});
+  smoothing::SmoothingReport report;
+  (void)smoothing::smooth_for_machine(programmed, example_machine(), 0.01, &report);
+  CHECK(report.corners == 4);
+  CHECK(report.corners_reversed == 1);
+  CHECK(report.corners_blended + report.corners_stopped + report.corners_reversed + report.corners_unblendable == report.corners);
+  const std::string text = smoothing::format_smoothing(report);
+  CHECK(text.find("1 reversals: the planner stops there") != std::string::npos);
+}
+
+TEST_CASE("smoothing: a deviation allowed by G64 P is judged against that tolerance, not the machine's", "[host][smoothing]") {
+  // Two 10 mm lines at 30 degrees; the move after the corner says G64 P0.5 (Job::blend_tolerance_mm),
+  // the machine 0.01 mm. The blend may stray up to 0.5 mm: measured here, it goes beyond 0.01 mm.
+  constexpr double program_tolerance = 0.5;
+  constexpr double sampling = 5e-5;
+  Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}},
+                                 MachinePoint{{10 + 10 * std::cos(pi / 6), 10 * std::sin(pi / 6), 0}}});
+  programmed.blend_tolerance_mm = {0.0, program_tolerance};
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, example_machine(), 0.01, &report);
+  REQUIRE(report.corners_blended == 1);
+  const Deviation d = deviation(programmed, smoothed);
+  const double measured = std::fmax(d.path_to_programmed, d.programmed_to_path);
+  CHECK(measured > 0.01);
+  CHECK(measured <= program_tolerance + sampling);
+  CHECK(report.largest_tolerance_mm == program_tolerance);
+  CHECK(report.max_deviation_share == Approx(report.max_deviation_mm / program_tolerance));
+  CHECK(report.max_deviation_share <= 1);
+  const std::string text = smoothing::format_smoothing(report);
+  INFO(text);
+  CHECK(text.find("tolerance 10 um, up to 500 um set by G64 P; at most ") != std::string::npos);
 }
 
 TEST_CASE("smoothing: corners between two rapids are blended within the tolerance, the blends stay rapids", "[host][smoothing]") {

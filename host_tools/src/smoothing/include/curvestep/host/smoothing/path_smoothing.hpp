@@ -56,12 +56,18 @@ struct SmoothingReport {
   std::size_t corners = 0;          ///< joints that were corners or curvature jumps
   std::size_t corners_blended = 0;  ///< of those, replaced by blends
   std::size_t corners_stopped = 0;  ///< of those, kept because the planner passes them faster than their blend (a stop at a sharp one)
+  std::size_t corners_reversed = 0;     ///< of those, reversals (deflection above 179°): kept, the planner stops there
+  std::size_t corners_unblendable = 0;  ///< of those, kept because no blend fits (a neighbour too short, an arc of over one turn)
   std::size_t runs_fitted = 0;      ///< runs of lines replaced by splines
   std::size_t lines_fitted = 0;     ///< lines in those runs
   std::size_t fitted_pieces = 0;    ///< Bézier pieces the runs became
   std::size_t segments_before = 0;  ///< segments of the programmed job
   std::size_t segments_after = 0;   ///< segments of the smoothed job
   double max_deviation_mm = 0;      ///< largest deviation from the programmed path (both ways)
+  double largest_tolerance_mm = 0;  ///< the largest tolerance smoothing used (G64 P may set more than tolerance_mm)
+  /// The largest deviation from the programmed path as a share of the tolerance in force where it
+  /// occurs (at most 1): with G64 P per move, max_deviation_mm alone does not say whether it held.
+  double max_deviation_share = 0;
 };
 
 /// Options for a machine: its limits and `tolerance_mm`.

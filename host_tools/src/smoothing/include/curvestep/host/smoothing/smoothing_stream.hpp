@@ -93,6 +93,8 @@ class SmoothingStream final : public JobSink {
   /// Steps 2 and 3: blends the corner after the first item and writes it out, while it has a next one.
   void write_items(bool at_end);
   void decide_corner(Item& a, Item& b);
+  /// Counts a blend's or a fit's deviation from the programmed path where `tolerance_mm` is in force.
+  void note_deviation(double deviation_mm, double tolerance_mm);
   void write_item(const Item& item, const Item* next);
   /// The next smoothed segment: to downstream_, or into out_.
   void emit(const PathSegment& segment, std::size_t source);
