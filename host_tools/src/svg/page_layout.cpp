@@ -93,10 +93,12 @@ double curve_max(const PathSegment& segment, std::size_t axis, double sign) {
   return std::max(best_value, f((a + b) / 2));
 }
 
-/// A length for messages: six significant digits ("47", "1.9", "148.5").
+/// A length for messages: six significant digits ("47", "1.9", "148.5"); below 10 nm (under the
+/// Q16.16 grid's 15 nm) it is rounding noise of the layout and printed as 0 (a fitted drawing's
+/// edge printed "x -2.10693e-06 .. 210").
 std::string mm(double value) {
   std::ostringstream out;
-  out << std::setprecision(6) << (std::fabs(value) < 5e-7 ? 0.0 : value);
+  out << std::setprecision(6) << (std::fabs(value) < 1e-5 ? 0.0 : value);
   return out.str();
 }
 
