@@ -3,6 +3,7 @@
 #include <curvestep/host/smoothing/path_smoothing.hpp>
 
 #include <array>
+#include <cmath>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -25,6 +26,7 @@ Job smooth_job(Job job, const SmoothingOptions& options, SmoothingReport* report
     figures.tolerance_mm = options.tolerance_mm;
     figures.segments_before = job.segments.size();
     figures.segments_after = job.segments.size();
+    for (const double tolerance : job.blend_tolerance_mm) figures.unapplied_tolerance_mm = std::fmax(figures.unapplied_tolerance_mm, tolerance);
     if (report != nullptr) *report = figures;
     return job;
   }
@@ -70,7 +72,9 @@ std::string deviation_limit(const SmoothingReport& r, const char* unit) {
 std::string format_smoothing(const SmoothingReport& r) {
   std::ostringstream out;
   if (!(r.tolerance_mm > 0)) {
-    out << "  smoothing:           off (machine file \"blend_tolerance\" or --blend-tolerance)\n";
+    out << "  smoothing:           off (machine file \"blend_tolerance\" or --blend-tolerance)";
+    if (r.unapplied_tolerance_mm > 0) out << "; the program's G64 P (up to " << r.unapplied_tolerance_mm * 1000 << " um) is not applied";
+    out << "\n";
     return out.str();
   }
   out << "  smoothing:           tolerance " << r.tolerance_mm * 1000 << " um; " << r.segments_before << " segments -> "
@@ -84,7 +88,10 @@ std::string format_smoothing(const SmoothingReport& r) {
 }
 
 std::vector<std::array<std::string, 3>> smoothing_rows(const SmoothingReport& r) {
-  if (!(r.tolerance_mm > 0)) return {{"path smoothing", "off", ""}};
+  if (!(r.tolerance_mm > 0)) {
+    if (r.unapplied_tolerance_mm > 0) return {{"path smoothing", "off: the program's G64 P (up to " + micrometres(r.unapplied_tolerance_mm, "µm") + ") is not applied", ""}};
+    return {{"path smoothing", "off", ""}};
+  }
   std::string corners = std::to_string(r.corners_blended) + " of " + std::to_string(r.corners);
   if (const std::string why = kept_corners(r); !why.empty()) corners += " (" + why + ")";
   return {{"path smoothing", std::to_string(r.segments_before) + " segments → " + std::to_string(r.segments_after), ""},

@@ -132,6 +132,7 @@ void SmoothingStream::segment(const PathSegment& segment, std::size_t source, st
   if (!smoothing_on(options_)) {  // the job as programmed
     emit(segment, source);
     if (blend_tolerance_mm && !downstream_) out_.blend_tolerance_mm.push_back(*blend_tolerance_mm);
+    if (blend_tolerance_mm) figures_.unapplied_tolerance_mm = std::fmax(figures_.unapplied_tolerance_mm, *blend_tolerance_mm);
     ++pushed_;
     return;
   }

@@ -16,6 +16,7 @@
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/host/simulator.hpp>
 #include <curvestep/host/smoothing/path_smoothing.hpp>
+#include <curvestep/host/smoothing/smoothing_stream.hpp>
 
 #include "polyline_jobs.hpp"
 
@@ -238,6 +239,28 @@ TEST_CASE("smoothing: a deviation allowed by G64 P is judged against that tolera
   const std::string text = smoothing::format_smoothing(report);
   INFO(text);
   CHECK(text.find("tolerance 10 um, up to 500 um set by G64 P; at most ") != std::string::npos);
+}
+
+TEST_CASE("smoothing: with smoothing off, a program's G64 P is reported as not applied", "[host][smoothing]") {
+  // The machine file has no blend_tolerance (off); the program asks for G64 P0.05 at its corner.
+  Job programmed = polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}}, MachinePoint{{20, 1, 0}}});
+  programmed.blend_tolerance_mm = {0.0, 0.05};
+  smoothing::SmoothingReport whole;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, example_machine(), 0, &whole);
+  CHECK(smoothed.segments.size() == 2);  // unchanged
+  CHECK(whole.unapplied_tolerance_mm == 0.05);
+  CHECK(smoothing::format_smoothing(whole).find("the program's G64 P (up to 50 um) is not applied") != std::string::npos);
+  // The same through the stream a G-code program is loaded into line by line.
+  smoothing::SmoothingStream stream(smoothing::options_for(example_machine(), 0), [](const PathSegment&, std::size_t) {});
+  stream.segment(programmed.segments[0], 0, 0.0);
+  stream.segment(programmed.segments[1], 1, 0.05);
+  smoothing::SmoothingReport streamed;
+  (void)stream.finish(Job{}, &streamed);
+  CHECK(streamed.unapplied_tolerance_mm == 0.05);
+  // Without G64 P nothing is said.
+  smoothing::SmoothingReport plain;
+  (void)smoothing::smooth_for_machine(polyline_job({MachinePoint{{0, 0, 0}}, MachinePoint{{10, 0, 0}}}), example_machine(), 0, &plain);
+  CHECK(smoothing::format_smoothing(plain).find("G64") == std::string::npos);
 }
 
 TEST_CASE("smoothing: corners between two rapids are blended within the tolerance, the blends stay rapids", "[host][smoothing]") {

@@ -68,6 +68,9 @@ struct SmoothingReport {
   /// The largest deviation from the programmed path as a share of the tolerance in force where it
   /// occurs (at most 1): with G64 P per move, max_deviation_mm alone does not say whether it held.
   double max_deviation_share = 0;
+  /// With smoothing off: the largest G64 P the program set (it is not applied: the machine file's
+  /// "blend_tolerance" or --blend-tolerance turns smoothing on); 0 if none.
+  double unapplied_tolerance_mm = 0;
 };
 
 /// Options for a machine: its limits and `tolerance_mm`.
