@@ -322,6 +322,30 @@ TEST_CASE("smoothing: a corner is blended only where the blend is faster than st
   }
 }
 
+TEST_CASE("smoothing: a polyline of corners too sharp to blend runs segment by segment in the jerk-limited rest-to-rest minimum", "[host][smoothing][sim]") {
+  // Plotter art of 60 degree corners every 1.2 mm (a Gosper curve's shape): a blend within 10 um is
+  // slower than a stop there (docs/motion.md, "Tried on real programs"), so each corner is kept and
+  // each line runs from rest to rest. With no acceleration or speed limit reached, the least time for
+  // L mm is four jerk phases of T = (L / (2 j))^(1/3) (distance 2 j T^3): t = (32 L / j)^(1/3).
+  constexpr std::size_t lines = 60;
+  constexpr double length = 1.2;
+  const MachineLimits machine = example_machine();
+  const double t_phase = std::cbrt(length / (2 * machine.j_max_mm_per_s3));
+  REQUIRE(machine.j_max_mm_per_s3 * t_phase < machine.a_max_mm_per_s2);  // a_max not reached
+  REQUIRE(machine.j_max_mm_per_s3 * t_phase * t_phase < 50);            // nor the feed
+  const double least = lines * 4 * t_phase;
+  const Job programmed = polyline_job(turning_walk({60, -60}, lines, length));
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
+  CHECK(report.corners == lines - 1);
+  CHECK(report.corners_stopped == lines - 1);
+  const auto summary = simulate(smoothed, machine).summary;
+  CHECK(summary.violations.empty());
+  const double tick = 1.0 / machine.rate_hz;
+  CHECK(summary.duration_s >= least - tick);              // nothing beats the optimum
+  CHECK(summary.duration_s <= least + lines * tick);       // at most a tick per line above it
+}
+
 TEST_CASE("smoothing: a blend never runs faster than the programmed feeds of the moves it joins", "[host][smoothing][sim]") {
   // A 10 mm line at 40 mm/s into one at 50 mm/s at 3 degrees: the blend takes up to half of each
   // (4.9 mm here). It ran at the outgoing feed, 50 mm/s, over the first line's last 4.9 mm.
