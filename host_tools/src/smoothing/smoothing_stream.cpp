@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 #include <curvestep/core/motion/path_length_table.hpp>
@@ -170,15 +171,27 @@ void SmoothingStream::make_items(bool at_end) {
     } else if (pending_.size() < 2 && !at_end) {
       return;  // the joint after it is not known yet
     }
-    const bool next_known = end < pending_.size();  // false: the job's last segment ends the run
     std::optional<LineRunFit> fit;
+    std::size_t consumed = 1;
     if (end >= 3) {
-      std::vector<MachinePoint> vertices{pending_[0].start};
-      vertices.reserve(end + 1);
-      for (std::size_t i = 0; i < end; ++i) vertices.push_back(pending_[i].end);
-      fit = fit_line_run(vertices, 0.5 * pending_[1].joint_tolerance_mm, pending_[0].feed_mm_per_s);
+      // The run whole, unless it is what is left of one that failed whole (a noisy run fitted
+      // whole again after each line taken would cost a fit of the run per line).
+      std::size_t longest_prefix = end;
+      if (end > failed_run_lines_) {
+        fit = fit_lines(end);
+        if (fit) {
+          consumed = end;
+        } else {
+          failed_run_lines_ = end;
+          longest_prefix = end - 1;
+        }
+      }
+      if (!fit) {
+        auto prefix = fit_longest_prefix(longest_prefix);
+        if (prefix) std::tie(fit, consumed) = std::move(*prefix);
+      }
     }
-    const std::size_t consumed = fit ? end : 1;
+    const bool next_known = consumed < pending_.size();  // false: the job's last segment ends the run
     for (std::size_t i = 0; i < consumed; ++i) {
       const auto [first, last] = events_at_segment_.equal_range(pending_[i].index);
       for (auto e = first; e != last; ++e) events_at_item_.emplace(items_made_, e->second);
@@ -190,18 +203,59 @@ void SmoothingStream::make_items(bool at_end) {
         items_.back().run_inside_next = p + 1 < fit->pieces.size();
       }
       ++figures_.runs_fitted;
-      figures_.lines_fitted += end;
+      figures_.lines_fitted += consumed;
       figures_.fitted_pieces += fit->pieces.size();
       note_deviation(fit->deviation_mm, pending_[1].joint_tolerance_mm);
-      if (next_known) items_.back().joint_tolerance_mm = pending_[end].joint_tolerance_mm;
+      if (next_known) items_.back().joint_tolerance_mm = pending_[consumed].joint_tolerance_mm;
     } else {
       add_item(pending_[0].segment(), pending_[0].source, false);
       if (pending_.size() > 1) items_.back().joint_tolerance_mm = pending_[1].joint_tolerance_mm;
     }
     pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(consumed));
-    verified_run_ = 0;  // a run after a failed fit is looked at afresh, as a new one
+    // What is left of the run is still one run (its feed and joint tolerance are the run's), and
+    // still one that failed whole, if it did: it is not scanned or fitted whole again.
+    verified_run_ = verified_run_ > consumed ? verified_run_ - consumed : 0;
+    failed_run_lines_ = failed_run_lines_ > consumed ? failed_run_lines_ - consumed : 0;
     write_items(false);
   }
+}
+
+std::optional<LineRunFit> SmoothingStream::fit_lines(std::size_t count) const {
+  std::vector<MachinePoint> vertices{pending_[0].start};
+  vertices.reserve(count + 1);
+  for (std::size_t i = 0; i < count; ++i) vertices.push_back(pending_[i].end);
+  return fit_line_run(vertices, 0.5 * pending_[1].joint_tolerance_mm, pending_[0].feed_mm_per_s);
+}
+
+std::optional<std::pair<LineRunFit, std::size_t>> SmoothingStream::fit_longest_prefix(std::size_t longest) const {
+  // Prefixes of 3, 6, 12 ... lines (up to `longest`) while they fit, then bisection between the
+  // longest that fits and the shortest that does not: O(log n) fits of at most 2k lines for a prefix
+  // of k lines taken.
+  std::optional<LineRunFit> best;
+  std::size_t fits = 0;            // longest prefix known to fit (0: none)
+  std::size_t fails = longest + 1;  // shortest prefix known not to fit
+  for (std::size_t count = 3; count <= longest; count = std::min(2 * count, longest)) {
+    auto fit = fit_lines(count);
+    if (!fit) {
+      fails = count;
+      break;
+    }
+    best = std::move(fit);
+    fits = count;
+    if (count == longest) break;
+  }
+  if (fits == 0) return std::nullopt;
+  while (fails - fits > 1) {
+    const std::size_t count = fits + (fails - fits) / 2;
+    auto fit = fit_lines(count);
+    if (fit) {
+      best = std::move(fit);
+      fits = count;
+    } else {
+      fails = count;
+    }
+  }
+  return std::make_pair(std::move(*best), fits);
 }
 
 PathSegment SmoothingStream::Pending::segment() const {

@@ -4,6 +4,7 @@
 // are passed at the segments' speed, and the issue's jobs run at feed within every limit.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <string>
@@ -135,6 +136,37 @@ TEST_CASE("smoothing: runs of short lines become few curves, and the joints insi
     INFO("joint " << i);
     CHECK(junction_speed(a, b, machine) >= 0.99 * std::fmin(a.limits.speed_cap_mm_per_s, b.limits.speed_cap_mm_per_s));
   }
+}
+
+TEST_CASE("smoothing: a run that cannot be fitted whole is fitted in its longest pieces that can", "[host][smoothing][sim]") {
+  // A random walk of 0.2 mm lines turning up to 25 degrees each (every joint joins the run): as a
+  // whole it needs a curve piece per line, so no fit of all of it is kept. Each line was emitted
+  // alone and the rest fitted whole again (a fit of the run per line: 20 000 such lines took 25 min);
+  // now the longest prefixes that fit are taken, the rest after them.
+  constexpr double tolerance = 0.01;
+  constexpr double sampling = 5e-5;
+  std::vector<MachinePoint> walk{MachinePoint{}};
+  double heading = 0;
+  std::uint32_t state = 12345;
+  for (int i = 0; i < 400; ++i) {
+    state = state * 1664525u + 1013904223u;  // a fixed LCG: the same walk everywhere
+    heading += (static_cast<double>(state >> 8) / 16777216.0 - 0.5) * 50 * pi / 180;
+    walk.push_back(walk.back() + MachinePoint{{0.2 * std::cos(heading), 0.2 * std::sin(heading), 0}});
+  }
+  const MachineLimits machine = example_machine();
+  const Job programmed = polyline_job(walk);
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, tolerance, &report);
+  require_connected(smoothed);
+  CHECK(report.runs_fitted > 20);
+  CHECK(report.lines_fitted > 100);
+  const Deviation d = deviation(programmed, smoothed);
+  CHECK(d.path_to_programmed <= tolerance);
+  CHECK(d.programmed_to_path <= tolerance + sampling);
+  const auto as_programmed = simulate(programmed, machine).summary;
+  const auto with_smoothing = simulate(smoothed, machine).summary;
+  CHECK(with_smoothing.violations.empty());
+  CHECK(with_smoothing.duration_s < as_programmed.duration_s);
 }
 
 TEST_CASE("smoothing: a run longer than fit_max_run_lines is fitted as consecutive runs of that many lines", "[host][smoothing]") {

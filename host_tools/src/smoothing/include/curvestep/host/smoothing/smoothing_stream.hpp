@@ -14,11 +14,13 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include <curvestep/core/motion/segment_plan.hpp>
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/smoothing/corner_blend.hpp>
+#include <curvestep/host/smoothing/line_run_fit.hpp>
 #include <curvestep/host/smoothing/path_smoothing.hpp>
 
 namespace curvestep::host::smoothing {
@@ -90,6 +92,12 @@ class SmoothingStream final : public JobSink {
   /// Step 1: turns the pending segments into items as far as their runs are decided (all at the end).
   void make_items(bool at_end);
   void add_item(const PathSegment& segment, std::size_t source, bool fitted);
+  /// The first `count` pending lines (a run) fitted, or nullopt.
+  [[nodiscard]] std::optional<LineRunFit> fit_lines(std::size_t count) const;
+  /// The longest prefix of the run of pending lines, of at most `longest` lines, that fits, with
+  /// its length (at least 3 lines); nullopt if none does. For a run that cannot be fitted whole (a
+  /// noisy one, or one with a feature inside): the rest is looked at after it.
+  [[nodiscard]] std::optional<std::pair<LineRunFit, std::size_t>> fit_longest_prefix(std::size_t longest) const;
   /// Steps 2 and 3: blends the corner after the first item and writes it out, while it has a next one.
   void write_items(bool at_end);
   void decide_corner(Item& a, Item& b);
@@ -109,6 +117,7 @@ class SmoothingStream final : public JobSink {
   std::optional<PathSegment> previous_;
   std::deque<Pending> pending_;
   std::size_t verified_run_ = 0;  ///< pending_[0 .. verified_run_) are known to form one run
+  std::size_t failed_run_lines_ = 0;  ///< pending_[0 .. failed_run_lines_) are part of a run whose whole fit failed
   std::deque<Item> items_;
   std::optional<CornerBlend> front_blend_;  ///< the blend after items_[0], once decided
   std::size_t items_made_ = 0;    ///< items made so far (items_.front() is number items_made_ - items_.size())
