@@ -82,6 +82,13 @@ bool blend_pays(const CornerBlend& blend, SmoothingStream::Item& a, SmoothingStr
   const double cruise_b = reachable_speed(0, 0.5 * b.length_mm, plan_b->limits.speed_cap_mm_per_s, changes);
   const double corner = std::fmin(std::fmin(cruise_a, cruise_b), junction_speed(*plan_a, *plan_b, machine));
   const double blend_cap = plan_blend->limits.speed_cap_mm_per_s;
+  // A joint the planner passes at least as fast as the blend's cap, between neighbours that allow
+  // as much, loses nothing as programmed: the blend could only lower the ceiling there (a spiral of
+  // arcs, whose joints are nearly tangent: the from-rest estimate below does not see the speed the
+  // machine carries through them).
+  const double kept_ceiling = std::fmin(junction_speed(*plan_a, *plan_b, machine),
+                                        std::fmin(plan_a->limits.speed_cap_mm_per_s, plan_b->limits.speed_cap_mm_per_s));
+  if (kept_ceiling >= blend_cap) return false;
   const double entry = std::fmin(blend_cap, std::fmin(cruise_a, cruise_b));
   if (!(entry > 0) || !(cruise_a > 0) || !(cruise_b > 0)) return false;
   const double length = plan_blend->length_mm;
