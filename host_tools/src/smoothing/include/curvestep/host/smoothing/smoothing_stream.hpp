@@ -92,6 +92,9 @@ class SmoothingStream final : public JobSink {
   /// Step 1: turns the pending segments into items as far as their runs are decided (all at the end).
   void make_items(bool at_end);
   void add_item(const PathSegment& segment, std::size_t source, bool fitted);
+  /// Whether the corner into pending_[k] (k >= 1, a line) is a jog: one of its two lines is at most
+  /// a quarter of the tolerance long. A jog joins a run whatever its angle.
+  [[nodiscard]] bool jog_below_tolerance(std::size_t k) const;
   /// The first `count` pending lines (a run) fitted, or nullopt.
   [[nodiscard]] std::optional<LineRunFit> fit_lines(std::size_t count) const;
   /// The longest prefix of the run of pending lines, of at most `longest` lines, that fits, with
