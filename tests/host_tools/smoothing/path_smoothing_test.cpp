@@ -85,6 +85,27 @@ void require_connected(const Job& job) {
   }
 }
 
+
+/// Checks the smoothed path against the programmed polyline, both ways, within `tolerance` (plus
+/// the sampling's overstatement of a vertex's distance, below 0.05 um on these jobs).
+void check_within(const Job& programmed, const Job& smoothed, double tolerance) {
+  const Deviation d = deviation(programmed, smoothed);
+  CHECK(d.path_to_programmed <= tolerance);
+  CHECK(d.programmed_to_path <= tolerance + 5e-5);
+}
+
+/// Smooths `programmed` at 10 um and checks the smoothed job keeps every limit and takes no longer
+/// than as programmed (within half a tick); returns what smoothing did.
+smoothing::SmoothingReport smoothed_within_limits_and_no_slower(const Job& programmed, const MachineLimits& machine) {
+  smoothing::SmoothingReport report;
+  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
+  const auto as_programmed = simulate(programmed, machine).summary;
+  const auto with_smoothing = simulate(smoothed, machine).summary;
+  CHECK(with_smoothing.violations.empty());
+  CHECK(with_smoothing.duration_s <= as_programmed.duration_s + 0.5 / machine.rate_hz);
+  return report;
+}
+
 }  // namespace
 
 TEST_CASE("smoothing: the smoothed path stays within the tolerance of the programmed polyline, both ways", "[host][smoothing]") {
@@ -145,7 +166,6 @@ TEST_CASE("smoothing: a run that cannot be fitted whole is fitted in its longest
   // alone and the rest fitted whole again (a fit of the run per line: 20 000 such lines took 25 min);
   // now the longest prefixes that fit are taken, the rest after them.
   constexpr double tolerance = 0.01;
-  constexpr double sampling = 5e-5;
   std::vector<MachinePoint> walk{MachinePoint{}};
   double heading = 0;
   std::uint32_t state = 12345;
@@ -161,9 +181,7 @@ TEST_CASE("smoothing: a run that cannot be fitted whole is fitted in its longest
   require_connected(smoothed);
   CHECK(report.runs_fitted > 20);
   CHECK(report.lines_fitted > 100);
-  const Deviation d = deviation(programmed, smoothed);
-  CHECK(d.path_to_programmed <= tolerance);
-  CHECK(d.programmed_to_path <= tolerance + sampling);
+  check_within(programmed, smoothed, tolerance);
   const auto as_programmed = simulate(programmed, machine).summary;
   const auto with_smoothing = simulate(smoothed, machine).summary;
   CHECK(with_smoothing.violations.empty());
@@ -175,7 +193,6 @@ TEST_CASE("smoothing: a jog smaller than the tolerance stays inside its run what
   // in CAM output): each jog turns by up to 90 degrees, above the 30 degrees that end a run, and
   // each made a near-stop (4.17 s against 1.54 s for the circle without them).
   constexpr double tolerance = 0.01;
-  constexpr double sampling = 5e-5;
   const auto plain = circle_chords(628, 10);
   std::vector<MachinePoint> jogged;
   for (std::size_t i = 0; i < plain.size(); ++i) {
@@ -188,9 +205,7 @@ TEST_CASE("smoothing: a jog smaller than the tolerance stays inside its run what
   const Job smoothed = smoothing::smooth_for_machine(programmed, machine, tolerance, &report);
   CHECK(report.runs_fitted == 1);
   CHECK(report.lines_fitted == programmed.segments.size());
-  const Deviation d = deviation(programmed, smoothed);
-  CHECK(d.path_to_programmed <= tolerance);
-  CHECK(d.programmed_to_path <= tolerance + sampling);
+  check_within(programmed, smoothed, tolerance);
   const auto with_jogs = simulate(smoothed, machine).summary;
   const auto without = simulate(smoothing::smooth_for_machine(polyline_job(plain), machine, tolerance), machine).summary;
   CHECK(with_jogs.violations.empty());
@@ -432,13 +447,7 @@ TEST_CASE("smoothing: a spiral of arcs joined nearly tangent is never slowed by 
     programmed.source_index.push_back(k);
   }
   programmed.sources.resize(programmed.segments.size());
-  smoothing::SmoothingReport report;
-  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
-  CHECK(report.corners == 59);
-  const auto as_programmed = simulate(programmed, machine).summary;
-  const auto with_smoothing = simulate(smoothed, machine).summary;
-  CHECK(with_smoothing.violations.empty());
-  CHECK(with_smoothing.duration_s <= as_programmed.duration_s + 0.5 / machine.rate_hz);
+  CHECK(smoothed_within_limits_and_no_slower(programmed, machine).corners == 59);
 }
 
 TEST_CASE("smoothing: helices in G18 and G19, cut into pieces, are not slowed by blends between the pieces", "[host][smoothing][sim]") {
@@ -449,13 +458,7 @@ TEST_CASE("smoothing: helices in G18 and G19, cut into pieces, are not slowed by
   const MachineLimits machine = example_machine();
   const Job programmed = parse_gcode_job(
       "G21 G90\nG0 X0 Y0 Z0\nF6000\nG18 G2 X6 Z0 I3 K0 Y2\nG19 G3 Y6 Z0 J2 K0 X8\nG17 G2 X12 Y6 I2 J-2 Z3\nM2\n", "helices");
-  smoothing::SmoothingReport report;
-  const Job smoothed = smoothing::smooth_for_machine(programmed, machine, 0.01, &report);
-  REQUIRE(report.corners > 20);
-  const auto as_programmed = simulate(programmed, machine).summary;
-  const auto with_smoothing = simulate(smoothed, machine).summary;
-  CHECK(with_smoothing.violations.empty());
-  CHECK(with_smoothing.duration_s <= as_programmed.duration_s + 0.5 / machine.rate_hz);
+  CHECK(smoothed_within_limits_and_no_slower(programmed, machine).corners > 20);
 }
 
 TEST_CASE("smoothing: a blend never runs faster than the programmed feeds of the moves it joins", "[host][smoothing][sim]") {
