@@ -80,7 +80,8 @@ bool blend_pays(const CornerBlend& blend, SmoothingStream::Item& a, SmoothingStr
   const ProfileLimits changes = speed_changes(options);
   const double cruise_a = reachable_speed(0, 0.5 * a.length_mm, plan_a->limits.speed_cap_mm_per_s, changes);
   const double cruise_b = reachable_speed(0, 0.5 * b.length_mm, plan_b->limits.speed_cap_mm_per_s, changes);
-  const double corner = std::fmin(std::fmin(cruise_a, cruise_b), junction_speed(*plan_a, *plan_b, machine));
+  const double junction = junction_speed(*plan_a, *plan_b, machine);
+  const double corner = std::fmin(std::fmin(cruise_a, cruise_b), junction);
   const double blend_cap = plan_blend->limits.speed_cap_mm_per_s;
   // A joint the planner passes at least as fast as the blend's cap, between neighbours that allow
   // as much, loses nothing as programmed: the blend could only lower the ceiling there (a spiral of
@@ -88,8 +89,7 @@ bool blend_pays(const CornerBlend& blend, SmoothingStream::Item& a, SmoothingStr
   // machine carries through them). Nor is a blend made that lifts the ceiling by less than 10 %:
   // its gain is below what the estimate can tell (a helix cut into 0.8 mm pieces, blended at each
   // joint for a gain of under 4 ms each, ran 8 % slower than as programmed).
-  const double kept_ceiling = std::fmin(junction_speed(*plan_a, *plan_b, machine),
-                                        std::fmin(plan_a->limits.speed_cap_mm_per_s, plan_b->limits.speed_cap_mm_per_s));
+  const double kept_ceiling = std::fmin(junction, std::fmin(plan_a->limits.speed_cap_mm_per_s, plan_b->limits.speed_cap_mm_per_s));
   if (kept_ceiling >= 0.9 * blend_cap) return false;
   const double entry = std::fmin(blend_cap, std::fmin(cruise_a, cruise_b));
   if (!(entry > 0) || !(cruise_a > 0) || !(cruise_b > 0)) return false;
