@@ -36,10 +36,29 @@ LoadError file_error(const std::filesystem::path& path, ProgramOptions options =
   return LoadError({}, "", Error::GcodeSyntax);
 }
 
-/// The value of `letter` in a block, or -1 if it has none.
-double value_of(const ProgramBlock& block, char letter) {
-  const ProgramWord* w = block.find(letter);
-  return w == nullptr ? -1.0 : w->value;
+/// What a block must hold: its file (empty: the program's own), its line there, the program's line
+/// (the call's, in a subroutine file) and the values of some of its words.
+struct ExpectedBlock {
+  std::string file;
+  std::size_t line;
+  std::size_t program_line;
+  std::vector<std::pair<char, double>> words;
+};
+
+void check_blocks(const std::vector<ProgramBlock>& blocks, const std::vector<ExpectedBlock>& expected) {
+  REQUIRE(blocks.size() == expected.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    INFO("block " << i << ": " << blocks[i].source);
+    CHECK(blocks[i].file == expected[i].file);
+    CHECK(blocks[i].line == expected[i].line);
+    CHECK(blocks[i].program_line == expected[i].program_line);
+    for (const auto& [letter, value] : expected[i].words) {
+      INFO(letter);
+      const ProgramWord* w = blocks[i].find(letter);
+      REQUIRE(w != nullptr);
+      CHECK(w->value == value);
+    }
+  }
 }
 
 }  // namespace
@@ -61,22 +80,11 @@ TEST_CASE("subroutine files: o<name> call runs name.ngc from the program's folde
   // #1 = 5: the sub's line 3 moves to X10 and returns 25, which the program reads with _value_returned 1.
   // The M2 after endsub never runs: the program's own M2 (its line 4) ends it.
   const auto blocks = run_file(program);
-  REQUIRE(blocks.size() == 4);
-  CHECK(blocks[0].line == 1);
-  CHECK(blocks[0].file.empty());
-  CHECK(value_of(blocks[0], 'X') == 1.0);
-  CHECK(blocks[1].line == 3);
-  CHECK(blocks[1].file == scratch.path("square_x.ngc"));
-  CHECK(blocks[1].program_line == 2);
+  check_blocks(blocks, {{"", 1, 1, {{'X', 1}}},
+                        {scratch.path("square_x.ngc"), 3, 2, {{'X', 10}}},
+                        {"", 3, 3, {{'X', 25}, {'Y', 1}}},
+                        {"", 4, 4, {{'M', 2}}}});
   CHECK(blocks[1].source == "  G1 X[#1*2]");
-  CHECK(value_of(blocks[1], 'X') == 10.0);
-  CHECK(blocks[2].line == 3);
-  CHECK(blocks[2].file.empty());
-  CHECK(blocks[2].program_line == 3);
-  CHECK(value_of(blocks[2], 'X') == 25.0);
-  CHECK(value_of(blocks[2], 'Y') == 1.0);
-  CHECK(blocks[3].line == 4);
-  CHECK(value_of(blocks[3], 'M') == 2.0);
 }
 
 TEST_CASE("subroutine files: the program's folder is searched first, then the subroutine path in its order",
@@ -99,19 +107,12 @@ TEST_CASE("subroutine files: the program's folder is searched first, then the su
   scratch.write("b/only_in_b.ngc", "o<only_in_b> sub\no<only_in_b> endsub [3]\n");
   ProgramOptions options;
   options.subroutine_path = {scratch.root() / "a", scratch.root() / "b"};
+  // where.ngc beside the program (1) before a's (2); a/order.ngc (5) before b's (6); only_in_b from b (3).
   SECTION("a program file: its folder, then a, then b") {
-    const auto blocks = run_file(program, options);
-    REQUIRE(blocks.size() == 4);
-    CHECK(value_of(blocks[0], 'X') == 1.0);  // where.ngc beside the program
-    CHECK(value_of(blocks[1], 'Y') == 5.0);  // a/order.ngc before b/order.ngc
-    CHECK(value_of(blocks[2], 'Z') == 3.0);  // only in b
+    check_blocks(run_file(program, options), {{"", 2, 2, {{'X', 1}}}, {"", 4, 4, {{'Y', 5}}}, {"", 6, 6, {{'Z', 3}}}, {"", 7, 7, {}}});
   }
   SECTION("a program given as text has no folder: a, then b") {
-    const auto blocks = run_program(text, options);
-    REQUIRE(blocks.size() == 4);
-    CHECK(value_of(blocks[0], 'X') == 2.0);
-    CHECK(value_of(blocks[1], 'Y') == 5.0);
-    CHECK(value_of(blocks[2], 'Z') == 3.0);
+    check_blocks(run_program(text, options), {{"", 2, 2, {{'X', 2}}}, {"", 4, 4, {{'Y', 5}}}, {"", 6, 6, {{'Z', 3}}}, {"", 7, 7, {}}});
   }
 }
 
@@ -141,28 +142,12 @@ TEST_CASE("subroutine files: a file sub calls another file's sub, #1-#30 are pas
   // outer: #1 = 2, #2 = 3, #4 keeps the caller's 40 -> X2 Y3 Z40; inner: #1 = 2 + 3 = 5 -> Z5, returns
   // 50; outer, its #1 back to 2 -> X50 Y2, returns 51; the program, its #1 back to 7 and #4 to 40
   // (inner's #4 = 99 is undone by both returns) -> X7 Y51 Z40.
-  const auto blocks = run_file(program, options);
-  REQUIRE(blocks.size() == 5);
-  CHECK(blocks[0].file == scratch.path("lib/outer.ngc"));
-  CHECK(blocks[0].line == 2);
-  CHECK(blocks[0].program_line == 3);
-  CHECK(value_of(blocks[0], 'X') == 2.0);
-  CHECK(value_of(blocks[0], 'Y') == 3.0);
-  CHECK(value_of(blocks[0], 'Z') == 40.0);
-  CHECK(blocks[1].file == scratch.path("lib/inner.ngc"));
-  CHECK(blocks[1].line == 3);
-  CHECK(blocks[1].program_line == 3);
-  CHECK(value_of(blocks[1], 'Z') == 5.0);
-  CHECK(blocks[2].file == scratch.path("lib/outer.ngc"));
-  CHECK(blocks[2].line == 4);
-  CHECK(value_of(blocks[2], 'X') == 50.0);
-  CHECK(value_of(blocks[2], 'Y') == 2.0);
-  CHECK(blocks[3].file.empty());
-  CHECK(blocks[3].line == 4);
-  CHECK(value_of(blocks[3], 'X') == 7.0);
-  CHECK(value_of(blocks[3], 'Y') == 51.0);
-  CHECK(value_of(blocks[3], 'Z') == 40.0);
-  CHECK(value_of(blocks[4], 'M') == 2.0);
+  const std::string outer = scratch.path("lib/outer.ngc");
+  check_blocks(run_file(program, options), {{outer, 2, 3, {{'X', 2}, {'Y', 3}, {'Z', 40}}},
+                                            {scratch.path("lib/inner.ngc"), 3, 3, {{'Z', 5}}},
+                                            {outer, 4, 3, {{'X', 50}, {'Y', 2}}},
+                                            {"", 4, 4, {{'X', 7}, {'Y', 51}, {'Z', 40}}},
+                                            {"", 5, 5, {{'M', 2}}}});
 }
 
 TEST_CASE("subroutine files: a file sub runs again from a loop, recurses with return, and keeps its own labels",
@@ -187,15 +172,12 @@ TEST_CASE("subroutine files: a file sub runs again from a loop, recurses with re
                 "  o<fact> call [#1-1]\n"
                 "o<fact> endsub [#1*#<_value>]\n");
   // count returns 1, 2, 3 (Z0, Z1, Z2); 5! = 120.
-  const auto blocks = run_file(program);
-  REQUIRE(blocks.size() == 5);
-  CHECK(value_of(blocks[0], 'Z') == 0.0);
-  CHECK(value_of(blocks[1], 'Z') == 1.0);
-  CHECK(value_of(blocks[2], 'Z') == 2.0);
-  CHECK(blocks[2].line == 2);
-  CHECK(blocks[2].program_line == 3);
-  CHECK(value_of(blocks[3], 'X') == 3.0);
-  CHECK(value_of(blocks[3], 'Y') == 120.0);
+  const std::string count = scratch.path("count.ngc");
+  check_blocks(run_file(program), {{count, 2, 3, {{'Z', 0}}},
+                                   {count, 2, 3, {{'Z', 1}}},
+                                   {count, 2, 3, {{'Z', 2}}},
+                                   {"", 7, 7, {{'X', 3}, {'Y', 120}}},
+                                   {"", 8, 8, {{'M', 2}}}});
 }
 
 TEST_CASE("subroutine files: a numbered call reads its number's file, as LinuxCNC documents (o123 call)",
@@ -203,93 +185,82 @@ TEST_CASE("subroutine files: a numbered call reads its number's file, as LinuxCN
   const ScratchFolder scratch("subfile_numbered");
   const auto program = scratch.write("prog.ngc", "o100 call [4]\no[50*2] call [6]\nM2\n");
   scratch.write("100.ngc", "o100 sub\n  G1 X#1\no100 endsub\nM2\n");
-  const auto blocks = run_file(program);
-  REQUIRE(blocks.size() == 3);
-  CHECK(value_of(blocks[0], 'X') == 4.0);
-  CHECK(blocks[0].file == scratch.path("100.ngc"));
-  CHECK(value_of(blocks[1], 'X') == 6.0);
-  CHECK(blocks[1].program_line == 2);
+  const std::string file = scratch.path("100.ngc");
+  check_blocks(run_file(program), {{file, 2, 1, {{'X', 4}}}, {file, 2, 2, {{'X', 6}}}, {"", 3, 3, {{'M', 2}}}});
 }
 
-TEST_CASE("subroutine files: a file that is missing, names another sub, has no endsub, a second sub or cannot be read is an error",
+namespace {
+
+/// What an error must say: where (file, line, field as LoadError's location) and why.
+struct ExpectedError {
+  std::string file;
+  std::size_t line;
+  std::string field;
+  std::string message;
+  Error code = Error::GcodeSyntax;
+};
+
+void check_error(const LoadError& e, const ExpectedError& expected) {
+  CHECK(e.code() == expected.code);
+  CHECK(e.location().file == expected.file);
+  CHECK(e.location().line == expected.line);
+  CHECK(e.location().field == expected.field);
+  CHECK(e.message() == expected.message);
+}
+
+}  // namespace
+
+TEST_CASE("subroutine files: a call whose file is missing, has a name no file may have or is not a readable file is an error at the call",
           "[gcode][language][oword][subfile][errors]") {
-  const ScratchFolder scratch("subfile_errors");
-  const std::string root = scratch.root().string();
-  scratch.folder("lib");
+  const ScratchFolder scratch("subfile_call_errors");
   ProgramOptions options;
-  options.subroutine_path = {scratch.root() / "lib"};
-  SECTION("no file in any folder: the error at the call lists the folders searched") {
-    const auto program = scratch.write("prog.ngc", "G0 X1\no<missing> call\nM2\n");
-    const LoadError e = file_error(program, options);
-    CHECK(e.code() == Error::GcodeSyntax);
-    CHECK(e.location().file == "prog.ngc");
-    CHECK(e.location().line == 2);
-    CHECK(e.location().column == 1);
-    CHECK(e.location().field == "o<missing> call");
-    CHECK(e.message() == "no subroutine o<missing> sub in the program, and no file missing.ngc in " + root + ", " + scratch.path("lib") +
-                             " (the folders searched, in this order)");
-  }
-  SECTION("a name no file may have") {
-    const auto program = scratch.write("dotted.ngc", "o<a.b> call\n");
-    const LoadError e = file_error(program, options);
-    CHECK(e.location().line == 1);
-    CHECK(e.message() ==
-          "no subroutine o<a.b> sub in the program, and no file can hold it: a subroutine file's name has lower-case letters, digits, "
-          "'-' and '_' only (LinuxCNC)");
-  }
-  SECTION("the file's sub has another name: the error names that sub's line in the file") {
-    const auto program = scratch.write("prog.ngc", "G0 X1\no<wrong> call\n");
-    scratch.write("lib/wrong.ngc", "(wrong.ngc)\no<other> sub\n  G1 X1\no<other> endsub\n");
-    const LoadError e = file_error(program, options);
-    CHECK(e.code() == Error::GcodeSyntax);
-    CHECK(e.location().file == scratch.path("lib/wrong.ngc"));
-    CHECK(e.location().line == 2);
-    CHECK(e.location().field == "o<other> sub");
-    CHECK(e.message() == "the subroutine file of o<wrong> defines o<other> instead: the sub in wrong.ngc must be o<wrong>");
-  }
-  SECTION("a file without its sub") {
-    const auto program = scratch.write("prog.ngc", "o<empty> call\n");
-    scratch.write("lib/empty.ngc", "G1 X1\nM2\n");
-    const LoadError e = file_error(program, options);
-    CHECK(e.location().file == scratch.path("lib/empty.ngc"));
-    CHECK(e.location().line == 0);
-    CHECK(e.message() == "no o<empty> sub in this subroutine file (called as o<empty> call): the file must define it");
-  }
-  SECTION("no endsub: the error names the sub's line in the file") {
-    const auto program = scratch.write("prog.ngc", "G0 X1\no<noend> call\n");
-    scratch.write("lib/noend.ngc", "o<noend> sub\n  G1 X1\nM2\n");
-    const LoadError e = file_error(program, options);
-    CHECK(e.code() == Error::GcodeSyntax);
-    CHECK(e.location().file == scratch.path("lib/noend.ngc"));
-    CHECK(e.location().line == 1);
-    CHECK(e.location().column == 1);
-    CHECK(e.location().field == "o<noend> sub");
-    CHECK(e.message() == "o<noend> sub is not closed: o<noend> endsub missing");
-  }
-  SECTION("a second sub in the file") {
-    const auto program = scratch.write("prog.ngc", "o<two> call\n");
-    scratch.write("lib/two.ngc", "o<two> sub\no<two> endsub\no<three> sub\no<three> endsub\n");
-    const LoadError e = file_error(program, options);
-    CHECK(e.location().file == scratch.path("lib/two.ngc"));
-    CHECK(e.location().line == 3);
-    CHECK(e.location().field == "o<three> sub");
-    CHECK(e.message() == "a second subroutine in the file of o<two>: a subroutine file holds one sub (LinuxCNC)");
-  }
-  SECTION("a name found that is not a readable file: the error at the call") {
-    const auto program = scratch.write("prog.ngc", "G0 X1\n\no<dir> call\n");
-    scratch.folder("lib/dir.ngc");
-    const LoadError e = file_error(program, options);
-    CHECK(e.code() == Error::GcodeSyntax);
-    CHECK(e.location().file == "prog.ngc");
-    CHECK(e.location().line == 3);
-    CHECK(e.location().field == "o<dir> call");
-    CHECK(e.message() == "the subroutine file " + scratch.path("lib/dir.ngc") + " of o<dir> cannot be read: it is not a regular file");
-  }
-  SECTION("an error in a line of the file names the file and its line") {
-    const auto program = scratch.write("prog.ngc", "G0 X1\no<bad> call\n");
-    scratch.write("lib/bad.ngc", "o<bad> sub\n  G1 X1\n  G1 X[2/0]\no<bad> endsub\n");
-    const LoadError e = file_error(program, options);
-    CHECK(e.code() == Error::DivisionByZero);
-    CHECK(std::string(e.what()) == scratch.path("lib/bad.ngc") + ":3:7: [2/0]: division by zero");
+  options.subroutine_path = {scratch.folder("lib")};
+  scratch.folder("lib/dir.ngc");
+  const auto program = scratch.write("prog.ngc", "G0 X1\no<missing> call\no<a.b> call\no<dir> call\nM2\n");
+  // Each call in turn: the program's line 2 with missing.ngc nowhere, then (missing.ngc written)
+  // line 3, then (a.b left out) line 4.
+  check_error(file_error(program, options),
+              {"prog.ngc", 2, "o<missing> call",
+               "no subroutine o<missing> sub in the program, and no file missing.ngc in " + scratch.root().string() + ", " +
+                   scratch.path("lib") + " (the folders searched, in this order)"});
+  scratch.write("lib/missing.ngc", "o<missing> sub\no<missing> endsub\n");
+  check_error(file_error(program, options),
+              {"prog.ngc", 3, "o<a.b> call",
+               "no subroutine o<a.b> sub in the program, and no file can hold it: a subroutine file's name has lower-case letters, "
+               "digits, '-' and '_' only (LinuxCNC)"});
+  scratch.write("prog.ngc", "G0 X1\no<missing> call\n\no<dir> call\nM2\n");
+  check_error(file_error(program, options),
+              {"prog.ngc", 4, "o<dir> call",
+               "the subroutine file " + scratch.path("lib/dir.ngc") + " of o<dir> cannot be read: it is not a regular file"});
+}
+
+TEST_CASE("subroutine files: a file whose sub has another name, that has no sub, no endsub or a second sub is an error in the file",
+          "[gcode][language][oword][subfile][errors]") {
+  const ScratchFolder scratch("subfile_file_errors");
+  ProgramOptions options;
+  options.subroutine_path = {scratch.folder("lib")};
+  struct Case {
+    std::string name;  ///< called as o<name>, read from lib/name.ngc
+    std::string text;
+    std::size_t line;
+    std::string field;
+    std::string message;
+    Error code = Error::GcodeSyntax;
+  };
+  const std::vector<Case> cases = {
+      {"wrong", "(wrong.ngc)\no<other> sub\n  G1 X1\no<other> endsub\n", 2, "o<other> sub",
+       "the subroutine file of o<wrong> defines o<other> instead: the sub in wrong.ngc must be o<wrong>"},
+      {"empty", "G1 X1\nM2\n", 0, "", "no o<empty> sub in this subroutine file (called as o<empty> call): the file must define it"},
+      {"noend", "o<noend> sub\n  G1 X1\nM2\n", 1, "o<noend> sub", "o<noend> sub is not closed: o<noend> endsub missing"},
+      {"two", "o<two> sub\no<two> endsub\no<three> sub\no<three> endsub\n", 3, "o<three> sub",
+       "a second subroutine in the file of o<two>: a subroutine file holds one sub (LinuxCNC)"},
+      // An error raised when a line of the file runs names it as the program's would be named.
+      {"bad", "o<bad> sub\n  G1 X1\n  G1 X[2/0]\no<bad> endsub\n", 3, "[2/0]", "division by zero", Error::DivisionByZero},
+  };
+  for (const auto& c : cases) {
+    INFO(c.name);
+    const auto program = scratch.write("prog.ngc", "G0 X1\no<" + c.name + "> call\n");
+    scratch.write("lib/" + c.name + ".ngc", c.text);
+    check_error(file_error(program, options), {scratch.path("lib/" + c.name + ".ngc"), c.line, c.field, c.message, c.code});
   }
 }
