@@ -13,6 +13,7 @@
 #include <curvestep/host/job.hpp>
 
 #include "command_registry.hpp"
+#include "job_pipeline_options.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -23,12 +24,14 @@ struct EvalOptions {
   std::vector<double> parameters;
   std::string out;
   bool optimize = false;
+  std::vector<std::string> subroutine_path;
 };
 
 void run_eval(const EvalOptions& options) {
   std::vector<std::string> notes;
   JobFileOptions file;
   file.optimize = options.optimize;
+  file.gcode.subroutine_path.assign(options.subroutine_path.begin(), options.subroutine_path.end());
   const Job job = load_job_file(options.job, file, &notes);
   for (const auto& note : notes) std::cerr << "curvestep: " << note << "\n";
   std::vector<MachinePoint> points;
@@ -52,6 +55,7 @@ void add_eval_command(CLI::App& app) {
       ->delimiter(',');
   eval->add_option("-o,--output", options->out, "Output CSV file (default: standard output)");
   eval->add_flag("--optimize", options->optimize, "SVG: order subpaths to shorten pen-up travel and report the saving");
+  add_subroutine_path_option(eval, options->subroutine_path);
   eval->callback([options] { run_eval(*options); });
 }
 

@@ -3,6 +3,9 @@
 // moves a machine: sim, plot, stream, gpio, demo.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <CLI/CLI.hpp>
 
 #include <curvestep/host/job_pipeline.hpp>
@@ -10,8 +13,16 @@
 
 namespace curvestep::host {
 
+/// Adds --subroutine-path (repeatable) to `command`, filling `folders`.
+inline void add_subroutine_path_option(CLI::App* command, std::vector<std::string>& folders) {
+  command->add_option("--subroutine-path", folders,
+                      "G-code: a folder of subroutine files (o<name> call reads name.ngc), searched after the program's own "
+                      "folder; repeat it for more, searched in order (LinuxCNC's SUBROUTINE_PATH, docs/gcode.md)")
+      ->check(CLI::ExistingDirectory);
+}
+
 /// Adds --optimize, --strict, --layers, the page options (--page, --landscape, --center, --fit, --margin,
-/// --rotate), --blend-tolerance and --strict-step-rate to `command`, filling `options`.
+/// --rotate), --blend-tolerance, --strict-step-rate and --subroutine-path to `command`, filling `options`.
 inline void add_job_pipeline_options(CLI::App* command, JobPipelineOptions& options) {
   command->add_flag("--optimize", options.optimize, "SVG: order subpaths to shorten pen-up travel");
   command->add_flag("--strict", options.strict_svg,
@@ -35,6 +46,7 @@ inline void add_job_pipeline_options(CLI::App* command, JobPipelineOptions& opti
       ->check(CLI::Range(0.0, max_blend_tolerance_mm));
   command->add_flag("--strict-step-rate", options.strict_step_rate,
                     "Refuse a job whose axis speed needs more than max_step_rate instead of planning that axis slower");
+  add_subroutine_path_option(command, options.subroutine_path);
 }
 
 }  // namespace curvestep::host

@@ -13,6 +13,7 @@
 #include <curvestep/host/job.hpp>
 
 #include "command_registry.hpp"
+#include "job_pipeline_options.hpp"
 
 namespace curvestep::host {
 namespace {
@@ -22,6 +23,7 @@ struct SampleOptions {
   double tolerance_mm = 0;
   std::string out;
   bool optimize = false;
+  std::vector<std::string> subroutine_path;
 };
 
 void run_sample(const SampleOptions& options) {
@@ -29,6 +31,7 @@ void run_sample(const SampleOptions& options) {
   std::vector<std::string> notes;
   JobFileOptions file;
   file.optimize = options.optimize;
+  file.gcode.subroutine_path.assign(options.subroutine_path.begin(), options.subroutine_path.end());
   const Job job = load_job_file(options.job, file, &notes);
   for (const auto& note : notes) std::cerr << "curvestep: " << note << "\n";
   const auto points = flatten_path(job.segments, options.tolerance_mm);
@@ -46,6 +49,7 @@ void add_sample_command(CLI::App& app) {
   sample->add_option("--tolerance", options->tolerance_mm, "Largest distance from the true path, mm")->required();
   sample->add_option("-o,--output", options->out, "Output CSV file (default: standard output)");
   sample->add_flag("--optimize", options->optimize, "SVG: order subpaths to shorten pen-up travel and report the saving");
+  add_subroutine_path_option(sample, options->subroutine_path);
   sample->callback([options] { run_sample(*options); });
 }
 

@@ -229,6 +229,7 @@ class GcodeLoader {
     reserve_per_line(reader.line_count());
     std::size_t nurbs_line = 0;
     std::size_t nurbs_column = 0;
+    std::string nurbs_file;
     write_parameters(reader.parameters());
     while (!interpreter_.ended()) {
       auto program_block = reader.next();
@@ -236,6 +237,8 @@ class GcodeLoader {
       source_ = std::move(program_block->source);
       line_ = source_;
       line_number_ = program_block->line;
+      job_line_ = program_block->program_line;
+      block_file_ = std::move(program_block->file);
       for (const auto& message : program_block->messages) add_event(JobEventKind::Message, 0, false, trimmed(message.text));
       const Block block = machine_block(*program_block);
       read_offset_parameters(reader.parameters());
@@ -257,6 +260,7 @@ class GcodeLoader {
       }
       if (!was_in_nurbs && interpreter_.in_nurbs_block()) {
         nurbs_line = line_number_;
+        nurbs_file = error_file();
         for (const auto& w : block.words()) {
           if (w.letter == 'G' && w.code_tenths == 52) nurbs_column = w.column;
         }
@@ -274,7 +278,7 @@ class GcodeLoader {
     if (interpreter_.in_nurbs_block()) {
       line_number_ = nurbs_line;
       line_ = {};
-      throw LoadError(SourceLocation{job_.name, nurbs_line, nurbs_column, std::nullopt, {}, "G5.2"},
+      throw LoadError(SourceLocation{nurbs_file, nurbs_line, nurbs_column, std::nullopt, {}, "G5.2"},
                       "the NURBS block is not closed by G5.3", Error::GcodeNurbsBlock);
     }
     return std::move(job_);
@@ -403,9 +407,12 @@ class GcodeLoader {
            interpreter_.rotation_deg(interpreter_.coordinate_system()) != 0;
   }
 
+  /// The file of the line being executed, as messages name it: the program or a subroutine file.
+  [[nodiscard]] const std::string& error_file() const { return block_file_.empty() ? job_.name : block_file_; }
+
   [[noreturn]] void fail(std::size_t column, Error code) {
     const std::string word = word_at(line_, column);
-    throw LoadError(SourceLocation{job_.name, line_number_, column, std::nullopt, {}, word}, explain(code, word), code);
+    throw LoadError(SourceLocation{error_file(), line_number_, column, std::nullopt, {}, word}, explain(code, word), code);
   }
 
   /// GcodeArcRadiusMismatch of a centre-form arc, with both radii as the interpreter measured them
@@ -425,7 +432,7 @@ class GcodeLoader {
   }
 
   [[noreturn]] void fail_message(std::size_t column, const std::string& message, Error code) {
-    throw LoadError(SourceLocation{job_.name, line_number_, column, std::nullopt, {}, word_at(line_, column)}, message, code);
+    throw LoadError(SourceLocation{error_file(), line_number_, column, std::nullopt, {}, word_at(line_, column)}, message, code);
   }
 
   /// A point in mm on the Q16.16 grid.
@@ -505,7 +512,7 @@ class GcodeLoader {
   void add(const machine::Motion& motion) {
     if (motion.kind == machine::MotionKind::None) return;
     if (!compensation_.active()) {
-      emit(motion, line_number_);
+      emit(motion, job_line_);
       return;
     }
     const bool planar = motion.kind == machine::MotionKind::Rapid || motion.kind == machine::MotionKind::Line ||
@@ -519,9 +526,9 @@ class GcodeLoader {
     if (motion.kind != machine::MotionKind::Arc && start[0] == end[0] && start[1] == end[1]) {
       // Along the normal axis alone (Z in G17): where the tool centre is, once the held move's end is known.
       if (compensation_.holding()) {
-        held_.push_back(Held{false, {}, motion, line_number_});
+        held_.push_back(Held{false, {}, motion, job_line_});
       } else {
-        emit(at_plane(motion, compensation_.tool()), line_number_);
+        emit(at_plane(motion, compensation_.tool()), job_line_);
       }
       return;
     }
@@ -534,7 +541,7 @@ class GcodeLoader {
     programmed.direction = motion.direction;
     programmed.full_turns = motion.full_turns;
     programmed.tag = next_tag_++;
-    moves_[programmed.tag] = MoveInfo{motion, line_number_};
+    moves_[programmed.tag] = MoveInfo{motion, job_line_};
     CompensatedMoves out;
     try {
       out = compensation_.add(programmed);
@@ -783,7 +790,7 @@ class GcodeLoader {
         case machine::CycleStepKind::Feed:
           leg.kind = step.kind == machine::CycleStepKind::Rapid ? machine::MotionKind::Rapid : machine::MotionKind::Line;
           leg.end = step.end;
-          emit(leg, line_number_);
+          emit(leg, job_line_);
           leg.start = step.end;
           return;
         case machine::CycleStepKind::Dwell: add_event(JobEventKind::Dwell, step.seconds, false, word); return;
@@ -801,7 +808,7 @@ class GcodeLoader {
     event.before_segment = segment_count();
     event.value = value;
     event.flag = flag;
-    event.line = line_number_;
+    event.line = job_line_;
     event.text = text;
     if (compensation_.holding()) {
       held_.push_back(Held{true, std::move(event), {}, 0});  // after the held move
@@ -872,8 +879,19 @@ class GcodeLoader {
   std::array<std::array<double, 3>, 10> written_offsets_{};  ///< the offset parameters as last written (program units)
   std::array<double, 9> written_rotations_{};  ///< the rotation parameters as last written (degrees)
   std::string_view line_;
-  std::size_t line_number_ = 0;
+  std::size_t line_number_ = 0;  ///< its line in its file, for messages
+  std::string block_file_;       ///< its subroutine file, empty in the program (ProgramBlock::file)
+  /// The line the job's segments and events name, in the program: in a subroutine file, the
+  /// program's line that called into it (ProgramBlock::program_line), since a job names one file.
+  std::size_t job_line_ = 0;
 };
+
+/// How the language layer reads the program: the subroutine folders given.
+language::ProgramOptions program_options(const GcodeOptions& options) {
+  language::ProgramOptions program;
+  program.subroutine_path = options.subroutine_path;
+  return program;
+}
 
 }  // namespace
 
@@ -881,25 +899,25 @@ Job parse_gcode_job(std::string_view text, std::string name) { return parse_gcod
 
 Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options) {
   GcodeLoader loader(name, options);
-  return loader.load(language::ProgramReader(text, std::move(name)));
+  return loader.load(language::ProgramReader(text, std::move(name), program_options(options)));
 }
 
 Job parse_gcode_job(std::string_view text, std::string name, const GcodeOptions& options, JobSink& sink) {
   GcodeLoader loader(name, options, &sink);
-  return loader.load(language::ProgramReader(text, std::move(name)));
+  return loader.load(language::ProgramReader(text, std::move(name), program_options(options)));
 }
 
 // The file is read as a stream (ProgramReader::open_file): its text is never held whole.
 Job import_gcode(const std::filesystem::path& path, const GcodeOptions& options, JobSink& sink) {
   GcodeLoader loader(path.string(), options, &sink);
-  return loader.load(language::ProgramReader::open_file(path, path.string()));
+  return loader.load(language::ProgramReader::open_file(path, path.string(), program_options(options)));
 }
 
 Job import_gcode(const std::filesystem::path& path) { return import_gcode(path, GcodeOptions{}); }
 
 Job import_gcode(const std::filesystem::path& path, const GcodeOptions& options) {
   GcodeLoader loader(path.string(), options);
-  return loader.load(language::ProgramReader::open_file(path, path.string()));
+  return loader.load(language::ProgramReader::open_file(path, path.string(), program_options(options)));
 }
 
 }  // namespace curvestep::host

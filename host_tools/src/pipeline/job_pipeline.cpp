@@ -50,6 +50,7 @@ JobPipelineOptions without_drawing_options(const JobPipelineOptions& options) {
   JobPipelineOptions machine_only;
   machine_only.blend_tolerance_mm = options.blend_tolerance_mm;
   machine_only.strict_step_rate = options.strict_step_rate;
+  machine_only.subroutine_path = options.subroutine_path;
   return machine_only;
 }
 
@@ -58,6 +59,7 @@ JobFileOptions job_file_options(const JobPipelineOptions& options) {
   file.optimize = options.optimize;
   file.strict_svg = options.strict_svg;
   file.layers = options.layers;
+  file.gcode.subroutine_path.assign(options.subroutine_path.begin(), options.subroutine_path.end());
   if (!options.page.empty()) file.page.page = parse_page_size(options.page);
   file.page.landscape = options.landscape;
   file.page.center = options.center;
@@ -135,7 +137,9 @@ namespace {
 
 JobFileOptions file_options_for(const JobPipelineOptions& options, const MachineFile& machine_file) {
   JobFileOptions file_options = job_file_options(options);
-  file_options.gcode = gcode_options(machine_file);
+  GcodeOptions gcode = gcode_options(machine_file);
+  gcode.subroutine_path = std::move(file_options.gcode.subroutine_path);
+  file_options.gcode = std::move(gcode);
   return file_options;
 }
 

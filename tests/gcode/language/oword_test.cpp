@@ -196,7 +196,9 @@ TEST_CASE("language: recursion, computed labels, and the call depth limit", "[gc
   CHECK(deep.location().field == "o1 call");
   const LoadError missing = program_error("o2 call\n");
   CHECK(missing.code() == Error::GcodeSyntax);
-  CHECK(missing.message() == "no subroutine o2 sub in the file");
+  CHECK(missing.message() ==
+        "no subroutine o2 sub in the program, and no file 2.ngc looked for: no subroutine folder given (the program's folder, the "
+        "subroutine path)");
 }
 
 TEST_CASE("language: label mismatches and misplaced O-words are errors naming the line", "[gcode][language][oword][errors]") {

@@ -4,11 +4,14 @@
 // found by the StructureScan. Lines run lazily, one next() at a time, so every expression reads the
 // parameters as the machine layer left them after the previous block. The lines are read from a
 // LineSource as they run: forward, and by a seek for a jump (always to an O-word line or the line
-// after one, whose places the structure pre-scan keeps).
+// after one, whose places the structure pre-scan keeps). A call to a sub the program does not
+// define reads its file (LinuxCNC's SUBROUTINE_PATH): each file is a Unit of its own, with its
+// own source, structure and lines read lately, and the program counter names a unit and a line.
 #include <curvestep/host/gcode/program_reader.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -40,6 +43,7 @@ constexpr int argument_parameters = 30;
 constexpr double max_repeat_count = 1e15;
 
 struct Frame {
+  std::size_t return_unit = 0;  ///< the file the call is in (0: the program)
   std::size_t return_line = no_line;
   std::array<double, argument_parameters> saved{};
   std::map<std::string, double> locals;
@@ -73,14 +77,54 @@ std::string_view without_carriage_return(std::string_view line) {
   return line;
 }
 
+/// One file of the program: the program itself (unit 0) or a subroutine file, each read as a
+/// stream with its own structure, its own jump targets and its own lines read lately.
+struct Unit {
+  std::unique_ptr<detail::LineSource> source;
+  std::string file;  ///< the name messages give
+  // A program's parse trees would take about 0.7 KB per line, its text about 20 bytes: the reader
+  // keeps neither, only where the O-word lines start (jumps go there) and their structure.
+  std::vector<JumpTarget> jump_targets;  ///< one per O-word line, in line order
+  detail::ProgramStructure structure;
+  std::size_t end = 0;          ///< lines from here on are not part of the file (closing %)
+  std::size_t line_count = 0;   ///< lines in the file (a last '\n' ends a line, it does not start one)
+  std::size_t source_line = 0;  ///< the line source->next() reads
+  std::map<std::size_t, ReadLine> recent;  ///< at most recent_lines_kept lines read lately (and the step's own)
+  std::map<std::size_t, ReadLine>::node_type spare;  ///< a forgotten line's room
+};
+
+/// A subroutine read from its own file.
+struct SubFile {
+  std::size_t unit = 0;  ///< its Unit
+  std::size_t line = 0;  ///< its `sub` line there, 0-based
+};
+
+/// The file a call looks for: the label without its brackets, + ".ngc" (LinuxCNC: the name is
+/// lower case already, and may hold lower-case letters, digits, '-' and '_'), or an empty string
+/// for a name no file may have.
+std::string sub_file_name(const std::string& label) {
+  const std::string name = label.front() == '<' ? label.substr(1, label.size() - 2) : label;
+  for (const char c : name) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (!(std::islower(byte) || std::isdigit(byte) || c == '-' || c == '_')) return {};
+  }
+  return name + ".ngc";
+}
+
+/// A folder as messages name it.
+std::string folder_text(const std::filesystem::path& folder) { return folder.empty() ? std::string(".") : folder.string(); }
+
 }  // namespace
 
 class ProgramReader::Impl final : public detail::ParameterSource {
  public:
-  Impl(std::unique_ptr<detail::LineSource> source, std::string file_name, ProgramOptions options)
-      : source_(std::move(source)), file_(std::move(file_name)), options_(options) {
-    prescan();
-    source_->seek(0);
+  Impl(std::unique_ptr<detail::LineSource> source, std::string file_name, ProgramOptions options) : options_(std::move(options)) {
+    auto program = std::make_unique<Unit>();
+    program->source = std::move(source);
+    program->file = std::move(file_name);
+    prescan(*program);
+    program->source->seek(0);
+    units_.push_back(std::move(program));
     frames_.emplace_back();
     store_.set_named("_value", 0.0);
     store_.set_named("_value_returned", 0.0);
@@ -89,7 +133,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   std::optional<ProgramBlock> next() {
     try {
       while (!ended_) {
-        if (pc_ >= end_) {
+        if (pc_ >= unit().end) {
           ended_ = true;
           break;
         }
@@ -120,7 +164,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   ParameterStore& parameters() noexcept { return store_; }
   [[nodiscard]] bool ended() const noexcept { return ended_; }
   [[nodiscard]] std::size_t call_depth() const noexcept { return frames_.size() - 1; }
-  [[nodiscard]] std::size_t line_count() const noexcept { return line_count_; }
+  [[nodiscard]] std::size_t line_count() const noexcept { return units_.front()->line_count; }
 
   [[nodiscard]] double numbered(int number) const override { return store_.get(number); }
   [[nodiscard]] std::optional<double> named(const std::string& name) const override {
@@ -132,29 +176,33 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   }
 
  private:
+  /// The file the program counter is in.
+  Unit& unit() noexcept { return *units_[unit_]; }
+  const Unit& unit() const noexcept { return *units_[unit_]; }
+
   /// The structure pre-scan, one read of the whole file: counts its lines (refusing more than
   /// max_lines before anything else), parses each line up to the closing '%' and hands the O-word
   /// lines that can run to the structure scan. The first error is thrown after the count: an
   /// O-word line's syntax error, else the first structure error in line order.
-  void prescan() {
-    detail::StructureScan scan(file_);
+  void prescan(Unit& file) {
+    detail::StructureScan scan(file.file);
     bool opened = false;   // the first non-blank line was '%'
     bool content = false;  // a non-blank line was seen
     bool parsing = true;   // false after the closing '%' or a syntax error
     std::optional<std::pair<std::size_t, LineError>> syntax_error;
     std::optional<LoadError> structure_error;
     std::size_t index = 0;
-    for (std::uint64_t offset = source_->offset();; offset = source_->offset(), ++index) {
-      const auto read = source_->next();
+    for (std::uint64_t offset = file.source->offset();; offset = file.source->offset(), ++index) {
+      const auto read = file.source->next();
       if (!read) break;
-      const bool written = !(read->empty() && source_->at_end());  // a last '\n' ends a line, it does not start one
+      const bool written = !(read->empty() && file.source->at_end());  // a last '\n' ends a line, it does not start one
       if (written && index >= options_.max_lines) {
-        throw LoadError(SourceLocation{file_, options_.max_lines + 1, 1, std::nullopt, {}, {}},
+        throw LoadError(SourceLocation{file.file, options_.max_lines + 1, 1, std::nullopt, {}, {}},
                         "the program has more than " + std::to_string(options_.max_lines) +
                             " lines, the most a G-code file may have (docs/robustness.md): split it into several files",
                         Error::CapacityExceeded);
       }
-      if (written) line_count_ = index + 1;
+      if (written) file.line_count = index + 1;
       if (!parsing) continue;
       ParsedLine parsed;
       try {
@@ -165,13 +213,13 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         continue;
       }
       if (parsed.percent && opened) {  // LinuxCNC reads nothing after the closing '%'
-        end_ = index;
+        file.end = index;
         parsing = false;
       }
       if (parsed.percent && !content) opened = true;
       if (!detail::is_blank(parsed)) content = true;
       if (parsed.oword && !(parsed.block_delete && options_.block_delete)) {
-        jump_targets_.push_back(JumpTarget{index, offset, source_->offset()});
+        file.jump_targets.push_back(JumpTarget{index, offset, file.source->offset()});
         if (!structure_error) {
           try {
             scan.add(index, *parsed.oword);
@@ -181,15 +229,16 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         }
       }
     }
-    if (parsing) end_ = index;
-    if (syntax_error) throw_at(syntax_error->first, syntax_error->second);
+    if (parsing) file.end = index;
+    if (syntax_error) throw_at(file, syntax_error->first, syntax_error->second);
     if (structure_error) throw *structure_error;
-    structure_ = scan.finish();
+    file.structure = scan.finish();
   }
 
-  [[noreturn]] void throw_at(std::size_t line, const LineError& error) const {
-    throw LoadError(SourceLocation{file_, line + 1, error.column(), std::nullopt, {}, error.field()}, error.message(), error.code());
+  [[noreturn]] void throw_at(const Unit& file, std::size_t line, const LineError& error) const {
+    throw LoadError(SourceLocation{file.file, line + 1, error.column(), std::nullopt, {}, error.field()}, error.message(), error.code());
   }
+  [[noreturn]] void throw_at(std::size_t line, const LineError& error) const { throw_at(unit(), line, error); }
 
   [[noreturn]] void fail_oword(const OWord& oword, const std::string& message, Error code) const {
     throw LineError(oword.column, detail::oword_text(oword), message, code);
@@ -198,7 +247,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// The budget that turns an endless loop into an error naming the loop.
   void count_line() {
     if (++executed_ <= options_.max_executed_lines) return;
-    const std::size_t loop = skipped(parsed(pc_)) ? no_line : structure_.loop_containing(pc_);
+    const std::size_t loop = skipped(parsed(pc_)) ? no_line : unit().structure.loop_containing(pc_);
     const std::string message = "more than " + std::to_string(options_.max_executed_lines) +
                                 " lines executed: an endless loop? (the limit keeps a program from running forever)";
     if (loop != no_line) {
@@ -213,22 +262,23 @@ class ProgramReader::Impl final : public detail::ParameterSource {
 
   /// A value of the line at the program counter (parsed last).
   double value(detail::NodeIndex root) const {
-    const ReadLine& line = recent_.at(pc_);
+    const ReadLine& line = unit().recent.at(pc_);
     return detail::evaluate(line.parsed.nodes, root, line.source, *this);
   }
 
   /// The O-word of line `index`, an O-word line.
   const OWord& oword_at(std::size_t index) { return *parsed(index).oword; }
 
-  /// Line `index` parsed: one of the lines read lately, or read from the file and parsed (into
-  /// the room of a line forgotten, if any: its text keeps its capacity).
+  /// Line `index` of the current file parsed: one of the lines read lately, or read from the file
+  /// and parsed (into the room of a line forgotten, if any: its text keeps its capacity).
   const ReadLine& line(std::size_t index) {
-    const auto found = recent_.find(index);
-    if (found != recent_.end()) return found->second;
-    if (spare_.empty()) return read_into(recent_[index], index);
-    spare_.key() = index;
-    read_into(spare_.mapped(), index);
-    return recent_.insert(std::move(spare_)).position->second;  // leaves spare_ empty
+    Unit& file = unit();
+    const auto found = file.recent.find(index);
+    if (found != file.recent.end()) return found->second;
+    if (file.spare.empty()) return read_into(file.recent[index], index);
+    file.spare.key() = index;
+    read_into(file.spare.mapped(), index);
+    return file.recent.insert(std::move(file.spare)).position->second;  // leaves the spare empty
   }
 
   const ReadLine& read_into(ReadLine& line, std::size_t index) {
@@ -237,13 +287,14 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     return line;
   }
 
-  /// Forgets the lines read lately once there are as many as the reader keeps, and keeps the room
-  /// of one for the next line read.
+  /// Forgets the lines of the current file read lately once there are as many as the reader keeps,
+  /// and keeps the room of one for the next line read.
   void forget_lines() {
-    const std::size_t kept = structure_.links.empty() ? 1 : recent_lines_kept;
-    if (recent_.size() < kept) return;
-    if (spare_.empty()) spare_ = recent_.extract(recent_.begin());
-    recent_.clear();
+    Unit& file = unit();
+    const std::size_t kept = file.structure.links.empty() ? 1 : recent_lines_kept;
+    if (file.recent.size() < kept) return;
+    if (file.spare.empty()) file.spare = file.recent.extract(file.recent.begin());
+    file.recent.clear();
   }
 
   const ParsedLine& parsed(std::size_t index) { return line(index).parsed; }
@@ -251,22 +302,23 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// Line `index` as written: the next line of the file, or after a seek to where the line starts
   /// (control flow reaches a line out of order only at an O-word line or the line after one).
   std::string_view read_line(std::size_t index) {
-    if (index != source_line_) source_->seek(offset_of(index));
-    const auto line = source_->next();
+    Unit& file = unit();
+    if (index != file.source_line) file.source->seek(offset_of(file, index));
+    const auto line = file.source->next();
     if (!line) {
-      throw std::runtime_error(file_ + ": line " + std::to_string(index + 1) +
+      throw std::runtime_error(file.file + ": line " + std::to_string(index + 1) +
                                " is past the end of the file: did the file change while it was read?");
     }
-    source_line_ = index + 1;
+    file.source_line = index + 1;
     return *line;
   }
 
-  /// Where line `index` starts: the first line, an O-word line or the line after one.
-  std::uint64_t offset_of(std::size_t index) const {
+  /// Where line `index` of `file` starts: the first line, an O-word line or the line after one.
+  static std::uint64_t offset_of(const Unit& file, std::size_t index) {
     if (index == 0) return 0;
-    const auto after = std::upper_bound(jump_targets_.begin(), jump_targets_.end(), index,
+    const auto after = std::upper_bound(file.jump_targets.begin(), file.jump_targets.end(), index,
                                         [](std::size_t i, const JumpTarget& target) { return i < target.line; });
-    if (after != jump_targets_.begin()) {
+    if (after != file.jump_targets.begin()) {
       const JumpTarget& target = *std::prev(after);
       if (target.line == index) return target.offset;
       if (target.line + 1 == index) return target.next_offset;
@@ -280,6 +332,17 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     const ParsedLine& line = current.parsed;
     ProgramBlock block;
     block.line = pc_ + 1;
+    block.program_line = block.line;
+    if (unit_ != 0) {
+      block.file = unit().file;
+      // The line of the program that called into the files: the latest call made from it.
+      for (auto frame = frames_.rbegin(); frame != frames_.rend(); ++frame) {
+        if (frame->return_unit == 0) {
+          block.program_line = frame->return_line;  // the line after the call, 0-based: the call's own, 1-based
+          break;
+        }
+      }
+    }
     block.source = current.source;
     block.block_delete = line.block_delete;
     for (const auto& word : line.words) block.words.push_back(ProgramWord{word.letter, value(word.value), word.column});
@@ -331,7 +394,8 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void run_control() {
     const std::size_t here = pc_;
     const OWord& oword = oword_at(here);
-    const ControlLink& link = structure_.link(here);
+    const detail::ProgramStructure& structure = unit().structure;
+    const ControlLink& link = structure.link(here);
     switch (oword.keyword) {
       case Keyword::Sub: pc_ = link.closing + 1; break;
       case Keyword::Endsub:
@@ -345,7 +409,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         }
         break;
       case Keyword::Elseif:
-      case Keyword::Else: pc_ = structure_.link(link.opening).closing + 1; break;  // the taken branch ends here
+      case Keyword::Else: pc_ = structure.link(link.opening).closing + 1; break;  // the taken branch ends here
       case Keyword::Endif:
       case Keyword::Do: pc_ = here + 1; break;
       case Keyword::While:
@@ -377,11 +441,11 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         }
         break;
       }
-      case Keyword::Break: pc_ = structure_.link(link.opening).closing + 1; break;
+      case Keyword::Break: pc_ = structure.link(link.opening).closing + 1; break;
       case Keyword::Continue: {
         const std::size_t loop = link.opening;
         // while: test again; do: its closing while tests; repeat: endrepeat counts the pass.
-        pc_ = structure_.link(loop).keyword == Keyword::While ? loop : structure_.link(loop).closing;
+        pc_ = structure.link(loop).keyword == Keyword::While ? loop : structure.link(loop).closing;
         break;
       }
     }
@@ -403,7 +467,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         pc_ = branch + 1;
         return;
       }
-      branch = structure_.link(branch).next_branch;
+      branch = unit().structure.link(branch).next_branch;
     }
   }
 
@@ -416,8 +480,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       }
       label = std::to_string(static_cast<long>(computed));
     }
-    const auto sub = structure_.subs.find(label);
-    if (sub == structure_.subs.end()) fail_oword(oword, "no subroutine o" + label + " sub in the file", Error::GcodeSyntax);
+    const SubFile sub = find_sub(oword, label);
     if (call_depth() >= options_.max_call_depth) {
       fail_oword(oword, "subroutine calls nested deeper than " + std::to_string(options_.max_call_depth) + " (endless recursion?)",
                  Error::CapacityExceeded);
@@ -425,13 +488,107 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     std::vector<double> arguments;
     for (const auto argument : oword.arguments) arguments.push_back(value(argument));
     Frame frame;
+    frame.return_unit = unit_;
     frame.return_line = pc_ + 1;
     for (int n = 1; n <= argument_parameters; ++n) frame.saved[static_cast<std::size_t>(n - 1)] = store_.get(n);
     frames_.push_back(std::move(frame));
     // #N+1..#30 keep the caller's values (LinuxCNC).
     for (std::size_t k = 0; k < arguments.size(); ++k) store_.set(static_cast<int>(k + 1), arguments[k]);
     store_.set_named("_value_returned", 0.0);
-    pc_ = sub->second + 1;
+    unit_ = sub.unit;
+    pc_ = sub.line + 1;
+  }
+
+  /// Where sub `label` is: in the program (LinuxCNC's subs are global, so a subroutine file may call
+  /// them too), in a subroutine file read before, or in its own file, read now.
+  SubFile find_sub(const OWord& oword, const std::string& label) {
+    const auto& program_subs = units_.front()->structure.subs;
+    const auto in_program = program_subs.find(label);
+    if (in_program != program_subs.end()) return SubFile{0, in_program->second};
+    const auto read_before = sub_files_.find(label);
+    if (read_before != sub_files_.end()) return read_before->second;
+    const SubFile sub = read_sub_file(oword, label);
+    sub_files_.emplace(label, sub);
+    return sub;
+  }
+
+  /// The file of sub `label`: the first `name.ngc` in the subroutine path, read and checked whole
+  /// (its structure, as the program's) before its sub runs. It must define that sub and no other
+  /// (LinuxCNC: "a named subroutine file can contain only a single subroutine definition"); the
+  /// lines outside the sub (comments, a closing M2) never run.
+  SubFile read_sub_file(const OWord& oword, const std::string& label) {
+    const std::string name = sub_file_name(label);
+    if (name.empty()) {
+      fail_oword(oword,
+                 "no subroutine o" + label + " sub in the program, and no file can hold it: a subroutine file's name has lower-case "
+                 "letters, digits, '-' and '_' only (LinuxCNC)",
+                 Error::GcodeSyntax);
+    }
+    std::string searched;
+    for (const auto& folder : options_.subroutine_path) {
+      const std::filesystem::path path = folder.empty() ? std::filesystem::path(name) : folder / name;
+      std::error_code ignored;
+      const auto status = std::filesystem::status(path, ignored);
+      if (std::filesystem::exists(status)) return read_sub_file(oword, label, path, status);
+      searched += (searched.empty() ? "" : ", ") + folder_text(folder);
+    }
+    fail_oword(oword,
+               "no subroutine o" + label + " sub in the program, and no file " + name +
+                   (searched.empty() ? " looked for: no subroutine folder given (the program's folder, the subroutine path)"
+                                     : " in " + searched + " (the folders searched, in this order)"),
+               Error::GcodeSyntax);
+  }
+
+  SubFile read_sub_file(const OWord& oword, const std::string& label, const std::filesystem::path& path,
+                        const std::filesystem::file_status& status) {
+    const std::string cannot_read = "the subroutine file " + path.string() + " of o" + label + " cannot be read: ";
+    if (!std::filesystem::is_regular_file(status)) fail_oword(oword, cannot_read + "it is not a regular file", Error::GcodeSyntax);
+    auto file = std::make_unique<Unit>();
+    file->file = path.string();
+    try {
+      file->source = detail::file_lines(path);
+      prescan(*file);
+      file->source->seek(0);
+    } catch (const LoadError&) {
+      throw;  // an error in the file names its own file:line
+    } catch (const std::runtime_error& failure) {
+      fail_oword(oword, cannot_read + failure.what(), Error::GcodeSyntax);
+    }
+    const auto& subs = file->structure.subs;
+    if (subs.empty()) {
+      throw LoadError(SourceLocation{file->file, 0, 0, std::nullopt, {}, {}},
+                      "no o" + label + " sub in this subroutine file (called as o" + label + " call): the file must define it",
+                      Error::GcodeSyntax);
+    }
+    // The subs in line order: the links are, and every sub line has one.
+    std::vector<const ControlLink*> defined;
+    for (const auto& link : file->structure.links) {
+      if (link.keyword == Keyword::Sub) defined.push_back(&link);
+    }
+    const std::size_t first = defined.front()->line;
+    const std::string first_label = label_of_sub(subs, first);
+    if (first_label != label) {
+      throw LoadError(SourceLocation{file->file, first + 1, 0, std::nullopt, {}, "o" + first_label + " sub"},
+                      "the subroutine file of o" + label + " defines o" + first_label + " instead: the sub in " + path.filename().string() +
+                          " must be o" + label,
+                      Error::GcodeSyntax);
+    }
+    if (defined.size() > 1) {
+      const std::size_t second = defined[1]->line;
+      const std::string second_label = label_of_sub(subs, second);
+      throw LoadError(SourceLocation{file->file, second + 1, 0, std::nullopt, {}, "o" + second_label + " sub"},
+                      "a second subroutine in the file of o" + label + ": a subroutine file holds one sub (LinuxCNC)", Error::GcodeSyntax);
+    }
+    units_.push_back(std::move(file));
+    return SubFile{units_.size() - 1, first};
+  }
+
+  /// The label of the sub defined on `line` of a file (its structure's subs).
+  static std::string label_of_sub(const std::map<std::string, std::size_t>& subs, std::size_t line) {
+    for (const auto& [label, at] : subs) {
+      if (at == line) return label;
+    }
+    return {};
   }
 
   void return_from(const OWord& oword) {
@@ -442,34 +599,28 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     store_.set_named("_value_returned", has_value ? 1.0 : 0.0);
     const Frame& frame = frames_.back();
     for (int n = 1; n <= argument_parameters; ++n) store_.set(n, frame.saved[static_cast<std::size_t>(n - 1)]);
+    unit_ = frame.return_unit;
     pc_ = frame.return_line;
     frames_.pop_back();
   }
 
-  std::unique_ptr<detail::LineSource> source_;
-  std::string file_;
   ProgramOptions options_;
-  // A program's parse trees would take about 0.7 KB per line, its text about 20 bytes: the reader
-  // keeps neither, only where the O-word lines start (jumps go there) and their structure.
-  std::vector<JumpTarget> jump_targets_;  ///< one per O-word line, in line order
-  detail::ProgramStructure structure_;
-  std::size_t end_ = 0;         ///< lines from here on are not part of the program (closing %)
-  std::size_t line_count_ = 0;  ///< lines in the file (a last '\n' ends a line, it does not start one)
-  std::size_t source_line_ = 0;  ///< the line source_->next() reads
-  std::map<std::size_t, ReadLine> recent_;  ///< at most recent_lines_kept lines read lately (and the step's own)
-  std::map<std::size_t, ReadLine>::node_type spare_;  ///< a forgotten line's room
+  std::vector<std::unique_ptr<Unit>> units_;     ///< the program, then each subroutine file read
+  std::map<std::string, SubFile> sub_files_;     ///< label -> its subroutine file's sub
   ParameterStore store_;
   std::vector<Frame> frames_;
+  std::size_t unit_ = 0;  ///< the file of the program counter
   std::size_t pc_ = 0;
   std::size_t executed_ = 0;
   bool ended_ = false;
 };
 
 ProgramReader::ProgramReader(std::string_view text, std::string file_name, ProgramOptions options)
-    : impl_(std::make_unique<Impl>(detail::text_lines(text), std::move(file_name), options)) {}
+    : impl_(std::make_unique<Impl>(detail::text_lines(text), std::move(file_name), std::move(options))) {}
 ProgramReader::ProgramReader(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 ProgramReader ProgramReader::open_file(const std::filesystem::path& path, std::string file_name, ProgramOptions options) {
-  return ProgramReader(std::make_unique<Impl>(detail::file_lines(path), std::move(file_name), options));
+  options.subroutine_path.insert(options.subroutine_path.begin(), path.parent_path());  // the program's own folder first
+  return ProgramReader(std::make_unique<Impl>(detail::file_lines(path), std::move(file_name), std::move(options)));
 }
 ProgramReader::~ProgramReader() = default;
 ProgramReader::ProgramReader(ProgramReader&&) noexcept = default;

@@ -11,13 +11,15 @@
 #include <map>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <curvestep/host/job.hpp>
 #include <curvestep/host/load_error.hpp>
 
 namespace curvestep::host {
 
-/// What the machine file tells the importer: its tool table and the G28/G30 positions.
+/// What the machine file tells the importer (its tool table and the G28/G30 positions) and where
+/// subroutine files are.
 struct GcodeOptions {
   /// Tool number -> cutter diameter, mm, for G41/G42 D<tool>. A tool not listed has no diameter:
   /// G41/G42 with it is refused (tool 0 means no offset).
@@ -32,6 +34,9 @@ struct GcodeOptions {
   /// on, so its memory does not grow with the program (`curvestep sim`, which gets the whole job's
   /// message for a later error by loading it again, streamed_job.hpp).
   bool keep_source_lines = true;
+  /// Folders searched in this order for a subroutine file (`o<name> call` -> name.ngc) after the
+  /// program's own folder, as LinuxCNC's SUBROUTINE_PATH after PROGRAM_PREFIX (--subroutine-path).
+  std::vector<std::filesystem::path> subroutine_path;
 };
 
 /// Loads a G-code program. Throws LoadError (file:line:column, the word at fault as field, an

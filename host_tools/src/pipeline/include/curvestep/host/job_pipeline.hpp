@@ -37,6 +37,7 @@ struct JobPipelineOptions {
   std::string margin;               ///< --margin (mm, or with a unit mm/cm/in; empty: 0)
   int rotate_deg = 0;               ///< --rotate: 0, 90, 180, 270 clockwise
   std::vector<std::string> layers;  ///< --layers: Inkscape layers to draw, by label (empty: all)
+  std::vector<std::string> subroutine_path;  ///< --subroutine-path: G-code subroutine file folders, searched in order
 };
 
 /// `options` without what applies to SVG drawings only (--optimize, --strict, --layers and the page

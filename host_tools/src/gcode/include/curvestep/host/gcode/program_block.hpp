@@ -37,6 +37,8 @@ struct ProgramMessage {
 /// One executed line.
 struct ProgramBlock {
   std::size_t line = 0;                  ///< 1-based line number in the file
+  std::string file;                      ///< the subroutine file the line is in (as messages name it), empty for the program's own lines
+  std::size_t program_line = 0;          ///< `line` in the program; in a subroutine file, the program's line whose call led there
   std::string source;                    ///< the line as written (for messages)
   bool block_delete = false;             ///< the line started with '/' (it runs: the block delete switch is off)
   std::vector<ProgramWord> words;        ///< the machine words, in the order written (N, O excluded)

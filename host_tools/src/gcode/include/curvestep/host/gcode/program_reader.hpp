@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <curvestep/host/gcode/program_block.hpp>
 
@@ -33,12 +34,18 @@ struct ProgramOptions {
   std::size_t max_executed_lines = default_max_executed_lines;  ///< IterationLimit beyond this
   std::size_t max_call_depth = default_max_call_depth;          ///< CapacityExceeded beyond this
   std::size_t max_lines = default_max_program_lines;            ///< CapacityExceeded at the line after the last one allowed
+  /// Folders searched in this order for the file of a sub the program does not define, as
+  /// LinuxCNC's SUBROUTINE_PATH: `o<name> call` reads name.ngc, `o100 call` 100.ngc, the first
+  /// found (open_file searches the program's own folder first). An empty path is the working folder.
+  std::vector<std::filesystem::path> subroutine_path;
 };
 
 /// Reads one program. Every error is a LoadError naming file:line:column and the expression,
 /// parameter or O-word at fault, with a G-code error code (GcodeSyntax, GcodeBadNumber, ...),
 /// DivisionByZero, IterationLimit (endless loop) or CapacityExceeded (calls nested too deep, a file
-/// of more than max_lines lines).
+/// of more than max_lines lines). A call to a sub the program does not define reads the sub's file
+/// (ProgramOptions::subroutine_path) once, checked as the program is, and runs its sub as if it
+/// were in the program; its lines' errors and blocks name that file.
 class ProgramReader {
  public:
   /// Reads `text` and checks its O-word structure (throws LoadError). `file_name` is used in
@@ -46,7 +53,8 @@ class ProgramReader {
   ProgramReader(std::string_view text, std::string file_name, ProgramOptions options = {});
   /// The same for the file at `path`, read as a stream: once for the structure (counting its lines
   /// and keeping its O-word lines), then line by line as the program runs, with a seek for each jump
-  /// of its control flow. Without O-words the reader holds nothing per line. Throws
+  /// of its control flow. Without O-words the reader holds nothing per line. Subroutine files are
+  /// looked for in the folder of `path` first, then in options.subroutine_path. Throws
   /// std::runtime_error if the file cannot be opened or read.
   [[nodiscard]] static ProgramReader open_file(const std::filesystem::path& path, std::string file_name, ProgramOptions options = {});
   ~ProgramReader();
@@ -65,7 +73,7 @@ class ProgramReader {
   [[nodiscard]] bool ended() const noexcept;
   /// Subroutine calls active now (0 in the main program).
   [[nodiscard]] std::size_t call_depth() const noexcept;
-  /// The lines of the file (a last '\n' ends a line, it does not start one).
+  /// The lines of the program's file (a last '\n' ends a line, it does not start one).
   [[nodiscard]] std::size_t line_count() const noexcept;
 
  private:
