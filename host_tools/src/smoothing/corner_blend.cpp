@@ -106,7 +106,7 @@ double curvature_speed_cap(const CornerRequest& r, const PathSegment& curve) {
   }
   if (!(max_kappa > 0)) return std::numeric_limits<double>::infinity();
   const double centripetal = std::sqrt(0.5 * r.a_max_mm_per_s2 / max_kappa);
-  const double jerk = std::cbrt(0.25 * r.j_max_mm_per_s3 / (max_kappa * max_kappa + 1.25 * max_rate));
+  const double jerk = curvature_jerk_speed_cap(r.j_max_mm_per_s3, max_kappa, 1.25 * max_rate);
   return std::fmin(centripetal, jerk);
 }
 

@@ -5,6 +5,10 @@
 // curvestep sim --report of commit 53bce29, before the change), run from data/ so the title is
 // the bare file name; since blends are weighed by the planner's speeds and run at the slower feed,
 // by 53bce29 with that smoothing rule ported onto it (its setpoints of the job equal this tree's).
+// When the jerk cap from curvature rose (docs/motion.md, "Jerk from curvature": the job takes
+// 2.281 s, 2.284 s before) the full-memory writer could no longer be ported onto this tree's
+// smoothing, so by_speed.svg and report.html are now this tree's streamed output: from here on they
+// guard against change, and the equality with the full-memory writer rests on the earlier files.
 #include <cstdio>
 #include <string>
 

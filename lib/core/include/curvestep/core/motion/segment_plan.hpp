@@ -7,8 +7,9 @@
 // tangential acceleration and jerk, a moving point has
 //     a = a_t T + v²κ N                     j = (j_t − v³κ²) T + (3 v a_t κ + v³ dκ/ds) N.
 // So |a| <= a_max holds if v²κ <= ½ a_max and |a_t| <= √(a_max² − (v_cap²κ)²), and |j| <= j_max
-// holds if |j_t| <= ½ j_max, v³(κ² + |dκ/ds|) <= ¼ j_max and 3 v |a_t| κ <= ¼ j_max (the half the
-// profile leaves also covers a joint's curvature jump, junction_speed).
+// holds if |j_t| <= ½ j_max and (½ j_max + v³κ²)² + (3 v |a_t| κ + v³ρ)² <= j_max², ρ >= |d(κN)/ds|
+// (curvature_jerk_speed_cap; the half the profile leaves also covers a joint's curvature jump,
+// junction_speed).
 // A straight segment keeps the full a_max and j_max. Per-axis velocity limits cap v |T_axis|;
 // an axis sees |a_t| |T_axis| + v²κ |N_axis| of acceleration, so each axis limit caps the speed
 // (v²κ max|N_axis| <= ½ a_axis) and then the tangential acceleration by what the centripetal part at
@@ -71,6 +72,38 @@ inline void tangent_and_curvature(const MachinePoint& d1, const MachinePoint& d2
   curvature = (d2 * s2 - d1 * d12) / (s2 * s2);
 }
 }  // namespace detail
+
+/// The speed at which the plain sum of a curve's jerk terms reaches the budget the profile leaves:
+/// v³(κ² + ρ) <= ¼ j_max, ρ >= |d(κN)/ds| (see curvature_jerk_speed_cap).
+[[nodiscard]] inline double curvature_jerk_sum_speed(double j_max, double max_kappa, double curvature_rate) noexcept {
+  return detail::cube_root(0.25 * j_max / (max_kappa * max_kappa + curvature_rate));
+}
+
+/// The fastest speed at which a curve's own jerk keeps the whole jerk vector within j_max beside the
+/// profile's. With D = d(κN)/ds = −κ² T + κ' N + κτ B and ρ >= |D|, the jerk
+/// j = j_t T + 3 v a_t κ N + v³ D has a part along the path of at most ½ j + v³κ² (|j_t| <= ½ j)
+/// and one across it of at most 3 v a_t κ + v³ρ. The two are orthogonal, so |j| <= j_max while
+/// (½ j + v³κ²)² + (3 v a_t κ + v³ρ)² <= j². The tangential acceleration keeps what it had at the
+/// speed v₀ where the plain sum reaches the budget (v₀³(κ² + ρ) = ¼ j, 3 v₀ a_t κ = ¼ j: a_t =
+/// j / (12 v₀ κ)), so with u = v/v₀, p = v₀³κ²/j and q = v₀³ρ/j (p + q = ¼) the speed is the
+/// largest u with (½ + p u³)² + (¼ u + q u³)² <= 1, found by bisection on [1, 4] (at u = 1 the
+/// left side is at most 13/16). A tolerance-sized blend (ρ >> κ²) gets u = 1.29, an arc 1.32.
+[[nodiscard]] inline double curvature_jerk_speed_cap(double j_max, double max_kappa, double curvature_rate) noexcept {
+  const double v0 = curvature_jerk_sum_speed(j_max, max_kappa, curvature_rate);
+  if (!(v0 > 0)) return v0;
+  const double p = v0 * v0 * v0 * max_kappa * max_kappa / j_max;
+  const double q = v0 * v0 * v0 * curvature_rate / j_max;
+  double low = 1;
+  double high = 4;
+  for (int i = 0; i < 48; ++i) {
+    const double u = (low + high) / 2;
+    const double u3 = u * u * u;
+    const double along = 0.5 + p * u3;
+    const double across = 0.25 * u + q * u3;
+    (along * along + across * across <= 1 ? low : high) = u;
+  }
+  return low * v0;
+}
 
 /// Analyses a segment for the machine: length, caps, end tangents and curvatures.
 template <std::size_t Intervals = 64>
@@ -172,6 +205,7 @@ template <std::size_t Intervals = 64>
     if (limit > 0 && max_tangent_component[axis] > 0) speed_cap = std::fmin(speed_cap, limit / max_tangent_component[axis]);
   }
   double jerk = machine.j_max_mm_per_s3;
+  const double jerk_sum_speed = max_kappa > 0 ? curvature_jerk_sum_speed(jerk, max_kappa, max_kappa_rate) : 0.0;
   if (max_kappa > 0) {
     speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * a_max / max_kappa));  // v²κ <= a/2
     for (std::size_t axis = 0; axis < motion_axes; ++axis) {              // per axis: v²κ |N_axis| <= a_axis/2
@@ -180,7 +214,7 @@ template <std::size_t Intervals = 64>
         speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * limit / (max_kappa * max_normal_component[axis])));
       }
     }
-    speed_cap = std::fmin(speed_cap, detail::cube_root(0.25 * jerk / (max_kappa * max_kappa + max_kappa_rate)));  // normal jerk
+    speed_cap = std::fmin(speed_cap, curvature_jerk_speed_cap(jerk, max_kappa, max_kappa_rate));
     const double dt = 1.0 / machine.rate_hz;
     speed_cap = std::fmin(speed_cap, std::sqrt(8 * machine.tolerance_mm / max_kappa) / dt);  // chord sagitta
   }
@@ -199,7 +233,9 @@ template <std::size_t Intervals = 64>
       const double centripetal = max_kappa > 0 ? cap * cap * max_kappa * max_normal_component[axis] : 0.0;
       acceleration = std::fmin(acceleration, (limit - centripetal) / max_tangent_component[axis]);
     }
-    if (max_kappa > 0) acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * cap * max_kappa));  // 3 v a κ <= j/4
+    // 3 v a κ <= j/4 up to the speed where the sum of the jerk terms binds; above it (up to the cap
+    // by orthogonal parts) the acceleration stays what it was there (curvature_jerk_speed_cap).
+    if (max_kappa > 0) acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * std::fmin(cap, jerk_sum_speed) * max_kappa));
     return acceleration;
   };
   const double acceleration = acceleration_at(speed_cap);

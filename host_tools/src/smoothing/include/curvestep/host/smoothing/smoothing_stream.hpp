@@ -68,6 +68,9 @@ class SmoothingStream final : public JobSink {
     /// unchanged: a blend cuts an item only through start_u/end_u (the piece is made when written),
     /// so the plan is always of the whole segment, as blend decisions judge it.
     std::optional<std::optional<SegmentPlan>> plan;
+    /// The planner's view of the blend before this item (when a blend cut its start): the joint
+    /// from that blend into what the next blend leaves of this item caps the speed there too.
+    std::optional<SegmentPlan> start_blend_plan;
   };
 
  private:

@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+// The jerk a curve makes at speed v: with the curvature vector's rate D = d(κN)/ds, the jerk is
+// j_t T + 3 v a_t κ N + v³ D, a part along the path of at most ½ j + v³κ² and one across it of at
+// most 3 v a_t κ + v³|D| (the profile's own shares). The two are orthogonal, so the planner may run
+// a curve up to the v at which (½ j + v³κ²)² + (3 v a_t κ + v³|D|)² = j², a_t kept at its value
+// where the plain sum reaches j (v³(κ² + |D|) <= ¼ j, 3 v a_t κ <= ¼ j: the rule before). On a
+// corner blend, where |D| >> κ², that is 1.29 times the speed. The curve's κ and |D| are computed here from its Bernstein form, by the
+// test's own derivatives and differences, not by the planner's sampling.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <catch2/catch.hpp>
+
+#include "motion_test_support.hpp"
+
+using namespace curvestep;
+using namespace curvestep::testing;
+
+namespace {
+
+using Point2 = std::array<double, 2>;
+
+/// Point or derivative (order 0..2) of a planar quintic in Bernstein form, by differenced control points.
+Point2 quintic_derivative(const std::array<Point2, 6>& c, double u, int order) {
+  std::vector<Point2> q(c.begin(), c.end());
+  double factor = 1;
+  for (int d = 0; d < order; ++d) {
+    factor *= static_cast<double>(q.size() - 1);
+    for (std::size_t i = 0; i + 1 < q.size(); ++i) q[i] = {q[i + 1][0] - q[i][0], q[i + 1][1] - q[i][1]};
+    q.pop_back();
+  }
+  while (q.size() > 1) {
+    for (std::size_t i = 0; i + 1 < q.size(); ++i) q[i] = {(1 - u) * q[i][0] + u * q[i + 1][0], (1 - u) * q[i][1] + u * q[i + 1][1]};
+    q.pop_back();
+  }
+  return {factor * q[0][0], factor * q[0][1]};
+}
+
+/// Curvature vector κN = (p'' |p'|² − p' (p'·p'')) / |p'|⁴.
+Point2 curvature_vector(const std::array<Point2, 6>& c, double u) {
+  const Point2 d1 = quintic_derivative(c, u, 1);
+  const Point2 d2 = quintic_derivative(c, u, 2);
+  const double s2 = d1[0] * d1[0] + d1[1] * d1[1];
+  const double d12 = d1[0] * d2[0] + d1[1] * d2[1];
+  return {(d2[0] * s2 - d1[0] * d12) / (s2 * s2), (d2[1] * s2 - d1[1] * d12) / (s2 * s2)};
+}
+
+/// The largest v with v³ = x and f(x) <= j², f increasing in x: bisection.
+double largest_speed(double j, const auto& f) {
+  double low = 0;
+  double high = 1e9;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = (low + high) / 2;
+    (f(mid) <= j * j ? low : high) = mid;
+  }
+  return std::cbrt(low);
+}
+
+}  // namespace
+
+TEST_CASE("motion: a corner blend runs at the speed where the orthogonal jerk parts reach j_max, not their sum",
+          "[core][motion]") {
+  // A 10° corner at the origin between +x and the direction at 10°, blended by a quintic whose first
+  // and last three control points lie on the lines (curvature 0 at both ends: G2 with the lines).
+  const double pi = std::acos(-1.0);
+  const Point2 out{std::cos(10 * pi / 180), std::sin(10 * pi / 180)};
+  const double d = 0.3;
+  const std::array<Point2, 6> c{Point2{-d, 0}, Point2{-0.6 * d, 0}, Point2{-0.2 * d, 0},
+                                Point2{0.2 * d * out[0], 0.2 * d * out[1]}, Point2{0.6 * d * out[0], 0.6 * d * out[1]},
+                                Point2{d * out[0], d * out[1]}};
+  std::array<MachinePoint, 6> control{};
+  for (std::size_t i = 0; i < 6; ++i) control[i] = mp(c[i][0], c[i][1]);
+  const std::vector<PathSegment> job{line(mp(-20, 0), control[0]), PathSegment::make_bezier(control).value(),
+                                     line(control[5], mp(20 * out[0], 20 * out[1]))};
+
+  // κ and |D| on the blend, densely.
+  constexpr int samples = 20000;
+  double max_kappa = 0;
+  double max_rate = 0;
+  Point2 previous = curvature_vector(c, 0);
+  for (int k = 1; k <= samples; ++k) {
+    const double u = static_cast<double>(k) / samples;
+    const Point2 kn = curvature_vector(c, u);
+    const Point2 d1 = quintic_derivative(c, u - 0.5 / samples, 1);
+    const double ds = std::hypot(d1[0], d1[1]) / samples;
+    max_kappa = std::max(max_kappa, std::hypot(kn[0], kn[1]));
+    max_rate = std::max(max_rate, std::hypot(kn[0] - previous[0], kn[1] - previous[1]) / ds);
+    previous = kn;
+  }
+  const MachineLimits m = test_machine();
+  const double j = m.j_max_mm_per_s3;
+  const double k2 = max_kappa * max_kappa;
+  // The planner measures |D| with a 25 % margin; both rules are taken with it.
+  const double rate = 1.25 * max_rate;
+  const double by_sum = largest_speed(j, [&](double x) { return std::pow(4 * x * (k2 + rate), 2); });
+  // The tangential acceleration keeps its value at by_sum, a_t = j / (12 by_sum κ): its part across
+  // the path, 3 v a_t κ, is ¼ j v / by_sum.
+  const double by_orthogonal_parts = largest_speed(j, [&](double x) {
+    return std::pow(0.5 * j + x * k2, 2) + std::pow(0.25 * j * std::cbrt(x) / by_sum + x * rate, 2);
+  });
+  INFO("blend: κ_max " << max_kappa << " /mm, |dκN/ds| " << max_rate << " /mm²; caps " << by_sum << " and "
+                       << by_orthogonal_parts << " mm/s");
+  REQUIRE(by_orthogonal_parts > 1.25 * by_sum);
+  REQUIRE(by_orthogonal_parts < m.feed_mm_per_s);                  // the curvature binds, not the feed
+  REQUIRE(std::sqrt(0.5 * m.a_max_mm_per_s2 / max_kappa) > by_orthogonal_parts);  // nor the centripetal cap
+
+  const auto sp = run_job<double>(job, m);
+  const auto peaks = measure(sp, m.rate_hz);
+  CHECK(peaks.jerk <= j * 1.01);
+  CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
+  // The slowest speed near the corner (setpoints within 0.4 mm of it), by differences of positions.
+  double slowest = m.feed_mm_per_s;
+  for (std::size_t i = 1; i < sp.size(); ++i) {
+    const double x = to_double(sp[i].position[0]);
+    const double y = to_double(sp[i].position[1]);
+    if (std::hypot(x, y) > 0.4) continue;
+    const double v = std::hypot(x - to_double(sp[i - 1].position[0]), y - to_double(sp[i - 1].position[1])) * m.rate_hz;
+    slowest = std::min(slowest, v);
+  }
+  INFO("slowest speed at the corner " << slowest << " mm/s");
+  CHECK(slowest > 1.2 * by_sum);
+  CHECK(slowest <= 1.01 * by_orthogonal_parts);
+}
