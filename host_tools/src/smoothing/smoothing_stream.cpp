@@ -61,6 +61,22 @@ const std::optional<SegmentPlan>& planned(SmoothingStream::Item& item, const Mac
   return *item.plan;
 }
 
+/// What write_item writes of `segment` between the cut parameters u0 < u1 and the cut points: the
+/// whole segment when it is not cut, else its piece (piece_between), or where it cannot be cut a
+/// straight connection of the cut points at its feed (a rapid stays a rapid); nothing between equal
+/// points.
+std::optional<PathSegment> written_piece(const PathSegment& segment, double u0, double u1, const MachinePoint& start,
+                                         const MachinePoint& end) {
+  if (u0 == 0 && u1 == 1) return segment;
+  if (!(u0 < u1) || start == end) return std::nullopt;
+  if (auto piece = piece_between(segment, u0, u1, start, end)) return piece;
+  auto line = PathSegment::make_line(start, end);
+  if (!line) return std::nullopt;
+  line.value().set_feed_mm_per_s(segment.feed_mm_per_s());
+  line.value().set_rapid(segment.rapid());
+  return line.value();
+}
+
 /// The planner's corner caps (junction_speed_caps_apart: the segments' own caps are judged apart)
 /// where the blend meets what it leaves of its neighbours, as they will be written (piece_between: ends on the Q16.16 grid), and where the blend before `a` meets
 /// `a`'s remnant. The blend is G2 with its neighbours, but a short remnant of an arc or a line made
@@ -71,19 +87,19 @@ const std::optional<SegmentPlan>& planned(SmoothingStream::Item& item, const Mac
 double blend_joint_speed(const CornerBlend& blend, const SegmentPlan& blend_plan, const SmoothingStream::Item& a,
                          const SmoothingStream::Item& b, const MachineLimits& machine) {
   double speed = std::numeric_limits<double>::infinity();
-  if (a.start_point != blend.curve.start()) {
-    const auto rest_of_a = piece_between(a.segment, a.start_u, blend.incoming_u, a.start_point, blend.curve.start());
-    const auto plan = rest_of_a ? planned(*rest_of_a, machine) : std::nullopt;
+  const auto rest_of_a = written_piece(a.segment, a.start_u, blend.incoming_u, a.start_point, blend.curve.start());
+  if (rest_of_a) {
+    const auto plan = planned(*rest_of_a, machine);
     if (plan) {
       speed = std::fmin(speed, junction_speed_caps_apart(*plan, blend_plan, machine));
       if (a.start_blend_plan) speed = std::fmin(speed, junction_speed_caps_apart(*a.start_blend_plan, *plan, machine));
     }
+  } else if (a.start_blend_plan) {  // nothing of `a` is written: the two blends meet
+    speed = std::fmin(speed, junction_speed_caps_apart(*a.start_blend_plan, blend_plan, machine));
   }
-  if (blend.curve.end() != b.end_point) {
-    const auto rest_of_b = piece_between(b.segment, blend.outgoing_u, b.end_u, blend.curve.end(), b.end_point);
-    const auto plan = rest_of_b ? planned(*rest_of_b, machine) : std::nullopt;
-    if (plan) speed = std::fmin(speed, junction_speed_caps_apart(blend_plan, *plan, machine));
-  }
+  const auto rest_of_b = written_piece(b.segment, blend.outgoing_u, b.end_u, blend.curve.end(), b.end_point);
+  const auto plan_b = rest_of_b ? planned(*rest_of_b, machine) : std::nullopt;
+  if (plan_b) speed = std::fmin(speed, junction_speed_caps_apart(blend_plan, *plan_b, machine));
   return speed;
 }
 
@@ -408,20 +424,8 @@ void SmoothingStream::write_item(const Item& item, const Item* next) {
     event_at(written_);
   }
   events_at_item_.erase(first, last);
-  if (item.start_u == 0 && item.end_u == 1) {
-    emit(item.segment, item.source);
-  } else if (item.start_u < item.end_u && item.start_point != item.end_point) {
-    auto piece = piece_between(item.segment, item.start_u, item.end_u, item.start_point, item.end_point);
-    if (piece) {
-      emit(*piece, item.source);
-    } else if (item.start_point != item.end_point) {
-      // A piece that cannot be cut stays a straight connection between the cut points.
-      auto line = PathSegment::make_line(item.start_point, item.end_point);
-      if (line) {
-        line.value().set_feed_mm_per_s(item.segment.feed_mm_per_s());
-        emit(line.value(), item.source);
-      }
-    }
+  if (const auto piece = written_piece(item.segment, item.start_u, item.end_u, item.start_point, item.end_point)) {
+    emit(*piece, item.source);
   }
   if (next != nullptr && front_blend_) {
     emit(front_blend_->curve, next->source);

@@ -123,3 +123,53 @@ TEST_CASE("motion: a corner blend runs at the speed where the orthogonal jerk pa
   CHECK(slowest > 1.2 * by_sum);
   CHECK(slowest <= 1.01 * by_orthogonal_parts);
 }
+
+TEST_CASE("motion: a curvature jump between tangent arcs run near their jerk cap keeps the jerk within j_max",
+          "[core][motion]") {
+  // Tangent arcs of R 5 and 5.14 mm: at the joint the curvature jumps by 1/5 − 1/5.14 per mm within
+  // one tick, beside the arcs' own jerk from curvature (near the whole budget at their cap) and the
+  // profile's jerk where it starts braking for the stop 2.7 mm later. The junction speed must leave
+  // the jump only what the arcs' parts leave of j_max at that speed.
+  MachineLimits m = test_machine();
+  m.feed_mm_per_s = 100;
+  const double pi = std::acos(-1.0);
+  const double r2 = 5.14;
+  const double sweep = 90 * pi / 180;
+  // Arc 1: centre (0, 5), from (0, 0) three quarters of a turn counter-clockwise to (-5, 5), where
+  // it runs along -y (long enough to reach its cap); arc 2 goes on from there, counter-clockwise
+  // around (-5 + r2, 5), for 30 degrees.
+  const MachinePoint centre2 = mp(-5 + r2, 5);
+  const MachinePoint end2 = mp(centre2[0] - r2 * std::cos(sweep), centre2[1] - r2 * std::sin(sweep));
+  const std::vector<PathSegment> job{line(mp(-30, 0), mp(0, 0)), arc(mp(0, 0), mp(-5, 5), mp(0, 5), ArcDirection::CounterClockwise),
+                                     arc(mp(-5, 5), end2, centre2, ArcDirection::CounterClockwise)};
+  const auto sp = run_job<double>(job, m);
+  const auto peaks = measure(sp, m.rate_hz);
+  CHECK(peaks.jerk <= m.j_max_mm_per_s3 * 1.01);
+  CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
+
+  // The joint's worst case, from the arcs' geometry: the profile's ½ j and v³κ² along the path (its
+  // acceleration is 0 at a joint), across it a circle's |d(κN)/ds| = κ² times v³ and the jump
+  // v²(1/5 − 1/r2)/Δt, for either arc. At the sum rule's jump cap, v² |Δκ| = ½ j Δt (67.7 mm/s, which
+  // the arcs allowed once their cap rose), this is 1.06 j.
+  const auto plan_of = [&](const PathSegment& s) { return plan_segment(s, PathLengthTable<64>::build(s).value(), m).value(); };
+  const double v = junction_speed(plan_of(job[1]), plan_of(job[2]), m);
+  const double j = m.j_max_mm_per_s3;
+  for (const double kappa : {1 / 5.0, 1 / r2}) {
+    const double along = 0.5 * j + v * v * v * kappa * kappa;
+    const double across = v * v * v * kappa * kappa + v * v * (1 / 5.0 - 1 / r2) * m.rate_hz;
+    INFO("junction speed " << v << " mm/s, κ " << kappa);
+    CHECK(std::hypot(along, across) <= j);
+  }
+  CHECK(v > 0.9 * std::sqrt(0.5 * j / (m.rate_hz * (1 / 5.0 - 1 / r2))));
+  // Around the joint (the ticks within 1 mm of it): the jerk there, and the speed it is passed at.
+  std::size_t joint = 0;
+  for (std::size_t i = 0; i < sp.size(); ++i) {
+    const auto d = [&](std::size_t k) { return std::hypot(to_double(sp[k].position[0]) + 5, to_double(sp[k].position[1]) - 5); };
+    if (d(i) < d(joint)) joint = i;
+  }
+  const std::vector<Setpoint<double>> near(sp.begin() + static_cast<std::ptrdiff_t>(joint - 20), sp.begin() + static_cast<std::ptrdiff_t>(joint + 20));
+  const auto at_joint = measure(near, m.rate_hz);
+  INFO("joint passed at " << at_joint.speed << " mm/s");
+  CHECK(at_joint.speed > 40);
+  CHECK(at_joint.jerk <= m.j_max_mm_per_s3 * 1.01);
+}

@@ -42,6 +42,7 @@ struct SegmentPlan {
   MachinePoint start_curvature{};       ///< curvature vector κN at u = 0
   MachinePoint end_curvature{};         ///< curvature vector κN at u = 1
   double max_curvature_per_mm = 0;      ///< largest κ along the segment
+  double max_curvature_rate_per_mm2 = 0;  ///< largest |d(κN)/ds| along it (sampled, with its margin)
   OverridableCaps caps{};               ///< what a feed or rapid override scales (limits: at 100 %)
 };
 
@@ -87,7 +88,7 @@ inline void tangent_and_curvature(const MachinePoint& d1, const MachinePoint& d2
 /// speed v₀ where the plain sum reaches the budget (v₀³(κ² + ρ) = ¼ j, 3 v₀ a_t κ = ¼ j: a_t =
 /// j / (12 v₀ κ)), so with u = v/v₀, p = v₀³κ²/j and q = v₀³ρ/j (p + q = ¼) the speed is the
 /// largest u with (½ + p u³)² + (¼ u + q u³)² <= 1, found by bisection on [1, 4] (at u = 1 the
-/// left side is at most 13/16). A tolerance-sized blend (ρ >> κ²) gets u = 1.29, an arc 1.32.
+/// left side is at most 10/16). A tolerance-sized blend (ρ >> κ²) gets u = 1.29, an arc 1.32.
 [[nodiscard]] inline double curvature_jerk_speed_cap(double j_max, double max_kappa, double curvature_rate) noexcept {
   const double v0 = curvature_jerk_sum_speed(j_max, max_kappa, curvature_rate);
   if (!(v0 > 0)) return v0;
@@ -199,6 +200,7 @@ template <std::size_t Intervals = 64>
   }
   max_kappa_rate *= 1.25;
   plan.max_curvature_per_mm = max_kappa;
+  plan.max_curvature_rate_per_mm2 = max_kappa_rate;
 
   for (std::size_t axis = 0; axis < motion_axes; ++axis) {
     const double limit = machine.axes[axis].v_max_mm_per_s;
@@ -222,7 +224,8 @@ template <std::size_t Intervals = 64>
   speed_cap = std::fmin(programmed, geometric_cap);
   // Tangential acceleration: what the centripetal part c = v_cap² κ (<= a_max/2) leaves of the whole
   // vector, √(a_max² − c²) (>= 0.866 a_max), and per axis a_t |T_axis| + v_cap² κ |N_axis| <= a_axis;
-  // with curvature also 3 v_cap a κ <= j/4. A function of the speed cap: also taken at the cap of
+  // with curvature also 3 v a κ <= j/4 at v = min(v_cap, v0), v0 where the plain sum of the jerk
+  // terms binds (curvature_jerk_speed_cap). A function of the speed cap: also taken at the cap of
   // the largest feed override (OverridableCaps).
   const auto acceleration_at = [&](double cap) {
     const double centripetal_max = cap * cap * max_kappa;
@@ -244,9 +247,9 @@ template <std::size_t Intervals = 64>
   plan.caps = OverridableCaps{programmed, geometric_cap, fastest_cap > speed_cap ? acceleration_at(fastest_cap) : acceleration,
                               segment.rapid()};
   if (max_kappa > 0) {
-    // Jerk: the profile keeps half. The normal part (<= j/2 by the caps above) would leave more,
-    // but a joint's curvature jump spends the other half within one tick (junction_speed: v²|Δ(κN)|
-    // <= ½ j Δt) beside the profile's own jerk at the joint.
+    // Jerk: the profile keeps half; the curvature's parts take the rest (curvature_jerk_speed_cap),
+    // and at a joint a curvature jump takes what they leave there within one tick (junction_speed:
+    // v²|Δ(κN)| <= ½ j Δt, less above v0, detail::joint_jerk_fits).
     jerk = 0.5 * jerk;
   }
   if (!(speed_cap > 0) || !(acceleration > 0)) {
@@ -280,6 +283,19 @@ namespace detail {
 /// D · T_out = sin(θ/2) = s, so the measured vector is at most L √(1 + k² + 2 k s); k is chosen so
 /// that this stays within (1 + corner_limit_excess) L: k = √(s² + ε) − s, ε = 2·excess + excess².
 inline constexpr double corner_limit_excess = 0.0075;
+
+/// Whether a joint passed at `speed`, whose curvature vector jumps by `jump_per_tick` × Δt within
+/// one tick, keeps the jerk within j beside a neighbour's own parts there. A profile's acceleration
+/// is 0 at a joint, so along the path the neighbour has at most ½ j (its profile) + v³κ², across it
+/// v³ρ (curvature_jerk_speed_cap) and the jump's v²|Δ(κN)|/Δt. Below the speed where a neighbour's
+/// plain sum of jerk terms binds this holds whenever the jump keeps to ½ j (at most 0.9 j); above
+/// it, where the cap by orthogonal parts lets a curve run, the jump gets less.
+[[nodiscard]] inline bool joint_jerk_fits(double speed, const SegmentPlan& neighbour, double j, double jump_per_tick) noexcept {
+  const double v3 = speed * speed * speed;
+  const double along = 0.5 * j + v3 * neighbour.max_curvature_per_mm * neighbour.max_curvature_per_mm;
+  const double across = v3 * neighbour.max_curvature_rate_per_mm2 + speed * speed * jump_per_tick;
+  return along * along + across * across <= j * j;
+}
 [[nodiscard]] inline double corner_jump_share(double half_angle_sin) noexcept {
   constexpr double epsilon = 2 * corner_limit_excess + corner_limit_excess * corner_limit_excess;
   return std::sqrt(half_angle_sin * half_angle_sin + epsilon) - half_angle_sin;
@@ -296,7 +312,8 @@ inline constexpr double corner_limit_excess = 0.0075;
 ///     S-curve alike: a corner is passed at this speed, not at a stop. Both caps shrink as θ
 ///     grows, so a gentler corner is never slower than a sharper one. A reversal stops.
 ///   a jump Δ(κN) of the curvature vector changes the acceleration by v²|Δ(κN)| within one tick:
-///     with the S-curve v² |Δ(κN)| <= ½ j_max Δt.
+///     with the S-curve v² |Δ(κN)| <= ½ j_max Δt, and less where a neighbour runs above the speed
+///     at which its plain sum of jerk terms binds (detail::joint_jerk_fits, by bisection).
 /// Sharp corners remain slow: corner blending (host_tools smoothing) replaces them by curves of
 /// continuous curvature, which this function then passes at their full speed.
 /// junction_speed_caps_apart gives the same without the segments' caps (a feed override changes them).
@@ -317,7 +334,21 @@ inline constexpr double corner_limit_excess = 0.0075;
   }
   const double curvature_jump = norm(previous.end_curvature - next.start_curvature);
   if (machine.jerk_limited && curvature_jump > 0) {
-    v = std::fmin(v, std::sqrt(0.5 * machine.j_max_mm_per_s3 * dt / curvature_jump));
+    const double j = machine.j_max_mm_per_s3;
+    const double jump_per_tick = curvature_jump / dt;
+    const auto fits = [&](double speed) {
+      return detail::joint_jerk_fits(speed, previous, j, jump_per_tick) && detail::joint_jerk_fits(speed, next, j, jump_per_tick);
+    };
+    double cap = std::sqrt(0.5 * j * dt / curvature_jump);
+    if (!fits(cap)) {
+      double low = 0;
+      for (int i = 0; i < 48; ++i) {
+        const double mid = (low + cap) / 2;
+        (fits(mid) ? low : cap) = mid;
+      }
+      cap = low;
+    }
+    v = std::fmin(v, cap);
   }
   return v;
 }
