@@ -173,3 +173,27 @@ TEST_CASE("motion: a curvature jump between tangent arcs run near their jerk cap
   CHECK(at_joint.speed > 40);
   CHECK(at_joint.jerk <= m.j_max_mm_per_s3 * 1.01);
 }
+
+TEST_CASE("motion: arcs and a helix run above the speed of the sum rule keep every limit from rest to rest",
+          "[core][motion]") {
+  // At feed 100 mm/s an arc of R 5 mm is capped by the jerk from curvature (the sum rule's speed
+  // v0 = (¼ j / (κ² + 1.25 κ²))^(1/3) = 51.8 mm/s, the orthogonal parts' 1.32 v0, below the
+  // centripetal √(½ a / κ) = 70.7 mm/s): each job starts and stops on curves, so the profile speeds
+  // up and slows down where the curvature's jerk is near its whole share.
+  MachineLimits m = test_machine();
+  m.feed_mm_per_s = 100;
+  const double kappa = 1 / 5.0;
+  const double v0 = std::cbrt(0.25 * m.j_max_mm_per_s3 / (2.25 * kappa * kappa));
+  const std::vector<std::vector<PathSegment>> jobs{
+      {arc(mp(0, 0), mp(0, 10), mp(0, 5), ArcDirection::CounterClockwise), arc(mp(0, 10), mp(0, 20), mp(0, 15), ArcDirection::Clockwise)},
+      {PathSegment::make_arc(mp(5, 0, 0), mp(5, 0, 6), mp(0, 0), ArcDirection::CounterClockwise, 2, 1e-9).value()},
+  };
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    INFO("job " << k);
+    const auto sp = run_job<double>(jobs[k], m);
+    const auto peaks = measure(sp, m.rate_hz);
+    CHECK(peaks.speed > 1.1 * v0);  // the new cap is reached: the test runs where it binds
+    CHECK(peaks.jerk <= m.j_max_mm_per_s3 * 1.01);
+    CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
+  }
+}
