@@ -6,8 +6,9 @@
 // machine or the geometry sets (v_max, the axes, curvature, chord, jerk): with c the segment's caps
 // at 100 %, the speed cap at p % is min(programmed · p/100, geometric). The tangential acceleration
 // cap of a curved segment depends on its speed cap (the centripetal part at the cap, and 3 v a κ <=
-// j/4 up to the speed where the plain sum of the jerk terms binds), so the plan keeps two: the one at 100 % (valid up to the speed cap at 100 %) and the one at
-// the largest feed override (valid up to that speed); acceleration_for(v) picks the one valid at v.
+// j/4 up to the speed where the plain sum of the jerk terms binds), so the plan keeps two: the one
+// at 100 % (valid up to the speed cap at 100 %) and the one at the largest feed override (valid up
+// to that speed); acceleration_for(v) picks the one valid at v.
 // At 100 % every value is the plan's own, bit for bit (fmin is exact and p/100 = 1).
 #pragma once
 

@@ -59,6 +59,17 @@ namespace detail {
   return r;
 }
 
+/// The largest x in [low, high] for which `fits(x)` holds, by 48 halvings (deterministic: the same
+/// doubles on host and firmware); `fits` must hold at `low` and be monotone (true, then false).
+template <class Fits>
+[[nodiscard]] double largest_fitting(double low, double high, const Fits& fits) noexcept {
+  for (int i = 0; i < 48; ++i) {
+    const double mid = (low + high) / 2;
+    (fits(mid) ? low : high) = mid;
+  }
+  return low;
+}
+
 /// Unit tangent and curvature vector from the first two derivatives.
 inline void tangent_and_curvature(const MachinePoint& d1, const MachinePoint& d2, MachinePoint& tangent,
                                   MachinePoint& curvature) noexcept {
@@ -89,21 +100,20 @@ inline void tangent_and_curvature(const MachinePoint& d1, const MachinePoint& d2
 /// j / (12 v₀ κ)), so with u = v/v₀, p = v₀³κ²/j and q = v₀³ρ/j (p + q = ¼) the speed is the
 /// largest u with (½ + p u³)² + (¼ u + q u³)² <= 1, found by bisection on [1, 4] (at u = 1 the
 /// left side is at most 10/16). A tolerance-sized blend (ρ >> κ²) gets u = 1.29, an arc 1.32.
-[[nodiscard]] inline double curvature_jerk_speed_cap(double j_max, double max_kappa, double curvature_rate) noexcept {
-  const double v0 = curvature_jerk_sum_speed(j_max, max_kappa, curvature_rate);
+/// `v0` is curvature_jerk_sum_speed(j_max, max_kappa, curvature_rate), when the caller has it.
+[[nodiscard]] inline double curvature_jerk_speed_cap(double j_max, double max_kappa, double curvature_rate, double v0) noexcept {
   if (!(v0 > 0)) return v0;
   const double p = v0 * v0 * v0 * max_kappa * max_kappa / j_max;
   const double q = v0 * v0 * v0 * curvature_rate / j_max;
-  double low = 1;
-  double high = 4;
-  for (int i = 0; i < 48; ++i) {
-    const double u = (low + high) / 2;
-    const double u3 = u * u * u;
-    const double along = 0.5 + p * u3;
-    const double across = 0.25 * u + q * u3;
-    (along * along + across * across <= 1 ? low : high) = u;
-  }
-  return low * v0;
+  return v0 * detail::largest_fitting(1, 4, [&](double u) {
+           const double u3 = u * u * u;
+           const double along = 0.5 + p * u3;
+           const double across = 0.25 * u + q * u3;
+           return along * along + across * across <= 1;
+         });
+}
+[[nodiscard]] inline double curvature_jerk_speed_cap(double j_max, double max_kappa, double curvature_rate) noexcept {
+  return curvature_jerk_speed_cap(j_max, max_kappa, curvature_rate, curvature_jerk_sum_speed(j_max, max_kappa, curvature_rate));
 }
 
 /// Analyses a segment for the machine: length, caps, end tangents and curvatures.
@@ -216,7 +226,7 @@ template <std::size_t Intervals = 64>
         speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * limit / (max_kappa * max_normal_component[axis])));
       }
     }
-    speed_cap = std::fmin(speed_cap, curvature_jerk_speed_cap(jerk, max_kappa, max_kappa_rate));
+    speed_cap = std::fmin(speed_cap, curvature_jerk_speed_cap(jerk, max_kappa, max_kappa_rate, jerk_sum_speed));
     const double dt = 1.0 / machine.rate_hz;
     speed_cap = std::fmin(speed_cap, std::sqrt(8 * machine.tolerance_mm / max_kappa) / dt);  // chord sagitta
   }
@@ -283,6 +293,10 @@ namespace detail {
 /// D · T_out = sin(θ/2) = s, so the measured vector is at most L √(1 + k² + 2 k s); k is chosen so
 /// that this stays within (1 + corner_limit_excess) L: k = √(s² + ε) − s, ε = 2·excess + excess².
 inline constexpr double corner_limit_excess = 0.0075;
+[[nodiscard]] inline double corner_jump_share(double half_angle_sin) noexcept {
+  constexpr double epsilon = 2 * corner_limit_excess + corner_limit_excess * corner_limit_excess;
+  return std::sqrt(half_angle_sin * half_angle_sin + epsilon) - half_angle_sin;
+}
 
 /// Whether a joint passed at `speed`, whose curvature vector jumps by `jump_per_tick` × Δt within
 /// one tick, keeps the jerk within j beside a neighbour's own parts there. A profile's acceleration
@@ -295,10 +309,6 @@ inline constexpr double corner_limit_excess = 0.0075;
   const double along = 0.5 * j + v3 * neighbour.max_curvature_per_mm * neighbour.max_curvature_per_mm;
   const double across = v3 * neighbour.max_curvature_rate_per_mm2 + speed * speed * jump_per_tick;
   return along * along + across * across <= j * j;
-}
-[[nodiscard]] inline double corner_jump_share(double half_angle_sin) noexcept {
-  constexpr double epsilon = 2 * corner_limit_excess + corner_limit_excess * corner_limit_excess;
-  return std::sqrt(half_angle_sin * half_angle_sin + epsilon) - half_angle_sin;
 }
 }  // namespace detail
 
@@ -339,16 +349,8 @@ inline constexpr double corner_limit_excess = 0.0075;
     const auto fits = [&](double speed) {
       return detail::joint_jerk_fits(speed, previous, j, jump_per_tick) && detail::joint_jerk_fits(speed, next, j, jump_per_tick);
     };
-    double cap = std::sqrt(0.5 * j * dt / curvature_jump);
-    if (!fits(cap)) {
-      double low = 0;
-      for (int i = 0; i < 48; ++i) {
-        const double mid = (low + cap) / 2;
-        (fits(mid) ? low : cap) = mid;
-      }
-      cap = low;
-    }
-    v = std::fmin(v, cap);
+    const double cap = std::sqrt(0.5 * j * dt / curvature_jump);
+    v = std::fmin(v, fits(cap) ? cap : detail::largest_fitting(0, cap, fits));
   }
   return v;
 }
