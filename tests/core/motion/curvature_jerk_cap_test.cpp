@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <catch2/catch.hpp>
@@ -196,4 +197,99 @@ TEST_CASE("motion: arcs and a helix run above the speed of the sum rule keep eve
     CHECK(peaks.jerk <= m.j_max_mm_per_s3 * 1.01);
     CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
   }
+}
+
+namespace {
+
+/// Seconds from the first setpoint until the speed, by differences of positions, first reaches `speed`.
+double time_to_reach(const std::vector<Setpoint<double>>& sp, double speed, double rate_hz) {
+  for (std::size_t i = 1; i < sp.size(); ++i) {
+    double d2 = 0;
+    for (std::size_t axis = 0; axis < 3; ++axis) d2 += std::pow(to_double(sp[i].position[axis]) - to_double(sp[i - 1].position[axis]), 2);
+    if (std::sqrt(d2) * rate_hz >= speed) return static_cast<double>(i) / rate_hz;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
+TEST_CASE("motion: a gently curved arc changes speed with the jerk its curvature leaves, not half of it", "[core][motion]") {
+  // From rest an S-curve of jerk j_t and acceleration cap a reaches Δv in 2 √(Δv / j_t), or in
+  // Δv / a + a / j_t once Δv >= a² / j_t. A profile that kept half the jerk on every curve took j_t =
+  // ½ j whatever the curvature. What a curve leaves, worked by hand from its geometry at the fastest
+  // speed it may run (its feed under a 200 % override, v_h) and, for an arc, |d(κN)/ds| = κ² (the
+  // planner's margin 1.25 included), capped at ¾ j:
+  //   R 50 mm, feed 50: v_h 100, along v_h³κ² = 400, across 3 v_h a κ + v_h³ 1.25 κ² <= 12 500 with
+  //     a <= a_max: √(j² − 12 500²) − 400 = 48 012 of j 50 000, so ¾ j: 50 mm/s after 72.9 ms, not
+  //     89.4 ms.
+  //   R 5 mm, feed 30: the sum rule's speed v0 = (¼ j / (2.25 κ²))^⅓ = 51.8 mm/s; below it a_t <=
+  //     j / (12 v κ) (694 mm/s² at 30 mm/s), above it a_t keeps j / (12 v0 κ) (402 mm/s² at v_h 60):
+  //     across 3 κ v_h 402 + v_h³ 1.25 κ² = 14 478 + 10 800, along v_h³κ² = 8 640, so j_t =
+  //     √(j² − 25 278²) − 8 640 = 0.69 j: 30 mm/s after 63.4 ms, not 71.0 ms.
+  MachineLimits m = test_machine();
+  const double j = m.j_max_mm_per_s3;
+  struct Case {
+    double radius, feed, acceleration, expected_jerk;
+  };
+  const double kappa = 1 / 5.0;
+  const double v0 = std::cbrt(0.25 * j / (2.25 * kappa * kappa));
+  const double v_high = 60;
+  const double across = 3 * kappa * v_high * j / (12 * v0 * kappa) + std::pow(v_high, 3) * 1.25 * kappa * kappa;
+  const double tight_jerk = std::sqrt(j * j - across * across) - std::pow(v_high, 3) * kappa * kappa;
+  REQUIRE(tight_jerk > 0.6 * j);
+  REQUIRE(tight_jerk < 0.7 * j);
+  for (const Case c : {Case{50, 50, m.a_max_mm_per_s2, 0.75 * j}, Case{5, 30, j / (12 * 30 * kappa), tight_jerk}}) {
+    INFO("arc R " << c.radius << " mm at feed " << c.feed << " mm/s");
+    m.feed_mm_per_s = c.feed;
+    const double r = c.radius;
+    const std::vector<PathSegment> job{arc(mp(0, 0), mp(0, 2 * r), mp(0, r), ArcDirection::CounterClockwise)};
+    const auto sp = run_job<double>(job, m);
+    const auto peaks = measure(sp, m.rate_hz);
+    CHECK(peaks.jerk <= j * 1.01);
+    CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
+    const auto change_time = [&](double dv, double jerk) {
+      return dv >= c.acceleration * c.acceleration / jerk ? dv / c.acceleration + c.acceleration / jerk : 2 * std::sqrt(dv / jerk);
+    };
+    const double reached = time_to_reach(sp, 0.999 * c.feed, m.rate_hz);
+    const double with_half = change_time(0.999 * c.feed, 0.5 * j);
+    const double expected = change_time(0.999 * c.feed, c.expected_jerk);
+    INFO("reached the feed after " << reached << " s; " << expected << " s expected, " << with_half << " s with half the jerk");
+    CHECK(reached < expected + 0.002);
+    CHECK(reached > expected - 0.002);
+  }
+}
+
+TEST_CASE("motion: a line into an arc tangent to 4 decimals, its kink and curvature jump together, keeps the jerk within the corner's excess",
+          "[core][motion]") {
+  // From a random G-code job (benchmarks/path_speed/random_jobs.py, seed 15, job 23): a line into an
+  // arc of R 50 mm whose rounded coordinates leave a kink of ≈ 4·10⁻⁵ rad, on a machine of j 5000,
+  // a 1000 at feed 25 mm/s. The joint is passed at the curvature jump's cap, v²/R = ½ j Δt
+  // (11.18 mm/s), where the arc's profile takes ¾ j (curve_profile_jerk) and the line brakes into
+  // the joint with its whole j. The line's start moves through one tick's distance in 24 steps, so
+  // the joint falls at every place between two setpoints; the measured jerk must stay within the
+  // 0.75 % a corner's velocity jump may add (corner_jump_share). Without the joint's combined rule
+  // for the kink beside the jump it measured 1.016 j.
+  MachineLimits m = test_machine();
+  m.j_max_mm_per_s3 = 5000;
+  m.a_max_mm_per_s2 = 1000;
+  m.feed_mm_per_s = 25;
+  const MachinePoint joint = mp(151.1266, -241.5299);
+  const MachinePoint before = mp(150.0427, -241.4694);
+  const MachinePoint centre = mp(151.1266 + 2.7845, -241.5299 + 49.9224);
+  const MachinePoint end = mp(203.3027, -199.3839);
+  const double length = norm(joint - before);
+  const MachinePoint direction = (joint - before) * (1 / length);
+  const double kink = std::acos(std::fmin(1.0, dot(direction, mp(49.9224, -2.7845) * (1 / norm(mp(49.9224, -2.7845))))));
+  INFO("kink " << kink << " rad");
+  REQUIRE(kink > 1e-5);
+  REQUIRE(kink < 1e-4);
+  double worst = 0;
+  for (int k = 0; k < 24; ++k) {
+    const MachinePoint start = joint - direction * (3.0 + 0.011 * k / 24);
+    const std::vector<PathSegment> job{line(start, joint),
+                                       PathSegment::make_arc(joint, end, centre, ArcDirection::CounterClockwise, 0, 1e-3).value()};
+    worst = std::max(worst, measure(run_job<double>(job, m), m.rate_hz).jerk);
+  }
+  INFO("largest measured jerk " << worst << " mm/s³");
+  CHECK(worst <= m.j_max_mm_per_s3 * (1 + detail::corner_limit_excess));
 }

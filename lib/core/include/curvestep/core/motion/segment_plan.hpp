@@ -7,9 +7,10 @@
 // tangential acceleration and jerk, a moving point has
 //     a = a_t T + v²κ N                     j = (j_t − v³κ²) T + (3 v a_t κ + v³ dκ/ds) N.
 // So |a| <= a_max holds if v²κ <= ½ a_max and |a_t| <= √(a_max² − (v_cap²κ)²), and |j| <= j_max
-// holds if |j_t| <= ½ j_max and (½ j_max + v³κ²)² + (3 v |a_t| κ + v³ρ)² <= j_max², ρ >= |d(κN)/ds|
-// (curvature_jerk_speed_cap; the half the profile leaves also covers a joint's curvature jump,
-// junction_speed).
+// holds if (j_t + v³κ²)² + (3 v |a_t| κ + v³ρ)² <= j_max², ρ >= |d(κN)/ds|: the speed cap is taken
+// with j_t = ½ j_max (curvature_jerk_speed_cap), the profile then takes what is left at the fastest
+// speed, up to ¾ j_max (curve_profile_jerk), and a joint's curvature jump what is left there
+// (junction_speed).
 // A straight segment keeps the full a_max and j_max. Per-axis velocity limits cap v |T_axis|;
 // an axis sees |a_t| |T_axis| + v²κ |N_axis| of acceleration, so each axis limit caps the speed
 // (v²κ max|N_axis| <= ½ a_axis) and then the tangential acceleration by what the centripetal part at
@@ -114,6 +115,23 @@ inline void tangent_and_curvature(const MachinePoint& d1, const MachinePoint& d2
 }
 [[nodiscard]] inline double curvature_jerk_speed_cap(double j_max, double max_kappa, double curvature_rate) noexcept {
   return curvature_jerk_speed_cap(j_max, max_kappa, curvature_rate, curvature_jerk_sum_speed(j_max, max_kappa, curvature_rate));
+}
+
+/// The tangential jerk a curve's profile may use: the largest j_t with
+/// (j_t + v³κ²)² + (3 v a_t κ + v³ρ)² <= j² at every speed the segment runs, between ½ j (which
+/// curvature_jerk_speed_cap guarantees up to the cap) and ¾ j. `v_high` is the segment's fastest
+/// speed (its cap under the largest feed override) and `across_high` a bound of 3 v a_t κ over its
+/// speeds. The upper end is for joints: a setpoint's third difference weighs the jerk on both sides
+/// of a joint and the step a curvature jump makes there by a quadratic B-spline over three ticks, and
+/// beside a line's full j and a jump of ½ j (junction_speed) that mix stays within j while the
+/// curve's j_t <= 0.79 j (√3/2 j measured 1.018 j on a random job). A gently curved segment (a
+/// fitted raster row, a large arc) so changes speed nearly as fast as a line.
+[[nodiscard]] inline double curve_profile_jerk(double j_max, double max_kappa, double curvature_rate, double v_high,
+                                               double across_high) noexcept {
+  const double v3 = v_high * v_high * v_high;
+  const double across = across_high + v3 * curvature_rate;
+  const double room = across < j_max ? std::sqrt(j_max * j_max - across * across) - v3 * max_kappa * max_kappa : 0.0;
+  return std::fmax(0.5 * j_max, std::fmin(0.75 * j_max, room));
 }
 
 /// Analyses a segment for the machine: length, caps, end tangents and curvatures.
@@ -254,13 +272,14 @@ template <std::size_t Intervals = 64>
   const double acceleration = acceleration_at(speed_cap);
   const double fastest_cap = segment.rapid() ? speed_cap
                                              : std::fmin(programmed * (FeedOverride::max_feed_percent / 100.0), geometric_cap);
-  plan.caps = OverridableCaps{programmed, geometric_cap, fastest_cap > speed_cap ? acceleration_at(fastest_cap) : acceleration,
-                              segment.rapid()};
+  const double fastest_acceleration = fastest_cap > speed_cap ? acceleration_at(fastest_cap) : acceleration;
+  plan.caps = OverridableCaps{programmed, geometric_cap, fastest_acceleration, segment.rapid()};
   if (max_kappa > 0) {
-    // Jerk: the profile keeps half; the curvature's parts take the rest (curvature_jerk_speed_cap),
-    // and at a joint a curvature jump takes what they leave there within one tick (junction_speed:
-    // v²|Δ(κN)| <= ½ j Δt, less above v0, detail::joint_jerk_fits).
-    jerk = 0.5 * jerk;
+    // Jerk: the profile keeps what the curvature's parts leave at the fastest speed, at least half
+    // (curvature_jerk_speed_cap), at most ¾; at a joint a curvature jump takes what they leave
+    // there within one tick (junction_speed, detail::joint_jerk_fits).
+    const double across = 3 * max_kappa * std::fmax(speed_cap * acceleration, fastest_cap * fastest_acceleration);
+    jerk = curve_profile_jerk(jerk, max_kappa, max_kappa_rate, fastest_cap, across);
   }
   if (!(speed_cap > 0) || !(acceleration > 0)) {
     out = fail(Error::InvalidLimit);
@@ -298,15 +317,40 @@ inline constexpr double corner_limit_excess = 0.0075;
   return std::sqrt(half_angle_sin * half_angle_sin + epsilon) - half_angle_sin;
 }
 
+/// A near-tangent kink (G-code rounded to 4 decimals leaves 10⁻⁵ rad at a "tangent" line–arc joint)
+/// that also has a curvature jump adds its velocity jump, X = 2 v sin(θ/2)/Δt² of jerk, to the
+/// jump's step, J = v²|Δ(κN)|/Δt, across the path within the same three ticks. A setpoint's third
+/// difference weighs the jerk on both sides by the quadratic B-spline of the ticks (W), the step by
+/// the spline (K <= ¾) and the velocity jump by its derivative (|L| <= 1):
+///     |j| <= max over the joint's place in the ticks of hypot(W j_line + (1 − W) j_t, K J + |L| X).
+/// Beside a line's full j and a curve whose profile takes ¾ j (curve_profile_jerk) this stays within
+/// the corner's 0.75 % (corner_limit_excess) while X + 0.47 J <= 0.295 j (worked on a grid of the
+/// joint's place: J = ½ j allows X = 0.061 j, J = 0 allows 0.298 j); with a profile of ½ j, J = ½ j
+/// allowed X = 0.168 j, more than a corner's share ever gives (0.1225 j).
+struct KinkBesideCurvatureJump {
+  double jump_weight;  ///< w
+  double room;         ///< c, in units of j
+};
+inline constexpr KinkBesideCurvatureJump kink_beside_curvature_jump{0.47, 0.295};
+
+/// Whether one side of a joint is straight (its profile takes the whole j) and the other a curve
+/// whose profile takes more than ½ j.
+[[nodiscard]] inline bool line_beside_raised_curve(const SegmentPlan& a, const SegmentPlan& b, double j) noexcept {
+  const auto raised = [j](const SegmentPlan& p) { return p.max_curvature_per_mm > 0 && p.limits.jerk_mm_per_s3 > 0.5 * j; };
+  const auto straight = [](const SegmentPlan& p) { return !(p.max_curvature_per_mm > 0); };
+  return (straight(a) && raised(b)) || (raised(a) && straight(b));
+}
+
 /// Whether a joint passed at `speed`, whose curvature vector jumps by `jump_per_tick` × Δt within
 /// one tick, keeps the jerk within j beside a neighbour's own parts there. A profile's acceleration
-/// is 0 at a joint, so along the path the neighbour has at most ½ j (its profile) + v³κ², across it
-/// v³ρ (curvature_jerk_speed_cap) and the jump's v²|Δ(κN)|/Δt. Below the speed where a neighbour's
-/// plain sum of jerk terms binds this holds whenever the jump keeps to ½ j (at most 0.9 j); above
-/// it, where the cap by orthogonal parts lets a curve run, the jump gets less.
+/// is 0 at a joint, so along the path a curved neighbour has at most its profile's jerk (½ j to
+/// ¾ j, curve_profile_jerk) + v³κ², a straight one ½ j as before; across the path v³ρ
+/// (curvature_jerk_speed_cap) and the jump's v²|Δ(κN)|/Δt. At low speed this holds whenever the
+/// jump keeps to ½ j; near a curve's cap the jump gets less.
 [[nodiscard]] inline bool joint_jerk_fits(double speed, const SegmentPlan& neighbour, double j, double jump_per_tick) noexcept {
   const double v3 = speed * speed * speed;
-  const double along = 0.5 * j + v3 * neighbour.max_curvature_per_mm * neighbour.max_curvature_per_mm;
+  const double profile = neighbour.max_curvature_per_mm > 0 ? neighbour.limits.jerk_mm_per_s3 : 0.5 * j;
+  const double along = profile + v3 * neighbour.max_curvature_per_mm * neighbour.max_curvature_per_mm;
   const double across = v3 * neighbour.max_curvature_rate_per_mm2 + speed * speed * jump_per_tick;
   return along * along + across * across <= j * j;
 }
@@ -334,6 +378,7 @@ inline constexpr double corner_limit_excess = 0.0075;
   const double cos_theta = dot(previous.end_tangent, next.start_tangent);
   const double half_angle_sin = std::sqrt(std::fmax(0.0, (1 - cos_theta) / 2));  // sin(θ/2)
   constexpr double tangent_continuity = 1e-9;  // sin(θ/2) below this counts as a smooth join
+  const double curvature_jump = norm(previous.end_curvature - next.start_curvature);
   if (half_angle_sin > tangent_continuity) {
     if (half_angle_sin >= 1 - 1e-12) return 0;  // reversal
     v = std::fmin(v, junction_deviation_speed(cos_theta, machine.a_max_mm_per_s2, machine.junction_deviation_mm));
@@ -342,7 +387,6 @@ inline constexpr double corner_limit_excess = 0.0075;
     if (machine.jerk_limited) jump = std::fmin(jump, share * machine.j_max_mm_per_s3 * dt * dt);
     v = std::fmin(v, jump / (2 * half_angle_sin));
   }
-  const double curvature_jump = norm(previous.end_curvature - next.start_curvature);
   if (machine.jerk_limited && curvature_jump > 0) {
     const double j = machine.j_max_mm_per_s3;
     const double jump_per_tick = curvature_jump / dt;
@@ -351,6 +395,14 @@ inline constexpr double corner_limit_excess = 0.0075;
     };
     const double cap = std::sqrt(0.5 * j * dt / curvature_jump);
     v = std::fmin(v, fits(cap) ? cap : detail::largest_fitting(0, cap, fits));
+    if (half_angle_sin > tangent_continuity && detail::line_beside_raised_curve(previous, next, j)) {
+      // A kink beside the jump: X + w J <= c in units of j (detail::kink_beside_curvature_jump),
+      // X = 2 v sin(θ/2)/Δt², J = v²|Δ(κN)|/Δt; the positive root of w a v² + b v = c.
+      const double a = detail::kink_beside_curvature_jump.jump_weight * jump_per_tick / j;
+      const double b = 2 * half_angle_sin / (j * dt * dt);
+      const double c = detail::kink_beside_curvature_jump.room;
+      v = std::fmin(v, 2 * c / (b + std::sqrt(b * b + 4 * a * c)));
+    }
   }
   return v;
 }
