@@ -293,3 +293,41 @@ TEST_CASE("motion: a line into an arc tangent to 4 decimals, its kink and curvat
   INFO("largest measured jerk " << worst << " mm/s³");
   CHECK(worst <= m.j_max_mm_per_s3 * (1 + detail::corner_limit_excess));
 }
+
+TEST_CASE("motion: with the trapezoid profile the jerk from curvature caps nothing, j_max changes no plan",
+          "[core][motion]") {
+  // The trapezoid changes speed by steps of acceleration (as grbl): it limits no jerk, so neither
+  // may the jerk a curve makes cap its speed or its acceleration. An arc of R 5 mm at feed 100 runs
+  // at its centripetal cap √(½ a_max R) = 70.7 mm/s (the S-curve's jerk cap there: 68.4 mm/s), and
+  // machines that differ only in j_max plan every acceptance job alike.
+  MachineLimits m = test_machine();
+  m.jerk_limited = false;
+  m.feed_mm_per_s = 100;
+  const std::vector<PathSegment> arc_job{arc(mp(0, 0), mp(0, 10), mp(0, 5), ArcDirection::CounterClockwise),
+                                         arc(mp(0, 10), mp(0, 0), mp(0, 5), ArcDirection::CounterClockwise)};
+  const auto peaks = measure(run_job<double>(arc_job, m), m.rate_hz);
+  const double centripetal = std::sqrt(0.5 * m.a_max_mm_per_s2 * 5);
+  INFO("peak speed " << peaks.speed << " mm/s, centripetal cap " << centripetal);
+  CHECK(peaks.speed > 0.995 * centripetal);
+  CHECK(peaks.speed <= 1.001 * centripetal);
+  CHECK(peaks.acceleration <= m.a_max_mm_per_s2 * 1.01);
+  MachineLimits low_jerk = m;
+  low_jerk.j_max_mm_per_s3 = 2000;
+  auto jobs = acceptance_jobs();
+  jobs.push_back(arc_job);
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    INFO("job " << k);
+    const auto a = run_job<double>(jobs[k], m);
+    const auto b = run_job<double>(jobs[k], low_jerk);
+    REQUIRE(a.size() == b.size());
+    // The same plan; the stepped setpoints may differ within the chunks' error bound, which j_max
+    // scales (chunk_error_bound: each stream within 10⁻³ of the tolerance of the exact path).
+    double largest_difference = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      for (std::size_t axis = 0; axis < 3; ++axis) {
+        largest_difference = std::max(largest_difference, std::fabs(a[i].position[axis] - b[i].position[axis]));
+      }
+    }
+    CHECK(largest_difference <= 2e-3 * m.tolerance_mm);
+  }
+}

@@ -11,7 +11,9 @@
 // with j_t = ½ j_max (curvature_jerk_speed_cap), the profile then takes what is left at the fastest
 // speed, up to ¾ j_max (curve_profile_jerk), and a joint's curvature jump what is left there
 // (junction_speed).
-// A straight segment keeps the full a_max and j_max. Per-axis velocity limits cap v |T_axis|;
+// With the trapezoid profile (no jerk limit) the jerk terms cap nothing: v²κ <= ½ a_max and the
+// acceleration bounds remain. A straight segment keeps the full a_max and j_max. Per-axis velocity
+// limits cap v |T_axis|;
 // an axis sees |a_t| |T_axis| + v²κ |N_axis| of acceleration, so each axis limit caps the speed
 // (v²κ max|N_axis| <= ½ a_axis) and then the tangential acceleration by what the centripetal part at
 // that speed leaves: a_t <= (a_axis − v_cap² κ max|N_axis|) / max|T_axis| (an XY move is not slowed
@@ -244,7 +246,10 @@ template <std::size_t Intervals = 64>
         speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * limit / (max_kappa * max_normal_component[axis])));
       }
     }
-    speed_cap = std::fmin(speed_cap, curvature_jerk_speed_cap(jerk, max_kappa, max_kappa_rate, jerk_sum_speed));
+    // The trapezoid limits no jerk (its acceleration steps): nor does the curvature's jerk cap it.
+    if (machine.jerk_limited) {
+      speed_cap = std::fmin(speed_cap, curvature_jerk_speed_cap(jerk, max_kappa, max_kappa_rate, jerk_sum_speed));
+    }
     const double dt = 1.0 / machine.rate_hz;
     speed_cap = std::fmin(speed_cap, std::sqrt(8 * machine.tolerance_mm / max_kappa) / dt);  // chord sagitta
   }
@@ -266,7 +271,9 @@ template <std::size_t Intervals = 64>
     }
     // 3 v a κ <= j/4 up to the speed where the sum of the jerk terms binds; above it (up to the cap
     // by orthogonal parts) the acceleration stays what it was there (curvature_jerk_speed_cap).
-    if (max_kappa > 0) acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * std::fmin(cap, jerk_sum_speed) * max_kappa));
+    if (machine.jerk_limited && max_kappa > 0) {
+      acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * std::fmin(cap, jerk_sum_speed) * max_kappa));
+    }
     return acceleration;
   };
   const double acceleration = acceleration_at(speed_cap);
