@@ -404,7 +404,8 @@ inline constexpr KinkBesideCurvatureJump kink_beside_curvature_jump{0.47, 0.295}
     v = std::fmin(v, fits(cap) ? cap : detail::largest_fitting(0, cap, fits));
     if (half_angle_sin > tangent_continuity && detail::line_beside_raised_curve(previous, next, j)) {
       // A kink beside the jump: X + w J <= c in units of j (detail::kink_beside_curvature_jump),
-      // X = 2 v sin(θ/2)/Δt², J = v²|Δ(κN)|/Δt; the positive root of w a v² + b v = c.
+      // X = 2 v sin(θ/2)/Δt², J = v²|Δ(κN)|/Δt: the positive root of a v² + b v = c with
+      // a = w |Δ(κN)|/(Δt j), b = 2 sin(θ/2)/(Δt² j).
       const double a = detail::kink_beside_curvature_jump.jump_weight * jump_per_tick / j;
       const double b = 2 * half_angle_sin / (j * dt * dt);
       const double c = detail::kink_beside_curvature_jump.room;
