@@ -27,3 +27,10 @@ endif()
 
 # Same floating-point results on host and target: never fuse multiply-add implicitly.
 add_compile_options(-ffp-contract=off)
+
+# On a board, __FILE__ (in CURVESTEP_EXPECTS's messages) relative to the source tree, so an image's
+# flash and its bytes do not depend on where the tree was checked out. (Host tests find docs/ from
+# their own absolute __FILE__.)
+if(CMAKE_CROSSCOMPILING)
+  add_compile_options(-fmacro-prefix-map=${CMAKE_SOURCE_DIR}/=)
+endif()

@@ -79,17 +79,19 @@ TEST_CASE("memory: curvestep stream of a G-code program 20 000 moves longer grow
 // Between the handshake and the job the host reads the whole job once (the wire's check, or for a
 // controller without a planner the whole planning): seconds for a long job. A StatusRequest every
 // quarter of the link timeout keeps the session; before, a check longer than the link timeout left
-// an executor's session dead (LinkTimeout, "no acknowledged piece"). 16 000 moves with every corner
-// a stop take about 2 s to plan (release build; longer under the sanitizers), four times the 500 ms
-// link timeout set on both ends. (With 200 ms and 8 000 moves, a test streaming beside it on a
-// loaded 2-core machine, e.g. the memory test above, lost the executor session in 4 of 24 runs: one side
-// was not scheduled for 200 ms.)
+// an executor's session dead (LinkTimeout, "no acknowledged piece"). 24 000 moves with every corner
+// a stop take about 2 s to plan (release build; 5 s under the sanitizers), twice the 1 s link
+// timeout set on both ends (the default). Shorter timeouts lost sessions on a loaded 2-core machine
+// for other reasons: with 200 ms and 8 000 moves, a stream beside it (the memory test above) was not
+// scheduled for 200 ms in 4 of 24 runs; with 500 ms, the host's first pieces after the check (about
+// 100 ms under the sanitizers) outlasted it until HostLink::pump read the waiting heartbeats before
+// judging silence (link_faults_test.cpp), and a traced, loaded device was seen unscheduled for 550 ms.
 TEST_CASE("hil: a job whose check-through pass outlasts the link timeout streams to a device and an executor",
           "[integration][hil][link]") {
-  const auto program = write_zigzag_program("check_pass.ngc", 16'000);
+  const auto program = write_zigzag_program("check_pass.ngc", 24'000);
   for (const bool executor : {false, true}) {
     INFO((executor ? "executor" : "device with a planner"));
-    std::vector<std::string> device_options{"device", "--fast", "--link-timeout-ms", "500"};
+    std::vector<std::string> device_options{"device", "--fast", "--link-timeout-ms", "1000"};
     if (executor) device_options.push_back("--executor");
     ct::Process device(device_options, executor ? "check_pass_executor.stderr" : "check_pass_device.stderr");
     const std::string port = device.first_line();
@@ -97,7 +99,7 @@ TEST_CASE("hil: a job whose check-through pass outlasts the link timeout streams
     std::string errors;
     std::string output;
     const int status = ct::run_program({"stream", program.string(), "--machine", std::string(CURVESTEP_EXAMPLE_JOBS) + "/machine.json",
-                                        "--port", port, "--blend-tolerance", "0", "--link-timeout-ms", "500"},
+                                        "--port", port, "--blend-tolerance", "0", "--link-timeout-ms", "1000"},
                                        errors, executor ? "check_pass_stream_executor" : "check_pass_stream", std::chrono::seconds(120),
                                        &output);
     INFO(errors);

@@ -156,7 +156,17 @@ void HostLink::transmit_due() {
 }
 
 void HostLink::pump(int wait_ms, const Handler& handler) {
+  // What arrived while this host was busy elsewhere (planning, reading a file) is taken in before
+  // the sender judges silence and resends: the controller's heartbeats and Acks in the port's
+  // buffer show it alive, however long the host was away.
+  receive(0, handler);
   transmit_due();
+  receive(wait_ms, handler);
+  reply(receiver_.poll(0, now_ms()));  // heartbeat Ack of the setpoint stream
+  transmit_due();
+}
+
+void HostLink::receive(int wait_ms, const Handler& handler) {
   std::array<std::byte, 512> bytes{};
   std::size_t count = transport_.read(bytes, wait_ms);
   while (count > 0) {
@@ -171,8 +181,6 @@ void HostLink::pump(int wait_ms, const Handler& handler) {
     }
     count = transport_.read(bytes, 0);
   }
-  reply(receiver_.poll(0, now_ms()));  // heartbeat Ack of the setpoint stream
-  transmit_due();
 }
 
 }  // namespace curvestep::host::link

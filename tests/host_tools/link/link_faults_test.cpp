@@ -6,7 +6,10 @@
 //   * a host that vanishes mid-job leaves a held device with a LinkTimeout report in the line;
 //     the next session's first job runs;
 //   * a device frozen for 1.5 s (its clock jumps, as after SIGSTOP/SIGCONT) with a 30 s link
-//     timeout on both ends: the job goes on.
+//     timeout on both ends: the job goes on;
+//   * a host away from the line for longer than its link timeout (planning, or not scheduled on a
+//     loaded machine) keeps its session: the controller's heartbeats and answers waiting in the
+//     line are read before silence is judged.
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -23,6 +26,7 @@
 
 #include <curvestep/firmware/app.hpp>
 #include <curvestep/host/job.hpp>
+#include <curvestep/host/link/host_link.hpp>
 #include <curvestep/host/link/streamer.hpp>
 #include <curvestep/host/machine_file.hpp>
 #include <curvestep/protocol/frame_decoder.hpp>
@@ -301,4 +305,28 @@ TEST_CASE("link faults: a device frozen for 1.5 s with a 30 s link timeout on bo
   CHECK(line.froze());
   CHECK(result.standing_ticks == 0);
   CHECK(!result.setpoints.empty());
+}
+
+TEST_CASE("link faults: a host that does not read the line for twice its link timeout keeps the session: the heartbeats waiting count",
+          "[host_tools][link][robustness]") {
+  // The device heartbeats every 250 ms (AppSettings::ack_interval_ms); the host's link timeout is
+  // 300 ms and it is away for 700 ms. Before the host read what waited, its sender judged 700 ms
+  // of silence first: "the controller stopped answering" (the HIL check-through test's failure on
+  // a loaded machine, where planning kept the host away from the line).
+  hl::testing::InProcessDevice<PlanningApp> device;
+  protocol::SenderSettings settings;
+  settings.link_timeout_ms = 300;
+  hl::HostLink host(device, settings);
+  host.connect({});
+  host.pump(0, {});
+  const std::size_t heard = host.statistics().frames_received;
+  device.run_unattended(std::chrono::milliseconds(700));
+  CHECK_NOTHROW(host.pump(0, {}));
+  CHECK(host.statistics().frames_received >= heard + 2);  // the heartbeats of the 700 ms
+  int reports = 0;  // and the session still answers
+  host.submit(protocol::Message(protocol::StatusRequest{}));
+  for (int i = 0; i < 50 && reports == 0; ++i) {
+    host.pump(1, [&reports](const protocol::Message& m) { reports += m.type() == protocol::MessageType::StatusReport; });
+  }
+  CHECK(reports == 1);
 }

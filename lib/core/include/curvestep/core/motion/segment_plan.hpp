@@ -47,6 +47,9 @@ struct SegmentPlan {
   double max_curvature_per_mm = 0;      ///< largest κ along the segment
   double max_curvature_rate_per_mm2 = 0;  ///< largest |d(κN)/ds| along it (sampled, with its margin)
   OverridableCaps caps{};               ///< what a feed or rapid override scales (limits: at 100 %)
+
+  /// A curve (some curvature along it), not a straight line.
+  [[nodiscard]] bool curved() const noexcept { return max_curvature_per_mm > 0; }
 };
 
 namespace detail {
@@ -237,7 +240,8 @@ template <std::size_t Intervals = 64>
     if (limit > 0 && max_tangent_component[axis] > 0) speed_cap = std::fmin(speed_cap, limit / max_tangent_component[axis]);
   }
   double jerk = machine.j_max_mm_per_s3;
-  const double jerk_sum_speed = max_kappa > 0 ? curvature_jerk_sum_speed(jerk, max_kappa, max_kappa_rate) : 0.0;
+  const bool jerk_of_curvature = machine.jerk_limited && max_kappa > 0;  // the trapezoid limits no jerk
+  const double jerk_sum_speed = jerk_of_curvature ? curvature_jerk_sum_speed(jerk, max_kappa, max_kappa_rate) : 0.0;
   if (max_kappa > 0) {
     speed_cap = std::fmin(speed_cap, std::sqrt(0.5 * a_max / max_kappa));  // v²κ <= a/2
     for (std::size_t axis = 0; axis < motion_axes; ++axis) {              // per axis: v²κ |N_axis| <= a_axis/2
@@ -247,7 +251,7 @@ template <std::size_t Intervals = 64>
       }
     }
     // The trapezoid limits no jerk (its acceleration steps): nor does the curvature's jerk cap it.
-    if (machine.jerk_limited) {
+    if (jerk_of_curvature) {
       speed_cap = std::fmin(speed_cap, curvature_jerk_speed_cap(jerk, max_kappa, max_kappa_rate, jerk_sum_speed));
     }
     const double dt = 1.0 / machine.rate_hz;
@@ -271,7 +275,7 @@ template <std::size_t Intervals = 64>
     }
     // 3 v a κ <= j/4 up to the speed where the sum of the jerk terms binds; above it (up to the cap
     // by orthogonal parts) the acceleration stays what it was there (curvature_jerk_speed_cap).
-    if (machine.jerk_limited && max_kappa > 0) {
+    if (jerk_of_curvature) {
       acceleration = std::fmin(acceleration, 0.25 * jerk / (3 * std::fmin(cap, jerk_sum_speed) * max_kappa));
     }
     return acceleration;
@@ -281,7 +285,7 @@ template <std::size_t Intervals = 64>
                                              : std::fmin(programmed * (FeedOverride::max_feed_percent / 100.0), geometric_cap);
   const double fastest_acceleration = fastest_cap > speed_cap ? acceleration_at(fastest_cap) : acceleration;
   plan.caps = OverridableCaps{programmed, geometric_cap, fastest_acceleration, segment.rapid()};
-  if (max_kappa > 0) {
+  if (jerk_of_curvature) {
     // Jerk: the profile keeps what the curvature's parts leave at the fastest speed, at least half
     // (curvature_jerk_speed_cap), at most ¾; at a joint a curvature jump takes what they leave
     // there within one tick (junction_speed, detail::joint_jerk_fits).
@@ -343,9 +347,8 @@ inline constexpr KinkBesideCurvatureJump kink_beside_curvature_jump{0.47, 0.295}
 /// Whether one side of a joint is straight (its profile takes the whole j) and the other a curve
 /// whose profile takes more than ½ j.
 [[nodiscard]] inline bool line_beside_raised_curve(const SegmentPlan& a, const SegmentPlan& b, double j) noexcept {
-  const auto raised = [j](const SegmentPlan& p) { return p.max_curvature_per_mm > 0 && p.limits.jerk_mm_per_s3 > 0.5 * j; };
-  const auto straight = [](const SegmentPlan& p) { return !(p.max_curvature_per_mm > 0); };
-  return (straight(a) && raised(b)) || (raised(a) && straight(b));
+  const auto raised = [j](const SegmentPlan& p) { return p.curved() && p.limits.jerk_mm_per_s3 > 0.5 * j; };
+  return (!a.curved() && raised(b)) || (raised(a) && !b.curved());
 }
 
 /// Whether a joint passed at `speed`, whose curvature vector jumps by `jump_per_tick` × Δt within
@@ -356,7 +359,7 @@ inline constexpr KinkBesideCurvatureJump kink_beside_curvature_jump{0.47, 0.295}
 /// jump keeps to ½ j; near a curve's cap the jump gets less.
 [[nodiscard]] inline bool joint_jerk_fits(double speed, const SegmentPlan& neighbour, double j, double jump_per_tick) noexcept {
   const double v3 = speed * speed * speed;
-  const double profile = neighbour.max_curvature_per_mm > 0 ? neighbour.limits.jerk_mm_per_s3 : 0.5 * j;
+  const double profile = neighbour.curved() ? neighbour.limits.jerk_mm_per_s3 : 0.5 * j;
   const double along = profile + v3 * neighbour.max_curvature_per_mm * neighbour.max_curvature_per_mm;
   const double across = v3 * neighbour.max_curvature_rate_per_mm2 + speed * speed * jump_per_tick;
   return along * along + across * across <= j * j;
@@ -385,7 +388,6 @@ inline constexpr KinkBesideCurvatureJump kink_beside_curvature_jump{0.47, 0.295}
   const double cos_theta = dot(previous.end_tangent, next.start_tangent);
   const double half_angle_sin = std::sqrt(std::fmax(0.0, (1 - cos_theta) / 2));  // sin(θ/2)
   constexpr double tangent_continuity = 1e-9;  // sin(θ/2) below this counts as a smooth join
-  const double curvature_jump = norm(previous.end_curvature - next.start_curvature);
   if (half_angle_sin > tangent_continuity) {
     if (half_angle_sin >= 1 - 1e-12) return 0;  // reversal
     v = std::fmin(v, junction_deviation_speed(cos_theta, machine.a_max_mm_per_s2, machine.junction_deviation_mm));
@@ -394,6 +396,7 @@ inline constexpr KinkBesideCurvatureJump kink_beside_curvature_jump{0.47, 0.295}
     if (machine.jerk_limited) jump = std::fmin(jump, share * machine.j_max_mm_per_s3 * dt * dt);
     v = std::fmin(v, jump / (2 * half_angle_sin));
   }
+  const double curvature_jump = norm(previous.end_curvature - next.start_curvature);
   if (machine.jerk_limited && curvature_jump > 0) {
     const double j = machine.j_max_mm_per_s3;
     const double jump_per_tick = curvature_jump / dt;

@@ -68,8 +68,11 @@ class HostLink {
   [[nodiscard]] bool can_submit(protocol::MessageType type) const noexcept { return sender_.can_submit(type); }
   /// Queues a host command. Throws LinkError if the sender refuses it.
   void submit(const protocol::Message& message);
-  /// Sends what is due, waits up to wait_ms for bytes, and decodes them, calling `handler` for
-  /// application messages. Throws LinkError if the link gives up, TransportError if the line closes.
+  /// Takes in the bytes already waiting, sends what is due, waits up to wait_ms for more, and
+  /// decodes them, calling `handler` for application messages. Silence is judged after the
+  /// waiting bytes were read: a host that did not pump for longer than the link timeout fails
+  /// only if the controller sent nothing meanwhile. Throws LinkError if the link gives up,
+  /// TransportError if the line closes.
   void pump(int wait_ms, const Handler& handler);
   /// The controller's limits (after connect).
   [[nodiscard]] const protocol::Capabilities& capabilities() const noexcept { return sender_.capabilities(); }
@@ -84,6 +87,8 @@ class HostLink {
 
  private:
   void transmit_due();
+  /// Reads and decodes bytes until none arrive within wait_ms (the first read) or at once (the next).
+  void receive(int wait_ms, const Handler& handler);
   [[noreturn]] void raise(const Failure& failure) const;
 
   void on_frame(const protocol::Frame& frame, const Handler& handler);
