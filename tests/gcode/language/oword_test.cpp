@@ -230,6 +230,20 @@ TEST_CASE("language: label mismatches and misplaced O-words are errors naming th
     const LoadError e = program_error("G0 X1\nM2\no9 sub\no9 if [1]\no9 endsub\n");
     CHECK(e.location().line == 5);
   }
+  SECTION("an O-word line's syntax error, found before the program runs, names an earlier line's own error too") {
+    // Line 2's error is kept until the line runs; line 4's is thrown by the pre-scan. One run shows both
+    // (LinuxCNC's `#$name$` parameters, which the flowsnake program uses, are no syntax of ours).
+    const std::string program = "G0 X1\n#$a$ = 5\nG0 X2\no1 if [#$a$ GT 1]\no1 endif\nG0 X3 Y=\n";
+    const LoadError e = program_error(program);
+    CHECK(e.location().line == 4);
+    CHECK(e.location().column == 9);  // the `$` after `[#`
+    CHECK(e.message() == "a number, #parameter or [expression] expected (line 2:2, before it, is wrong too: $: a number, #parameter "
+                         "or [expression] expected)");
+    host::gcode::ProgramOptions skipping;
+    skipping.block_delete = true;
+    CHECK(program_error("/#$a$ = 5\no1 if [#$a$ GT 1]\no1 endif\n", skipping).message() ==
+          "a number, #parameter or [expression] expected");
+  }
 }
 
 TEST_CASE("language: an endless loop is an error naming the loop, not a hang", "[gcode][language][oword][errors]") {

@@ -183,13 +183,16 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   /// The structure pre-scan, one read of the whole file: counts its lines (refusing more than
   /// max_lines before anything else), parses each line up to the closing '%' and hands the O-word
   /// lines that can run to the structure scan. The first error is thrown after the count: an
-  /// O-word line's syntax error, else the first structure error in line order.
+  /// O-word line's syntax error, else the first structure error in line order. Other lines keep
+  /// their syntax errors until they run; the first of those before the O-word line's is named
+  /// beside it, so one run shows both (else the user fixes the O-word line to meet the earlier one).
   void prescan(Unit& file) {
     detail::StructureScan scan(file.file);
     bool opened = false;   // the first non-blank line was '%'
     bool content = false;  // a non-blank line was seen
     bool parsing = true;   // false after the closing '%' or a syntax error
     std::optional<std::pair<std::size_t, LineError>> syntax_error;
+    std::optional<std::pair<std::size_t, LineError>> kept_error;  // the first other line's, raised if it runs
     std::optional<LoadError> structure_error;
     std::size_t index = 0;
     for (std::uint64_t offset = file.source->offset();; offset = file.source->offset(), ++index) {
@@ -212,6 +215,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
         parsing = false;
         continue;
       }
+      if (parsed.error && !kept_error && !(parsed.block_delete && options_.block_delete)) kept_error.emplace(index, *parsed.error);
       if (parsed.percent && opened) {  // LinuxCNC reads nothing after the closing '%'
         file.end = index;
         parsing = false;
@@ -230,6 +234,15 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       }
     }
     if (parsing) file.end = index;
+    if (syntax_error && kept_error) {
+      const auto& [line, earlier] = *kept_error;
+      const LineError& failure = syntax_error->second;
+      throw_at(file, syntax_error->first,
+               LineError(failure.column(), failure.field(),
+                         failure.message() + " (line " + std::to_string(line + 1) + ":" + std::to_string(earlier.column()) +
+                             ", before it, is wrong too: " + (earlier.field().empty() ? "" : earlier.field() + ": ") + earlier.message() + ")",
+                         failure.code()));
+    }
     if (syntax_error) throw_at(file, syntax_error->first, syntax_error->second);
     if (structure_error) throw *structure_error;
     file.structure = scan.finish();
