@@ -237,8 +237,8 @@ TEST_CASE("language: label mismatches and misplaced O-words are errors naming th
     const LoadError e = program_error(program);
     CHECK(e.location().line == 4);
     CHECK(e.location().column == 9);  // the `$` after `[#`
-    CHECK(e.message() == "a number, #parameter or [expression] expected (line 2:2, before it, is wrong too: $: a number, #parameter "
-                         "or [expression] expected)");
+    CHECK(e.message() == "a number, #parameter or [expression] expected (before it, test.ngc:2:2: $: a number, #parameter or "
+                         "[expression] expected)");
     host::gcode::ProgramOptions skipping;
     skipping.block_delete = true;
     CHECK(program_error("/#$a$ = 5\no1 if [#$a$ GT 1]\no1 endif\n", skipping).message() ==

@@ -234,22 +234,23 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       }
     }
     if (parsing) file.end = index;
-    if (syntax_error && kept_error) {
-      const auto& [line, earlier] = *kept_error;
-      const LineError& failure = syntax_error->second;
-      throw_at(file, syntax_error->first,
-               LineError(failure.column(), failure.field(),
-                         failure.message() + " (line " + std::to_string(line + 1) + ":" + std::to_string(earlier.column()) +
-                             ", before it, is wrong too: " + (earlier.field().empty() ? "" : earlier.field() + ": ") + earlier.message() + ")",
-                         failure.code()));
+    if (syntax_error) {
+      const auto& [line, failure] = *syntax_error;
+      if (!kept_error) throw_at(file, line, failure);
+      const auto& [earlier_line, earlier] = *kept_error;
+      const std::string also = format_load_error(location_at(file, earlier_line, earlier), earlier.message());
+      throw LoadError(location_at(file, line, failure), failure.message() + " (before it, " + also + ")", failure.code());
     }
-    if (syntax_error) throw_at(file, syntax_error->first, syntax_error->second);
     if (structure_error) throw *structure_error;
     file.structure = scan.finish();
   }
 
+  /// Where `error` of 0-based `line` of `file` is.
+  [[nodiscard]] static SourceLocation location_at(const Unit& file, std::size_t line, const LineError& error) {
+    return SourceLocation{file.file, line + 1, error.column(), std::nullopt, {}, error.field()};
+  }
   [[noreturn]] void throw_at(const Unit& file, std::size_t line, const LineError& error) const {
-    throw LoadError(SourceLocation{file.file, line + 1, error.column(), std::nullopt, {}, error.field()}, error.message(), error.code());
+    throw LoadError(location_at(file, line, error), error.message(), error.code());
   }
   [[noreturn]] void throw_at(std::size_t line, const LineError& error) const { throw_at(unit(), line, error); }
 
