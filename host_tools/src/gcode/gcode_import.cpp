@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <cstddef>
 #include <initializer_list>
 #include <map>
@@ -112,7 +113,14 @@ std::string explain(Error code, const std::string& word) {
       if (!word.empty() && word[0] == 'R') {
         return "R (the coordinate system's rotation) is allowed with G10 L2 only; G10 L20 takes no R (LinuxCNC: R not allowed in G10 L20)";
       }
-      if (!word.empty() && word[0] == 'M') return "unsupported M code (supported: M0 M1 M2 M30 M3 M4 M5 M6 M7 M8 M9 M48-M53 M62-M65)";
+      if (!word.empty() && word[0] == 'M') {
+        const double m_code = std::strtod(word.c_str() + 1, nullptr);
+        if (m_code >= 100 && m_code < 200) {
+          return "M100-M199 are user M codes: LinuxCNC runs the program of that name, a controller's own extension this one "
+                 "does not have (remove the line; M62-M65 switch digital outputs)";
+        }
+        return "unsupported M code (supported: M0 M1 M2 M30 M3 M4 M5 M6 M7 M8 M9 M48-M53 M62-M65, and M98 M99 as numbered programs)";
+      }
       if (!word.empty() && word[0] == 'G') return "unsupported G code (docs/gcode.md lists the supported ones)";
       return "unsupported word";
     }

@@ -2,10 +2,12 @@
 #include <curvestep/host/job_file.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include <curvestep/host/gcode_import.hpp>
 #include <curvestep/host/parameter_speed.hpp>
@@ -29,8 +31,19 @@ std::string checked_extension(const std::filesystem::path& path, const JobFileOp
   return extension;
 }
 
+/// The extensions CAM posts, senders and laser tools give G-code files (LinuxCNC's .ngc, Mach3's
+/// .tap, grbl senders' .nc .gc .gcode, .gco, .g and .cnc).
+constexpr std::array<std::string_view, 8> gcode_extensions{".ngc", ".nc", ".gcode", ".tap", ".gc", ".gco", ".g", ".cnc"};
+
 bool is_gcode(const std::string& extension) {
-  return extension == ".ngc" || extension == ".nc" || extension == ".gcode" || extension == ".tap";
+  return std::find(gcode_extensions.begin(), gcode_extensions.end(), extension) != gcode_extensions.end();
+}
+
+/// ".json, .ngc, ..., .svg": every format load_job_file reads.
+std::string understood_extensions() {
+  std::string list = ".json";
+  for (const auto extension : gcode_extensions) list += ", " + std::string(extension);
+  return list + ", .svg";
 }
 
 Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
@@ -64,8 +77,7 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
     }
     return std::move(imported.job);
   }
-  throw std::runtime_error(path.string() + ": unknown job format '" + extension +
-                           "' (understood: .json, .ngc, .nc, .gcode, .tap, .svg)");
+  throw std::runtime_error(path.string() + ": unknown job format '" + extension + "' (understood: " + understood_extensions() + ")");
 }
 
 }  // namespace

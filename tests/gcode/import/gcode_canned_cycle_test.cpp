@@ -73,6 +73,18 @@ TEST_CASE("canned cycles: G99 series with sticky Z and R, cancelled by G80", "[g
   CHECK_THAT(message_of("G21 G90 G0 Z10\nG81 X1 Z-1 R1 F60\nG80\nX5\n"), Catch::Contains("cycle.ngc:4:1") && Catch::Contains("no motion mode"));
 }
 
+TEST_CASE("canned cycles: G80 beside G0 or G1 (a Fanuc post's safety line) ends the cycle, the move stays", "[gcode][import][cycle]") {
+  // LinuxCNC puts G80 in the motion group and refuses the pair; Fanuc gives G80 a group of its own.
+  const Job job = parse_gcode_job("G0 G17 G40 G49 G80 G90 G21\nG0 X0 Y0 Z10\nG99 G81 X10 Y0 Z-2 R1 F120\nG80 G0 X0 Y0\nG1 G80 Z5 F60\nX3\n",
+                                  "safety.ngc");
+  check_moves(job, {{R, 0, 0, 10},
+                    {R, 10, 0, 10}, {R, 10, 0, 1}, {F, 10, 0, -2}, {R, 10, 0, 1},
+                    {R, 0, 0, 1}, {F, 0, 0, 5}, {F, 3, 0, 5}});
+  // G80 alone still ends the motion mode; two G80s, or G80 with a cycle, are still refused.
+  CHECK_THAT(message_of("G21 G0 Z10\nG80 G80\n"), Catch::Contains("cycle.ngc:2:5") && Catch::Contains("cannot appear with"));
+  CHECK_THAT(message_of("G21 G0 Z10\nG81 G80 X1 Z-1 R1 F60\n"), Catch::Contains("cycle.ngc:2:5") && Catch::Contains("cannot appear with"));
+}
+
 TEST_CASE("canned cycles: G83 pecks out to R, G73 breaks chips by the backoff", "[gcode][import][cycle]") {
   // R 1, bottom -5, Q 2, backoff 0.254 mm: pecks to -1, -3, -5.
   const Job g83 = parse_gcode_job("G21 G90 G0 Z5\nG98 G83 X0 Y0 Z-5 R1 Q2 F60\n", "g83.ngc");

@@ -129,6 +129,9 @@ TEST_CASE("gcode machine words: what is not supported says why, with file:line:c
       {"G21\nG1 A10 F100\n", "rotary"},
       {"G21\nG95 G1 X1 F1\n", "spindle model"},
       {"G21\nM66 P1\n", "unsupported M code"},
+      {"G21\nM100 P100\n", "M100-M199 are user M codes"},
+      {"G21\nM199\n", "M100-M199 are user M codes"},
+      {"G21\nM98 P[1] L[#1]\n", "no numbered program O1"},
   };
   for (const auto& c : cases) {
     INFO(c.text);

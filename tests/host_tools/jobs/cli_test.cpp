@@ -113,3 +113,23 @@ TEST_CASE("cli: sample without a usable tolerance fails", "[host_tools][jobs]") 
   CHECK(absent_file.exit_code != 0);
   CHECK(absent_file.err.find("no_such_job.json: cannot open the file") != std::string::npos);
 }
+
+TEST_CASE("cli: G-code loads under the extensions senders and laser tools give it, others are named", "[host_tools][jobs]") {
+  const auto base = std::filesystem::temp_directory_path() / ("curvestep_ext_" + std::to_string(::getpid()));
+  for (const char* extension : {".gco", ".gc", ".g", ".cnc", ".TAP"}) {
+    INFO(extension);
+    const auto path = std::filesystem::path(base.string() + extension);
+    curvestep::testing::write_file(path, "G21 G90\nG1 X10 Y2 F600\n");
+    const auto result = run_curvestep("eval " + quoted(path) + " --segment 0 --u 1");
+    CHECK(result.exit_code == 0);
+    CHECK(result.out == "x,y,z\n10,2,0\n");
+    std::filesystem::remove(path);
+  }
+  const auto unknown = std::filesystem::path(base.string() + ".xyz");
+  curvestep::testing::write_file(unknown, "G1 X1\n");
+  const auto result = run_curvestep("eval " + quoted(unknown) + " --segment 0 --u 1");
+  CHECK(result.exit_code != 0);
+  CHECK(result.err.find("unknown job format '.xyz'") != std::string::npos);
+  CHECK(result.err.find(".gcode, .tap, .gc, .gco, .g, .cnc, .svg") != std::string::npos);
+  std::filesystem::remove(unknown);
+}

@@ -65,6 +65,11 @@ inline std::string read_file(const std::filesystem::path& path) {
   return text.str();
 }
 
+inline void write_file(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
 /// Runs `curvestep <arguments>` (arguments are passed through the shell: quote as needed).
 inline RunResult run_curvestep(const std::string& arguments) {
   static int counter = 0;

@@ -102,10 +102,15 @@ OWord parse_oword(Cursor& cursor, std::vector<Node>& nodes) {
       break;
     }
   }
+  if (!found && cursor.at_end() && oword.label_value == no_node && oword.label.front() != '<') {
+    oword.keyword = Keyword::Program;  // `O100` alone: a numbered program
+    return oword;
+  }
   if (!found) {
     while (is_letter(cursor.peek())) cursor.advance();
     cursor.fail(keyword_start == cursor.position() ? start : keyword_start,
-                "O-word keyword expected (sub endsub return call if elseif else endif while endwhile do repeat endrepeat break continue)",
+                "O-word keyword expected (sub endsub return call if elseif else endif while endwhile do repeat endrepeat break continue), "
+                "or a numbered program's O100 alone on its line",
                 Error::GcodeSyntax);
   }
   if (oword.label_value != no_node && oword.keyword != Keyword::Call) {
@@ -169,6 +174,11 @@ void parse_words(Cursor& cursor, ParsedLine& line) {
       continue;
     }
     const bool polar = c == '@' || c == '^';  // LinuxCNC's polar distance and angle words
+    if ((c == '$' || c == '?') && start == 0) {
+      while (!cursor.at_end()) cursor.advance();
+      cursor.fail(start, "a grbl console command ($$, $H, $X, $J=..., ?), not G-code: a sender sends it to grbl, a program does not "
+                  "hold it (remove the line)", Error::GcodeSyntax);
+    }
     if (!is_letter(c) && !polar) {
       cursor.advance();
       cursor.fail(start, "unexpected character: a word starts with a letter", Error::GcodeSyntax);
@@ -202,10 +212,20 @@ bool starts_with_oword(const std::string& text) {
 }  // namespace
 
 std::string_view keyword_name(Keyword keyword) noexcept {
+  if (keyword == Keyword::Program) return {};
   for (const auto& spelling : keywords) {
     if (spelling.keyword == keyword) return spelling.text;
   }
   return "?";
+}
+
+const WordValue* literal_m_word(const ParsedLine& line, double code) noexcept {
+  for (const auto& word : line.words) {
+    if (word.letter != 'M') continue;
+    const Node& value = line.nodes[word.value];
+    if (value.kind == NodeKind::Number && value.number == code) return &word;
+  }
+  return nullptr;
 }
 
 bool is_blank(const ParsedLine& line) noexcept {

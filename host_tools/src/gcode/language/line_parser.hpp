@@ -17,10 +17,14 @@
 
 namespace curvestep::host::gcode::detail {
 
-/// The O-word keywords.
-enum class Keyword : std::uint8_t { Sub, Endsub, Return, Call, If, Elseif, Else, Endif, While, Endwhile, Do, Repeat, Endrepeat, Break, Continue };
+/// The O-word keywords. Program: a numbered program's first line, `O100` alone (Fanuc style, as
+/// LinuxCNC reads it: the main program's number on the program's first line, else the start of a
+/// numbered subprogram that M99 ends and M98 calls).
+enum class Keyword : std::uint8_t {
+  Sub, Endsub, Return, Call, If, Elseif, Else, Endif, While, Endwhile, Do, Repeat, Endrepeat, Break, Continue, Program
+};
 
-/// The keyword as LinuxCNC spells it ("endsub").
+/// The keyword as LinuxCNC spells it ("endsub"; empty for Program, which has none).
 [[nodiscard]] std::string_view keyword_name(Keyword keyword) noexcept;
 
 /// A word of the line: a letter and its value.
@@ -65,6 +69,10 @@ struct ParsedLine {
   std::vector<MessageText> messages;
   std::optional<LineError> error;
 };
+
+/// The word `M<code>` of the line written as a plain number (M98, M099), or null. Only such an M98
+/// or M99 is control flow: the structure is found before any value is computed.
+[[nodiscard]] const WordValue* literal_m_word(const ParsedLine& line, double code) noexcept;
 
 /// True for a line with nothing in it but blanks and plain comments.
 [[nodiscard]] bool is_blank(const ParsedLine& line) noexcept;

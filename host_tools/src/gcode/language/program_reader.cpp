@@ -7,6 +7,8 @@
 // after one, whose places the structure pre-scan keeps). A call to a sub the program does not
 // define reads its file (LinuxCNC's SUBROUTINE_PATH): each file is a Unit of its own, with its
 // own source, structure and lines read lately, and the program counter names a unit and a line.
+// Numbered programs (Fanuc style, LinuxCNC's M98/M99): `M98 P100 L3` runs `O100` ... `M99` of the
+// same file three times, with #1-#30 global; the lines after M98 and M99 lines are jump targets too.
 #include <curvestep/host/gcode/program_reader.hpp>
 
 #include <algorithm>
@@ -19,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include <curvestep/host/csv.hpp>
 #include <curvestep/host/load_error.hpp>
 
 #include "line_parser.hpp"
@@ -45,6 +48,9 @@ constexpr double max_repeat_count = 1e15;
 struct Frame {
   std::size_t return_unit = 0;  ///< the file the call is in (0: the program)
   std::size_t return_line = no_line;
+  bool numbered = false;        ///< an M98 call: #1-#30 are global, `saved` is not restored
+  std::size_t body = no_line;   ///< M98: the numbered program's O line (each pass starts after it)
+  long long passes_left = 0;    ///< M98 L: the passes still to run after this one
   std::array<double, argument_parameters> saved{};
   std::map<std::string, double> locals;
   std::map<std::size_t, long long> repeats;  ///< repeat line -> passes still to run
@@ -52,10 +58,10 @@ struct Frame {
 
 bool is_global(const std::string& name) { return !name.empty() && name.front() == '_'; }
 
-/// Where an O-word line and the line after it start in the file: control flow jumps to these
-/// lines only, so no other line's place is kept.
+/// Where an O-word, M98 or M99 line and the line after it start in the file: control flow jumps to
+/// these lines only, so no other line's place is kept.
 struct JumpTarget {
-  std::size_t line = no_line;     ///< the O-word line, 0-based
+  std::size_t line = no_line;     ///< the O-word or M98 line, 0-based
   std::uint64_t offset = 0;       ///< where it starts
   std::uint64_t next_offset = 0;  ///< where the line after it starts
 };
@@ -84,13 +90,19 @@ struct Unit {
   std::string file;  ///< the name messages give
   // A program's parse trees would take about 0.7 KB per line, its text about 20 bytes: the reader
   // keeps neither, only where the O-word lines start (jumps go there) and their structure.
-  std::vector<JumpTarget> jump_targets;  ///< one per O-word line, in line order
+  std::vector<JumpTarget> jump_targets;  ///< one per O-word, M98 and M99 line, in line order
   detail::ProgramStructure structure;
   std::size_t end = 0;          ///< lines from here on are not part of the file (closing %)
   std::size_t line_count = 0;   ///< lines in the file (a last '\n' ends a line, it does not start one)
   std::size_t source_line = 0;  ///< the line source->next() reads
   std::map<std::size_t, ReadLine> recent;  ///< at most recent_lines_kept lines read lately (and the step's own)
   std::map<std::size_t, ReadLine>::node_type spare;  ///< a forgotten line's room
+};
+
+/// An M98 call, checked: the numbered program's O line and how many times it runs.
+struct NumberedCall {
+  std::size_t body = no_line;
+  long long passes = 1;
 };
 
 /// A subroutine read from its own file.
@@ -190,6 +202,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     detail::StructureScan scan(file.file);
     bool opened = false;   // the first non-blank line was '%'
     bool content = false;  // a non-blank line was seen
+    bool started = false;  // a line other than blanks, comments and '%' was seen (an O100 after it is no program number)
     bool parsing = true;   // false after the closing '%' or a syntax error
     std::optional<std::pair<std::size_t, LineError>> syntax_error;
     std::optional<std::pair<std::size_t, LineError>> kept_error;  // the first other line's, raised if it runs
@@ -222,14 +235,20 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       }
       if (parsed.percent && !content) opened = true;
       if (!detail::is_blank(parsed)) content = true;
-      if (parsed.oword && !(parsed.block_delete && options_.block_delete)) {
-        file.jump_targets.push_back(JumpTarget{index, offset, file.source->offset()});
-        if (!structure_error) {
-          try {
-            scan.add(index, *parsed.oword);
-          } catch (const LoadError& failure) {
-            structure_error = failure;
+      const bool first_line = !started;
+      if (!detail::is_blank(parsed) && !parsed.percent) started = true;
+      if (parsed.block_delete && options_.block_delete) continue;  // never runs
+      const detail::WordValue* m99 = detail::literal_m_word(parsed, 99);
+      if (parsed.oword || m99 || detail::literal_m_word(parsed, 98)) file.jump_targets.push_back(JumpTarget{index, offset, file.source->offset()});
+      if ((parsed.oword || m99) && !structure_error) {
+        try {
+          if (parsed.oword) {
+            scan.add(index, *parsed.oword, first_line);
+          } else {
+            scan.add_m99(index, m99->column);
           }
+        } catch (const LoadError& failure) {
+          structure_error = failure;
         }
       }
     }
@@ -359,7 +378,19 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     }
     block.source = current.source;
     block.block_delete = line.block_delete;
-    for (const auto& word : line.words) block.words.push_back(ProgramWord{word.letter, value(word.value), word.column});
+    const detail::WordValue* m98 = detail::literal_m_word(line, 98);
+    const detail::WordValue* m99 = detail::literal_m_word(line, 99);
+    if (m98 && m99) throw LineError(m99->column, "M99", "M98 and M99 cannot share a line", Error::GcodeConflictingWords);
+    if (m99 && line_word(line, 'P')) {
+      throw LineError(line_word(line, 'P')->column, "P", "M99 P (a return to a line number) is not supported: M99 returns to the line after the M98",
+                      Error::GcodeSyntax);
+    }
+    const std::optional<NumberedCall> numbered = m98 ? std::optional(numbered_call(line, *m98)) : std::nullopt;
+    if (m99) check_numbered_return(*m99);
+    for (const auto& word : line.words) {
+      if (&word == m98 || &word == m99 || (m98 && (word.letter == 'P' || word.letter == 'L'))) continue;  // control flow, not the machine's
+      block.words.push_back(ProgramWord{word.letter, value(word.value), word.column});
+    }
     // LinuxCNC: every value on the line is read first; the assignments take effect at its end.
     struct Pending {
       const detail::Assignment* assignment;
@@ -396,6 +427,8 @@ class ProgramReader::Impl final : public detail::ParameterSource {
           message.kind, message.kind == ProgramMessage::Kind::Message ? message.text : detail::substitute_parameters(message.text, *this)});
     }
     ++pc_;
+    if (numbered) enter_numbered(*numbered);
+    if (m99) return_numbered();
     if (block.words.empty() && block.messages.empty()) return std::nullopt;
     for (const auto& word : block.words) {
       if (word.letter == 'M' && (word.value == 2.0 || word.value == 30.0)) ended_ = true;
@@ -412,6 +445,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     const ControlLink& link = structure.link(here);
     switch (oword.keyword) {
       case Keyword::Sub: pc_ = link.closing + 1; break;
+      case Keyword::Program: pc_ = link.closing == no_line ? here + 1 : link.closing + 1; break;  // the main program's number, or a definition
       case Keyword::Endsub:
       case Keyword::Return: return_from(oword); break;
       case Keyword::Call: call(oword); break;
@@ -513,9 +547,98 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     pc_ = sub.line + 1;
   }
 
+  /// The word `letter` of a line, or null.
+  static const detail::WordValue* line_word(const ParsedLine& line, char letter) {
+    for (const auto& word : line.words) {
+      if (word.letter == letter) return &word;
+    }
+    return nullptr;
+  }
+
+  /// A whole number in [0, limit) written as word `word` of the line, or a LineError naming what it must be.
+  double whole_word(const detail::WordValue& word, double limit, const std::string& what) const {
+    const double number = value(word.value);
+    if (!(number >= 0.0 && number < limit && number == std::floor(number))) {
+      throw LineError(word.column, std::string(1, word.letter), what + " is a whole number from 0 (" + format_number(number) + " given)",
+                      Error::GcodeBadNumber);
+    }
+    return number;
+  }
+
+  /// `M98 P- [L-]` of the line at the program counter: the numbered program of this file it calls
+  /// (LinuxCNC: not a sub; the two styles do not call each other) and its passes.
+  NumberedCall numbered_call(const ParsedLine& line, const detail::WordValue& m98) const {
+    const detail::WordValue* p = line_word(line, 'P');
+    if (!p) throw LineError(m98.column, "M98", "M98 needs P, the number of the program it calls: M98 P100 [L passes]", Error::GcodeSyntax);
+    const std::string label = std::to_string(static_cast<long long>(whole_word(*p, 1e9, "M98 P, a program number,")));
+    const detail::WordValue* l = line_word(line, 'L');
+    const long long passes = l ? static_cast<long long>(whole_word(*l, max_repeat_count, "M98 L, a count of passes,")) : 1;
+    const detail::ProgramStructure& structure = unit().structure;
+    const auto found = structure.numbered.find(label);
+    if (found == structure.numbered.end()) {
+      if (structure.subs.count(label) != 0) {
+        throw LineError(m98.column, "M98", "o" + label + " is a sub (o" + label + " sub ... endsub): call it with o" + label +
+                                               " call; M98 calls a numbered program (O" + label + " ... M99)",
+                        Error::GcodeSyntax);
+      }
+      throw LineError(p->column, "P", "no numbered program O" + label + " (O" + label + " ... M99) in " + unit().file + " for M98 to call",
+                      Error::GcodeSyntax);
+    }
+    if (passes > 0 && call_depth() >= options_.max_call_depth) {
+      throw LineError(m98.column, "M98", "subroutine calls nested deeper than " + std::to_string(options_.max_call_depth) + " (endless recursion?)",
+                      Error::CapacityExceeded);
+    }
+    return NumberedCall{found->second, passes};
+  }
+
+  /// Runs the numbered program of an M98 (the program counter is on the line after the M98).
+  void enter_numbered(const NumberedCall& call) {
+    if (call.passes <= 0) return;  // M98 L0 runs nothing
+    Frame frame;
+    frame.return_unit = unit_;
+    frame.return_line = pc_;
+    frame.numbered = true;
+    frame.body = call.body;
+    frame.passes_left = call.passes - 1;
+    frames_.push_back(std::move(frame));
+    pc_ = call.body + 1;
+  }
+
+  /// An M99 at the program counter must end a numbered program, not the main program.
+  void check_numbered_return(const detail::WordValue& m99) const {
+    const ControlLink& link = unit().structure.link(pc_);
+    if (link.opening == no_line) {
+      throw LineError(m99.column, "M99",
+                      "M99 in the main program restarts it without end (LinuxCNC's endless program): a job must end; end it with M2 or M30",
+                      Error::GcodeSyntax);
+    }
+    if (!frames_.back().numbered || frames_.back().body != link.opening) {
+      throw std::logic_error("M99 of a numbered program reached without its M98");
+    }
+  }
+
+  /// After an M99 (checked): the next pass of the numbered program, or the line after its M98.
+  void return_numbered() {
+    Frame& frame = frames_.back();
+    if (frame.passes_left > 0) {
+      --frame.passes_left;
+      pc_ = frame.body + 1;
+      return;
+    }
+    unit_ = frame.return_unit;
+    pc_ = frame.return_line;
+    frames_.pop_back();
+  }
+
   /// Where sub `label` is: in the program (LinuxCNC's subs are global, so a subroutine file may call
   /// them too), in a subroutine file read before, or in its own file, read now.
   SubFile find_sub(const OWord& oword, const std::string& label) {
+    if (unit().structure.numbered.count(label) != 0) {
+      fail_oword(oword,
+                 "o" + label + " is a numbered program (O" + label + " ... M99): call it with M98 P" + label + "; o" + label +
+                     " call calls a sub (o" + label + " sub ... endsub)",
+                 Error::GcodeSyntax);
+    }
     const auto& program_subs = units_.front()->structure.subs;
     const auto in_program = program_subs.find(label);
     if (in_program != program_subs.end()) return SubFile{0, in_program->second};

@@ -2,7 +2,8 @@
 // One pass over the O-words with a stack of open constructs. LinuxCNC's rule: the label that opens
 // a construct closes it (o100 if ... o100 endif); a `while` whose label matches an open `do` ends
 // that do loop, otherwise it opens a while loop. Labels of if/while/do/repeat are local to their
-// subroutine body; subroutine labels are global and unique.
+// subroutine body; subroutine labels are global and unique. A numbered program (`O100` ... M99)
+// is a subroutine body too, opened by its bare O-word and closed by M99.
 #include "program_structure.hpp"
 
 #include <algorithm>
@@ -15,7 +16,7 @@
 
 namespace curvestep::host::gcode::detail {
 
-enum class OWordConstruct : std::uint8_t { Sub, If, While, Do, Repeat };
+enum class OWordConstruct : std::uint8_t { Sub, If, While, Do, Repeat, Program };
 
 /// An open construct: what closing it and naming it in a message need.
 struct StructureScan::Open {
@@ -39,6 +40,7 @@ std::string_view opener(Construct kind) {
     case Construct::While: return "while";
     case Construct::Do: return "do";
     case Construct::Repeat: return "repeat";
+    case Construct::Program: return "";
   }
   return "?";
 }
@@ -50,11 +52,23 @@ std::string_view closer(Construct kind) {
     case Construct::While: return "endwhile";
     case Construct::Do: return "while";
     case Construct::Repeat: return "endrepeat";
+    case Construct::Program: return "M99";
   }
   return "?";
 }
 
 bool is_loop(Construct kind) { return kind == Construct::While || kind == Construct::Do || kind == Construct::Repeat; }
+bool is_body(Construct kind) { return kind == Construct::Sub || kind == Construct::Program; }
+
+/// "o100 sub", "o100" (a numbered program): a construct's opening line as messages name it.
+std::string opening_text(const std::string& label, Construct kind) {
+  return "o" + label + (kind == Construct::Program ? "" : " " + std::string(opener(kind)));
+}
+
+/// "o100 endsub", "M99": the line that closes a construct.
+std::string closing_text(const std::string& label, Construct kind) {
+  return kind == Construct::Program ? std::string("M99") : "o" + label + " " + std::string(closer(kind));
+}
 
 /// The first link of a line after `line`.
 std::vector<ControlLink>::const_iterator after(const std::vector<ControlLink>& links, std::size_t line) {
@@ -66,21 +80,41 @@ std::vector<ControlLink>::const_iterator after(const std::vector<ControlLink>& l
 StructureScan::StructureScan(std::string file) : file_(std::move(file)) {}
 StructureScan::~StructureScan() = default;
 
-void StructureScan::add(std::size_t line, const OWord& oword) {
+ControlLink& StructureScan::append(std::size_t line) {
   ControlLink link;
   link.line = line;
-  link.keyword = oword.keyword;
   link.loop = innermost_loop();
   structure_.links.push_back(link);
-  visit(oword);
+  return structure_.links.back();
+}
+
+void StructureScan::add(std::size_t line, const OWord& oword, bool first_line) {
+  append(line).keyword = oword.keyword;
+  if (oword.keyword != Keyword::Program || !first_line) visit(oword);  // the main program's number opens nothing
+  structure_.links.back().loop_after = innermost_loop();
+}
+
+void StructureScan::add_m99(std::size_t line, std::size_t column) {
+  ControlLink& link = append(line);
+  link.m99 = true;
+  if (!stack_.empty() && stack_.back().kind == Construct::Program) {
+    close(stack_.back());
+  } else if (!stack_.empty() && stack_.front().kind == Construct::Program) {
+    link.opening = stack_.front().line;  // inside a construct of the numbered program: returns from it
+  } else if (!stack_.empty() && stack_.front().kind == Construct::Sub) {
+    const Open& sub = stack_.front();
+    fail(line, column, "M99",
+         "M99 inside o" + sub.label + " sub (line " + std::to_string(sub.line + 1) + "): a sub ends with o" + sub.label +
+             " endsub or returns with o" + sub.label + " return; M99 ends a numbered program (O100 ... M99)");
+  }
   structure_.links.back().loop_after = innermost_loop();
 }
 
 ProgramStructure StructureScan::finish() {
   if (!stack_.empty()) {
     const Open& open = stack_.back();
-    const std::string opening = "o" + open.label + " " + std::string(opener(open.kind));
-    fail(open.line, open.column, opening, opening + " is not closed: o" + open.label + " " + std::string(closer(open.kind)) + " missing");
+    const std::string opening = opening_text(open.label, open.kind);
+    fail(open.line, open.column, opening, opening + " is not closed: " + closing_text(open.label, open.kind) + " missing");
   }
   return std::move(structure_);
 }
@@ -106,8 +140,8 @@ StructureScan::Open& StructureScan::expect_top(const OWord& oword, Construct kin
   if (stack_.empty()) fail(oword, oword_text(oword) + " without o" + oword.label + " " + std::string(opener(kind)));
   Open& top = stack_.back();
   if (top.kind != kind || top.label != oword.label) {
-    fail(oword, oword_text(oword) + " does not match the open o" + top.label + " " + std::string(opener(top.kind)) + " (line " +
-                    std::to_string(top.line + 1) + ", closed by o" + top.label + " " + std::string(closer(top.kind)) +
+    fail(oword, oword_text(oword) + " does not match the open " + opening_text(top.label, top.kind) + " (line " +
+                    std::to_string(top.line + 1) + ", closed by " + closing_text(top.label, top.kind) +
                     "): a construct is closed by the label that opened it");
   }
   return top;
@@ -132,16 +166,8 @@ void StructureScan::visit(const OWord& oword) {
   ControlLink& link = structure_.links.back();
   const std::size_t line = link.line;
   switch (oword.keyword) {
-    case Keyword::Sub: {
-      if (!stack_.empty()) {
-        fail(oword, "a subroutine cannot be defined inside o" + stack_.back().label + " " + std::string(opener(stack_.back().kind)) +
-                        " (line " + std::to_string(stack_.back().line + 1) + ")");
-      }
-      const auto [where, inserted] = structure_.subs.emplace(oword.label, line);
-      if (!inserted) fail(oword, "subroutine o" + oword.label + " is defined twice (first on line " + std::to_string(where->second + 1) + ")");
-      push(oword, Construct::Sub);
-      break;
-    }
+    case Keyword::Sub: define(oword, Construct::Sub); break;
+    case Keyword::Program: define(oword, Construct::Program); break;
     case Keyword::Endsub: close(expect_top(oword, Construct::Sub)); break;
     case Keyword::Return:
       if (stack_.empty() || stack_.front().kind != Construct::Sub || stack_.front().label != oword.label) {
@@ -183,7 +209,7 @@ void StructureScan::visit(const OWord& oword) {
     case Keyword::Endrepeat: close(expect_top(oword, Construct::Repeat)); break;
     case Keyword::Break:
     case Keyword::Continue: {
-      for (auto it = stack_.rbegin(); it != stack_.rend() && it->kind != Construct::Sub; ++it) {
+      for (auto it = stack_.rbegin(); it != stack_.rend() && !is_body(it->kind); ++it) {
         if (is_loop(it->kind) && it->label == oword.label) {
           link.opening = it->line;
           return;
@@ -194,8 +220,31 @@ void StructureScan::visit(const OWord& oword) {
   }
 }
 
+/// A subroutine or numbered program: at the top level, its label used once by either kind.
+void StructureScan::define(const OWord& oword, Construct kind) {
+  if (!stack_.empty()) {
+    fail(oword, std::string(kind == Construct::Sub ? "a subroutine" : "a numbered program") + " cannot be defined inside " +
+                    opening_text(stack_.back().label, stack_.back().kind) + " (line " + std::to_string(stack_.back().line + 1) + ")" +
+                    (stack_.back().kind == Construct::Program ? ": M99 missing before it?" : ""));
+  }
+  const std::size_t line = structure_.links.back().line;
+  auto& defined = kind == Construct::Sub ? structure_.subs : structure_.numbered;
+  const auto& other = kind == Construct::Sub ? structure_.numbered : structure_.subs;
+  if (const auto found = other.find(oword.label); found != other.end()) {
+    fail(oword, "o" + oword.label + " is defined twice, as a sub and as a numbered program (first on line " +
+                    std::to_string(found->second + 1) + ")");
+  }
+  const auto [where, inserted] = defined.emplace(oword.label, line);
+  if (!inserted) {
+    fail(oword, std::string(kind == Construct::Sub ? "subroutine" : "numbered program") + " o" + oword.label +
+                    " is defined twice (first on line " + std::to_string(where->second + 1) + ")");
+  }
+  push(oword, kind);
+}
+
 std::string oword_text(const OWord& oword) {
-  return "o" + (oword.label.empty() ? std::string("[...]") : oword.label) + " " + std::string(keyword_name(oword.keyword));
+  const std::string label = "o" + (oword.label.empty() ? std::string("[...]") : oword.label);
+  return oword.keyword == Keyword::Program ? label : label + " " + std::string(keyword_name(oword.keyword));
 }
 
 const ControlLink& ProgramStructure::link(std::size_t line) const {

@@ -193,6 +193,14 @@ inline constexpr double max_cycle_repeats = 10000.0;
   }
 }
 
+/// G80 beside G0, G1, G2 or G3 on one line, in either order: Fanuc gives G80 a group of its own, so
+/// posts write safety lines such as `G0 G17 G40 G49 G80 G90`. LinuxCNC refuses two motion-group
+/// codes; here the move is kept, the cycle ended (as the move alone ends it).
+[[nodiscard]] constexpr bool is_g80_with_move(const Word& first, const Word& second) noexcept {
+  const auto is_move = [](std::int32_t code) { return code == 0 || code == 10 || code == 20 || code == 30; };
+  return (first.code_tenths == 800 && is_move(second.code_tenths)) || (second.code_tenths == 800 && is_move(first.code_tenths));
+}
+
 /// Whether `code_tenths` is a canned cycle this interpreter runs.
 [[nodiscard]] constexpr bool is_cycle_code(std::int32_t code_tenths) noexcept {
   return code_tenths == 730 || (code_tenths >= 810 && code_tenths <= 890 && code_tenths != 840 && code_tenths != 870 && code_tenths != 880);
@@ -387,6 +395,10 @@ class Interpreter {
           default: return fail(Error::GcodeUnsupportedWord, w.column);
         }
         if (slot == nullptr) continue;  // the second of M7/M8
+      }
+      if (slot == &motion_word && motion_word != nullptr && is_g80_with_move(*motion_word, w)) {
+        if (w.code_tenths != 800) motion_word = &w;  // the move stays; a move ends the cycle anyway
+        continue;
       }
       if (slot != nullptr) {
         if (*slot != nullptr) return fail(Error::GcodeConflictingWords, w.column);
