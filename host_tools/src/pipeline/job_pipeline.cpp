@@ -74,6 +74,28 @@ JobFileOptions job_file_options(const JobPipelineOptions& options) {
 
 namespace {
 
+/// A dwell this long is more likely milliseconds written where G4 P takes seconds.
+constexpr double suspicious_dwell_s = 60.0;
+
+/// A note for the job's longest dwell, if any is over suspicious_dwell_s: G4 P is in seconds
+/// (LinuxCNC, grbl), but some posts (for controls set to milliseconds) write P1000 for one second.
+void note_long_dwells(const Job& job, std::vector<std::string>& notes) {
+  const JobEvent* longest = nullptr;
+  std::size_t count = 0;
+  for (const auto& event : job.events) {
+    if (event.kind != JobEventKind::Dwell || !(event.value > suspicious_dwell_s)) continue;
+    ++count;
+    if (longest == nullptr || event.value > longest->value) longest = &event;
+  }
+  if (longest == nullptr) return;
+  std::ostringstream line;
+  line << count << (count == 1 ? " dwell" : " dwells") << " over " << suspicious_dwell_s << " s, the longest " << longest->value << " s";
+  if (longest->line != 0) line << " (line " << longest->line << ")";
+  line << ": G4 P is in seconds (LinuxCNC, grbl); if the post meant milliseconds, as some controls are set, the program "
+          "dwells 1000 times too long";
+  notes.push_back(line.str());
+}
+
 /// The streamed load: the file hands each segment to smoothing as it is read, and smoothing hands
 /// each smoothed segment to `downstream` (empty: into the job).
 PreparedJob load_streamed(const std::filesystem::path& job_file, const JobFileOptions& file_options, const MachineLimits& machine,
@@ -88,6 +110,7 @@ PreparedJob load_streamed(const std::filesystem::path& job_file, const JobFileOp
   prepared.job = stream.finish(std::move(rest), &prepared.smoothing);
   prepared.event_labels = stream.event_labels();
   prepared.notes.insert(prepared.notes.end(), rate_notes.begin(), rate_notes.end());
+  note_long_dwells(prepared.job, prepared.notes);
   return prepared;
 }
 
@@ -112,6 +135,7 @@ PreparedJob prepare(const std::filesystem::path& job_file, const JobFileOptions&
   }
   prepared.machine = options.strict_step_rate ? machine : step_rate_aware(machine, &prepared.notes);
   prepared.job = smoothing::smooth_for_machine(std::move(programmed), prepared.machine, tolerance_mm, &prepared.smoothing);
+  note_long_dwells(prepared.job, prepared.notes);
   return prepared;
 }
 

@@ -140,6 +140,21 @@ TEST_CASE("sim: a job too fast for the drivers is planned slower, and with --str
   CHECK(slower.output.find("limit violations:    none") != std::string::npos);
 }
 
+TEST_CASE("sim: a dwell over a minute is noted with its line (G4 P in seconds, a post may mean milliseconds)", "[host_tools][sim]") {
+  const std::string machine = source("examples/jobs/machine.json");
+  const std::string long_dwells = temporary("long_dwell.ngc", "G21 G90\nG4 P75\nG1 X1 F600\nG4 P90\nG4 P0.5\nM2\n");
+  const Run noted = run("sim " + long_dwells + " --machine " + machine);
+  INFO(noted.output);
+  CHECK(noted.status == 0);
+  CHECK(noted.output.find("note: 2 dwells over 60 s, the longest 90 s (line 4): G4 P is in seconds") != std::string::npos);
+  const std::string short_dwell = temporary("short_dwell.ngc", "G21 G90\nG4 P60\nG1 X1 F600\nM2\n");
+  const Run quiet = run("sim " + short_dwell + " --machine " + machine);
+  CHECK(quiet.status == 0);
+  CHECK(quiet.output.find("over 60 s") == std::string::npos);
+  std::remove(long_dwells.c_str());
+  std::remove(short_dwell.c_str());
+}
+
 TEST_CASE("sim: a missing machine option is a usage error", "[host_tools][sim]") {
   const Run r = run("sim " + source("examples/jobs/every_type.json"));
   CHECK(r.status != 0);
