@@ -606,10 +606,18 @@ class ProgramReader::Impl final : public detail::ParameterSource {
 
   /// An M99 at the program counter must end a numbered program, not the main program.
   void check_numbered_return(const detail::WordValue& m99) const {
-    const ControlLink& link = unit().structure.link(pc_);
+    const detail::ProgramStructure& structure = unit().structure;
+    const ControlLink& link = structure.link(pc_);
     if (link.opening == no_line) {
+      std::string hint;
+      const auto number = std::find_if(structure.links.begin(), structure.links.end(),
+                                       [](const ControlLink& l) { return l.keyword == Keyword::Program && !l.m99 && l.closing == no_line; });
+      if (number != structure.links.end()) {
+        hint = " (the O-word on line " + std::to_string(number->line + 1) +
+               " is the program's number, as on a program's first line; a subprogram there needs a line before it)";
+      }
       throw LineError(m99.column, "M99",
-                      "M99 in the main program restarts it without end (LinuxCNC's endless program): a job must end; end it with M2 or M30",
+                      "M99 in the main program restarts it without end (LinuxCNC's endless program): a job must end; end it with M2 or M30" + hint,
                       Error::GcodeSyntax);
     }
     if (!frames_.back().numbered || frames_.back().body != link.opening) {
