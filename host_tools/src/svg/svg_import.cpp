@@ -68,7 +68,15 @@ SvgImport read_document(std::string_view text, std::string name, const SvgOption
   svg::ElementWalk walk(diagnostics, options.strict);
   const svg::RootViewport viewport = svg::root_viewport(diagnostics, *root);
   walk.walk(*root, svg::Scope{viewport.map, viewport.lengths});
-  if (walk.drawn().empty()) diagnostics.fail(*root, "", "the drawing has no paths or shapes to draw");
+  if (walk.drawn().empty()) {  // say what was there but not drawn: an Inkscape <flowRoot>, invisible shapes, ...
+    const std::vector<std::string> skipped = diagnostics.take_warnings();
+    std::string why;
+    if (!skipped.empty()) {
+      const std::size_t more = skipped.size() - 1;
+      why = " (" + skipped.front() + (more > 0 ? "; and " + std::to_string(more) + (more == 1 ? " more warning" : " more warnings") : "") + ")";
+    }
+    diagnostics.fail(*root, "", "the drawing has no paths or shapes to draw" + why);
+  }
   svg::select_layers(diagnostics, walk.layers(), options.layers, walk.drawn());
   return svg::build_import(diagnostics, std::move(walk.drawn()), options, diagnostics.take_warnings(), walk.layers());
 }

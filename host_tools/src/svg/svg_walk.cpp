@@ -3,6 +3,7 @@
 #include "svg_walk.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <optional>
 #include <string_view>
 
@@ -42,6 +43,7 @@ void ElementWalk::walk(const tinyxml2::XMLElement& root, const Scope& root_scope
     }
     for (std::size_t i = first; i < drawn_.size(); ++i) drawn_[i].layer = index.value_or(0);
   }
+  text_.missing_glyphs_note();
 }
 
 void ElementWalk::collect_style_sheets(const tinyxml2::XMLElement& element) {
@@ -120,6 +122,7 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
     diagnostics_.warn(element, "is not drawn (stroke and fill are none: invisible)");
     return;
   }
+  if (shape) note_unseen_style(element, scope);
   std::vector<Subpath> subpaths;
   if (name == "path") {
     const char* data = element.Attribute("d");
@@ -154,6 +157,34 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
     return;
   }
   append_machine_subpaths(diagnostics_, element, name == "path" ? "d" : "", scope.map, subpaths, drawn_);
+}
+
+namespace {
+
+/// White as a fill colour: "white", "#fff", "#ffffff", "rgb(255, 255, 255)" in any case.
+bool is_white(std::string colour) {
+  colour.erase(std::remove_if(colour.begin(), colour.end(), [](unsigned char c) { return std::isspace(c) != 0; }), colour.end());
+  std::transform(colour.begin(), colour.end(), colour.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return colour == "white" || colour == "#fff" || colour == "#ffffff" || colour == "rgb(255,255,255)";
+}
+
+}  // namespace
+
+void ElementWalk::note_unseen_style(const tinyxml2::XMLElement& element, const Scope& scope) {
+  if (!marker_noted_ && local_name(element) != "text") {
+    for (const char* property : {"marker-start", "marker-mid", "marker-end", "marker"}) {
+      const std::string value = styles_.property(element, property);
+      if (value.empty() || value == "none") continue;
+      diagnostics_.warn(element, std::string(property) + " " + value + ": markers (arrowheads, dots) are not drawn (noted once per file)");
+      marker_noted_ = true;
+      break;
+    }
+  }
+  if (!white_fill_noted_ && scope.stroke == "none" && is_white(scope.fill)) {
+    diagnostics_.warn(element, "has a white fill and no stroke, invisible on white paper, and is drawn as an outline "
+                               "(a background? noted once per file)");
+    white_fill_noted_ = true;
+  }
 }
 
 void ElementWalk::viewport(const tinyxml2::XMLElement& element, const Scope& scope, const Affine& placed, const ViewportSize& size) {

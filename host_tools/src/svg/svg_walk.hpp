@@ -59,6 +59,9 @@ class ElementWalk {
   void viewport(const tinyxml2::XMLElement& element, const Scope& scope, const Affine& placed, const ViewportSize& size);
   void use(const tinyxml2::XMLElement& element, const Scope& scope);
   void collect_style_sheets(const tinyxml2::XMLElement& element);
+  /// One note per file for what a renderer shows and a pen does not (markers), or the reverse (a
+  /// white fill without stroke: a matplotlib figure's background).
+  void note_unseen_style(const tinyxml2::XMLElement& element, const Scope& scope);
   /// The child a <switch> renders: the first SVG element that is not title/desc/metadata and has no
   /// requiredExtensions (no extension is supported; every other condition passes).
   [[nodiscard]] static const tinyxml2::XMLElement* switch_choice(const tinyxml2::XMLElement& element);
@@ -72,6 +75,8 @@ class ElementWalk {
   std::map<std::string, const tinyxml2::XMLElement*> ids_;
   std::vector<const tinyxml2::XMLElement*> active_uses_;
   std::size_t expanded_elements_ = 0;  ///< elements visited through <use>, all uses together
+  bool marker_noted_ = false;
+  bool white_fill_noted_ = false;
 };
 
 }  // namespace curvestep::host::svg

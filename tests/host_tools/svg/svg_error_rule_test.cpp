@@ -102,3 +102,23 @@ TEST_CASE("svg: the malformed test files import by default and name their error 
   REQUIRE(result.warnings.size() == 1);
   CHECK(contains(result.warnings[0], "bad_path_missing_number.svg:4: <path id=\"wing\"> \"d\": at character 13: expected a coordinate"));
 }
+
+TEST_CASE("svg: a drawing with nothing to draw names what it skipped", "[host_tools][svg][error-rule]") {
+  // Inkscape's flowed text (an SVG 1.2 draft no browser draws) alone: the error says so.
+  const auto message = [](const std::string& body) {
+    try {
+      (void)import_page(body);
+    } catch (const LoadError& error) {
+      return std::string(error.what());
+    }
+    FAIL("imported: " << body);
+    return std::string();
+  };
+  CHECK(message("<flowRoot><flowRegion><rect width=\"10\" height=\"10\"/></flowRegion><flowPara>x</flowPara></flowRoot>") ==
+        "test.svg:1: <svg>: the drawing has no paths or shapes to draw (test.svg:2: <flowRoot> is not drawn (unknown element))");
+  CHECK(message("<path d=\"X\"/>\n<image href=\"a.png\"/>")
+            .rfind("test.svg:1: <svg>: the drawing has no paths or shapes to draw (test.svg:2: <path> \"d\": at character 1: ", 0) == 0);
+  CHECK(contains(message("<path d=\"X\"/>\n<image href=\"a.png\"/>"), "; and 1 more warning)"));
+  // Nothing skipped: nothing to add.
+  CHECK(message("<g/>") == "test.svg:1: <svg>: the drawing has no paths or shapes to draw");
+}

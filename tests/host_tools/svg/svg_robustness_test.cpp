@@ -47,7 +47,7 @@ TEST_CASE("svg: random path data and transforms import or fail with a LoadError"
       const std::string what = error.what();
       INFO(what);
       const bool syntax = what.rfind("test.svg:2: <path> \"d\": at character ", 0) == 0;
-      const bool nothing = what == "test.svg:1: <svg>: the drawing has no paths or shapes to draw";
+      const bool nothing = what.rfind("test.svg:1: <svg>: the drawing has no paths or shapes to draw", 0) == 0;
       CHECK((syntax || nothing));
     }
   }

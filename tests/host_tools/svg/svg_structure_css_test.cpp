@@ -95,6 +95,24 @@ TEST_CASE("svg: an element with neither stroke nor fill is invisible and not dra
   CHECK(result.warnings[0] == "test.svg:2: <line> is not drawn (stroke and fill are none: invisible)");
 }
 
+TEST_CASE("svg: markers and a white fill without stroke are drawn as the pen can, with one note each per file", "[host_tools][svg][css]") {
+  // A renderer draws the arrowhead and hides the white background; the pen draws the shape's
+  // outline alone, and says so once.
+  const auto result = import_page("<style>.bg { fill: #FFF }</style>\n"
+                                  "<rect class=\"bg\" width=\"20\" height=\"10\"/>\n"
+                                  "<rect class=\"bg\" width=\"5\" height=\"5\"/>\n"
+                                  "<path style=\"marker-end: url(#head)\" stroke=\"black\" fill=\"none\" d=\"M 0 0 L 10 0\"/>\n"
+                                  "<line marker-start=\"url(#dot)\" stroke=\"black\" x2=\"3\"/>\n"
+                                  "<rect fill=\"rgb(255, 255, 255)\" stroke=\"black\" width=\"1\" height=\"1\"/>\n"
+                                  "<line marker-end=\"none\" stroke=\"black\" x2=\"4\"/>");
+  CHECK(drawn(result.job).size() == 3 * 4 + 3);  // every shape is drawn: three rectangles of four sides, three lines
+  REQUIRE(result.warnings.size() == 2);
+  CHECK(result.warnings[0] ==
+        "test.svg:3: <rect> has a white fill and no stroke, invisible on white paper, and is drawn as an outline (a background? noted once "
+        "per file)");
+  CHECK(result.warnings[1] == "test.svg:5: <path> marker-end url(#head): markers (arrowheads, dots) are not drawn (noted once per file)");
+}
+
 TEST_CASE("svg: entities and character references in attribute values", "[host_tools][svg][structure]") {
   // &#32; and &#x20; are spaces; &amp; in an id and in the reference to it.
   const auto pieces = drawn(import_page("<path d=\"M&#32;0 0&#x20;L 10&#x2C;0\"/>"

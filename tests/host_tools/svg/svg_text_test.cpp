@@ -126,10 +126,30 @@ TEST_CASE("svg text: a character the font lacks is a gap the width of a space, w
   const auto pieces = drawn(result.job);
   REQUIRE(pieces.size() == 2);
   check_l(pieces, 0, 26, 50);  // after the gap of 16
-  REQUIRE(result.warnings.size() == 1);  // once per element and character
+  REQUIRE(result.warnings.size() == 1);  // once per file
   CHECK(result.warnings[0] ==
+        "test.svg:2: <text> has characters \"\xC3\xA9\" (U+00E9) x2, which the Hershey Roman simplex font has no glyph for: "
+        "each drawn as a gap the width of a space");
+  // One character once: singular.
+  const SvgImport one = import_page("<text x=\"10\" y=\"50\" font-size=\"32\">L\xC3\xA9</text>");
+  REQUIRE(one.warnings.size() == 1);
+  CHECK(one.warnings[0] ==
         "test.svg:2: <text> has the character \"\xC3\xA9\" (U+00E9), which the Hershey Roman simplex font has no glyph for: "
         "drawn as a gap the width of a space");
+}
+
+TEST_CASE("svg text: characters the font lacks in many elements give one warning at the first, counting each", "[host_tools][svg][text]") {
+  // Ten distinct characters over three elements (U+00E0 .. U+00E9, the last twice): eight listed, two counted.
+  const SvgImport result = import_page(
+      "<text x=\"10\" y=\"50\">L</text>\n"
+      "<text x=\"10\" y=\"60\">\xC3\xA0\xC3\xA1\xC3\xA2<tspan>\xC3\xA3\xC3\xA4</tspan></text>\n"
+      "<text x=\"10\" y=\"70\">\xC3\xA5\xC3\xA6\xC3\xA7\xC3\xA8\xC3\xA9\xC3\xA9</text>");
+  REQUIRE(result.warnings.size() == 1);
+  CHECK(result.warnings[0] ==
+        "test.svg:3: <text> has characters \"\xC3\xA0\" (U+00E0), \"\xC3\xA1\" (U+00E1), \"\xC3\xA2\" (U+00E2), \"\xC3\xA3\" (U+00E3), "
+        "\"\xC3\xA4\" (U+00E4), \"\xC3\xA5\" (U+00E5), \"\xC3\xA6\" (U+00E6), \"\xC3\xA7\" (U+00E7) and 2 other distinct characters, "
+        "which the Hershey Roman simplex font has no glyph for: each drawn as a gap the width of a space "
+        "(11 characters in 3 elements, the first here)");
 }
 
 TEST_CASE("svg text: a text-only drawing imports, font-family gets one note, hidden text is not drawn", "[host_tools][svg][text]") {

@@ -2,6 +2,7 @@
 // <text> and <tspan> laid out in the Hershey font (svg_text.hpp).
 #include "svg_text.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <string_view>
 
@@ -168,10 +169,14 @@ void TextLayout::glyph(const tinyxml2::XMLElement& owner, char32_t code, const S
   const double scale = style.lengths.font_size / hershey_units_per_em;
   const HersheyGlyph* found = roman_simplex_glyph(code);
   if (found == nullptr) {
-    if (missing_noted_.insert({&owner, code}).second) {
-      diagnostics_.warn(owner, "has the character \"" + encode_utf8(code) + "\" (" + code_point_name(code) + "), which the " +
-                                   roman_simplex_name + " font has no glyph for: drawn as a gap the width of a space");
+    const auto seen = std::find_if(missing_.begin(), missing_.end(), [code](const auto& entry) { return entry.first == code; });
+    if (seen == missing_.end()) {
+      missing_.emplace_back(code, 1);
+    } else {
+      ++seen->second;
     }
+    if (first_missing_owner_ == nullptr) first_missing_owner_ = &owner;
+    missing_owners_.insert(&owner);
     found = roman_simplex_glyph(U' ');
   } else if (style.visible) {
     for (const auto& stroke : found->strokes) {
@@ -185,6 +190,28 @@ void TextLayout::glyph(const tinyxml2::XMLElement& owner, char32_t code, const S
     }
   }
   pen_.x += found->advance() * scale;
+}
+
+void TextLayout::missing_glyphs_note() {
+  if (first_missing_owner_ == nullptr) return;
+  constexpr std::size_t listed = 8;
+  std::size_t total = 0;
+  std::string list;
+  for (std::size_t i = 0; i < missing_.size(); ++i) {
+    const auto& [code, count] = missing_[i];
+    total += count;
+    if (i >= listed) continue;
+    list += (i == 0 ? "" : ", ") + ("\"" + encode_utf8(code) + "\" (" + code_point_name(code) + ")") +
+            (count > 1 ? " x" + std::to_string(count) : "");
+  }
+  if (missing_.size() > listed) list += " and " + std::to_string(missing_.size() - listed) + " other distinct characters";
+  const bool one = total == 1;
+  std::string message = "has " + std::string(one ? "the character " : "characters ") + list + ", which the " + roman_simplex_name +
+                        " font has no glyph for: " + (one ? "drawn as a gap" : "each drawn as a gap") + " the width of a space";
+  if (missing_owners_.size() > 1) {
+    message += " (" + std::to_string(total) + " characters in " + std::to_string(missing_owners_.size()) + " elements, the first here)";
+  }
+  diagnostics_.warn(*first_missing_owner_, message);
 }
 
 void TextLayout::start_chunk(const std::string& anchor) {

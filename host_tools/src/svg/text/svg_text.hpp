@@ -11,8 +11,8 @@
 //   advance to the left, `end` by all of it;
 // * white space as SVG's default: newlines dropped, tabs as spaces, runs of spaces collapsed, leading
 //   and trailing ones removed; `xml:space="preserve"` keeps every space (newlines and tabs as spaces);
-// * a character the font lacks is drawn as nothing and advances like a space, with one warning per
-//   element and character naming file:line and the character.
+// * a character the font lacks is drawn as nothing and advances like a space; one warning per file
+//   (missing_glyphs_note) names the first element with one and counts each character.
 // font-family, font-weight, letter-spacing and the rest are not read (the first font-family gets one note).
 #pragma once
 
@@ -41,6 +41,10 @@ class TextLayout {
   /// computed visibility is `visible`) in its user space.
   [[nodiscard]] std::vector<Subpath> strokes(const tinyxml2::XMLElement& text, const LengthContext& lengths, bool visible);
 
+  /// After the last text: one warning for every character the font lacks, at the first element
+  /// that had one (a text in many scripts gave hundreds of lines before).
+  void missing_glyphs_note();
+
  private:
   /// What a text-content element passes to its children.
   struct Style {
@@ -62,7 +66,10 @@ class TextLayout {
   Diagnostics& diagnostics_;
   const StyleSheet& styles_;
   bool family_noted_ = false;
-  std::set<std::pair<const tinyxml2::XMLElement*, char32_t>> missing_noted_;
+  /// Characters the font lacks, in the order first met, and how often each was met.
+  std::vector<std::pair<char32_t, std::size_t>> missing_;
+  std::set<const tinyxml2::XMLElement*> missing_owners_;
+  const tinyxml2::XMLElement* first_missing_owner_ = nullptr;
   // The text being laid out:
   std::vector<Subpath> out_;
   Point2 pen_;
