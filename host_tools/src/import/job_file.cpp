@@ -46,6 +46,21 @@ std::string understood_extensions() {
   return list + ", .svg";
 }
 
+/// Without --page the drawing is plotted where the document puts it: a note when that is outside
+/// the document's own page (a renderer clips it there; on paper it runs off the sheet).
+void note_off_document_page(const SvgImport& imported, const std::filesystem::path& path, std::vector<std::string>& notes) {
+  if (!imported.page_width_mm || !imported.page_height_mm) return;
+  const auto extent = drawing_extent(imported.job);
+  if (!extent) return;
+  const std::string overflow = page_overflow(extent->first, extent->second, *imported.page_width_mm, *imported.page_height_mm);
+  if (overflow.empty()) return;
+  std::ostringstream line;
+  line << path.string() << ": the drawing reaches " << overflow << " (the document's own page, " << *imported.page_width_mm << " x "
+       << *imported.page_height_mm << " mm): a viewer clips it there, the pen draws it off the sheet; --page SIZE --fit (or --center) "
+       << "lays it out on a page";
+  notes.push_back(line.str());
+}
+
 Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
   const std::string extension = checked_extension(path, options);
   if (extension == ".json") return load_job(path);
@@ -74,6 +89,8 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
       // Before anything moves: the drawing placed on the page and checked against it.
       const PageLayoutReport report = lay_out_on_page(imported.job, options.page, svg.start);
       if (notes != nullptr) notes->push_back(report.note);
+    } else if (notes != nullptr) {
+      note_off_document_page(imported, path, *notes);
     }
     return std::move(imported.job);
   }

@@ -154,6 +154,17 @@ std::optional<std::pair<MachinePoint, MachinePoint>> drawing_extent(const Job& j
   return box;
 }
 
+std::string page_overflow(const MachinePoint& low, const MachinePoint& high, double width_mm, double height_mm) {
+  constexpr double slack = 1.0 / 65536;
+  const double over[4] = {-low[0], high[0] - width_mm, -low[1], high[1] - height_mm};
+  const char* sides[4] = {"left of the page", "right of the page", "below the page", "above the page"};
+  std::string overflow;
+  for (int i = 0; i < 4; ++i) {
+    if (over[i] > slack) overflow += (overflow.empty() ? "" : ", ") + mm(over[i]) + " mm " + sides[i];
+  }
+  return overflow;
+}
+
 PageLayoutReport lay_out_on_page(Job& job, const PageLayout& layout, const MachinePoint& start) {
   if (layout.rotate_deg != 0 && layout.rotate_deg != 90 && layout.rotate_deg != 180 && layout.rotate_deg != 270) {
     throw std::invalid_argument("--rotate " + std::to_string(layout.rotate_deg) + ": use 90, 180 or 270 (clockwise)");
@@ -273,15 +284,8 @@ PageLayoutReport lay_out_on_page(Job& job, const PageLayout& layout, const Machi
   if (layout.page) {
     note << " on " << layout.page->name << (layout.landscape ? " landscape" : "") << " (" << mm(report.page_width_mm)
          << " x " << mm(report.page_height_mm) << " mm)";
-    // The machine file gives no travel range: the page is the limit. One Q16.16 step of slack.
-    constexpr double slack = 1.0 / 65536;
-    const double over[4] = {-report.low[0], report.high[0] - report.page_width_mm, -report.low[1],
-                            report.high[1] - report.page_height_mm};
-    const char* sides[4] = {"left of the page", "right of the page", "below the page", "above the page"};
-    std::string overflow;
-    for (int i = 0; i < 4; ++i) {
-      if (over[i] > slack) overflow += (overflow.empty() ? "" : ", ") + mm(over[i]) + " mm " + sides[i];
-    }
+    // The machine file gives no travel range: the page is the limit.
+    const std::string overflow = page_overflow(report.low, report.high, report.page_width_mm, report.page_height_mm);
     if (!overflow.empty()) {
       throw LoadError(SourceLocation{job.name, 0, 0, std::nullopt, "", "page"},
                       "the drawing does not fit the page " + layout.page->name + (layout.landscape ? " landscape" : "") + " (" +

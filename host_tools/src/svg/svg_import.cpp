@@ -78,7 +78,10 @@ SvgImport read_document(std::string_view text, std::string name, const SvgOption
     diagnostics.fail(*root, "", "the drawing has no paths or shapes to draw" + why);
   }
   svg::select_layers(diagnostics, walk.layers(), options.layers, walk.drawn());
-  return svg::build_import(diagnostics, std::move(walk.drawn()), options, diagnostics.take_warnings(), walk.layers());
+  SvgImport imported = svg::build_import(diagnostics, std::move(walk.drawn()), options, diagnostics.take_warnings(), walk.layers());
+  imported.page_width_mm = viewport.width_mm;
+  imported.page_height_mm = viewport.height_mm;
+  return imported;
 }
 
 }  // namespace

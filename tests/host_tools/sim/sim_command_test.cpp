@@ -155,6 +155,30 @@ TEST_CASE("sim: a dwell over a minute is noted with its line (G4 P in seconds, a
   std::remove(short_dwell.c_str());
 }
 
+TEST_CASE("sim: a drawing outside its document's own page is noted unless --page lays it out", "[host_tools][sim][svg]") {
+  // A 100 x 100 mm page (viewBox in mm) with a square from x 90 to 120 and y 40 to 60 (SVG y down):
+  // 20 mm right of the page; the machine's y is up, so nothing is below or above.
+  const std::string machine = source("examples/machines/plotter.json");
+  const std::string off = temporary("off_page.svg",
+                                    "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" viewBox=\"0 0 100 100\">"
+                                    "<rect x=\"90\" y=\"40\" width=\"30\" height=\"20\"/></svg>");
+  const Run noted = run("sim " + off + " --machine " + machine);
+  INFO(noted.output);
+  CHECK(noted.status == 0);
+  CHECK(noted.output.find("the drawing reaches 20 mm right of the page (the document's own page, 100 x 100 mm)") != std::string::npos);
+  const Run laid_out = run("sim " + off + " --machine " + machine + " --page a4 --fit");
+  CHECK(laid_out.status == 0);
+  CHECK(laid_out.output.find("own page") == std::string::npos);
+  const std::string inside = temporary("on_page.svg",
+                                       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"100mm\" height=\"100mm\" viewBox=\"0 0 100 100\">"
+                                       "<rect x=\"70\" y=\"40\" width=\"30\" height=\"20\"/></svg>");
+  const Run quiet = run("sim " + inside + " --machine " + machine);
+  CHECK(quiet.status == 0);
+  CHECK(quiet.output.find("own page") == std::string::npos);
+  std::remove(off.c_str());
+  std::remove(inside.c_str());
+}
+
 TEST_CASE("sim: a missing machine option is a usage error", "[host_tools][sim]") {
   const Run r = run("sim " + source("examples/jobs/every_type.json"));
   CHECK(r.status != 0);

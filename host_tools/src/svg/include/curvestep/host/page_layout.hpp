@@ -56,6 +56,11 @@ struct PageLayoutReport {
 /// The tight bounding box of the job's drawing (non-rapid) segments, curves included; nullopt if none.
 [[nodiscard]] std::optional<std::pair<MachinePoint, MachinePoint>> drawing_extent(const Job& job);
 
+/// How far a drawing from `low` to `high` (mm) reaches beyond a page of width × height with its
+/// corner at the origin: "26.5 mm below the page, 3 mm right of the page", or empty if it fits
+/// (one Q16.16 step of slack).
+[[nodiscard]] std::string page_overflow(const MachinePoint& low, const MachinePoint& high, double width_mm, double height_mm);
+
 /// Lays the drawing of `job` (lines, Béziers, rational Béziers and rapids, one piece per source:
 /// an imported SVG) out on the page: rotation about the drawing's centre, then with --fit the scale
 /// s = min((W − 2m)/w, (H − 2m)/h) and centring, with --center centring alone. Rapids are rebuilt

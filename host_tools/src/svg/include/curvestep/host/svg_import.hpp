@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -50,6 +51,8 @@ struct SvgImport {
   double travel_mm = 0;                 ///< rapid travel of `job`
   std::vector<std::string> layers;      ///< labels of the layers drawn, in order ("(outside layers)" for the rest); a LayerChange event between each two
   std::vector<std::string> warnings;    ///< elements not drawn, data drawn up to an error ("file:line: <path> "d": at character 9: ...")
+  std::optional<double> page_width_mm;  ///< the document's page (the root's width and height), where they give one
+  std::optional<double> page_height_mm;
   /// Rapid travel the optimiser saved, mm.
   [[nodiscard]] double travel_saved_mm() const noexcept { return travel_document_mm - travel_mm; }
 };
