@@ -160,6 +160,12 @@ TEST_CASE("svg text: a text-only drawing imports, font-family gets one note, hid
   CHECK(result.warnings[0] ==
         "test.svg:2: <text> font-family Arial is not used: text is drawn in the Hershey Roman simplex single-stroke font "
         "(noted once per file)");
+  // Inherited from a group (Batik writes it on the root): the same note, at the text.
+  const SvgImport inherited = import_page("<g style=\"font-family:'Dialog'\"><text x=\"10\" y=\"50\">L</text></g>");
+  REQUIRE(inherited.warnings.size() == 1);
+  CHECK(inherited.warnings[0] ==
+        "test.svg:2: <text> font-family 'Dialog' is not used: text is drawn in the Hershey Roman simplex single-stroke font "
+        "(noted once per file)");
   // A hidden tspan advances but draws nothing; display:none neither.
   check_ls("<text x=\"10\" y=\"50\" font-size=\"32\"><tspan visibility=\"hidden\">L</tspan><tspan display=\"none\">LL</tspan>L</text>",
            {27});

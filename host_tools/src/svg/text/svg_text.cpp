@@ -73,10 +73,14 @@ std::optional<double> TextLayout::first_length(const tinyxml2::XMLElement& eleme
 
 std::vector<Subpath> TextLayout::strokes(const tinyxml2::XMLElement& text, const LengthContext& lengths, bool visible) {
   if (!family_noted_) {
-    if (const std::string family = styles_.property(text, "font-family"); !family.empty()) {
+    // font-family is inherited: the text's own, else the nearest ancestor's (Batik sets it on the root).
+    for (const tinyxml2::XMLNode* node = &text; node != nullptr && node->ToElement() != nullptr; node = node->Parent()) {
+      const std::string family = styles_.property(*node->ToElement(), "font-family");
+      if (family.empty() || family == "inherit") continue;
       family_noted_ = true;
       diagnostics_.warn(text, "font-family " + family + " is not used: text is drawn in the " + roman_simplex_name +
                                   " single-stroke font (noted once per file)");
+      break;
     }
   }
   out_.clear();
