@@ -46,7 +46,7 @@ namespace {
 void add_eval_command(CLI::App& app) {
   auto options = std::make_shared<EvalOptions>();
   auto* eval = app.add_subcommand("eval", "Write the exact points of one segment of a job at its own parameter values (CSV x,y,z)");
-  eval->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required();
+  eval->add_option("job", options->job, job_file_help())->required();
   eval->add_option("--segment", options->segment, "Segment index in the file, counted from 0")
       ->required()
       ->check(CLI::Range(0LL, 1000000000LL));

@@ -293,7 +293,7 @@ int run_gpio(const GpioCommandOptions& o) {
 void add_gpio_command(CLI::App& app) {
   auto options = std::make_shared<GpioCommandOptions>();
   auto* gpio = app.add_subcommand("gpio", "Run a job in real time on this computer's GPIO step/dir lines (libgpiod)");
-  gpio->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required()->check(CLI::ExistingFile);
+  gpio->add_option("job", options->job, job_file_help())->required()->check(CLI::ExistingFile);
   gpio->add_option("--machine,-m", options->machine, "Machine file (.json) with a \"gpio\" section naming the chip and lines")
       ->required()
       ->check(CLI::ExistingFile);

@@ -45,7 +45,7 @@ namespace {
 void add_sample_command(CLI::App& app) {
   auto options = std::make_shared<SampleOptions>();
   auto* sample = app.add_subcommand("sample", "Flatten a job into a polyline within a tolerance (CSV x,y,z)");
-  sample->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required();
+  sample->add_option("job", options->job, job_file_help())->required();
   sample->add_option("--tolerance", options->tolerance_mm, "Largest distance from the true path, mm")->required();
   sample->add_option("-o,--output", options->out, "Output CSV file (default: standard output)");
   sample->add_flag("--optimize", options->optimize, "SVG: order subpaths to shorten pen-up travel and report the saving");

@@ -258,7 +258,7 @@ namespace {
 void add_sim_command(CLI::App& app) {
   auto options = std::make_shared<SimOptions>();
   auto* sim = app.add_subcommand("sim", "Replay a job exactly as the firmware would run it and report the motion");
-  sim->add_option("job", options->job, "Job file: .json, G-code (.ngc .nc .gcode .tap) or .svg")->required()->check(CLI::ExistingFile);
+  sim->add_option("job", options->job, job_file_help())->required()->check(CLI::ExistingFile);
   sim->add_option("--machine,-m", options->machine, "Machine file (.json)")->required()->check(CLI::ExistingFile);
   sim->add_option("--rate", options->rate_hz, "Setpoint rate in Hz (100..100000), overriding the machine file")
       ->check(rate_hz_check());

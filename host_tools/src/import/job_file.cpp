@@ -99,6 +99,12 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
 
 }  // namespace
 
+std::string job_file_help() {
+  std::string list;
+  for (const auto extension : gcode_extensions) list += (list.empty() ? "" : " ") + std::string(extension);
+  return "Job file: .json, G-code (" + list + ") or .svg";
+}
+
 Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
   Job job = load_by_extension(path, options, notes);
   // Every format: no job starts that the controller would refuse halfway or could not follow.

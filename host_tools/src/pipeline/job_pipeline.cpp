@@ -74,7 +74,7 @@ JobFileOptions job_file_options(const JobPipelineOptions& options) {
 
 namespace {
 
-/// A dwell this long is more likely milliseconds written where G4 P takes seconds.
+/// A dwell this long is more likely milliseconds written where a dwell's P (G4, G82, G89) takes seconds.
 constexpr double suspicious_dwell_s = 60.0;
 
 /// A note for the job's longest dwell, if any is over suspicious_dwell_s: G4 P is in seconds
@@ -91,8 +91,8 @@ void note_long_dwells(const Job& job, std::vector<std::string>& notes) {
   std::ostringstream line;
   line << count << (count == 1 ? " dwell" : " dwells") << " over " << suspicious_dwell_s << " s, the longest " << longest->value << " s";
   if (longest->line != 0) line << " (line " << longest->line << ")";
-  line << ": G4 P is in seconds (LinuxCNC, grbl); if the post meant milliseconds, as some controls are set, the program "
-          "dwells 1000 times too long";
+  line << ": a dwell's P (G4, G82, G89) is in seconds (LinuxCNC, grbl); if the post meant milliseconds, as some controls "
+          "are set, the program dwells 1000 times too long";
   notes.push_back(line.str());
 }
 

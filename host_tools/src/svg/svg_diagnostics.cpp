@@ -2,6 +2,8 @@
 // Errors and warnings of one SVG file (svg_diagnostics.hpp).
 #include "svg_diagnostics.hpp"
 
+#include <algorithm>
+
 namespace curvestep::host::svg {
 
 std::string Diagnostics::label(const tinyxml2::XMLElement& element) {
@@ -32,8 +34,21 @@ void Diagnostics::fail_syntax(const tinyxml2::XMLElement& element, const char* a
   fail(element, attribute, "at character " + std::to_string(error.position()) + ": " + error.what());
 }
 
-void Diagnostics::warn(const tinyxml2::XMLElement& element, const std::string& message) {
-  warnings_.push_back(file_ + ":" + std::to_string(element.GetLineNum()) + ": " + label(element) + " " + message);
+std::string Diagnostics::line(const tinyxml2::XMLElement& element, const std::string& message) const {
+  return file_ + ":" + std::to_string(element.GetLineNum()) + ": " + label(element) + " " + message;
+}
+
+void Diagnostics::warn(const tinyxml2::XMLElement& element, const std::string& message) { warnings_.push_back(line(element, message)); }
+
+void Diagnostics::warn_in(std::size_t place, const tinyxml2::XMLElement& element, const std::string& message) {
+  warnings_.at(place) = line(element, message);
+}
+
+std::vector<std::string> Diagnostics::take_warnings() {
+  std::vector<std::string> out = std::move(warnings_);
+  warnings_.clear();
+  out.erase(std::remove(out.begin(), out.end(), std::string()), out.end());  // places reserved and never filled
+  return out;
 }
 
 void Diagnostics::warn_at(const tinyxml2::XMLElement& element, const char* attribute, const std::string& message) {

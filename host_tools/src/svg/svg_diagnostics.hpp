@@ -43,10 +43,21 @@ class Diagnostics {
   /// Records a whole warning line.
   void warn_line(std::string line) { warnings_.push_back(std::move(line)); }
 
+  /// Keeps the next warning's place for one whose text is known only later (a summary), so the
+  /// warnings stay in document order. A place never filled is dropped by take_warnings.
+  [[nodiscard]] std::size_t reserve_warning() {
+    warnings_.emplace_back();
+    return warnings_.size() - 1;
+  }
+  /// Fills a reserved place with warn()'s line for `element`.
+  void warn_in(std::size_t place, const tinyxml2::XMLElement& element, const std::string& message);
+
   /// The warnings so far, moved out.
-  [[nodiscard]] std::vector<std::string> take_warnings() { return std::move(warnings_); }
+  [[nodiscard]] std::vector<std::string> take_warnings();
 
  private:
+  [[nodiscard]] std::string line(const tinyxml2::XMLElement& element, const std::string& message) const;
+
   std::string file_;
   std::vector<std::string> warnings_;
 };

@@ -67,14 +67,20 @@ SvgImport read_document(std::string_view text, std::string name, const SvgOption
   }
   svg::ElementWalk walk(diagnostics, options.strict);
   const svg::RootViewport viewport = svg::root_viewport(diagnostics, *root);
-  walk.walk(*root, svg::Scope{viewport.map, viewport.lengths});
+  svg::Scope root_scope;
+  root_scope.map = viewport.map;
+  root_scope.lengths = viewport.lengths;
+  walk.walk(*root, root_scope);
   if (walk.drawn().empty()) {  // say what was there but not drawn: an Inkscape <flowRoot>, invisible shapes, ...
     const std::vector<std::string> skipped = diagnostics.take_warnings();
     std::string why;
-    if (!skipped.empty()) {
-      const std::size_t more = skipped.size() - 1;
-      why = " (" + skipped.front() + (more > 0 ? "; and " + std::to_string(more) + (more == 1 ? " more warning" : " more warnings") : "") + ")";
+    constexpr std::size_t named = 3;  // the first of them: one may be a mere note (font-family) beside the cause
+    for (std::size_t i = 0; i < skipped.size() && i < named; ++i) why += (i == 0 ? " (" : "; ") + skipped[i];
+    if (skipped.size() > named) {
+      const std::size_t more = skipped.size() - named;
+      why += "; and " + std::to_string(more) + (more == 1 ? " more warning" : " more warnings");
     }
+    if (!why.empty()) why += ")";
     diagnostics.fail(*root, "", "the drawing has no paths or shapes to draw" + why);
   }
   svg::select_layers(diagnostics, walk.layers(), options.layers, walk.drawn());

@@ -99,6 +99,11 @@ void ElementWalk::visit(const tinyxml2::XMLElement& element, const Scope& parent
   }
   if (const std::string stroke = styles_.property(element, "stroke"); !stroke.empty() && stroke != "inherit") scope.stroke = stroke;
   if (const std::string fill = styles_.property(element, "fill"); !fill.empty() && fill != "inherit") scope.fill = fill;
+  for (const char* property : {"marker", "marker-start", "marker-mid", "marker-end"}) {  // the shorthand first
+    const std::string value = styles_.property(element, property);
+    if (value.empty() || value == "inherit") continue;
+    scope.marker = value == "none" ? std::string() : std::string(property) + " " + value;
+  }
   if (name == "g" || name == "a") {
     scope.map = with_transform(diagnostics_, element, parent.map, scope.lengths);
     visit_children(element, scope);
@@ -171,16 +176,13 @@ bool is_white(std::string colour) {
 }  // namespace
 
 void ElementWalk::note_unseen_style(const tinyxml2::XMLElement& element, const Scope& scope) {
-  if (!marker_noted_ && local_name(element) != "text") {
-    for (const char* property : {"marker-start", "marker-mid", "marker-end", "marker"}) {
-      const std::string value = styles_.property(element, property);
-      if (value.empty() || value == "none") continue;
-      diagnostics_.warn(element, std::string(property) + " " + value + ": markers (arrowheads, dots) are not drawn (noted once per file)");
-      marker_noted_ = true;
-      break;
-    }
+  const std::string name = local_name(element);
+  const bool marked = name == "path" || name == "line" || name == "polyline" || name == "polygon";  // the shapes markers apply to
+  if (!marker_noted_ && marked && !scope.marker.empty()) {
+    diagnostics_.warn(element, scope.marker + ": markers (arrowheads, dots) are not drawn (noted once per file)");
+    marker_noted_ = true;
   }
-  if (!white_fill_noted_ && scope.stroke == "none" && is_white(scope.fill)) {
+  if (!white_fill_noted_ && name != "text" && scope.stroke == "none" && is_white(scope.fill)) {  // text is drawn in strokes
     diagnostics_.warn(element, "has a white fill and no stroke, invisible on white paper, and is drawn as an outline "
                                "(a background? noted once per file)");
     white_fill_noted_ = true;

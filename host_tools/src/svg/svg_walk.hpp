@@ -28,6 +28,7 @@ struct Scope {
   bool visible = true;    ///< computed visibility (inherited): hidden and collapse are not drawn
   std::string stroke = "none";   ///< computed stroke (inherited)
   std::string fill = "black";    ///< computed fill (inherited)
+  std::string marker;            ///< "marker-end url(#a)": a marker property in force (inherited), empty if none
 };
 
 /// Width and height a <use> gives the <svg> or <symbol> it references (nullopt: not given).

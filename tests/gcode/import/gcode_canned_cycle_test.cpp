@@ -82,6 +82,9 @@ TEST_CASE("canned cycles: G80 beside G0 or G1 (a Fanuc post's safety line) ends 
                     {R, 0, 0, 1}, {F, 0, 0, 5}, {F, 3, 0, 5}});
   // G80 alone still ends the motion mode; two G80s, or G80 with a cycle, are still refused.
   CHECK_THAT(message_of("G21 G0 Z10\nG80 G80\n"), Catch::Contains("cycle.ngc:2:5") && Catch::Contains("cannot appear with"));
+  CHECK_THAT(message_of("G21 G0 Z10\nG0 G80 G80 X1\n"), Catch::Contains("cycle.ngc:2:8") && Catch::Contains("cannot appear with"));
+  CHECK_THAT(message_of("G21 G0 Z10\nG80 G0 G80 X1\n"), Catch::Contains("cycle.ngc:2:8") && Catch::Contains("cannot appear with"));
+  CHECK_THAT(message_of("G21 G0 Z10\nG0 G80 G1 X1\n"), Catch::Contains("cycle.ngc:2:8") && Catch::Contains("cannot appear with"));
   CHECK_THAT(message_of("G21 G0 Z10\nG81 G80 X1 Z-1 R1 F60\n"), Catch::Contains("cycle.ngc:2:5") && Catch::Contains("cannot appear with"));
 }
 

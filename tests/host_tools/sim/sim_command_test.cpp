@@ -146,7 +146,7 @@ TEST_CASE("sim: a dwell over a minute is noted with its line (G4 P in seconds, a
   const Run noted = run("sim " + long_dwells + " --machine " + machine);
   INFO(noted.output);
   CHECK(noted.status == 0);
-  CHECK(noted.output.find("note: 2 dwells over 60 s, the longest 90 s (line 4): G4 P is in seconds") != std::string::npos);
+  CHECK(noted.output.find("note: 2 dwells over 60 s, the longest 90 s (line 4): a dwell's P (G4, G82, G89) is in seconds") != std::string::npos);
   const std::string short_dwell = temporary("short_dwell.ngc", "G21 G90\nG4 P60\nG1 X1 F600\nM2\n");
   const Run quiet = run("sim " + short_dwell + " --machine " + machine);
   CHECK(quiet.status == 0);

@@ -118,7 +118,12 @@ TEST_CASE("svg: a drawing with nothing to draw names what it skipped", "[host_to
         "test.svg:1: <svg>: the drawing has no paths or shapes to draw (test.svg:2: <flowRoot> is not drawn (unknown element))");
   CHECK(message("<path d=\"X\"/>\n<image href=\"a.png\"/>")
             .rfind("test.svg:1: <svg>: the drawing has no paths or shapes to draw (test.svg:2: <path> \"d\": at character 1: ", 0) == 0);
-  CHECK(contains(message("<path d=\"X\"/>\n<image href=\"a.png\"/>"), "; and 1 more warning)"));
+  CHECK(contains(message("<path d=\"X\"/>\n<image href=\"a.png\"/>"), "; test.svg:3: <image> is not drawn)"));
+  // The first three are named (a font-family note must not hide the cause), the rest counted.
+  const std::string four = message("<text font-family=\"Arial\">\xE6\x97\xA5</text>\n<image/>\n<image/>\n<image/>");
+  CHECK(contains(four, "(test.svg:2: <text> font-family Arial is not used"));
+  CHECK(contains(four, "; test.svg:2: <text> has the character"));
+  CHECK(contains(four, "; test.svg:3: <image> is not drawn; and 2 more warnings)"));
   // Nothing skipped: nothing to add.
   CHECK(message("<g/>") == "test.svg:1: <svg>: the drawing has no paths or shapes to draw");
 }

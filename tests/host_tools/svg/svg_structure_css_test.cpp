@@ -111,6 +111,15 @@ TEST_CASE("svg: markers and a white fill without stroke are drawn as the pen can
         "test.svg:3: <rect> has a white fill and no stroke, invisible on white paper, and is drawn as an outline (a background? noted once "
         "per file)");
   CHECK(result.warnings[1] == "test.svg:5: <path> marker-end url(#head): markers (arrowheads, dots) are not drawn (noted once per file)");
+  // Markers are inherited; "none" on a shape turns them off there; white text (drawn in strokes) is no background.
+  const auto inherited = import_page("<text fill=\"#fff\" x=\"1\" y=\"5\">L</text>\n"
+                                     "<g marker-end=\"url(#a)\" stroke=\"black\">\n"
+                                     "<path marker-end=\"none\" d=\"M 0 0 L 1 0\"/>\n"
+                                     "<path d=\"M 0 0 L 2 0\"/>\n"
+                                     "<rect fill=\"white\" stroke=\"none\" width=\"3\" height=\"3\"/></g>");
+  REQUIRE(inherited.warnings.size() == 2);
+  CHECK(inherited.warnings[0] == "test.svg:5: <path> marker-end url(#a): markers (arrowheads, dots) are not drawn (noted once per file)");
+  CHECK(inherited.warnings[1].rfind("test.svg:6: <rect> has a white fill and no stroke", 0) == 0);
 }
 
 TEST_CASE("svg: entities and character references in attribute values", "[host_tools][svg][structure]") {

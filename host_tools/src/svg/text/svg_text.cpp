@@ -179,7 +179,10 @@ void TextLayout::glyph(const tinyxml2::XMLElement& owner, char32_t code, const S
     } else {
       ++seen->second;
     }
-    if (first_missing_owner_ == nullptr) first_missing_owner_ = &owner;
+    if (first_missing_owner_ == nullptr) {
+      first_missing_owner_ = &owner;
+      missing_place_ = diagnostics_.reserve_warning();  // the summary comes where the first is met
+    }
     missing_owners_.insert(&owner);
     found = roman_simplex_glyph(U' ');
   } else if (style.visible) {
@@ -215,7 +218,7 @@ void TextLayout::missing_glyphs_note() {
   if (missing_owners_.size() > 1) {
     message += " (" + std::to_string(total) + " characters in " + std::to_string(missing_owners_.size()) + " elements, the first here)";
   }
-  diagnostics_.warn(*first_missing_owner_, message);
+  diagnostics_.warn_in(missing_place_, *first_missing_owner_, message);
 }
 
 void TextLayout::start_chunk(const std::string& anchor) {

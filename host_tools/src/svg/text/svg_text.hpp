@@ -70,6 +70,7 @@ class TextLayout {
   std::vector<std::pair<char32_t, std::size_t>> missing_;
   std::set<const tinyxml2::XMLElement*> missing_owners_;
   const tinyxml2::XMLElement* first_missing_owner_ = nullptr;
+  std::size_t missing_place_ = 0;  ///< the warning's place (Diagnostics::reserve_warning)
   // The text being laid out:
   std::vector<Subpath> out_;
   Point2 pen_;

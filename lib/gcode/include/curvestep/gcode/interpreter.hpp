@@ -363,6 +363,7 @@ class Interpreter {
     const Word* coolant_off_word = nullptr;
     const Word* output_word = nullptr;
     const Word* override_word = nullptr;
+    const Word* cancel_beside_move = nullptr;  // a G80 beside G0-G3 (is_g80_with_move)
     for (const Word& w : block.words()) {
       const Word** slot = nullptr;
       if (w.letter == 'G') {
@@ -396,8 +397,9 @@ class Interpreter {
         }
         if (slot == nullptr) continue;  // the second of M7/M8
       }
-      if (slot == &motion_word && motion_word != nullptr && is_g80_with_move(*motion_word, w)) {
-        if (w.code_tenths != 800) motion_word = &w;  // the move stays; a move ends the cycle anyway
+      if (slot == &motion_word && motion_word != nullptr && cancel_beside_move == nullptr && is_g80_with_move(*motion_word, w)) {
+        cancel_beside_move = w.code_tenths == 800 ? &w : motion_word;  // once: a second G80 is a conflict
+        if (w.code_tenths != 800) motion_word = &w;                    // the move stays; a move ends the cycle anyway
         continue;
       }
       if (slot != nullptr) {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// load_job_file: a job from JSON (.json), G-code (.ngc, .nc, .gcode, .tap) or SVG (.svg), by extension.
+// load_job_file: a job from JSON (.json), G-code (.ngc, .nc, .gcode, .tap, .gc, .gco, .g, .cnc) or SVG (.svg), by extension.
 #pragma once
 
 #include <filesystem>
@@ -20,6 +20,9 @@ struct JobFileOptions {
   PageLayout page;          ///< SVG: page size, centring, fit, rotation and the page check (page_layout.hpp)
   GcodeOptions gcode;       ///< G-code: the machine file's tool table and G28/G30 positions
 };
+
+/// "Job file: .json, G-code (.ngc .nc ...) or .svg": what the commands' help says of their job argument.
+[[nodiscard]] std::string job_file_help();
 
 /// Loads the job in `path`, choosing the format by its extension (case-insensitive). Lines worth
 /// telling the user (SVG warnings, travel saved by --optimize, the page layout) are appended to
