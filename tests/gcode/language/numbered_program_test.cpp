@@ -46,7 +46,8 @@ TEST_CASE("numbered programs: M98 P runs O100 ... M99 L times and returns after 
   // program skips a definition it runs into; on the first line, O7 would be the program's number.
   CHECK(x_values(run_program("G0 X0\nO7\nG0 X4\nM99\nG0 X1\nM98 P7\nG0 X2\n")) == Values{0, 1, 4, 2});
   CHECK_THAT(program_error("O7\nG0 X4\nM99\n").what(),
-             Contains("test.ngc:3:1") && Contains("endless program") && Contains("the O-word on line 1 is the program's number"));
+             Contains("test.ngc:3:1") && Contains("endless program") && Contains("the O-word on line 1 is the program's number") &&
+                 Contains("run on its own, it ends with M2 or M30"));
 }
 
 TEST_CASE("numbered programs: nested calls share #1-#30 (LinuxCNC's example totals 5.25)", "[gcode][language][numbered]") {
@@ -117,6 +118,16 @@ TEST_CASE("numbered programs: errors name the line and what to write instead", "
   CHECK_THAT(message("M30\nO7\nO8\nM99\n"), Contains("test.ngc:3:1") && Contains("M99 missing before it"));
   CHECK_THAT(message("O100 G0 X1\n"), Contains("test.ngc:1:6") && Contains("numbered program's O100 alone on its line"));
   CHECK_THAT(message("G0 X1\nM98 P1\nM30\nO1\nM98 P1\nM99\n"), Contains("test.ngc:5:1") && Contains("nested deeper"));
+  // A G code that reads P or L beside M98 would take M98's.
+  CHECK_THAT(message("G4 M98 P1\nM30\nO1\nM99\n"), Contains("test.ngc:1:1") && Contains("M98 takes the line's P and L"));
+  // M98 and M99 are found before the program runs: not computed.
+  CHECK_THAT(message("#1 = 98\nM#1 P1\nM30\nO1\nM99\n"), Contains("test.ngc:2:1") && Contains("not computed"));
+}
+
+TEST_CASE("numbered programs: P within 0.0001 of a whole number, L rounded (LinuxCNC's rules)", "[gcode][language][numbered]") {
+  CHECK(x_values(run_program("M98 P7.00005 L[0.3/0.1]\nM30\nO7\nG0 X4\nM99\n")) == Values{4, 4, 4});
+  CHECK(x_values(run_program("M98 P7 L2.4\nM30\nO7\nG0 X4\nM99\n")) == Values{4, 4});
+  CHECK_THAT(program_error("M98 P7.001\nM30\nO7\nM99\n").what(), Contains("test.ngc:1:5") && Contains("0..999999999 (7.001 given)"));
 }
 
 TEST_CASE("language: a grbl console command is named as one", "[gcode][language][errors]") {

@@ -219,6 +219,13 @@ std::string_view keyword_name(Keyword keyword) noexcept {
   return "?";
 }
 
+const WordValue* word_of(const ParsedLine& line, char letter) noexcept {
+  for (const auto& word : line.words) {
+    if (word.letter == letter) return &word;
+  }
+  return nullptr;
+}
+
 const WordValue* literal_m_word(const ParsedLine& line, double code) noexcept {
   for (const auto& word : line.words) {
     if (word.letter != 'M') continue;

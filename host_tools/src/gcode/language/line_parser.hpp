@@ -74,6 +74,9 @@ struct ParsedLine {
 /// or M99 is control flow: the structure is found before any value is computed.
 [[nodiscard]] const WordValue* literal_m_word(const ParsedLine& line, double code) noexcept;
 
+/// The word `letter` of the line (upper case), or null.
+[[nodiscard]] const WordValue* word_of(const ParsedLine& line, char letter) noexcept;
+
 /// True for a line with nothing in it but blanks and plain comments.
 [[nodiscard]] bool is_blank(const ParsedLine& line) noexcept;
 

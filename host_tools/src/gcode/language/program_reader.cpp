@@ -21,17 +21,20 @@
 #include <utility>
 #include <vector>
 
-#include <curvestep/host/csv.hpp>
 #include <curvestep/host/load_error.hpp>
 
 #include "line_parser.hpp"
 #include "line_source.hpp"
 #include "message_text.hpp"
+#include "numbered_program.hpp"
 #include "program_structure.hpp"
 
 namespace curvestep::host::gcode {
 
 using detail::ControlLink;
+using detail::NumberedCall;
+using detail::whole_number;
+using detail::max_label;
 using detail::Keyword;
 using detail::LineError;
 using detail::no_line;
@@ -99,11 +102,6 @@ struct Unit {
   std::map<std::size_t, ReadLine>::node_type spare;  ///< a forgotten line's room
 };
 
-/// An M98 call, checked: the numbered program's O line and how many times it runs.
-struct NumberedCall {
-  std::size_t body = no_line;
-  long long passes = 1;
-};
 
 /// A subroutine read from its own file.
 struct SubFile {
@@ -381,15 +379,20 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     const detail::WordValue* m98 = detail::literal_m_word(line, 98);
     const detail::WordValue* m99 = detail::literal_m_word(line, 99);
     if (m98 && m99) throw LineError(m99->column, "M99", "M98 and M99 cannot share a line", Error::GcodeConflictingWords);
-    if (m99 && line_word(line, 'P')) {
-      throw LineError(line_word(line, 'P')->column, "P", "M99 P (a return to a line number) is not supported: M99 returns to the line after the M98",
+    if (const auto* p = detail::word_of(line, 'P'); m99 && p) {
+      throw LineError(p->column, "P", "M99 P (a return to a line number) is not supported: M99 returns to the line after the M98",
                       Error::GcodeSyntax);
     }
     const std::optional<NumberedCall> numbered = m98 ? std::optional(numbered_call(line, *m98)) : std::nullopt;
     if (m99) check_numbered_return(*m99);
     for (const auto& word : line.words) {
       if (&word == m98 || &word == m99 || (m98 && (word.letter == 'P' || word.letter == 'L'))) continue;  // control flow, not the machine's
-      block.words.push_back(ProgramWord{word.letter, value(word.value), word.column});
+      const double number = value(word.value);
+      if (word.letter == 'M' && (number == 98.0 || number == 99.0)) {
+        throw LineError(word.column, "M", "M98 and M99 are control flow, found before the program runs: write them as numbers (M98, M99), "
+                        "not computed", Error::GcodeSyntax);
+      }
+      block.words.push_back(ProgramWord{word.letter, number, word.column});
     }
     // LinuxCNC: every value on the line is read first; the assignments take effect at its end.
     struct Pending {
@@ -522,24 +525,16 @@ class ProgramReader::Impl final : public detail::ParameterSource {
   void call(const OWord& oword) {
     std::string label = oword.label;
     if (oword.label_value != detail::no_node) {
-      const double computed = value(oword.label_value);
-      if (!(computed >= 0.0 && computed < 1e9 && computed == std::floor(computed))) {
-        fail_oword(oword, "a computed subroutine label must be a whole number 0..999999999", Error::GcodeBadNumber);
-      }
-      label = std::to_string(static_cast<long>(computed));
+      const auto computed = whole_number(value(oword.label_value), max_label, 0.0);
+      if (!computed) fail_oword(oword, "a computed subroutine label must be a whole number 0..999999999", Error::GcodeBadNumber);
+      label = std::to_string(*computed);
     }
     const SubFile sub = find_sub(oword, label);
-    if (call_depth() >= options_.max_call_depth) {
-      fail_oword(oword, "subroutine calls nested deeper than " + std::to_string(options_.max_call_depth) + " (endless recursion?)",
-                 Error::CapacityExceeded);
-    }
+    if (call_depth() >= options_.max_call_depth) fail_oword(oword, depth_message(), Error::CapacityExceeded);
     std::vector<double> arguments;
     for (const auto argument : oword.arguments) arguments.push_back(value(argument));
-    Frame frame;
-    frame.return_unit = unit_;
-    frame.return_line = pc_ + 1;
+    Frame& frame = push_frame(pc_ + 1);
     for (int n = 1; n <= argument_parameters; ++n) frame.saved[static_cast<std::size_t>(n - 1)] = store_.get(n);
-    frames_.push_back(std::move(frame));
     // #N+1..#30 keep the caller's values (LinuxCNC).
     for (std::size_t k = 0; k < arguments.size(); ++k) store_.set(static_cast<int>(k + 1), arguments[k]);
     store_.set_named("_value_returned", 0.0);
@@ -547,79 +542,40 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     pc_ = sub.line + 1;
   }
 
-  /// The word `letter` of a line, or null.
-  static const detail::WordValue* line_word(const ParsedLine& line, char letter) {
-    for (const auto& word : line.words) {
-      if (word.letter == letter) return &word;
-    }
-    return nullptr;
+  /// A new call frame returning to `return_line` of the current file.
+  Frame& push_frame(std::size_t return_line) {
+    Frame& frame = frames_.emplace_back();
+    frame.return_unit = unit_;
+    frame.return_line = return_line;
+    return frame;
   }
 
-  /// A whole number in [0, limit) written as word `word` of the line, or a LineError naming what it must be.
-  double whole_word(const detail::WordValue& word, double limit, const std::string& what) const {
-    const double number = value(word.value);
-    if (!(number >= 0.0 && number < limit && number == std::floor(number))) {
-      throw LineError(word.column, std::string(1, word.letter), what + " is a whole number from 0 (" + format_number(number) + " given)",
-                      Error::GcodeBadNumber);
-    }
-    return number;
+  [[nodiscard]] std::string depth_message() const {
+    return "subroutine calls nested deeper than " + std::to_string(options_.max_call_depth) + " (endless recursion?)";
   }
 
-  /// `M98 P- [L-]` of the line at the program counter: the numbered program of this file it calls
-  /// (LinuxCNC: not a sub; the two styles do not call each other) and its passes.
+  /// `M98 P- [L-]` of the line at the program counter (numbered_program.hpp), within the call depth.
   NumberedCall numbered_call(const ParsedLine& line, const detail::WordValue& m98) const {
-    const detail::WordValue* p = line_word(line, 'P');
-    if (!p) throw LineError(m98.column, "M98", "M98 needs P, the number of the program it calls: M98 P100 [L passes]", Error::GcodeSyntax);
-    const std::string label = std::to_string(static_cast<long long>(whole_word(*p, 1e9, "M98 P, a program number,")));
-    const detail::WordValue* l = line_word(line, 'L');
-    const long long passes = l ? static_cast<long long>(whole_word(*l, max_repeat_count, "M98 L, a count of passes,")) : 1;
-    const detail::ProgramStructure& structure = unit().structure;
-    const auto found = structure.numbered.find(label);
-    if (found == structure.numbered.end()) {
-      if (structure.subs.count(label) != 0) {
-        throw LineError(m98.column, "M98", "o" + label + " is a sub (o" + label + " sub ... endsub): call it with o" + label +
-                                               " call; M98 calls a numbered program (O" + label + " ... M99)",
-                        Error::GcodeSyntax);
-      }
-      throw LineError(p->column, "P", "no numbered program O" + label + " (O" + label + " ... M99) in " + unit().file + " for M98 to call",
-                      Error::GcodeSyntax);
-    }
-    if (passes > 0 && call_depth() >= options_.max_call_depth) {
-      throw LineError(m98.column, "M98", "subroutine calls nested deeper than " + std::to_string(options_.max_call_depth) + " (endless recursion?)",
-                      Error::CapacityExceeded);
-    }
-    return NumberedCall{found->second, passes};
+    const NumberedCall call =
+        detail::numbered_call(line, m98, [this](detail::NodeIndex root) { return value(root); }, unit().structure, unit().file, max_repeat_count);
+    if (call.passes > 0 && call_depth() >= options_.max_call_depth) throw LineError(m98.column, "M98", depth_message(), Error::CapacityExceeded);
+    return call;
   }
 
   /// Runs the numbered program of an M98 (the program counter is on the line after the M98).
   void enter_numbered(const NumberedCall& call) {
     if (call.passes <= 0) return;  // M98 L0 runs nothing
-    Frame frame;
-    frame.return_unit = unit_;
-    frame.return_line = pc_;
+    Frame& frame = push_frame(pc_);
     frame.numbered = true;
     frame.body = call.body;
     frame.passes_left = call.passes - 1;
-    frames_.push_back(std::move(frame));
     pc_ = call.body + 1;
   }
 
   /// An M99 at the program counter must end a numbered program, not the main program.
   void check_numbered_return(const detail::WordValue& m99) const {
-    const detail::ProgramStructure& structure = unit().structure;
-    const ControlLink& link = structure.link(pc_);
-    if (link.opening == no_line) {
-      std::string hint;
-      const auto number = std::find_if(structure.links.begin(), structure.links.end(),
-                                       [](const ControlLink& l) { return l.keyword == Keyword::Program && !l.m99 && l.closing == no_line; });
-      if (number != structure.links.end()) {
-        hint = " (the O-word on line " + std::to_string(number->line + 1) +
-               " is the program's number, as on a program's first line; a subprogram there needs a line before it)";
-      }
-      throw LineError(m99.column, "M99",
-                      "M99 in the main program restarts it without end (LinuxCNC's endless program): a job must end; end it with M2 or M30" + hint,
-                      Error::GcodeSyntax);
-    }
+    const ControlLink& link = unit().structure.link(pc_);
+    if (link.opening == no_line) detail::fail_main_program_m99(unit().structure, m99);
     if (!frames_.back().numbered || frames_.back().body != link.opening) {
       throw std::logic_error("M99 of a numbered program reached without its M98");
     }
