@@ -90,7 +90,7 @@ TEST_CASE("memory: curvestep stream of a G-code program 20 000 moves longer grow
 // test passes with keep_link_alive disabled; an idle controller ignores the host's silence), so the
 // test guards the outcome, a long check that keeps the session, not which of the two keeps it.
 TEST_CASE("hil: a job whose check-through pass outlasts the link timeout streams to a device and an executor",
-          "[integration][hil][link]") {
+          "[integration][hil][link][serial]") {
   const auto program = write_zigzag_program("check_pass.ngc", 24'000);
   for (const bool executor : {false, true}) {
     INFO((executor ? "executor" : "device with a planner"));
