@@ -39,12 +39,15 @@ bool is_gcode(const std::string& extension) {
   return std::find(gcode_extensions.begin(), gcode_extensions.end(), extension) != gcode_extensions.end();
 }
 
-/// ".json, .ngc, ..., .svg": every format load_job_file reads.
-std::string understood_extensions() {
-  std::string list = ".json";
-  for (const auto extension : gcode_extensions) list += ", " + std::string(extension);
-  return list + ", .svg";
+/// The G-code extensions joined by `separator`.
+std::string gcode_extension_list(std::string_view separator) {
+  std::string list;
+  for (const auto extension : gcode_extensions) list += (list.empty() ? "" : std::string(separator)) + std::string(extension);
+  return list;
 }
+
+/// ".json, .ngc, ..., .svg": every format load_job_file reads.
+std::string understood_extensions() { return ".json, " + gcode_extension_list(", ") + ", .svg"; }
 
 /// Without --page the drawing is plotted where the document puts it: a note when that is outside
 /// the document's own page (a renderer clips it there; on paper it runs off the sheet).
@@ -99,11 +102,7 @@ Job load_by_extension(const std::filesystem::path& path, const JobFileOptions& o
 
 }  // namespace
 
-std::string job_file_help() {
-  std::string list;
-  for (const auto extension : gcode_extensions) list += (list.empty() ? "" : " ") + std::string(extension);
-  return "Job file: .json, G-code (" + list + ") or .svg";
-}
+std::string job_file_help() { return "Job file: .json, G-code (" + gcode_extension_list(" ") + ") or .svg"; }
 
 Job load_job_file(const std::filesystem::path& path, const JobFileOptions& options, std::vector<std::string>* notes) {
   Job job = load_by_extension(path, options, notes);

@@ -64,7 +64,7 @@ bool is_global(const std::string& name) { return !name.empty() && name.front() =
 /// Where an O-word, M98 or M99 line and the line after it start in the file: control flow jumps to
 /// these lines only, so no other line's place is kept.
 struct JumpTarget {
-  std::size_t line = no_line;     ///< the O-word or M98 line, 0-based
+  std::size_t line = no_line;     ///< the O-word, M98 or M99 line, 0-based
   std::uint64_t offset = 0;       ///< where it starts
   std::uint64_t next_offset = 0;  ///< where the line after it starts
 };
@@ -101,7 +101,6 @@ struct Unit {
   std::map<std::size_t, ReadLine> recent;  ///< at most recent_lines_kept lines read lately (and the step's own)
   std::map<std::size_t, ReadLine>::node_type spare;  ///< a forgotten line's room
 };
-
 
 /// A subroutine read from its own file.
 struct SubFile {
@@ -550,6 +549,13 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     return frame;
   }
 
+  /// Back to where the innermost call frame returns, and the frame gone.
+  void pop_frame() {
+    unit_ = frames_.back().return_unit;
+    pc_ = frames_.back().return_line;
+    frames_.pop_back();
+  }
+
   [[nodiscard]] std::string depth_message() const {
     return "subroutine calls nested deeper than " + std::to_string(options_.max_call_depth) + " (endless recursion?)";
   }
@@ -589,9 +595,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
       pc_ = frame.body + 1;
       return;
     }
-    unit_ = frame.return_unit;
-    pc_ = frame.return_line;
-    frames_.pop_back();
+    pop_frame();
   }
 
   /// Where sub `label` is: in the program (LinuxCNC's subs are global, so a subroutine file may call
@@ -700,9 +704,7 @@ class ProgramReader::Impl final : public detail::ParameterSource {
     store_.set_named("_value_returned", has_value ? 1.0 : 0.0);
     const Frame& frame = frames_.back();
     for (int n = 1; n <= argument_parameters; ++n) store_.set(n, frame.saved[static_cast<std::size_t>(n - 1)]);
-    unit_ = frame.return_unit;
-    pc_ = frame.return_line;
-    frames_.pop_back();
+    pop_frame();
   }
 
   ProgramOptions options_;
